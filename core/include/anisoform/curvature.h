@@ -1,0 +1,29 @@
+// Principal curvature directions per vertex (Rusinkiewicz 2004: per-face
+// curvature tensors from normal differences, averaged onto vertices in their
+// tangent frames), optionally smoothed as a line field, since raw curvature
+// directions are noisy. Used for the snake of the paper's Fig. 8.
+#pragma once
+
+#include "anisoform/mesh.h"
+
+namespace aniso {
+
+enum class CurvatureDirection { Min, Max };
+
+struct PrincipalCurvature {
+  Positions min_direction;  // #V by 3 unit tangent vectors
+  Positions max_direction;  // #V by 3 unit tangent vectors
+  Eigen::VectorXd k_min;    // #V
+  Eigen::VectorXd k_max;    // #V
+};
+
+PrincipalCurvature principal_curvature(const Mesh& mesh);
+
+// The chosen principal direction per vertex (#V by 3, unit, tangent), smoothed
+// by `smoothing_steps` steps of line-field averaging over one-rings
+// (0 = raw). Umbilic vertices (|k_max - k_min| tiny) take their neighbours'
+// direction through the smoothing.
+Positions curvature_direction_field(const Mesh& mesh, CurvatureDirection which,
+                                    int smoothing_steps = 10);
+
+}  // namespace aniso

@@ -1,0 +1,47 @@
+// Smooth tangent line fields from a few constraints (the user's arrows), and
+// scalar amounts interpolated harmonically from the same constraints.
+//
+// The line field is found by a connection Laplacian on vertex tangent planes
+// with angles doubled (a line field: d and -d are the same; Knöppel et al.
+// 2013), constrained vertices fixed; the amounts by the cotangent Laplacian
+// with the constrained values as Dirichlet conditions. Both are restricted to a
+// region (the selection or patch) when a mask is given.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "anisoform/mesh.h"
+
+namespace aniso {
+
+struct DirectionConstraint {
+  int vertex = 0;
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitX();  // projected to the tangent plane
+  double su = 1.0;                                       // amount along (optional use)
+  double sv = 1.0;                                       // amount across (optional use)
+  bool has_amounts = false;                              // su/sv given for this vertex
+};
+
+struct DirectionField {
+  Positions direction;  // #V by 3 unit tangent vectors (zero outside the region)
+  Eigen::VectorXd su;   // #V amounts along (1 where no amounts were given)
+  Eigen::VectorXd sv;   // #V amounts across
+};
+
+// Parses constraint lines "INDEX DX DY DZ [SU [SV]]" (blank lines and # comments
+// ignored). Throws Error(BadParameter) naming the line. `source` names the file
+// in messages.
+std::vector<DirectionConstraint> parse_direction_constraints(const std::string& text,
+                                                             const std::string& source);
+
+// Propagates the constraints over the mesh (or over the vertices with
+// region_mask[i] != 0). A constraint whose direction is (nearly) parallel to
+// the normal is refused with Error(BadParameter) naming the vertex; an index
+// out of range too. With every vertex of the region constrained, the field is
+// used as is (only projected to the tangent planes).
+DirectionField propagate_direction_field(const Mesh& mesh,
+                                         const std::vector<DirectionConstraint>& constraints,
+                                         const std::vector<char>* region_mask = nullptr);
+
+}  // namespace aniso

@@ -1,0 +1,44 @@
+// Normals and the per-element frames of METHOD §3: C = [cu, cv, n] with cu the
+// wanted direction projected into the tangent plane.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "anisoform/mesh.h"
+
+namespace aniso {
+
+// Unit triangle normals (#F by 3); zero rows for zero-area triangles.
+Positions triangle_normals(const Mesh& mesh);
+
+// Area-weighted unit vertex normals (#V by 3); a vertex whose faces are all
+// degenerate (or that has none) takes the mean normal of its neighbours, else +z.
+Positions vertex_normals(const Mesh& mesh);
+
+struct Frames {
+  Positions u;  // #E by 3: cu, the direction in the tangent plane (unit)
+  Positions v;  // #E by 3: cv = n x cu
+  Positions n;  // #E by 3: the element normal
+  int filled = 0;  // elements whose projected direction was degenerate and
+                   // were filled from their neighbours (METHOD §3)
+};
+
+// Frames for elements with normals `normals` and wanted directions
+// `directions` (both #E by 3). Where the projection of the direction into the
+// tangent plane is shorter than `degenerate_fraction` of its length (the
+// direction is nearly parallel to the normal), the element takes the mean of its
+// non-degenerate neighbours' directions (line-field mean, repeated outwards), as
+// given by `neighbors` (CSR, as VertexAdjacency). With no usable direction at
+// all in a component, an arbitrary tangent is used and still counted as filled.
+Frames build_frames(const Positions& normals, const Positions& directions,
+                    const std::vector<int>& neighbor_offsets,
+                    const std::vector<int>& neighbors,
+                    double degenerate_fraction = 1e-3);
+
+// Triangle-to-triangle adjacency through shared edges, CSR as above.
+void triangle_adjacency(const Triangles& F, int num_vertices,
+                        std::vector<int>& offsets, std::vector<int>& neighbors);
+
+}  // namespace aniso

@@ -1,0 +1,44 @@
+// The one factorization every solver shares: the cotangent Laplacian with some
+// vertices pinned (held at given positions), factored once by sparse LDL^T and
+// reused for every iteration, amount and direction. Only a new mesh or a new
+// pin set refactors; `factorizations()` counts them so tests can check that.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include <Eigen/Sparse>
+
+#include "anisoform/mesh.h"
+
+namespace aniso {
+
+class LaplacianSolver {
+ public:
+  // L: #V by #V symmetric positive semidefinite; pinned: vertex indices held
+  // fixed (each free component must contain at least one, else the solve is
+  // singular: Error(Numerical) names a vertex of the unpinned component).
+  LaplacianSolver(const Eigen::SparseMatrix<double>& L, std::vector<int> pinned);
+  ~LaplacianSolver();
+  LaplacianSolver(const LaplacianSolver&) = delete;
+  LaplacianSolver& operator=(const LaplacianSolver&) = delete;
+
+  // Solves L x = b on the free rows with x fixed on the pinned rows.
+  // b: #V by k (rows of pinned vertices ignored); x: #V by k, pinned rows are
+  // read as the pinned values, free rows are written.
+  void solve(const Eigen::Ref<const Eigen::MatrixXd>& b, Eigen::Ref<Eigen::MatrixXd> x) const;
+
+  // Row-major #V by 3 convenience for positions.
+  void solve(const Positions& b, Positions& x) const;
+
+  const std::vector<int>& pinned() const { return pinned_; }
+  int num_vertices() const { return n_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::vector<int> pinned_;
+  int n_ = 0;
+};
+
+}  // namespace aniso

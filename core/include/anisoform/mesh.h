@@ -1,0 +1,32 @@
+// The indexed triangle mesh every module works on.
+//
+// Positions are double precision, one row per vertex (#V by 3); triangles are
+// one row per face (#F by 3) of 0-based vertex indices, counter-clockwise seen
+// from outside. Row-major storage so that a flat xyz buffer maps onto it.
+#pragma once
+
+#include <Eigen/Core>
+
+namespace aniso {
+
+using Positions = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+using Triangles = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
+struct Mesh {
+  Positions V;  // #V by 3 vertex positions
+  Triangles F;  // #F by 3 vertex indices per triangle
+
+  int num_vertices() const { return static_cast<int>(V.rows()); }
+  int num_triangles() const { return static_cast<int>(F.rows()); }
+};
+
+struct BoundingBox {
+  Eigen::Vector3d min = Eigen::Vector3d::Zero();
+  Eigen::Vector3d max = Eigen::Vector3d::Zero();
+  double diagonal() const { return (max - min).norm(); }
+};
+
+// Axis-aligned bounding box of the vertices (zero box for an empty mesh).
+BoundingBox bounding_box(const Positions& V);
+
+}  // namespace aniso

@@ -1,0 +1,84 @@
+// Checking a mesh before it is solved on, and the repairs we offer.
+//
+// check_mesh names every problem with its element (vertex or face index,
+// 0-based in messages as "vertex 5" / "face 20"), and counts what `info` reports.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "anisoform/mesh.h"
+
+namespace aniso {
+
+enum class ProblemKind {
+  EmptyMesh,                // no vertices or no triangles
+  NonFiniteCoordinate,      // element = vertex
+  IndexOutOfRange,          // element = face (only for meshes built in memory)
+  RepeatedCorner,           // element = face: a face uses one vertex twice
+  ZeroAreaTriangle,         // element = face
+  DuplicateFace,            // element = face (the later of the two)
+  NonManifoldEdge,          // element = one face on the edge; message names the edge
+  NonManifoldVertex,        // element = vertex (its faces form more than one fan)
+  InconsistentOrientation,  // element = face whose winding disagrees with a neighbour
+  UnreferencedVertex,       // element = vertex used by no face (a warning)
+};
+const char* problem_kind_name(ProblemKind kind);
+
+struct Problem {
+  ProblemKind kind;
+  int element;          // vertex or face index as documented per kind
+  std::string message;  // plain words, names the element
+};
+
+struct MeshReport {
+  int vertices = 0;
+  int triangles = 0;
+  int components = 0;      // face-connected components
+  int boundary_loops = 0;
+  bool edge_manifold = true;
+  bool vertex_manifold = true;
+  bool consistently_oriented = true;
+  int degenerate_triangles = 0;   // zero-area (collinear or repeated corners)
+  int duplicate_faces = 0;
+  int non_manifold_edges = 0;
+  int inconsistent_edges = 0;     // interior edges its two faces use in the same direction
+  int non_manifold_vertices = 0;
+  int non_finite_vertices = 0;
+  int unreferenced_vertices = 0;
+  BoundingBox bbox;               // over finite vertices
+  std::vector<Problem> problems;  // every problem, in element order per kind
+
+  // No problem that makes solving impossible: not empty, all coordinates finite,
+  // all indices in range. (Zero-area triangles, non-manifold elements and flipped
+  // faces are solved through, with the clamped weights of laplacian.h.)
+  bool solvable() const;
+  // The blocking problems in plain words, one line each (at most `max_lines`
+  // lines, then "... and N more").
+  std::string blocking_summary(int max_lines = 5) const;
+};
+
+MeshReport check_mesh(const Mesh& mesh);
+
+// Throws Error(BadMesh) with blocking_summary() unless the mesh is solvable.
+void require_solvable(const Mesh& mesh);
+
+// Merges vertices whose positions are equal (tolerance 0: exactly equal;
+// otherwise within `tolerance` in every coordinate). Faces that collapse
+// (a corner repeated) are dropped. `old_to_new` (#V of the input) if not null.
+Mesh weld_vertices(const Mesh& mesh, double tolerance = 0.0,
+                   std::vector<int>* old_to_new = nullptr);
+
+// true when no two faces share a vertex and there is more than one face:
+// an STL-style soup that welding should repair.
+bool is_triangle_soup(const Mesh& mesh);
+
+// Triangulates one polygon (corner indices into V, in order) by ear clipping in
+// its best-fit plane (Newell normal); works for concave polygons and for
+// polygons with a doubled bridge edge. Returns #corners-2 triangles keeping the
+// polygon's winding. Throws Error(BadFile) if the polygon has < 3 corners.
+std::vector<std::array<int, 3>> triangulate_polygon(const Positions& V,
+                                                    const std::vector<int>& polygon);
+
+}  // namespace aniso

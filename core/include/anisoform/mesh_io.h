@@ -1,0 +1,58 @@
+// Reading and writing triangle meshes: OBJ, OFF, PLY (ASCII and binary, either
+// byte order), STL (ASCII and binary).
+//
+// Readers are strict and name what is wrong with its place in the file: a
+// malformed number, a face that references a vertex that does not exist, a
+// truncated binary body, an empty file. Polygon faces (quads, n-gons, concave
+// ones too) are triangulated; STL triangle soups are welded by exact position.
+// Non-finite coordinates are read as they are (check_mesh reports them).
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "anisoform/mesh.h"
+
+namespace aniso {
+
+enum class MeshFormat { Obj, Off, Ply, Stl };
+
+// Format from a file name's extension (case-insensitive); throws
+// Error(BadParameter) naming the extension when it is not one of ours.
+MeshFormat format_from_path(const std::string& path);
+const char* format_name(MeshFormat format);
+
+// What the reader did to turn the file into an indexed triangle mesh.
+struct ReadReport {
+  int polygons_triangulated = 0;   // faces with more than 3 corners
+  int vertices_welded = 0;         // vertices merged away by welding (STL)
+  int elements_skipped = 0;        // OBJ lines/points and other non-surface elements
+  std::vector<std::string> notes;  // plain-words notes for the user
+};
+
+struct ReadResult {
+  Mesh mesh;
+  ReadReport report;
+};
+
+// Reads from a file / from bytes in memory. Errors: Error(BadFile) with a
+// message naming the file's problem, e.g.
+//   "face 21 references vertex 840, but the file has 829 vertices (line 871)".
+ReadResult read_mesh(const std::string& path);
+ReadResult read_mesh_from_memory(const char* data, std::size_t size, MeshFormat format);
+
+struct WriteOptions {
+  bool binary = true;  // PLY and STL: binary (little endian) or ASCII
+};
+
+// Writes to a file (format from the extension) / to bytes.
+void write_mesh(const std::string& path, const Mesh& mesh, const WriteOptions& options = {});
+std::string write_mesh_to_memory(const Mesh& mesh, MeshFormat format,
+                                 const WriteOptions& options = {});
+
+// OBJ with texture coordinates: 3D positions as `v`, uv (#V by 2) as `vt`,
+// faces `f a/a b/b c/c`. Used for flattened patterns.
+std::string write_obj_with_uv(const Mesh& mesh, const Eigen::MatrixX2d& uv);
+
+}  // namespace aniso

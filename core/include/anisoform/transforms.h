@@ -1,0 +1,59 @@
+// The local transformations of METHOD §3 and their per-element matrices.
+//
+// In the element frame C = [cu, cv, n] the local matrix is
+//   M = Rot * Shear * Scale,  Scale = diag(su, sv, sn),
+//   Shear = [[1, h, 0], [0, 1, 0], [0, 0, 1]],
+//   Rot   = rotation by theta about n, cu or cv,
+// and T = Twist * C M C^T, Twist = rotation about a global axis a by
+// k * ((p - o) . a) for the element's rest position p (paper Fig. 6).
+// Strength: an element of weight s gets su -> 1 + s(su - 1) (same for sv, sn),
+// h -> s h, theta -> s theta, twist angle -> s * angle, so soft selections give
+// soft borders.
+#pragma once
+
+#include <Eigen/Core>
+
+namespace aniso {
+
+enum class RotateAxis { None, Normal, U, V };
+
+struct TransformSpec {
+  double su = 1.0;  // scale along the direction
+  double sv = 1.0;  // scale across it, in the tangent plane
+  double sn = 1.0;  // scale along the normal (thickness)
+  double shear = 0.0;
+  RotateAxis rotate_axis = RotateAxis::None;
+  double rotate_degrees = 0.0;
+  bool twist = false;
+  Eigen::Vector3d twist_axis = Eigen::Vector3d::UnitZ();  // unit
+  Eigen::Vector3d twist_origin = Eigen::Vector3d::Zero();  // angle 0 here
+  double twist_degrees_per_unit = 0.0;
+
+  // true when T has a rotational part (rotation or twist): AnARAP then runs a
+  // fixed number of steps instead of converging (METHOD §5).
+  bool has_rotation() const;
+  bool is_identity() const;
+};
+
+// Throws Error(BadParameter) naming the field for non-finite values or
+// non-positive scales.
+void validate(const TransformSpec& spec);
+
+// Per-element amounts overriding su / sv (from a direction field with amounts).
+struct Amounts {
+  double su;
+  double sv;
+};
+
+// T for one element: frame columns (cu, cv, n), selection weight s in [0, 1],
+// rest position p, and the amounts to use for su / sv.
+Eigen::Matrix3d element_transform(const TransformSpec& spec, const Eigen::Vector3d& cu,
+                                  const Eigen::Vector3d& cv, const Eigen::Vector3d& n,
+                                  double weight, const Eigen::Vector3d& position,
+                                  const Amounts& amounts);
+
+// The symmetric positive part P of the polar decomposition T = Q P
+// (METHOD §5: the AnARAP local step fits rotations against P, not T).
+Eigen::Matrix3d polar_positive_part(const Eigen::Matrix3d& T);
+
+}  // namespace aniso

@@ -1,0 +1,195 @@
+#include "anisoform/anarap.h"
+
+#include <cmath>
+
+#include "anisoform/transforms.h"
+
+namespace aniso {
+namespace {
+
+// Rotation maximizing tr(R^T S), by Müller et al.'s iteration from the warm
+// start q. The step uses the first-order quaternion exponential (no trig):
+// near convergence it matches the exact one, far from it it is merely shorter.
+void fit_rotation(const Eigen::Matrix3d& S, Eigen::Quaterniond& q) {
+  const double scale = S.cwiseAbs().sum();
+  if (!(scale > 0.0)) return;
+  for (int it = 0; it < 24; ++it) {
+    const Eigen::Matrix3d R = q.toRotationMatrix();
+    Eigen::Vector3d omega = R.col(0).cross(S.col(0)) + R.col(1).cross(S.col(1)) + R.col(2).cross(S.col(2));
+    const double alignment = R.col(0).dot(S.col(0)) + R.col(1).dot(S.col(1)) + R.col(2).dot(S.col(2));
+    omega /= std::abs(alignment) + 1e-12 * scale;
+    if (omega.squaredNorm() < 1e-22) break;
+    const Eigen::Vector3d half = 0.5 * omega;
+    Eigen::Quaterniond step(1.0, half.x(), half.y(), half.z());
+    q = (step * q).normalized();
+  }
+}
+
+// Energy of one cell: sum w|e'|^2 - 2 tr(B^T A) + tr(B^T B C).
+inline double cell_energy(double edge_energy, const Eigen::Matrix3d& A, const Eigen::Matrix3d& B,
+                          const Eigen::Matrix3d& C) {
+  return edge_energy - 2.0 * (B.array() * A.array()).sum() +
+         ((B.transpose() * B).array() * C.array()).sum();
+}
+
+}  // namespace
+
+ArapIterations::ArapIterations(const Mesh& rest, const CotanWeights& weights,
+                               const Eigen::SparseMatrix<double>& laplacian, ArapElements elements)
+    : rest_(rest), weights_(weights), elements_(elements), n_(rest.num_vertices()) {
+  offsets_.assign(n_ + 1, 0);
+  neighbors_.reserve(static_cast<std::size_t>(laplacian.nonZeros()));
+  spoke_weight_.reserve(static_cast<std::size_t>(laplacian.nonZeros()));
+  // L is symmetric: column i lists the neighbours of i with -w_ij.
+  for (int i = 0; i < n_; ++i) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(laplacian, i); it; ++it) {
+      if (it.row() == i) continue;
+      neighbors_.push_back(static_cast<int>(it.row()));
+      spoke_weight_.push_back(-it.value());
+    }
+    offsets_[i + 1] = static_cast<int>(neighbors_.size());
+  }
+  spoke_edge_.resize(static_cast<Eigen::Index>(neighbors_.size()), 3);
+  weighted_edge_sum_ = Positions::Zero(n_, 3);
+  rest_covariance_.assign(n_, Eigen::Matrix3d::Zero());
+  for (int i = 0; i < n_; ++i) {
+    for (int q = offsets_[i]; q < offsets_[i + 1]; ++q) {
+      const Eigen::RowVector3d e = rest.V.row(neighbors_[q]) - rest.V.row(i);
+      spoke_edge_.row(q) = e;
+      weighted_edge_sum_.row(i) += spoke_weight_[q] * e;
+      if (elements_ == ArapElements::Spokes) {
+        rest_covariance_[i] += spoke_weight_[q] * e.transpose() * e;
+      }
+    }
+  }
+  if (elements_ == ArapElements::SpokesAndRims) {
+    for (int t = 0; t < rest.num_triangles(); ++t) {
+      Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector3d e = (rest.V.row(rest.F(t, (k + 2) % 3)) - rest.V.row(rest.F(t, (k + 1) % 3))).transpose();
+        C += weights.weight(t, k) * e * e.transpose();
+      }
+      for (int k = 0; k < 3; ++k) rest_covariance_[rest.F(t, k)] += C;
+    }
+  }
+  T_.assign(n_, Eigen::Matrix3d::Identity());
+  P_ = T_;
+  B_ = T_;
+  rotation_.assign(n_, Eigen::Quaterniond::Identity());
+}
+
+void ArapIterations::set_targets(const std::vector<Eigen::Matrix3d>& T) {
+  T_ = T;
+  symmetric_targets_ = true;
+  for (int i = 0; i < n_; ++i) {
+    P_[i] = polar_positive_part(T_[i]);
+    if ((P_[i] - T_[i]).cwiseAbs().maxCoeff() > 1e-12 * (1.0 + T_[i].cwiseAbs().maxCoeff())) {
+      symmetric_targets_ = false;
+    }
+  }
+}
+
+void ArapIterations::reset_rotations() {
+  rotation_.assign(n_, Eigen::Quaterniond::Identity());
+}
+
+void ArapIterations::covariance_spokes(const Positions& V, std::vector<Eigen::Matrix3d>& A,
+                                       Eigen::VectorXd& edge_energy) const {
+  for (int i = 0; i < n_; ++i) {
+    Eigen::Matrix3d acc = Eigen::Matrix3d::Zero();
+    double energy = 0.0;
+    const Eigen::RowVector3d vi = V.row(i);
+    for (int q = offsets_[i]; q < offsets_[i + 1]; ++q) {
+      const Eigen::Vector3d deformed = (V.row(neighbors_[q]) - vi).transpose();
+      const double w = spoke_weight_[q];
+      acc.noalias() += (w * deformed) * spoke_edge_.row(q);
+      energy += w * deformed.squaredNorm();
+    }
+    A[i] = acc;
+    edge_energy[i] = energy;
+  }
+}
+
+void ArapIterations::covariance_spokes_rims(const Positions& V, std::vector<Eigen::Matrix3d>& A,
+                                            Eigen::VectorXd& edge_energy) const {
+  std::fill(A.begin(), A.end(), Eigen::Matrix3d::Zero());
+  edge_energy.setZero();
+  for (int t = 0; t < rest_.num_triangles(); ++t) {
+    Eigen::Matrix3d acc = Eigen::Matrix3d::Zero();
+    double energy = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const int a = rest_.F(t, (k + 1) % 3), b = rest_.F(t, (k + 2) % 3);
+      const Eigen::Vector3d deformed = (V.row(b) - V.row(a)).transpose();
+      const Eigen::RowVector3d e = rest_.V.row(b) - rest_.V.row(a);
+      const double w = weights_.weight(t, k);
+      acc.noalias() += (w * deformed) * e;
+      energy += w * deformed.squaredNorm();
+    }
+    for (int k = 0; k < 3; ++k) {
+      A[rest_.F(t, k)] += acc;
+      edge_energy[rest_.F(t, k)] += energy;
+    }
+  }
+}
+
+double ArapIterations::local_step(const Positions& V) {
+  std::vector<Eigen::Matrix3d> A(n_);
+  Eigen::VectorXd edge_energy(n_);
+  if (elements_ == ArapElements::Spokes) {
+    covariance_spokes(V, A, edge_energy);
+  } else {
+    covariance_spokes_rims(V, A, edge_energy);
+  }
+  double energy = 0.0;
+  for (int i = 0; i < n_; ++i) {
+    // S = sum w e' (P e)^T = A P^T; P is symmetric.
+    fit_rotation(A[i] * P_[i], rotation_[i]);
+    B_[i].noalias() = rotation_[i].toRotationMatrix() * T_[i];
+    energy += cell_energy(edge_energy[i], A[i], B_[i], rest_covariance_[i]);
+  }
+  return std::max(energy, 0.0);
+}
+
+void ArapIterations::global_rhs(Positions& b) const {
+  b.setZero(n_, 3);
+  if (elements_ == ArapElements::Spokes) {
+    // b_i = -1/2 (B_i g_i + sum_j w_ij B_j e_ij), with g_i = sum_j w_ij e_ij.
+    for (int i = 0; i < n_; ++i) {
+      Eigen::Vector3d acc = B_[i] * weighted_edge_sum_.row(i).transpose();
+      for (int q = offsets_[i]; q < offsets_[i + 1]; ++q) {
+        acc.noalias() += B_[neighbors_[q]] * (spoke_weight_[q] * spoke_edge_.row(q).transpose());
+      }
+      b.row(i) = -0.5 * acc.transpose();
+    }
+    return;
+  }
+  for (int t = 0; t < rest_.num_triangles(); ++t) {
+    const Eigen::Matrix3d M = (B_[rest_.F(t, 0)] + B_[rest_.F(t, 1)] + B_[rest_.F(t, 2)]) / 3.0;
+    for (int k = 0; k < 3; ++k) {
+      const int a = rest_.F(t, (k + 1) % 3), c = rest_.F(t, (k + 2) % 3);
+      const Eigen::Vector3d d = weights_.weight(t, k) * (M * (rest_.V.row(a) - rest_.V.row(c)).transpose());
+      b.row(a) += d.transpose();
+      b.row(c) -= d.transpose();
+    }
+  }
+}
+
+int ArapIterations::run(const LaplacianSolver& solver, Positions& V, int max_iterations,
+                        double tolerance, std::vector<double>& history) {
+  Positions b;
+  double previous = local_step(V);
+  int iterations = 0;
+  for (int it = 0; it < max_iterations; ++it) {
+    global_rhs(b);
+    solver.solve(b, V);
+    const double energy = local_step(V);
+    history.push_back(energy);
+    ++iterations;
+    const double scale = std::max(previous, 1e-300);
+    if (tolerance >= 0.0 && (std::abs(previous - energy) <= tolerance * scale || energy <= 1e-28)) break;
+    previous = energy;
+  }
+  return iterations;
+}
+
+}  // namespace aniso

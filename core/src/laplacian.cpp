@@ -1,0 +1,101 @@
+#include "anisoform/laplacian.h"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+namespace aniso {
+namespace {
+
+// Key of an undirected edge for the floor pass.
+inline std::uint64_t edge_key(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
+         static_cast<std::uint32_t>(b);
+}
+
+}  // namespace
+
+CotanWeights cotangent_weights(const Mesh& mesh) {
+  const int m = mesh.num_triangles();
+  CotanWeights out;
+  out.weight.setZero(m, 3);
+  std::vector<char> degenerate(m, 0);
+  for (int t = 0; t < m; ++t) {
+    const Eigen::Vector3d p[3] = {mesh.V.row(mesh.F(t, 0)).transpose(),
+                                  mesh.V.row(mesh.F(t, 1)).transpose(),
+                                  mesh.V.row(mesh.F(t, 2)).transpose()};
+    double longest2 = 0.0;
+    for (int k = 0; k < 3; ++k) longest2 = std::max(longest2, (p[(k + 1) % 3] - p[k]).squaredNorm());
+    const double twice_area = (p[1] - p[0]).cross(p[2] - p[0]).norm();
+    Eigen::Vector3d cot = Eigen::Vector3d::Zero();
+    bool ok = twice_area > 1e-12 * longest2;
+    for (int k = 0; k < 3 && ok; ++k) {
+      // |a x b| is twice the area for every corner.
+      cot[k] = (p[(k + 1) % 3] - p[k]).dot(p[(k + 2) % 3] - p[k]) / twice_area;
+      ok = std::abs(cot[k]) <= kMaxCot;
+    }
+    if (!ok) {
+      degenerate[t] = 1;
+      ++out.degenerate_triangles;
+      continue;
+    }
+    out.weight.row(t) = 0.5 * cot.transpose();
+  }
+  if (out.degenerate_triangles == 0) return out;
+
+  // Rule 2: edges used only by degenerate triangles get the floor weight.
+  std::unordered_map<std::uint64_t, std::pair<int, int>> edge_use;  // (good uses, degenerate uses)
+  edge_use.reserve(static_cast<std::size_t>(m) * 2);
+  double total = 0.0;
+  int counted = 0;
+  for (int t = 0; t < m; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      auto& use = edge_use[edge_key(mesh.F(t, (k + 1) % 3), mesh.F(t, (k + 2) % 3))];
+      (degenerate[t] ? use.second : use.first) += 1;
+      if (!degenerate[t]) {
+        total += std::abs(out.weight(t, k));
+        ++counted;
+      }
+    }
+  }
+  // A mesh of degenerate triangles only still needs a connected system.
+  const double floor = counted > 0 && total > 0.0 ? kMinWeightFraction * total / counted : 1.0;
+  for (int t = 0; t < m; ++t) {
+    if (!degenerate[t]) continue;
+    for (int k = 0; k < 3; ++k) {
+      const auto& use = edge_use[edge_key(mesh.F(t, (k + 1) % 3), mesh.F(t, (k + 2) % 3))];
+      if (use.first == 0) out.weight(t, k) = floor / use.second;
+    }
+  }
+  for (const auto& kv : edge_use) {
+    if (kv.second.first == 0) ++out.raised_edges;
+  }
+  return out;
+}
+
+Eigen::SparseMatrix<double> cotangent_laplacian(const Mesh& mesh, const CotanWeights& weights) {
+  const int n = mesh.num_vertices();
+  const int m = mesh.num_triangles();
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(static_cast<std::size_t>(m) * 12);
+  for (int t = 0; t < m; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const int i = mesh.F(t, (k + 1) % 3);
+      const int j = mesh.F(t, (k + 2) % 3);
+      const double w = weights.weight(t, k);
+      triplets.emplace_back(i, j, -w);
+      triplets.emplace_back(j, i, -w);
+      triplets.emplace_back(i, i, w);
+      triplets.emplace_back(j, j, w);
+    }
+  }
+  Eigen::SparseMatrix<double> L(n, n);
+  L.setFromTriplets(triplets.begin(), triplets.end());
+  return L;
+}
+
+}  // namespace aniso

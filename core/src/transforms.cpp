@@ -1,0 +1,98 @@
+#include "anisoform/transforms.h"
+
+#include <cmath>
+#include <string>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+
+#include "anisoform/error.h"
+
+namespace aniso {
+namespace {
+
+constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+
+void require_finite(double value, const char* name) {
+  if (!std::isfinite(value)) {
+    fail(ErrorCode::BadParameter, std::string(name) + " must be a finite number");
+  }
+}
+
+}  // namespace
+
+bool TransformSpec::has_rotation() const {
+  return (rotate_axis != RotateAxis::None && rotate_degrees != 0.0) ||
+         (twist && twist_degrees_per_unit != 0.0) || shear != 0.0;
+}
+
+bool TransformSpec::is_identity() const {
+  return su == 1.0 && sv == 1.0 && sn == 1.0 && !has_rotation();
+}
+
+void validate(const TransformSpec& spec) {
+  require_finite(spec.su, "scale along (su)");
+  require_finite(spec.sv, "scale across (sv)");
+  require_finite(spec.sn, "thickness scale (sn)");
+  require_finite(spec.shear, "shear");
+  require_finite(spec.rotate_degrees, "rotation angle");
+  require_finite(spec.twist_degrees_per_unit, "twist rate");
+  if (spec.su <= 0.0) fail(ErrorCode::BadParameter, "scale along (su) must be positive, got " + std::to_string(spec.su));
+  if (spec.sv <= 0.0) fail(ErrorCode::BadParameter, "scale across (sv) must be positive, got " + std::to_string(spec.sv));
+  if (spec.sn <= 0.0) fail(ErrorCode::BadParameter, "thickness scale (sn) must be positive, got " + std::to_string(spec.sn));
+  if (spec.twist) {
+    if (!spec.twist_axis.allFinite() || spec.twist_axis.norm() < 1e-12) {
+      fail(ErrorCode::BadParameter, "twist axis must be a non-zero finite vector");
+    }
+    if (!spec.twist_origin.allFinite()) fail(ErrorCode::BadParameter, "twist origin must be finite");
+  }
+}
+
+Eigen::Matrix3d element_transform(const TransformSpec& spec, const Eigen::Vector3d& cu,
+                                  const Eigen::Vector3d& cv, const Eigen::Vector3d& n,
+                                  double weight, const Eigen::Vector3d& position,
+                                  const Amounts& amounts) {
+  const double s = weight;
+  if (s <= 0.0) return Eigen::Matrix3d::Identity();
+  Eigen::Matrix3d local = Eigen::Matrix3d::Zero();
+  local(0, 0) = 1.0 + s * (amounts.su - 1.0);
+  local(1, 1) = 1.0 + s * (amounts.sv - 1.0);
+  local(2, 2) = 1.0 + s * (spec.sn - 1.0);
+  if (spec.shear != 0.0) {
+    Eigen::Matrix3d shear = Eigen::Matrix3d::Identity();
+    shear(0, 1) = s * spec.shear;
+    local = shear * local;
+  }
+  if (spec.rotate_axis != RotateAxis::None && spec.rotate_degrees != 0.0) {
+    const int axis = spec.rotate_axis == RotateAxis::Normal ? 2 : spec.rotate_axis == RotateAxis::U ? 0 : 1;
+    const Eigen::Vector3d unit = Eigen::Vector3d::Unit(axis);
+    local = Eigen::AngleAxisd(s * spec.rotate_degrees * kDegToRad, unit).toRotationMatrix() * local;
+  }
+  Eigen::Matrix3d C;
+  C.col(0) = cu;
+  C.col(1) = cv;
+  C.col(2) = n;
+  Eigen::Matrix3d T = C * local * C.transpose();
+  if (spec.twist && spec.twist_degrees_per_unit != 0.0) {
+    const Eigen::Vector3d axis = spec.twist_axis.normalized();
+    const double height = (position - spec.twist_origin).dot(axis);
+    const double angle = s * spec.twist_degrees_per_unit * height * kDegToRad;
+    T = Eigen::AngleAxisd(angle, axis).toRotationMatrix() * T;
+  }
+  return T;
+}
+
+Eigen::Matrix3d polar_positive_part(const Eigen::Matrix3d& T) {
+  if ((T - T.transpose()).cwiseAbs().maxCoeff() <= 1e-14 * T.cwiseAbs().maxCoeff()) {
+    // Symmetric: our scale transforms are C diag C^T with positive factors.
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+    eig.computeDirect(T);
+    if (eig.eigenvalues().minCoeff() > 0.0) return T;
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  eig.computeDirect(T.transpose() * T);
+  const Eigen::Vector3d root = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  return eig.eigenvectors() * root.asDiagonal() * eig.eigenvectors().transpose();
+}
+
+}  // namespace aniso
