@@ -85,10 +85,9 @@ void validate_request(const DeformRequest& request, int n) {
   }
 }
 
-// The point the linear baseline scales about: the twist axis origin for a
-// twist, otherwise the weighted centroid of the selection.
-Eigen::Vector3d linear_center(const Mesh& mesh, const Eigen::VectorXd& w, const TransformSpec& spec) {
-  if (spec.twist) return spec.twist_origin;
+// The point the linear baseline scales about: the weighted centroid of the
+// selection.
+Eigen::Vector3d linear_center(const Mesh& mesh, const Eigen::VectorXd& w) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   double total = 0.0;
   for (int i = 0; i < mesh.num_vertices(); ++i) {
@@ -147,12 +146,18 @@ DeformResult Deformer::deform(const DeformRequest& request) {
   Workspace& ws = *workspace_;
 
   if (request.method == Method::Linear) {
-    const ElementTargets targets = vertex_targets(ws.targets, request.direction, request.transform, w);
-    const Eigen::Vector3d center = linear_center(rest_, w, request.transform);
+    // Each vertex moves by its own local map about the selection's centroid,
+    // then by the twist map itself (about its axis line), as a cage would.
+    TransformSpec local = request.transform;
+    local.twist = false;
+    const ElementTargets targets = vertex_targets(ws.targets, request.direction, local, w);
+    const Eigen::Vector3d center = linear_center(rest_, w);
     result.V = rest_.V;
     for (int i = 0; i < n; ++i) {
       const Eigen::Vector3d p = rest_.V.row(i).transpose();
-      result.V.row(i) = (center + targets.T[i] * (p - center)).transpose();
+      const Eigen::Vector3d q = center + targets.T[i] * (p - center);
+      const Eigen::Vector3d o = request.transform.twist_origin;
+      result.V.row(i) = (o + twist_rotation(request.transform, w[i], p) * (q - o)).transpose();
     }
     for (int p : request.pins) result.V.row(p) = rest_.V.row(p);
     result.directions_filled = targets.filled;

@@ -108,6 +108,43 @@ Amounts amounts_at(const TransformSpec& spec, const Eigen::VectorXd& su, const E
   return {su[i], sv[i]};
 }
 
+// A shear moves points along cu in proportion to their cv coordinate, and
+// cv = n x cu flips between opposite sides of a part (front and back of a
+// box), which would shear them against each other. We orient cv to point away
+// from the unselected part (from its centroid towards the selection's), so a
+// shear displaces the whole selection one way. Zero when there is nothing to
+// orient by (no shear, or no unselected vertex).
+Eigen::Vector3d shear_orientation(const Mesh& mesh, const TransformSpec& spec, const Eigen::VectorXd& w) {
+  if (spec.shear == 0.0) return Eigen::Vector3d::Zero();
+  Eigen::Vector3d selected = Eigen::Vector3d::Zero(), unselected = Eigen::Vector3d::Zero();
+  double ws = 0.0;
+  int wu = 0;
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    if (w[i] > 0.0) {
+      selected += w[i] * mesh.V.row(i).transpose();
+      ws += w[i];
+    } else {
+      unselected += mesh.V.row(i).transpose();
+      ++wu;
+    }
+  }
+  if (ws == 0.0 || wu == 0) return Eigen::Vector3d::Zero();
+  return selected / ws - unselected / wu;
+}
+
+// Element frame columns with cv oriented along `orientation` (see above):
+// flipping cv and n together keeps the frame right-handed.
+void oriented_frame(const Frames& frames, int e, const Eigen::Vector3d& orientation, Eigen::Vector3d& u,
+                    Eigen::Vector3d& v, Eigen::Vector3d& n) {
+  u = frames.u.row(e).transpose();
+  v = frames.v.row(e).transpose();
+  n = frames.n.row(e).transpose();
+  if (v.dot(orientation) < 0.0) {
+    v = -v;
+    n = -n;
+  }
+}
+
 }  // namespace
 
 ElementTargets vertex_targets(TargetContext& context, const DirectionSource& source,
@@ -122,9 +159,11 @@ ElementTargets vertex_targets(TargetContext& context, const DirectionSource& sou
   ElementTargets out;
   out.filled = frames.filled;
   out.T.resize(n);
+  const Eigen::Vector3d orientation = shear_orientation(mesh, spec, weights);
+  Eigen::Vector3d u, v, normal;
   for (int i = 0; i < n; ++i) {
-    out.T[i] = element_transform(spec, frames.u.row(i).transpose(), frames.v.row(i).transpose(),
-                                 frames.n.row(i).transpose(), weights[i], mesh.V.row(i).transpose(),
+    oriented_frame(frames, i, orientation, u, v, normal);
+    out.T[i] = element_transform(spec, u, v, normal, weights[i], mesh.V.row(i).transpose(),
                                  amounts_at(spec, su, sv, i));
   }
   return out;
@@ -170,13 +209,14 @@ ElementTargets triangle_targets(TargetContext& context, const DirectionSource& s
   ElementTargets out;
   out.filled = frames.filled;
   out.T.resize(m);
+  const Eigen::Vector3d orientation = shear_orientation(mesh, spec, weights);
+  Eigen::Vector3d u, v, normal;
   for (int t = 0; t < m; ++t) {
     const int a = mesh.F(t, 0), b = mesh.F(t, 1), c = mesh.F(t, 2);
     const double w = (weights[a] + weights[b] + weights[c]) / 3.0;
     const Eigen::Vector3d centroid = (mesh.V.row(a) + mesh.V.row(b) + mesh.V.row(c)).transpose() / 3.0;
-    out.T[t] = element_transform(spec, frames.u.row(t).transpose(), frames.v.row(t).transpose(),
-                                 frames.n.row(t).transpose(), w, centroid,
-                                 amounts_at(spec, tri_su, tri_sv, t));
+    oriented_frame(frames, t, orientation, u, v, normal);
+    out.T[t] = element_transform(spec, u, v, normal, w, centroid, amounts_at(spec, tri_su, tri_sv, t));
   }
   return out;
 }

@@ -74,12 +74,26 @@ Eigen::Matrix3d element_transform(const TransformSpec& spec, const Eigen::Vector
   C.col(2) = n;
   Eigen::Matrix3d T = C * local * C.transpose();
   if (spec.twist && spec.twist_degrees_per_unit != 0.0) {
-    const Eigen::Vector3d axis = spec.twist_axis.normalized();
-    const double height = (position - spec.twist_origin).dot(axis);
-    const double angle = s * spec.twist_degrees_per_unit * height * kDegToRad;
-    T = Eigen::AngleAxisd(angle, axis).toRotationMatrix() * T;
+    T = twist_jacobian(spec, weight, position) * T;
   }
   return T;
+}
+
+Eigen::Matrix3d twist_rotation(const TransformSpec& spec, double weight, const Eigen::Vector3d& position) {
+  if (!spec.twist || weight <= 0.0) return Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d axis = spec.twist_axis.normalized();
+  const double rate = weight * spec.twist_degrees_per_unit * kDegToRad;
+  return Eigen::AngleAxisd(rate * (position - spec.twist_origin).dot(axis), axis).toRotationMatrix();
+}
+
+Eigen::Matrix3d twist_jacobian(const TransformSpec& spec, double weight, const Eigen::Vector3d& position) {
+  if (!spec.twist || weight <= 0.0) return Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d axis = spec.twist_axis.normalized();
+  const double rate = weight * spec.twist_degrees_per_unit * kDegToRad;
+  const Eigen::Vector3d r = position - spec.twist_origin;
+  // d/dp [Rot(rate * r.a) r] = Rot (I + rate (a x r) a^T).
+  return twist_rotation(spec, weight, position) *
+         (Eigen::Matrix3d::Identity() + rate * axis.cross(r) * axis.transpose());
 }
 
 Eigen::Matrix3d polar_positive_part(const Eigen::Matrix3d& T) {
