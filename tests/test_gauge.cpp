@@ -1,0 +1,90 @@
+// What stays put (METHOD §7).
+#include <catch2/catch.hpp>
+
+#include "anisoform/deformer.h"
+#include "solver_test_support.h"
+#include "test_support.h"
+
+using namespace aniso;
+
+TEST_CASE("gauge: unselected parts stay where they were", "[gauge]") {
+  const Mesh mesh = test::load("closed/cat-low-resolution.obj");
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(mesh.num_vertices());
+  const double xmax = mesh.V.col(0).maxCoeff(), xmin = mesh.V.col(0).minCoeff();
+  for (int i = 0; i < mesh.num_vertices(); ++i) w[i] = mesh.V(i, 0) > xmin + 0.75 * (xmax - xmin) ? 1.0 : 0.0;
+  Deformer deformer(mesh);
+  for (Method method : {Method::AnArap, Method::AnDefGrad}) {
+    DeformRequest request = test::stretch_request(method, Eigen::Vector3d::UnitX(), 1.4);
+    request.weights = w;
+    const DeformResult r = deformer.deform(request);
+    double far_motion = 0.0;
+    int far = 0;
+    for (int i = 0; i < mesh.num_vertices(); ++i) {
+      if (mesh.V(i, 0) < xmin + 0.4 * (xmax - xmin)) {
+        far_motion = std::max(far_motion, (r.V.row(i) - mesh.V.row(i)).norm());
+        ++far;
+      }
+    }
+    INFO(method_name(method));
+    CHECK(far > 100);
+    CHECK(far_motion < 0.01 * test::diagonal(mesh.V));
+  }
+}
+
+TEST_CASE("gauge: each component of a multi-part mesh is solved and kept in place", "[gauge]") {
+  const Mesh mesh = test::load("malformed/multi_component.obj");
+  Deformer deformer(mesh);
+  // Select the second part only (Blub, shifted +2 in x).
+  Eigen::VectorXd w(mesh.num_vertices());
+  for (int i = 0; i < mesh.num_vertices(); ++i) w[i] = mesh.V(i, 0) > 1.2 ? 1.0 : 0.0;
+  DeformRequest request = test::stretch_request(Method::AnArap, Eigen::Vector3d::UnitY(), 1.3);
+  request.weights = w;
+  const DeformResult r = deformer.deform(request);
+  double untouched = 0.0, moved = 0.0;
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    const double d = (r.V.row(i) - mesh.V.row(i)).norm();
+    (w[i] > 0 ? moved : untouched) = std::max(w[i] > 0 ? moved : untouched, d);
+  }
+  CHECK(untouched < 1e-9);
+  CHECK(moved > 0.05);
+}
+
+TEST_CASE("gauge: user pins hold exactly and handles move exactly (ARAP)", "[gauge]") {
+  const Mesh mesh = test::load("closed/spool.off");
+  Deformer deformer(mesh);
+  DeformRequest request;
+  request.method = Method::Arap;
+  request.pins = {0, 1, 2};
+  request.handles = {100, 101};
+  request.handle_offset = Eigen::Vector3d(0.1, 0.2, -0.1);
+  const DeformResult r = deformer.deform(request);
+  for (int p : request.pins) CHECK(r.V.row(p) == mesh.V.row(p));
+  for (int h : request.handles) CHECK((r.V.row(h) - mesh.V.row(h) - request.handle_offset.transpose()).norm() < 1e-12);
+  CHECK(r.iterations >= 1);
+}
+
+TEST_CASE("deformer: bad requests are refused with the problem named, and the session survives", "[gauge]") {
+  const Mesh mesh = test::load("closed/spool.off");
+  Deformer deformer(mesh);
+  DeformRequest request = test::stretch_request(Method::AnArap, Eigen::Vector3d::UnitX(), 1.2);
+  request.weights = Eigen::VectorXd::Constant(5, 1.0);
+  CHECK_THROWS_WITH(deformer.deform(request), Catch::Contains("5 weights") && Catch::Contains("649"));
+  request.weights = Eigen::VectorXd::Constant(mesh.num_vertices(), 1.0);
+  request.weights[17] = 1.5;
+  CHECK_THROWS_WITH(deformer.deform(request), Catch::Contains("vertex 17"));
+  request.weights[17] = 1.0;
+  request.pins = {100000};
+  CHECK_THROWS_WITH(deformer.deform(request), Catch::Contains("100000"));
+  request.pins.clear();
+  request.direction.vector = Eigen::Vector3d::Zero();
+  CHECK_THROWS_WITH(deformer.deform(request), Catch::Contains("direction"));
+  request.direction.vector = Eigen::Vector3d::UnitX();
+  request.handles = {3};
+  CHECK_THROWS_WITH(deformer.deform(request), Catch::Contains("arap"));
+  request.handles.clear();
+  CHECK_NOTHROW(deformer.deform(request));
+  // A mesh that cannot be solved is refused at construction.
+  Mesh bad = mesh;
+  bad.V(5, 0) = std::nan("");
+  CHECK_THROWS_WITH(Deformer(bad), Catch::Contains("vertex 5"));
+}
