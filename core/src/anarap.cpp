@@ -133,8 +133,10 @@ void ArapIterations::covariance_spokes_rims(const Positions& V, std::vector<Eige
 }
 
 double ArapIterations::local_step(const Positions& V) {
-  std::vector<Eigen::Matrix3d> A(n_);
-  Eigen::VectorXd edge_energy(n_);
+  std::vector<Eigen::Matrix3d>& A = covariance_;
+  Eigen::VectorXd& edge_energy = edge_energy_;
+  A.resize(n_);
+  edge_energy.resize(n_);
   if (elements_ == ArapElements::Spokes) {
     covariance_spokes(V, A, edge_energy);
   } else {

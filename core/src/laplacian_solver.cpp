@@ -165,19 +165,21 @@ void ldlt_sweeps(const Eigen::SparseMatrix<double>& Lfac, const Eigen::VectorXd&
 
 }  // namespace
 
-void LaplacianSolver::solve(const Eigen::Ref<const Eigen::MatrixXd>& b,
-                            Eigen::Ref<Eigen::MatrixXd> x) const {
-  const Impl& im = *impl_;
+// The shared body of both solve() overloads; B and X are #V by k dense
+// matrices of any storage order.
+template <typename B, typename X>
+void solve_pinned(const LaplacianSolver::Impl& im, const std::vector<int>& pinned, const B& b, X& x) {
   const int nf = static_cast<int>(im.free_vertices.size());
   const int k = static_cast<int>(b.cols());
   if (nf == 0) return;
-  // Right-hand side of the free rows, minus the pinned columns' contribution.
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> pinned_values(pinned_.size(), k);
-  for (std::size_t c = 0; c < pinned_.size(); ++c) pinned_values.row(c) = x.row(pinned_[c]);
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rhs(nf, k);
+  using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  // Right-hand side of the free rows in factor order, minus the pinned columns' contribution.
+  RowMatrix rhs(nf, k);
   for (int pos = 0; pos < nf; ++pos) rhs.row(pos) = b.row(im.free_vertices[im.perm[pos]]);
-  if (!pinned_.empty()) {
-    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> contrib = im.L_fc * pinned_values;
+  if (!pinned.empty()) {
+    RowMatrix pinned_values(pinned.size(), k);
+    for (std::size_t c = 0; c < pinned.size(); ++c) pinned_values.row(c) = x.row(pinned[c]);
+    const RowMatrix contrib = im.L_fc * pinned_values;
     for (int pos = 0; pos < nf; ++pos) rhs.row(pos) -= contrib.row(im.perm[pos]);
   }
   const Eigen::SparseMatrix<double>& Lfac = im.ldlt.matrixL().nestedExpression();
@@ -197,11 +199,13 @@ void LaplacianSolver::solve(const Eigen::Ref<const Eigen::MatrixXd>& b,
   for (int pos = 0; pos < nf; ++pos) x.row(im.free_vertices[im.perm[pos]]) = rhs.row(pos);
 }
 
+void LaplacianSolver::solve(const Eigen::Ref<const Eigen::MatrixXd>& b,
+                            Eigen::Ref<Eigen::MatrixXd> x) const {
+  solve_pinned(*impl_, pinned_, b, x);
+}
+
 void LaplacianSolver::solve(const Positions& b, Positions& x) const {
-  Eigen::MatrixXd bx = b;
-  Eigen::MatrixXd xx = x;
-  solve(bx, xx);
-  x = xx;
+  solve_pinned(*impl_, pinned_, b, x);
 }
 
 }  // namespace aniso

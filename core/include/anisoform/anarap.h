@@ -64,6 +64,9 @@ class ArapIterations {
   std::vector<Eigen::Matrix3d> rest_covariance_;  // C_i = sum w e e^T (for the energy)
   std::vector<Eigen::Matrix3d> T_, P_, B_;        // targets, their polar parts, R_i T_i
   std::vector<Eigen::Quaterniond> rotation_;
+  // Scratch of the local step, kept to avoid reallocating every iteration.
+  std::vector<Eigen::Matrix3d> covariance_;
+  Eigen::VectorXd edge_energy_;
   bool symmetric_targets_ = true;
 };
 

@@ -34,8 +34,9 @@ class LaplacianSolver {
   const std::vector<int>& pinned() const { return pinned_; }
   int num_vertices() const { return n_; }
 
- private:
   struct Impl;
+
+ private:
   std::unique_ptr<Impl> impl_;
   std::vector<int> pinned_;
   int n_ = 0;

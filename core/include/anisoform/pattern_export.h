@@ -1,0 +1,54 @@
+// Pattern files from a flattening: the outline(s) of every piece, its
+// grainline and a scale note, in millimetres, as SVG (to view and print at 1:1)
+// or DXF (for garment CAD and cutters).
+//
+// The core writes text into a string; writing it to a file is the caller's
+// (the CLI writes it, the browser offers it as a download).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "anisoform/flatten.h"
+
+namespace aniso {
+
+struct PatternPiece {
+  // Closed polylines in pattern coordinates (model units), one per boundary
+  // loop of the piece, the first point not repeated at the end.
+  std::vector<std::vector<Eigen::Vector2d>> outlines;
+  Eigen::Vector2d grainline = Eigen::Vector2d::UnitX();  // unit direction in the plane
+};
+
+struct Pattern {
+  std::vector<PatternPiece> pieces;  // one per patch component
+  int outline_count() const;
+};
+
+// The pieces of a flattening: its boundary loops at result.uv, grouped by
+// component, with the result's grainline per component.
+Pattern make_pattern(const FlattenPatch& patch, const FlattenResult& result);
+
+struct PatternExportOptions {
+  double mm_per_unit = 1.0;  // millimetres per model unit (> 0)
+  std::string note;          // appended to the scale note (e.g. the wanted stretch)
+};
+
+// SVG 1.1, width/height in mm and a viewBox in mm, so one user unit is one
+// millimetre and printing at 100 % gives the real size. Per outline one
+// <path class="outline">; per piece a grainline (<line class="grainline">
+// with arrowhead lines); a 100 mm (or 10 mm) <line class="scale-bar"> and a
+// <text class="scale-note">. The y axis is flipped (SVG's points down), so the
+// pattern is not mirrored. Throws Error(BadParameter) if mm_per_unit is not a
+// positive finite number.
+std::string write_pattern_svg(const Pattern& pattern, const PatternExportOptions& options);
+
+// ASCII DXF R12 (AC1009, the version garment CAD and cutters import; units
+// millimetres, also stated as $INSUNITS 4): one closed POLYLINE (VERTEX ...
+// SEQEND) per outline on layer OUTLINE, one LINE per piece on layer
+// GRAINLINE, and the scale note as TEXT on layer NOTE. Same errors as SVG.
+std::string write_pattern_dxf(const Pattern& pattern, const PatternExportOptions& options);
+
+}  // namespace aniso
