@@ -163,3 +163,14 @@ TEST_CASE("solvers: the factorization is computed once per mesh and pin set", "[
   request.transform.su = 0.7;
   CHECK(deformer.deform(request).factorizations == 2);
 }
+
+TEST_CASE("solvers: a new selection does not refactor", "[solver][method9]") {
+  const Mesh mesh = test::load("closed/torus.obj");
+  Deformer deformer(mesh);
+  DeformRequest request = test::stretch_request(Method::AnArap, Eigen::Vector3d::UnitX(), 1.3);
+  for (int part = 0; part < 3; ++part) {
+    request.weights = Eigen::VectorXd::Zero(mesh.num_vertices());
+    for (int i = part * 500; i < part * 500 + 400; ++i) request.weights[i] = 1.0;
+    CHECK(deformer.deform(request).factorizations == 1);
+  }
+}

@@ -162,7 +162,7 @@ DeformResult Deformer::deform(const DeformRequest& request) {
     for (int p : request.pins) result.V.row(p) = rest_.V.row(p);
     result.directions_filled = targets.filled;
   } else if (request.method == Method::AnDefGrad) {
-    const Gauge gauge = make_gauge(rest_, request.pins, w);
+    const Gauge gauge = make_gauge(rest_, request.pins);
     const LaplacianSolver& solver = solver_for(gauge.pins, &precompute_ms);
     const ElementTargets targets = triangle_targets(ws.targets, request.direction, request.transform, w);
     Positions b;
@@ -183,7 +183,7 @@ DeformResult Deformer::deform(const DeformRequest& request) {
       affected.setZero();
       for (int h : request.handles) affected[h] = 1.0;
     }
-    const Gauge gauge = make_gauge(rest_, user_pins, affected);
+    const Gauge gauge = make_gauge(rest_, user_pins);
     const LaplacianSolver& solver = solver_for(gauge.pins, &precompute_ms);
     auto& iterations = ws.arap[request.elements];
     if (!iterations) {

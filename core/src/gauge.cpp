@@ -7,20 +7,22 @@
 
 namespace aniso {
 
-Gauge make_gauge(const Mesh& mesh, const std::vector<int>& user_pins, const Eigen::VectorXd& weights) {
+Gauge make_gauge(const Mesh& mesh, const std::vector<int>& user_pins) {
   Gauge gauge;
   gauge.component = vertex_components(mesh.F, mesh.num_vertices(), &gauge.components);
   gauge.realign.assign(gauge.components, 1);
   for (int p : user_pins) gauge.realign[gauge.component[p]] = 0;
   gauge.pins = user_pins;
-  std::vector<int> best(gauge.components, -1);
+  // The first vertex of each component: the result is re-aligned afterwards,
+  // so any vertex serves, and one independent of the selection keeps the pin
+  // set (and so the factorization) the same across selections.
+  std::vector<int> first(gauge.components, -1);
   for (int i = 0; i < mesh.num_vertices(); ++i) {
     const int c = gauge.component[i];
-    if (!gauge.realign[c]) continue;
-    if (best[c] < 0 || weights[i] < weights[best[c]]) best[c] = i;
+    if (gauge.realign[c] && first[c] < 0) first[c] = i;
   }
   for (int c = 0; c < gauge.components; ++c) {
-    if (best[c] >= 0) gauge.pins.push_back(best[c]);
+    if (first[c] >= 0) gauge.pins.push_back(first[c]);
   }
   return gauge;
 }

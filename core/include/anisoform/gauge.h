@@ -16,9 +16,10 @@ struct Gauge {
   int components = 0;
 };
 
-// Chooses the gauge pin of each component without a user pin: its vertex of
-// smallest weight (an unaffected one if there is any), lowest index on ties.
-Gauge make_gauge(const Mesh& mesh, const std::vector<int>& user_pins, const Eigen::VectorXd& weights);
+// Chooses the gauge pin of each component without a user pin: its lowest
+// vertex index, whatever the selection, so that a new selection never changes
+// the pin set and never refactors.
+Gauge make_gauge(const Mesh& mesh, const std::vector<int>& user_pins);
 
 enum class Alignment { Rigid, Translation };
 

@@ -1,0 +1,24 @@
+// Per-vertex distortion of a deformed mesh against its rest pose, for the
+// browser's heat map: how much each part of the surface grew or stretched.
+#pragma once
+
+#include "anisoform/mesh.h"
+
+namespace aniso {
+
+enum class DistortionKind {
+  // Area of the vertex's one-ring deformed / rest: 1 unchanged, 2 doubled.
+  AreaRatio,
+  // Largest singular value of the triangles' deformation maps (the stretch
+  // along the most stretched tangent direction), area-weighted over the
+  // one-ring: 1 = no line element got longer.
+  MaxStretch,
+};
+
+// #V values for `rest` (V and F) deformed to `deformed` (#V by 3, same
+// triangles). Zero-area rest triangles carry no weight; a vertex with none
+// left gets 1. Throws Error(BadParameter) if the vertex counts differ.
+Eigen::VectorXd vertex_distortion(const Mesh& rest, const Positions& deformed,
+                                  DistortionKind kind);
+
+}  // namespace aniso

@@ -1,0 +1,150 @@
+// The state of one interactive modelling session (the browser app through the
+// WASM module, or any other host that edits one mesh over time): the mesh as
+// loaded, the rest pose edits start from, the current positions, the selection
+// weights, and the Deformer that owns the rest pose's factorizations.
+//
+// An edit deforms FROM the rest pose, so a live drag can call deform() many
+// times (warm-started) and cancel() or commit() at the end. commit() and
+// set_positions() make a new rest pose, which needs a new Deformer: its
+// factorizations are redone lazily on the next edit. Every method either
+// succeeds or throws an aniso::Error and leaves the session as it was.
+//
+// Positions, triangles and weights are also kept as float32 / uint32 copies,
+// laid out as the GPU wants them, so that a host can hand out views of them
+// without a copy (the WASM module's typed_memory_view).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "anisoform/deformer.h"
+#include "anisoform/distortion.h"
+#include "anisoform/mesh.h"
+#include "anisoform/mesh_check.h"
+#include "anisoform/mesh_io.h"
+#include "anisoform/selection.h"
+
+namespace aniso {
+
+class TargetContext;
+
+// What the session knows about its mesh as loaded.
+struct SessionMeshInfo {
+  MeshReport report;               // check_mesh of the mesh the session holds
+  std::vector<std::string> notes;  // what the reader and the session repaired, in plain words
+};
+
+// How a new region combines with the current selection (fuzzy-set rules, so
+// soft weights combine smoothly): Add = max(old, new), Subtract =
+// min(old, 1 - new).
+enum class SelectionMode { Replace, Add, Subtract };
+
+// One edit as the host asks for it. `request.weights` is ignored: the
+// session's selection is used.
+struct SessionEdit {
+  DeformRequest request;
+  // A twist turns about `request.transform.twist_origin` when this is set;
+  // otherwise about the selection's lowest point along the twist axis (as the
+  // CLI does), so the selection's base stays put.
+  bool twist_origin_given = false;
+  // Live preview: at most kPreviewIterations iterations, warm-started from the
+  // previous preview. Rotational edits (rotate, twist, shear) are not capped:
+  // they run request.rotation_steps steps from the rest pose (METHOD §5).
+  bool preview = false;
+};
+
+constexpr int kPreviewIterations = 4;
+
+struct SessionEditResult {
+  int selected = 0;
+  int iterations = 0;
+  double energy = 0.0;
+  std::vector<double> energy_history;  // after each iteration (AnARAP / ARAP)
+  bool converged = true;
+  int directions_filled = 0;
+  int factorizations = 0;  // total in the session so far
+  double precompute_ms = 0.0;
+  double solve_ms = 0.0;
+  double total_ms = 0.0;  // the whole call, as the host waits for it
+};
+
+// What distortion() measures against.
+enum class DistortionReference {
+  Rest,    // the rest pose: the edit in progress
+  Loaded,  // the mesh as loaded: every edit since
+};
+
+class Session {
+ public:
+  Session();
+  ~Session();
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+
+  // Replaces the mesh by one read from file bytes; the format comes from the
+  // extension of `name`. A triangle soup is welded (and noted); a mesh that
+  // cannot be solved on is refused with Error(BadMesh). The selection is
+  // cleared (all weights 0).
+  const SessionMeshInfo& load_mesh(const std::uint8_t* data, std::size_t size,
+                                   const std::string& name);
+  // Same from flat arrays (xyz per vertex, 3 indices per triangle); `weld`
+  // merges vertices at equal positions (an unindexed three.js geometry).
+  const SessionMeshInfo& set_mesh(const std::vector<double>& positions,
+                                  const std::vector<std::uint32_t>& triangles, bool weld);
+
+  bool has_mesh() const { return deformer_ != nullptr; }
+  // These throw Error(BadParameter) "no mesh is loaded" before the first mesh.
+  const SessionMeshInfo& info() const;
+  const Mesh& rest() const;
+  const Positions& positions() const;
+  const std::vector<float>& positions_f32() const { return positions_f32_; }
+  const std::vector<std::uint32_t>& triangles_u32() const { return triangles_u32_; }
+
+  // Selection weights in [0, 1]; returns the number of vertices with weight > 0.
+  int select(const Region& region, double falloff, SelectionMode mode);
+  int set_selection(const std::vector<float>& weights);  // #V weights in [0, 1]
+  const Eigen::VectorXd& selection() const { return weights_; }
+  const std::vector<float>& selection_f32() const { return weights_f32_; }
+
+  // Deforms the rest pose; positions() then holds the result.
+  SessionEditResult deform(const SessionEdit& edit);
+  void commit();  // the current positions become the rest pose
+  void cancel();  // the current positions go back to the rest pose
+  // Restores positions (undo/redo; 3 numbers per vertex); they also become
+  // the rest pose, with a new Deformer.
+  void set_positions(const std::vector<double>& positions);
+
+  // Unit tangent direction per vertex (#V by 3) of a direction source, after
+  // projection and filling exactly as the AnARAP solver frames it: what glyphs
+  // should show.
+  Positions direction_field(const DirectionSource& source);
+  // Per-vertex distortion of the current positions (distortion.h).
+  Eigen::VectorXd distortion(DistortionKind kind, DistortionReference reference) const;
+  // The current mesh as file bytes.
+  std::string export_mesh(MeshFormat format) const;
+  // Factorizations done in this session, over all rest poses.
+  int factorizations() const;
+
+ private:
+  void require_mesh() const;
+  const SessionMeshInfo& adopt_mesh(Mesh mesh, std::vector<std::string> notes);
+  void replace_rest(Positions V);
+  void set_current(Positions V);
+  void set_weights(Eigen::VectorXd weights);
+
+  std::unique_ptr<Deformer> deformer_;  // owns the rest pose
+  std::unique_ptr<TargetContext> targets_;  // for direction_field(), built lazily per rest pose
+  int retired_factorizations_ = 0;      // done by the Deformers of earlier rest poses
+  Positions loaded_;                    // positions as loaded, for DistortionReference::Loaded
+  Positions current_;
+  Eigen::VectorXd weights_;
+  SessionMeshInfo info_;
+  std::vector<float> positions_f32_;
+  std::vector<std::uint32_t> triangles_u32_;
+  std::vector<float> weights_f32_;
+};
+
+}  // namespace aniso

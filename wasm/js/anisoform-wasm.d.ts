@@ -1,0 +1,209 @@
+// Type declarations of the Anisoform WASM JS layer (anisoform-wasm.mjs).
+// Hand-written; keep them in step with the .mjs and wasm/CONTRACT.md.
+
+export type ErrorCode = 'bad-parameter' | 'bad-mesh' | 'bad-file' | 'numerical' | 'internal';
+
+/** Every failure of the module: a code and a message that names the problem. */
+export class AnisoformError extends Error {
+  readonly name: 'AnisoformError';
+  readonly code: ErrorCode;
+  constructor(code: ErrorCode, message: string, options?: { cause?: unknown });
+}
+
+export type Vec2 = [number, number];
+export type Vec3 = [number, number, number];
+type Numbers = ArrayLike<number>;
+
+export const DEFAULTS: Readonly<{
+  method: 'anarap';
+  maxIterations: 50;
+  rotationSteps: 1;
+  tolerance: 1e-6;
+  curvatureSmoothing: 10;
+  elements: 'spokes';
+}>;
+
+export type ProblemKind =
+  | 'empty-mesh' | 'non-finite-coordinate' | 'index-out-of-range' | 'repeated-corner'
+  | 'zero-area-triangle' | 'duplicate-face' | 'non-manifold-edge' | 'non-manifold-vertex'
+  | 'inconsistent-orientation' | 'unreferenced-vertex';
+
+export interface MeshProblem {
+  /** aniso::problem_kind_name */
+  kind: ProblemKind;
+  /** Vertex or face index, as the kind documents. */
+  element: number;
+  /** Plain words, naming the element. */
+  message: string;
+}
+
+export interface MeshInfo {
+  vertices: number;
+  triangles: number;
+  components: number;
+  boundaryLoops: number;
+  edgeManifold: boolean;
+  vertexManifold: boolean;
+  consistentlyOriented: boolean;
+  degenerateTriangles: number;
+  duplicateFaces: number;
+  unreferencedVertices: number;
+  bbox: { min: Vec3; max: Vec3 };
+  /** Problems the solver works through (the blocking ones make loading fail). */
+  problems: MeshProblem[];
+  /** What the reader and the session repaired (triangulated, welded...). */
+  notes: string[];
+}
+
+export type Region =
+  | { all: true }
+  | { sphere: { center: Vec3 | Numbers; radius: number } }
+  | { box: { min: Vec3 | Numbers; max: Vec3 | Numbers } }
+  | { vertices: Numbers; weights?: Numbers };
+
+export interface SelectOptions {
+  /** Soft border width in model units, measured along edges (default 0). */
+  falloff?: number;
+  /** replace (default); add = max(old, new); subtract = min(old, 1 - new). */
+  mode?: 'replace' | 'add' | 'subtract';
+}
+
+export interface ScreenCamera {
+  /** World -> camera, column-major (three.js camera.matrixWorldInverse.elements). */
+  view: Numbers;
+  /** Camera -> clip, column-major (three.js camera.projectionMatrix.elements). */
+  projection: Numbers;
+  /** [x, y, width, height] in CSS pixels. */
+  viewport: Numbers;
+  /** The picked surface point, world space. */
+  anchor: Vec3 | Numbers;
+}
+
+export type Direction =
+  | { type: 'global'; vector: Vec3 | Numbers }
+  | { type: 'curvature'; which: 'min' | 'max'; /** line-field smoothing steps, default 10 */ smoothing?: number }
+  | { type: 'screen'; /** pixels, y down */ from: Vec2 | Numbers; to: Vec2 | Numbers; camera: ScreenCamera }
+  | { type: 'constraints'; constraints: Array<{ vertex: number; direction: Vec3 | Numbers; su?: number; sv?: number }> }
+  | { type: 'dense'; /** #V*3 directions, used as given (projected per element) */ directions: Float32Array | number[] };
+
+export interface Transform {
+  /** su, or [su, sv]: scale along the direction and across it (default 1). */
+  scale?: number | [number] | [number, number];
+  /** sn: scale along the normal (default 1). */
+  thickness?: number;
+  shear?: number;
+  rotate?: { axis: 'n' | 'u' | 'v'; degrees: number };
+  /** Twist about `axis`; the angle is 0 at `origin` (default: the selection's lowest point along the axis). */
+  twist?: { axis: Vec3 | Numbers; degreesPerUnit: number; origin?: Vec3 | Numbers };
+}
+
+export interface DeformOp {
+  /** default 'anarap' */
+  method?: 'anarap' | 'andefgrad' | 'arap' | 'linear';
+  /** default: global, along the longest side of the bounding box */
+  direction?: Direction;
+  transform?: Transform;
+  /** Vertices held at their rest positions. */
+  pins?: Numbers;
+  /** 'arap': vertices moved by `move` and held. */
+  handles?: Numbers;
+  move?: Vec3 | Numbers;
+  /** AnARAP/ARAP energy elements, default 'spokes'. */
+  elements?: 'spokes' | 'spokes-rims';
+  /** AnARAP/ARAP iteration cap (default 50). */
+  maxIterations?: number;
+  /**
+   * AnARAP with a rotational part (rotate, twist, shear) has no fixed point (METHOD §5): it runs
+   * exactly this many steps from the rest pose instead of converging (default 1).
+   */
+  rotationSteps?: number;
+  /** Relative energy change that ends the iterations (default 1e-6). */
+  tolerance?: number;
+  /** Live preview: at most 4 iterations, warm-started (rotational edits run their rotationSteps). */
+  preview?: boolean;
+  /** Start from the previous result of the same setup (default true). */
+  warmStart?: boolean;
+}
+
+export interface DeformResult {
+  /** Vertices with selection weight > 0. */
+  selected: number;
+  iterations: number;
+  energy: number;
+  /** Energy after each iteration (AnARAP / ARAP; empty for AnDefGrad and linear). */
+  energyHistory: Float64Array;
+  converged: boolean;
+  /** Elements whose direction was parallel to the normal, filled from neighbours. */
+  directionsFilled: number;
+  /** Factorizations so far in this session. */
+  factorizations: number;
+  precomputeMs: number;
+  solveMs: number;
+  /** The whole call. */
+  ms: number;
+}
+
+/** One editing session on the WASM heap. Call delete() when done. */
+export interface Session {
+  /** Replaces the mesh; the format comes from `name`'s extension (.obj .off .ply .stl). On failure the session keeps its mesh. */
+  loadMesh(bytes: Uint8Array | ArrayBuffer | ArrayBufferView, name: string): MeshInfo;
+  /** Replaces the mesh from flat arrays; `weld` merges vertices at equal positions. */
+  setMesh(positions: Float32Array | Float64Array | number[], triangles: Uint32Array | number[], options?: { weld?: boolean }): MeshInfo;
+  info(): MeshInfo;
+  /** VIEW on the WASM heap (xyz per vertex): fetch again after every call, copy to keep. */
+  positions(): Float32Array;
+  /** VIEW on the WASM heap (3 indices per triangle). */
+  triangles(): Uint32Array;
+  /** Returns the number of vertices with weight > 0. Regions are evaluated on the rest pose. */
+  select(region: Region, options?: SelectOptions): number;
+  /** One weight in [0, 1] per vertex; returns the number with weight > 0. */
+  setSelection(weights: Float32Array | number[]): number;
+  /** VIEW on the WASM heap: one weight per vertex. */
+  selection(): Float32Array;
+  /** Deforms FROM the rest pose; positions() then shows the result. */
+  deform(op: DeformOp): DeformResult;
+  /** The current positions become the rest pose (the next edit starts here). */
+  commit(): void;
+  /** The current positions go back to the rest pose. */
+  cancel(): void;
+  /** Restores positions (undo/redo); they also become the rest pose. */
+  setPositions(positions: Float32Array | Float64Array | number[]): void;
+  /** Unit tangent direction per vertex (#V*3, a copy), as the AnARAP solver frames it: for glyphs. */
+  directionField(direction: Direction): Float32Array;
+  /** Per vertex (a copy): 'area' = one-ring area ratio, 'stretch' = largest principal stretch; 1 = unchanged. */
+  distortion(kind: 'area' | 'stretch', reference?: 'rest' | 'loaded'): Float32Array;
+  /** The current mesh as file bytes (a copy; PLY and STL binary). */
+  exportMesh(format: 'obj' | 'off' | 'ply' | 'stl'): Uint8Array;
+  factorizations(): number;
+  delete(): void;
+  isDeleted(): boolean;
+}
+
+/**
+ * Bench only: the session's cotangent Laplacian without the `pins` rows and columns, factored by
+ * Eigen's SimplicialLDLT (constructing it is the precompute). Call delete().
+ */
+export interface LaplacianFloor {
+  /** Eigen's solve of the rest positions' 3 columns. */
+  solve(): void;
+  delete(): void;
+}
+
+export interface AnisoformWasm {
+  Session: { new (): Session };
+  LaplacianFloor: { new (session: Session, pins: Numbers): LaplacianFloor };
+  /**
+   * The benchmarks' procedural mesh: a closed capped cylinder around z (from -height/2 to height/2)
+   * of near-equilateral triangles with about `approxVertices` (>= 16) vertices. For setMesh.
+   */
+  cappedCylinder(approxVertices: number, radius?: number, height?: number): { positions: Float64Array; triangles: Uint32Array };
+}
+
+export interface CreateOptions {
+  /** The .wasm bytes (Node: readFileSync of anisoform.wasm). */
+  wasmBinary?: ArrayBuffer | Uint8Array;
+  /** Where to find anisoform.wasm, as Emscripten's locateFile. */
+  locateFile?: (path: string, prefix: string) => string;
+}
+
+export function createAnisoformWasm(options?: CreateOptions): Promise<AnisoformWasm>;

@@ -1,0 +1,512 @@
+// The JS layer over the Anisoform WASM module (wasm/bindings.cpp): loading,
+// the public operation objects turned into the flat requests the bindings
+// read, checks of the caller's input with messages that name the field, and
+// every failure turned into an AnisoformError with a code.
+//
+// This file is copied next to anisoform.mjs / anisoform.wasm by the build
+// (build dir and web/src/wasm/), and imports the module from beside itself.
+//
+// Memory: a Session lives on the WASM heap and must be delete()d. positions(),
+// triangles() and selection() are views on that heap: any later call may grow
+// the memory and detach them (length 0), so fetch them again after every call
+// and copy (.slice()) what you keep.
+import createAnisoformModule from './anisoform.mjs';
+
+const ERROR_CODES = new Set(['bad-parameter', 'bad-mesh', 'bad-file', 'numerical', 'internal']);
+
+export class AnisoformError extends Error {
+  constructor(code, message, options) {
+    super(message, options);
+    this.name = 'AnisoformError';
+    this.code = code;
+  }
+}
+
+// Defaults of a deform op, as the CLI's (iterations, tolerance) and METHOD.md's.
+export const DEFAULTS = Object.freeze({
+  method: 'anarap',
+  maxIterations: 50,
+  rotationSteps: 1,
+  tolerance: 1e-6,
+  curvatureSmoothing: 10,
+  elements: 'spokes',
+});
+
+// ---- errors ---------------------------------------------------------------
+
+function toAnisoformError(error) {
+  if (error instanceof AnisoformError) return error;
+  if (error instanceof Error && ERROR_CODES.has(error.code)) {
+    return new AnisoformError(error.code, error.message);
+  }
+  if (typeof error === 'number') {
+    // A C++ exception that escaped the bindings' guard (TOOLCHAIN.md §1).
+    return new AnisoformError('internal', `uncaught C++ exception (pointer ${error})`);
+  }
+  const message = error instanceof Error ? error.message : String(error);
+  return new AnisoformError('internal', message, { cause: error });
+}
+
+// Runs a raw binding call. The bindings RETURN a failure as an Error with a
+// code (throwing it from inside the module would leak module memory, see
+// bindings.cpp); anything thrown is a failure of the module itself.
+function guarded(call) {
+  let result;
+  try {
+    result = call();
+  } catch (error) {
+    throw toAnisoformError(error);
+  }
+  if (result instanceof Error) throw toAnisoformError(result);
+  return result;
+}
+
+function badParameter(message) {
+  return new AnisoformError('bad-parameter', message);
+}
+
+// ---- checks of the caller's values -----------------------------------------
+
+function isObject(value) {
+  return typeof value === 'object' && value !== null && !ArrayBuffer.isView(value) && !Array.isArray(value);
+}
+
+function requireObject(value, name) {
+  if (!isObject(value)) throw badParameter(`${name} must be an object`);
+  return value;
+}
+
+function rejectUnknownKeys(object, allowed, name) {
+  for (const key of Object.keys(object)) {
+    if (!allowed.includes(key)) {
+      throw badParameter(`${name} has an unknown field '${key}' (allowed: ${allowed.join(', ')})`);
+    }
+  }
+}
+
+function finiteNumber(value, name) {
+  if (typeof value !== 'number' || !Number.isFinite(value)) {
+    throw badParameter(`${name} must be a finite number, got ${describe(value)}`);
+  }
+  return value;
+}
+
+function integerAtLeast(value, minimum, name) {
+  if (!Number.isInteger(value) || value < minimum) {
+    throw badParameter(`${name} must be an integer >= ${minimum}, got ${describe(value)}`);
+  }
+  return value;
+}
+
+function finiteVector(value, length, name) {
+  const isArrayLike = Array.isArray(value) || (ArrayBuffer.isView(value) && !(value instanceof DataView));
+  if (!isArrayLike || value.length !== length) {
+    throw badParameter(`${name} must be ${length} finite numbers, got ${describe(value)}`);
+  }
+  const numbers = Array.from(value);
+  numbers.forEach((x, i) => finiteNumber(x, `${name}[${i}]`));
+  return numbers;
+}
+
+function nonZeroVector(value, name) {
+  const v = finiteVector(value, 3, name);
+  if (Math.hypot(...v) === 0) throw badParameter(`${name} must not be the zero vector`);
+  return v;
+}
+
+function oneOf(value, choices, name) {
+  if (!choices.includes(value)) {
+    throw badParameter(`${name} must be one of ${choices.join(', ')}, got ${describe(value)}`);
+  }
+  return value;
+}
+
+function indexList(value, name) {
+  if (value === undefined) return [];
+  const isArrayLike = Array.isArray(value) || (ArrayBuffer.isView(value) && !(value instanceof DataView));
+  if (!isArrayLike) throw badParameter(`${name} must be an array of vertex indices`);
+  const indices = Array.from(value);
+  indices.forEach((x, i) => integerAtLeast(x, 0, `${name}[${i}]`));
+  return indices;
+}
+
+// Positions may come as float32 (GPU buffers) or float64 (exact, e.g. from
+// cappedCylinder); the module reads both as doubles.
+function positionArray(value, name) {
+  if (value instanceof Float32Array || value instanceof Float64Array) return value;
+  if (Array.isArray(value)) return Float64Array.from(value);
+  throw badParameter(`${name} must be a Float32Array or Float64Array (or an array of numbers)`);
+}
+
+function typedArray(value, Type, name) {
+  if (value instanceof Type) return value;
+  if (Array.isArray(value)) return Type.from(value);
+  throw badParameter(`${name} must be a ${Type.name} (or an array of numbers)`);
+}
+
+function describe(value) {
+  if (typeof value === 'string') return `'${value}'`;
+  if (Array.isArray(value)) return `an array of length ${value.length}`;
+  if (ArrayBuffer.isView(value)) return `a ${value.constructor.name} of length ${value.length}`;
+  if (isObject(value)) return 'an object';
+  return String(value);
+}
+
+// ---- public objects -> the flat requests of bindings.cpp (js_values.h) -------
+
+const REGION_KINDS = ['all', 'sphere', 'box', 'vertices'];
+
+// region: {all: true} | {sphere: {center, radius}} | {box: {min, max}}
+//         | {vertices: number[], weights?: number[]}
+function normalizeRegion(region) {
+  requireObject(region, 'region');
+  const kinds = REGION_KINDS.filter((kind) => region[kind] !== undefined);
+  if (kinds.length !== 1) {
+    throw badParameter(`region must have exactly one of ${REGION_KINDS.join(', ')}; got ${kinds.join(', ') || 'none'}`);
+  }
+  const [kind] = kinds;
+  rejectUnknownKeys(region, kind === 'vertices' ? ['vertices', 'weights'] : [kind], 'region');
+  switch (kind) {
+    case 'all':
+      if (region.all !== true) throw badParameter('region.all must be true');
+      return { kind: 'all' };
+    case 'sphere': {
+      const sphere = requireObject(region.sphere, 'region.sphere');
+      rejectUnknownKeys(sphere, ['center', 'radius'], 'region.sphere');
+      return {
+        kind: 'sphere',
+        center: finiteVector(sphere.center, 3, 'region.sphere.center'),
+        radius: finiteNumber(sphere.radius, 'region.sphere.radius'),
+      };
+    }
+    case 'box': {
+      const box = requireObject(region.box, 'region.box');
+      rejectUnknownKeys(box, ['min', 'max'], 'region.box');
+      return { kind: 'box', min: finiteVector(box.min, 3, 'region.box.min'), max: finiteVector(box.max, 3, 'region.box.max') };
+    }
+    default: {
+      const normalized = { kind: 'vertices', vertices: indexList(region.vertices, 'region.vertices') };
+      if (region.weights !== undefined) {
+        const weights = finiteVector(region.weights, normalized.vertices.length, 'region.weights');
+        normalized.weights = weights;
+      }
+      return normalized;
+    }
+  }
+}
+
+// direction: {type:'global', vector} | {type:'curvature', which, smoothing?}
+//   | {type:'screen', from, to, camera: {view, projection, viewport, anchor}}
+//   | {type:'constraints', constraints: [{vertex, direction, su?, sv?}]}
+//   | {type:'dense', directions: Float32Array (#V*3)}
+function normalizeDirection(direction, name) {
+  requireObject(direction, name);
+  const type = oneOf(direction.type, ['global', 'curvature', 'screen', 'constraints', 'dense'], `${name}.type`);
+  switch (type) {
+    case 'global':
+      rejectUnknownKeys(direction, ['type', 'vector'], name);
+      return { kind: 'global', vector: nonZeroVector(direction.vector, `${name}.vector`) };
+    case 'curvature': {
+      rejectUnknownKeys(direction, ['type', 'which', 'smoothing'], name);
+      const which = oneOf(direction.which, ['min', 'max'], `${name}.which`);
+      const smoothing = direction.smoothing === undefined ? DEFAULTS.curvatureSmoothing
+        : integerAtLeast(direction.smoothing, 0, `${name}.smoothing`);
+      return { kind: `curvature-${which}`, smoothing };
+    }
+    case 'screen': {
+      rejectUnknownKeys(direction, ['type', 'from', 'to', 'camera'], name);
+      const camera = requireObject(direction.camera, `${name}.camera`);
+      rejectUnknownKeys(camera, ['view', 'projection', 'viewport', 'anchor'], `${name}.camera`);
+      return {
+        kind: 'screen',
+        screen: {
+          from: finiteVector(direction.from, 2, `${name}.from`),
+          to: finiteVector(direction.to, 2, `${name}.to`),
+          view: finiteVector(camera.view, 16, `${name}.camera.view`),
+          projection: finiteVector(camera.projection, 16, `${name}.camera.projection`),
+          viewport: finiteVector(camera.viewport, 4, `${name}.camera.viewport`),
+          anchor: finiteVector(camera.anchor, 3, `${name}.camera.anchor`),
+        },
+      };
+    }
+    case 'constraints': {
+      rejectUnknownKeys(direction, ['type', 'constraints'], name);
+      if (!Array.isArray(direction.constraints) || direction.constraints.length === 0) {
+        throw badParameter(`${name}.constraints must be a non-empty array`);
+      }
+      return {
+        kind: 'constraints',
+        constraints: direction.constraints.map((c, i) => {
+          const where = `${name}.constraints[${i}]`;
+          requireObject(c, where);
+          rejectUnknownKeys(c, ['vertex', 'direction', 'su', 'sv'], where);
+          const hasAmounts = c.su !== undefined || c.sv !== undefined;
+          return {
+            vertex: integerAtLeast(c.vertex, 0, `${where}.vertex`),
+            direction: nonZeroVector(c.direction, `${where}.direction`),
+            hasAmounts,
+            su: c.su === undefined ? 1 : finiteNumber(c.su, `${where}.su`),
+            sv: c.sv === undefined ? 1 : finiteNumber(c.sv, `${where}.sv`),
+          };
+        }),
+      };
+    }
+    case 'dense':
+      rejectUnknownKeys(direction, ['type', 'directions'], name);
+      return { kind: 'dense', dense: typedArray(direction.directions, Float32Array, `${name}.directions`) };
+  }
+  throw badParameter(`${name}.type is not handled`);
+}
+
+// transform: {scale?: su | [su] | [su, sv], thickness?: sn, shear?: h,
+//             rotate?: {axis: 'n'|'u'|'v', degrees},
+//             twist?: {axis: [x,y,z], degreesPerUnit, origin?: [x,y,z]}}
+function normalizeTransform(transform) {
+  const t = transform === undefined ? {} : requireObject(transform, 'op.transform');
+  rejectUnknownKeys(t, ['scale', 'thickness', 'shear', 'rotate', 'twist'], 'op.transform');
+  const out = { su: 1, sv: 1, sn: 1, shear: 0, rotateAxis: 'none', rotateDegrees: 0, twist: false };
+  if (t.scale !== undefined) {
+    if (typeof t.scale === 'number') {
+      out.su = finiteNumber(t.scale, 'op.transform.scale');
+    } else {
+      const isPair = Array.isArray(t.scale) && (t.scale.length === 1 || t.scale.length === 2);
+      if (!isPair) throw badParameter(`op.transform.scale must be su or [su, sv], got ${describe(t.scale)}`);
+      out.su = finiteNumber(t.scale[0], 'op.transform.scale[0]');
+      if (t.scale.length === 2) out.sv = finiteNumber(t.scale[1], 'op.transform.scale[1]');
+    }
+  }
+  if (t.thickness !== undefined) out.sn = finiteNumber(t.thickness, 'op.transform.thickness');
+  if (t.shear !== undefined) out.shear = finiteNumber(t.shear, 'op.transform.shear');
+  if (t.rotate !== undefined) {
+    const rotate = requireObject(t.rotate, 'op.transform.rotate');
+    rejectUnknownKeys(rotate, ['axis', 'degrees'], 'op.transform.rotate');
+    out.rotateAxis = oneOf(rotate.axis, ['n', 'u', 'v'], 'op.transform.rotate.axis');
+    out.rotateDegrees = finiteNumber(rotate.degrees, 'op.transform.rotate.degrees');
+  }
+  if (t.twist !== undefined) {
+    const twist = requireObject(t.twist, 'op.transform.twist');
+    rejectUnknownKeys(twist, ['axis', 'degreesPerUnit', 'origin'], 'op.transform.twist');
+    const axis = nonZeroVector(twist.axis, 'op.transform.twist.axis');
+    const length = Math.hypot(...axis);
+    out.twist = true;
+    out.twistAxis = axis.map((x) => x / length);
+    out.twistDegreesPerUnit = finiteNumber(twist.degreesPerUnit, 'op.transform.twist.degreesPerUnit');
+    if (twist.origin !== undefined) out.twistOrigin = finiteVector(twist.origin, 3, 'op.transform.twist.origin');
+  }
+  return out;
+}
+
+const OP_KEYS = ['method', 'direction', 'transform', 'pins', 'handles', 'move', 'elements',
+  'maxIterations', 'rotationSteps', 'tolerance', 'preview', 'warmStart'];
+
+function normalizeOp(op, defaultDirection) {
+  requireObject(op, 'op');
+  rejectUnknownKeys(op, OP_KEYS, 'op');
+  const optionalFlag = (value, fallback, name) => {
+    if (value === undefined) return fallback;
+    if (typeof value !== 'boolean') throw badParameter(`${name} must be true or false`);
+    return value;
+  };
+  return {
+    method: oneOf(op.method ?? DEFAULTS.method, ['anarap', 'andefgrad', 'arap', 'linear'], 'op.method'),
+    direction: op.direction === undefined ? defaultDirection() : normalizeDirection(op.direction, 'op.direction'),
+    transform: normalizeTransform(op.transform),
+    pins: indexList(op.pins, 'op.pins'),
+    handles: indexList(op.handles, 'op.handles'),
+    move: op.move === undefined ? [0, 0, 0] : finiteVector(op.move, 3, 'op.move'),
+    elements: oneOf(op.elements ?? DEFAULTS.elements, ['spokes', 'spokes-rims'], 'op.elements'),
+    maxIterations: op.maxIterations === undefined ? DEFAULTS.maxIterations
+      : integerAtLeast(op.maxIterations, 1, 'op.maxIterations'),
+    rotationSteps: op.rotationSteps === undefined ? DEFAULTS.rotationSteps
+      : integerAtLeast(op.rotationSteps, 1, 'op.rotationSteps'),
+    tolerance: op.tolerance === undefined ? DEFAULTS.tolerance : finiteNumber(op.tolerance, 'op.tolerance'),
+    preview: optionalFlag(op.preview, false, 'op.preview'),
+    warmStart: optionalFlag(op.warmStart, true, 'op.warmStart'),
+  };
+}
+
+// The CLI's default direction: the longest side of the bounding box (x on ties).
+function longestAxisDirection(info) {
+  const extent = info.bbox.max.map((x, k) => x - info.bbox.min[k]);
+  let axis = 0;
+  for (let k = 1; k < 3; ++k) if (extent[k] > extent[axis]) axis = k;
+  const vector = [0, 0, 0];
+  vector[axis] = 1;
+  return { kind: 'global', vector };
+}
+
+function toBytes(bytes) {
+  if (bytes instanceof Uint8Array) return bytes;
+  if (bytes instanceof ArrayBuffer) return new Uint8Array(bytes);
+  if (ArrayBuffer.isView(bytes)) return new Uint8Array(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+  throw badParameter('loadMesh: bytes must be a Uint8Array or an ArrayBuffer');
+}
+
+// ---- the module -----------------------------------------------------------
+
+// options: {wasmBinary?: ArrayBuffer|Uint8Array, locateFile?: (path, prefix) => string}
+// (Node: pass wasmBinary, TOOLCHAIN.md §6; browsers and bundlers need neither.)
+export async function createAnisoformWasm(options = {}) {
+  const { wasmBinary, locateFile } = requireObject(options, 'options');
+  const moduleOptions = {};
+  if (wasmBinary !== undefined) moduleOptions.wasmBinary = wasmBinary;
+  if (locateFile !== undefined) moduleOptions.locateFile = locateFile;
+  let module;
+  try {
+    module = await createAnisoformModule(moduleOptions);
+  } catch (error) {
+    throw new AnisoformError('internal', `cannot load the WASM module: ${error?.message ?? error}`, { cause: error });
+  }
+
+  // Session wrapper -> its embind object, for LaplacianFloor (not public).
+  const rawSessions = new WeakMap();
+
+  class Session {
+    #raw;
+
+    constructor() {
+      this.#raw = guarded(() => new module.Session());
+      rawSessions.set(this, this.#raw);
+    }
+
+    get #session() {
+      if (this.#raw === null) throw badParameter('this Session has been deleted');
+      return this.#raw;
+    }
+
+    // Frees the WASM memory; the object is unusable afterwards.
+    delete() {
+      if (this.#raw !== null) {
+        this.#raw.delete();
+        this.#raw = null;
+      }
+    }
+
+    isDeleted() {
+      return this.#raw === null;
+    }
+
+    loadMesh(bytes, name) {
+      if (typeof name !== 'string') throw badParameter('loadMesh: name must be a string (its extension gives the format)');
+      const data = toBytes(bytes);
+      return guarded(() => this.#session.loadMesh(data, name));
+    }
+
+    setMesh(positions, triangles, options = {}) {
+      const { weld = false } = requireObject(options, 'setMesh options');
+      const xyz = positionArray(positions, 'setMesh: positions');
+      const indices = typedArray(triangles, Uint32Array, 'setMesh: triangles');
+      if (typeof weld !== 'boolean') throw badParameter('setMesh: options.weld must be true or false');
+      return guarded(() => this.#session.setMesh(xyz, indices, weld));
+    }
+
+    info() {
+      return guarded(() => this.#session.info());
+    }
+
+    positions() {
+      return guarded(() => this.#session.positions());
+    }
+
+    triangles() {
+      return guarded(() => this.#session.triangles());
+    }
+
+    select(region, options = {}) {
+      requireObject(options, 'select options');
+      rejectUnknownKeys(options, ['falloff', 'mode'], 'select options');
+      const normalized = normalizeRegion(region);
+      const falloff = options.falloff === undefined ? 0 : finiteNumber(options.falloff, 'select: options.falloff');
+      const mode = oneOf(options.mode ?? 'replace', ['replace', 'add', 'subtract'], 'select: options.mode');
+      return guarded(() => this.#session.select(normalized, falloff, mode));
+    }
+
+    setSelection(weights) {
+      const values = typedArray(weights, Float32Array, 'setSelection: weights');
+      return guarded(() => this.#session.setSelection(values));
+    }
+
+    selection() {
+      return guarded(() => this.#session.selection());
+    }
+
+    deform(op) {
+      const request = normalizeOp(op, () => longestAxisDirection(this.info()));
+      return guarded(() => this.#session.deform(request));
+    }
+
+    commit() {
+      guarded(() => this.#session.commit());
+    }
+
+    cancel() {
+      guarded(() => this.#session.cancel());
+    }
+
+    setPositions(positions) {
+      const xyz = positionArray(positions, 'setPositions: positions');
+      guarded(() => this.#session.setPositions(xyz));
+    }
+
+    directionField(direction) {
+      const normalized = normalizeDirection(direction, 'direction');
+      return guarded(() => this.#session.directionField(normalized));
+    }
+
+    distortion(kind, reference = 'rest') {
+      oneOf(kind, ['area', 'stretch'], 'distortion: kind');
+      oneOf(reference, ['rest', 'loaded'], 'distortion: reference');
+      return guarded(() => this.#session.distortion(kind, reference));
+    }
+
+    exportMesh(format) {
+      oneOf(format, ['obj', 'off', 'ply', 'stl'], 'exportMesh: format');
+      return guarded(() => this.#session.exportMesh(format));
+    }
+
+    factorizations() {
+      return guarded(() => this.#session.factorizations());
+    }
+  }
+
+  // Bench only: the cotangent Laplacian of `session`'s rest mesh factored with
+  // `pins` held (constructing it is the precompute) and solve() = one 3-column
+  // solve. Must be delete()d.
+  class LaplacianFloor {
+    #raw;
+
+    constructor(session, pins) {
+      const indices = Int32Array.from(indexList(pins, 'LaplacianFloor: pins'));
+      this.#raw = guarded(() => new module.LaplacianFloor());
+      try {
+        guarded(() => this.#raw.factor(rawSessions.get(session), indices));
+      } catch (error) {
+        this.delete();
+        throw error;
+      }
+    }
+
+    solve() {
+      guarded(() => this.#raw.solve());
+    }
+
+    delete() {
+      if (this.#raw !== null) {
+        this.#raw.delete();
+        this.#raw = null;
+      }
+    }
+  }
+
+  // The benchmarks' procedural mesh (aniso::capped_cylinder): a closed capped
+  // cylinder around z of near-equilateral triangles, about `approxVertices`
+  // vertices. Returns {positions: Float64Array, triangles: Uint32Array} for setMesh.
+  function cappedCylinder(approxVertices, radius = 1, height = 4) {
+    integerAtLeast(approxVertices, 1, 'cappedCylinder: approxVertices');
+    finiteNumber(radius, 'cappedCylinder: radius');
+    finiteNumber(height, 'cappedCylinder: height');
+    return guarded(() => module.cappedCylinder(approxVertices, radius, height));
+  }
+
+  return { Session, LaplacianFloor, cappedCylinder };
+}

@@ -1,0 +1,239 @@
+#include "js_values.h"
+
+#include <cmath>
+
+#include "anisoform/error.h"
+
+namespace aniso::wasm {
+
+using emscripten::val;
+
+namespace {
+
+[[noreturn]] void fail_field(const char* name, const std::string& problem) {
+  fail(ErrorCode::BadParameter, std::string("request field '") + name + "' " + problem);
+}
+
+val field(const val& object, const char* name) {
+  val value = object[name];
+  if (value.isUndefined() || value.isNull()) fail_field(name, "is missing");
+  return value;
+}
+
+double number(const val& object, const char* name) {
+  const val value = field(object, name);
+  if (!value.isNumber()) fail_field(name, "must be a number");
+  return value.as<double>();
+}
+
+int integer(const val& object, const char* name) {
+  const double value = number(object, name);
+  if (!(std::floor(value) == value && std::abs(value) <= 2147483647.0)) {
+    fail_field(name, "must be an integer");
+  }
+  return static_cast<int>(value);
+}
+
+bool flag(const val& object, const char* name) {
+  const val value = field(object, name);
+  if (!value.isTrue() && !value.isFalse()) fail_field(name, "must be true or false");
+  return value.isTrue();
+}
+
+std::string text(const val& object, const char* name) {
+  const val value = field(object, name);
+  if (!value.isString()) fail_field(name, "must be a string");
+  return value.as<std::string>();
+}
+
+template <int N>
+Eigen::Matrix<double, N, 1> fixed_vector(const val& object, const char* name) {
+  const val value = field(object, name);
+  if (value["length"].as<int>() != N) fail_field(name, "must hold " + std::to_string(N) + " numbers");
+  Eigen::Matrix<double, N, 1> out;
+  for (int i = 0; i < N; ++i) {
+    const val element = value[i];
+    if (!element.isNumber()) fail_field(name, "must hold " + std::to_string(N) + " numbers");
+    out[i] = element.as<double>();
+  }
+  return out;
+}
+
+std::vector<int> index_list(const val& object, const char* name) {
+  return emscripten::convertJSArrayToNumberVector<int>(field(object, name));
+}
+
+RotateAxis rotate_axis(const std::string& name) {
+  if (name == "none") return RotateAxis::None;
+  if (name == "n") return RotateAxis::Normal;
+  if (name == "u") return RotateAxis::U;
+  if (name == "v") return RotateAxis::V;
+  fail_field("rotateAxis", "must be one of none, n, u, v, got '" + name + "'");
+}
+
+ArapElements arap_elements(const std::string& name) {
+  if (name == "spokes") return ArapElements::Spokes;
+  if (name == "spokes-rims") return ArapElements::SpokesAndRims;
+  fail_field("elements", "must be spokes or spokes-rims, got '" + name + "'");
+}
+
+TransformSpec transform_from_js(const val& transform) {
+  TransformSpec spec;
+  spec.su = number(transform, "su");
+  spec.sv = number(transform, "sv");
+  spec.sn = number(transform, "sn");
+  spec.shear = number(transform, "shear");
+  spec.rotate_axis = rotate_axis(text(transform, "rotateAxis"));
+  spec.rotate_degrees = number(transform, "rotateDegrees");
+  spec.twist = flag(transform, "twist");
+  if (spec.twist) {
+    spec.twist_axis = fixed_vector<3>(transform, "twistAxis");
+    spec.twist_degrees_per_unit = number(transform, "twistDegreesPerUnit");
+  }
+  return spec;
+}
+
+DirectionConstraint constraint_from_js(const val& constraint) {
+  DirectionConstraint out;
+  out.vertex = integer(constraint, "vertex");
+  out.direction = fixed_vector<3>(constraint, "direction");
+  out.has_amounts = flag(constraint, "hasAmounts");
+  if (out.has_amounts) {
+    out.su = number(constraint, "su");
+    out.sv = number(constraint, "sv");
+  }
+  return out;
+}
+
+ScreenDrag screen_from_js(const val& screen) {
+  ScreenDrag drag;
+  const Eigen::Matrix<double, 16, 1> view = fixed_vector<16>(screen, "view");
+  const Eigen::Matrix<double, 16, 1> projection = fixed_vector<16>(screen, "projection");
+  // Column-major, as three.js Matrix4.elements.
+  drag.view = Eigen::Map<const Eigen::Matrix4d>(view.data());
+  drag.projection = Eigen::Map<const Eigen::Matrix4d>(projection.data());
+  drag.viewport = fixed_vector<4>(screen, "viewport");
+  drag.from_px = fixed_vector<2>(screen, "from");
+  drag.to_px = fixed_vector<2>(screen, "to");
+  drag.anchor = fixed_vector<3>(screen, "anchor");
+  return drag;
+}
+
+}  // namespace
+
+DirectionSource direction_from_js(const val& direction) {
+  DirectionSource source;
+  const std::string kind = text(direction, "kind");
+  if (kind == "global") {
+    source.kind = DirectionSource::Kind::Global;
+    source.vector = fixed_vector<3>(direction, "vector");
+  } else if (kind == "curvature-min" || kind == "curvature-max") {
+    source.kind = kind == "curvature-min" ? DirectionSource::Kind::CurvatureMin
+                                          : DirectionSource::Kind::CurvatureMax;
+    source.curvature_smoothing = integer(direction, "smoothing");
+  } else if (kind == "constraints") {
+    source.kind = DirectionSource::Kind::Constraints;
+    const val constraints = field(direction, "constraints");
+    const int count = constraints["length"].as<int>();
+    for (int i = 0; i < count; ++i) source.constraints.push_back(constraint_from_js(constraints[i]));
+  } else if (kind == "screen") {
+    source.kind = DirectionSource::Kind::Screen;
+    source.screen = screen_from_js(field(direction, "screen"));
+  } else if (kind == "dense") {
+    source.kind = DirectionSource::Kind::Dense;
+    const std::vector<float> xyz = float_vector(field(direction, "dense"));
+    if (xyz.size() % 3 != 0) fail_field("dense", "needs 3 numbers per vertex");
+    source.dense.resize(static_cast<Eigen::Index>(xyz.size() / 3), 3);
+    for (std::size_t i = 0; i < xyz.size(); ++i) source.dense.data()[i] = xyz[i];  // row-major
+  } else {
+    fail_field("kind", "must be one of global, curvature-min, curvature-max, constraints, "
+                       "screen, dense, got '" + kind + "'");
+  }
+  return source;
+}
+
+SessionEdit edit_from_js(const val& request) {
+  SessionEdit edit;
+  DeformRequest& out = edit.request;
+  out.method = parse_method(text(request, "method"));
+  out.direction = direction_from_js(field(request, "direction"));
+  const val transform = field(request, "transform");
+  out.transform = transform_from_js(transform);
+  const val twist_origin = transform["twistOrigin"];
+  edit.twist_origin_given = !(twist_origin.isUndefined() || twist_origin.isNull());
+  if (edit.twist_origin_given) out.transform.twist_origin = fixed_vector<3>(transform, "twistOrigin");
+  out.pins = index_list(request, "pins");
+  out.handles = index_list(request, "handles");
+  out.handle_offset = fixed_vector<3>(request, "move");
+  out.elements = arap_elements(text(request, "elements"));
+  out.max_iterations = integer(request, "maxIterations");
+  out.rotation_steps = integer(request, "rotationSteps");
+  out.tolerance = number(request, "tolerance");
+  out.warm_start = flag(request, "warmStart");
+  edit.preview = flag(request, "preview");
+  return edit;
+}
+
+Region region_from_js(const val& region) {
+  Region out;
+  const std::string kind = text(region, "kind");
+  if (kind == "all") {
+    out.kind = Region::Kind::All;
+  } else if (kind == "box") {
+    out.kind = Region::Kind::Box;
+    out.min = fixed_vector<3>(region, "min");
+    out.max = fixed_vector<3>(region, "max");
+  } else if (kind == "sphere") {
+    out.kind = Region::Kind::Sphere;
+    out.center = fixed_vector<3>(region, "center");
+    out.radius = number(region, "radius");
+  } else if (kind == "vertices") {
+    out.kind = Region::Kind::Vertices;
+    out.vertices = index_list(region, "vertices");
+    const val weights = region["weights"];
+    if (!weights.isUndefined() && !weights.isNull()) {
+      out.weights = emscripten::convertJSArrayToNumberVector<double>(weights);
+    }
+  } else {
+    fail_field("kind", "must be one of all, box, sphere, vertices, got '" + kind + "'");
+  }
+  return out;
+}
+
+SelectionMode selection_mode_from_js(const std::string& mode) {
+  if (mode == "replace") return SelectionMode::Replace;
+  if (mode == "add") return SelectionMode::Add;
+  if (mode == "subtract") return SelectionMode::Subtract;
+  fail(ErrorCode::BadParameter, "selection mode must be replace, add or subtract, got '" + mode + "'");
+}
+
+DistortionKind distortion_kind_from_js(const std::string& kind) {
+  if (kind == "area") return DistortionKind::AreaRatio;
+  if (kind == "stretch") return DistortionKind::MaxStretch;
+  fail(ErrorCode::BadParameter, "distortion kind must be area or stretch, got '" + kind + "'");
+}
+
+DistortionReference distortion_reference_from_js(const std::string& reference) {
+  if (reference == "rest") return DistortionReference::Rest;
+  if (reference == "loaded") return DistortionReference::Loaded;
+  fail(ErrorCode::BadParameter,
+       "distortion reference must be rest or loaded, got '" + reference + "'");
+}
+
+std::vector<float> float_vector(const val& array) {
+  return emscripten::convertJSArrayToNumberVector<float>(array);
+}
+
+std::vector<double> double_vector(const val& array) {
+  return emscripten::convertJSArrayToNumberVector<double>(array);
+}
+
+std::vector<std::uint32_t> uint32_vector(const val& array) {
+  return emscripten::convertJSArrayToNumberVector<std::uint32_t>(array);
+}
+
+std::vector<std::uint8_t> byte_vector(const val& array) {
+  return emscripten::convertJSArrayToNumberVector<std::uint8_t>(array);
+}
+
+}  // namespace aniso::wasm

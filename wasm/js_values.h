@@ -1,0 +1,41 @@
+// Reading the core's request structs from the plain JS objects that the JS
+// layer (js/anisoform-wasm.mjs) builds. The JS layer checks the user's input
+// and fills in every field, so these readers only guard against a field that
+// is missing or of the wrong type (Error(BadParameter) naming it) and never
+// apply defaults of their own: there is one place for those.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <emscripten/val.h>
+
+#include "anisoform/selection.h"
+#include "anisoform/session.h"
+
+namespace aniso::wasm {
+
+// request: {method, direction, transform, pins, handles, move, elements,
+//           maxIterations, rotationSteps, tolerance, warmStart, preview}, as documented in
+// js/anisoform-wasm.mjs (normalizeOp).
+SessionEdit edit_from_js(const emscripten::val& request);
+
+// direction: {kind, vector, constraints, screen, dense, smoothing}.
+DirectionSource direction_from_js(const emscripten::val& direction);
+
+// region: {kind: 'all'|'box'|'sphere'|'vertices', min, max, center, radius,
+//          vertices, weights}.
+Region region_from_js(const emscripten::val& region);
+
+SelectionMode selection_mode_from_js(const std::string& mode);
+DistortionKind distortion_kind_from_js(const std::string& kind);
+DistortionReference distortion_reference_from_js(const std::string& reference);
+
+// One bulk copy of a JS typed array (or array of numbers) into a vector.
+std::vector<float> float_vector(const emscripten::val& array);
+std::vector<double> double_vector(const emscripten::val& array);
+std::vector<std::uint32_t> uint32_vector(const emscripten::val& array);
+std::vector<std::uint8_t> byte_vector(const emscripten::val& array);
+
+}  // namespace aniso::wasm

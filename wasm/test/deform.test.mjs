@@ -1,0 +1,158 @@
+// The solver properties of METHOD §9 through the WASM session, on real meshes:
+// the identity leaves the mesh alone, a global stretch of a plane is exactly
+// diag(su, 1, 1), AnARAP's energy decreases, and only a new rest pose (or pin
+// set) refactors.
+import assert from 'node:assert/strict';
+import { before, test } from 'node:test';
+
+import { boundingBox, loadAnisoform, maxVertexDistance, sessionWith } from '../node-support.mjs';
+
+let wasm;
+before(async () => {
+  ({ wasm } = await loadAnisoform());
+});
+
+function withSession(file, body) {
+  const session = sessionWith(wasm, file);
+  try {
+    return body(session);
+  } finally {
+    session.delete();
+  }
+}
+
+for (const method of ['anarap', 'andefgrad', 'linear']) {
+  test(`${method}: T = I leaves the mesh unchanged`, () => withSession('closed/spool.off', (session) => {
+    const rest = session.positions().slice();
+    const diagonal = boundingBox(rest).diagonal;
+    assert.equal(session.select({ all: true }), session.info().vertices);
+    session.deform({ method, direction: { type: 'global', vector: [0, 1, 0] }, transform: {} });
+    assert.ok(maxVertexDistance(session.positions(), rest) <= 1e-6 * diagonal);
+  }));
+}
+
+test('an empty selection leaves the mesh unchanged, as the CLI', () => withSession('closed/spool.off', (session) => {
+  const rest = session.positions().slice();
+  for (const method of ['anarap', 'andefgrad']) {
+    const result = session.deform({ method, direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: 1.5 } });
+    assert.equal(result.selected, 0);
+    assert.ok(maxVertexDistance(session.positions(), rest) <= 1e-6 * boundingBox(rest).diagonal, method);
+  }
+}));
+
+test('andefgrad: a global stretch of a plane along an in-plane axis gives exactly diag(su, 1, 1) up to translation', () => withSession('open/plane.off', (session) => {
+  const rest = session.positions().slice();
+  const { diagonal, min, max } = boundingBox(rest);
+  const extent = max.map((x, k) => x - min[k]);
+  const flat = extent.indexOf(Math.min(...extent));
+  assert.ok(extent[flat] < 1e-9 * diagonal, 'plane.off lies in an axis plane');
+  const axis = (flat + 1) % 3;  // in the plane
+  const vector = [0, 0, 0];
+  vector[axis] = 1;
+  const su = 1.5;
+  const scale = [1, 1, 1];
+  scale[axis] = su;
+  session.select({ all: true });
+  session.deform({ method: 'andefgrad', direction: { type: 'global', vector }, transform: { scale: su } });
+  const result = session.positions();
+  const n = rest.length / 3;
+  const translation = [0, 0, 0];
+  for (let i = 0; i < n; ++i) {
+    for (let k = 0; k < 3; ++k) translation[k] += (result[3 * i + k] - scale[k] * rest[3 * i + k]) / n;
+  }
+  const expected = rest.map((x, j) => scale[j % 3] * x + translation[j % 3]);
+  assert.ok(maxVertexDistance(result, expected) <= 1e-6 * diagonal);
+}));
+
+test('anarap: the energy never increases over the iterations', () => withSession('closed/torus.obj', (session) => {
+  const { min, max } = boundingBox(session.positions());
+  session.select({ box: { min, max: [max[0], max[1], (min[2] + max[2]) / 2 + 0.3 * (max[2] - min[2])] } }, { falloff: 0.2 });
+  const result = session.deform({ method: 'anarap', direction: { type: 'global', vector: [1, 0, 0] }, transform: { scale: 1.4 }, maxIterations: 30, tolerance: 0 });
+  assert.equal(result.energyHistory.length, result.iterations);
+  assert.ok(result.iterations >= 2);
+  for (let k = 1; k < result.energyHistory.length; ++k) {
+    const [previous, current] = [result.energyHistory[k - 1], result.energyHistory[k]];
+    assert.ok(current <= previous * (1 + 1e-12), `iteration ${k}: ${current} > ${previous}`);
+  }
+  assert.ok(result.energyHistory.at(-1) < result.energyHistory[0]);
+}));
+
+test('a new amount, direction or method never refactors; a new rest pose refactors once', () => withSession('closed/spool.off', (session) => {
+  session.select({ sphere: { center: [0, 0.5, 0], radius: 0.5 } }, { falloff: 0.1 });
+  const first = session.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: 1.2 }, maxIterations: 5 });
+  assert.equal(first.factorizations, 1);
+  for (const op of [
+    { method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: 1.5 }, maxIterations: 5 },
+    { method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: 1.7 }, preview: true },
+    { method: 'anarap', direction: { type: 'global', vector: [1, 0, 0] }, transform: { scale: [1.2, 0.9] }, maxIterations: 5 },
+    { method: 'andefgrad', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: 1.3 } },
+    { method: 'andefgrad', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: 1.6 } },
+  ]) {
+    assert.equal(session.deform(op).factorizations, first.factorizations, JSON.stringify(op));
+  }
+  assert.equal(session.factorizations(), first.factorizations);
+  session.commit();
+  const afterCommit = session.deform({ method: 'andefgrad', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: 1.1 } });
+  assert.equal(afterCommit.factorizations, first.factorizations + 1);
+  session.deform({ method: 'andefgrad', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: 1.2 } });
+  assert.equal(session.factorizations(), first.factorizations + 1);
+}));
+
+test('preview runs at most 4 warm-started iterations; the final solve converges from there', () => withSession('closed/spool.off', (session) => {
+  session.select({ sphere: { center: [0, 0.5, 0], radius: 0.5 } }, { falloff: 0.1 });
+  const op = { method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: 1.3 } };
+  for (const su of [1.1, 1.2, 1.3]) {
+    const preview = session.deform({ ...op, transform: { scale: su }, preview: true });
+    assert.ok(preview.iterations <= 4);
+  }
+  const final = session.deform(op);
+  assert.ok(final.iterations >= 1);
+}));
+
+test('arap with handles moves the handles by the offset and keeps the pins', () => withSession('closed/spool.off', (session) => {
+  const rest = session.positions().slice();
+  const n = rest.length / 3;
+  const byHeight = [...Array(n).keys()].sort((a, b) => rest[3 * a + 1] - rest[3 * b + 1]);
+  const count = Math.max(1, Math.round(0.05 * n));
+  const pins = byHeight.slice(0, count);
+  const handles = byHeight.slice(n - count);
+  const move = [0.25, 0, 0];
+  session.deform({ method: 'arap', pins, handles, move, maxIterations: 5 });
+  const result = session.positions();
+  for (const i of pins) {
+    assert.ok(Math.hypot(result[3 * i] - rest[3 * i], result[3 * i + 1] - rest[3 * i + 1], result[3 * i + 2] - rest[3 * i + 2]) < 1e-6);
+  }
+  for (const i of handles) {
+    assert.ok(Math.abs(result[3 * i] - rest[3 * i] - move[0]) < 1e-6);
+  }
+}));
+
+test('directionField gives unit tangent directions: a global x on the plane y = 0 is x everywhere', () => withSession('open/plane.off', (session) => {
+  const field = session.directionField({ type: 'global', vector: [2, 0, 0] });
+  assert.equal(field.length, session.positions().length);
+  for (let i = 0; i < field.length; i += 3) {
+    assert.ok(Math.abs(Math.abs(field[i]) - 1) < 1e-6 && Math.abs(field[i + 1]) < 1e-6 && Math.abs(field[i + 2]) < 1e-6);
+  }
+  const curvature = session.directionField({ type: 'curvature', which: 'max' });
+  assert.equal(curvature.length, field.length);
+}));
+
+test('distortion: 1 for the identity; area ratio and stretch su after a plane stretch in the plane', () => withSession('open/plane.off', (session) => {
+  for (const kind of ['area', 'stretch']) {
+    assert.ok(session.distortion(kind).every((value) => Math.abs(value - 1) < 1e-9));
+  }
+  session.select({ all: true });
+  session.deform({ method: 'andefgrad', direction: { type: 'global', vector: [1, 0, 0] }, transform: { scale: 1.5 } });
+  assert.ok(session.distortion('area').every((value) => Math.abs(value - 1.5) < 1e-5));
+  assert.ok(session.distortion('stretch').every((value) => Math.abs(value - 1.5) < 1e-5));
+  session.commit();
+  assert.ok(session.distortion('area', 'rest').every((value) => Math.abs(value - 1) < 1e-9));
+  assert.ok(session.distortion('area', 'loaded').every((value) => Math.abs(value - 1.5) < 1e-5));
+}));
+
+test('an AnARAP twist runs exactly rotationSteps steps, in preview too', () => withSession('closed/spool.off', (session) => {
+  session.select({ all: true });
+  const twist = { method: 'anarap', transform: { twist: { axis: [0, 1, 0], degreesPerUnit: 30 } } };
+  assert.equal(session.deform(twist).iterations, 1);
+  assert.equal(session.deform({ ...twist, rotationSteps: 3, preview: true }).iterations, 3);
+}));
