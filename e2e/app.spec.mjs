@@ -1,0 +1,26 @@
+// The page opens with the default mesh drawn and ready to edit.
+import { expect, litPixelCount, openApp, test } from './support.mjs';
+
+test('the default mesh is drawn and ready to edit', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const info = await page.evaluate(() => window.anisoform.info());
+  expect(info).toEqual({ vertices: 2930, triangles: 5856, components: 1, boundaryLoops: 0 });
+
+  const { lit, total } = await litPixelCount(page);
+  expect(lit / total).toBeGreaterThan(0.05);
+
+  // Milestones after navigation start: WASM solver ready, default mesh
+  // loaded (read, checked, picking structure built), first frame drawn.
+  const marks = await page.evaluate(() =>
+    ['solver-ready', 'mesh-loaded', 'interactive'].map(
+      (name) => performance.getEntriesByName(`anisoform:${name}`)[0]?.startTime ?? null,
+    ),
+  );
+  expect(marks).not.toContain(null);
+  const [solverReady, meshLoaded, interactive] = marks.map((ms) => ms.toFixed(0));
+  test.info().annotations.push({ type: 'first interactive frame (ms)', description: interactive });
+  console.log(`solver ready ${solverReady} ms, mesh loaded ${meshLoaded} ms, first interactive frame ${interactive} ms`);
+
+  await expect(page.getByTestId('error')).toBeHidden();
+  expect(pageErrors).toEqual([]);
+});

@@ -1,0 +1,73 @@
+// Every file of shared/meshes/formats uploads through the file input and
+// gives the counts of MANIFEST.md (polygons triangulated, STL soups welded).
+import { readdirSync, readFileSync } from 'node:fs';
+import { expect, meshesDir, meshPath, openApp, test, uploadFile } from './support.mjs';
+
+// triangles = sum over polygons of (corners - 2)
+const EXPECTED = {
+  'spot_lowres.obj': [829, 1654],
+  'spot_lowres.off': [829, 1654],
+  'spot_lowres_ascii.ply': [829, 1654],
+  'spot_lowres_binary.ply': [829, 1654],
+  'spot_lowres_binary.stl': [829, 1654],
+  'spot_lowres_ascii.stl': [829, 1654],
+  'spot_lowres.glb': [829, 1654],
+  'fandisk_binary.stl': [6475, 12946],
+  'armadillo_binary.ply': [26002, 52000],
+  'spot_quadrangulated.obj': [2930, 2 * 2928],
+  'spot_control_mesh.obj': [188, 4 + 2 * 160 + 3 * 16],
+  'concave_polygon.obj': [64, 64],
+  'mengerSponge3.glb': [7983, 21598],
+  'box.glb': [8, 12],
+};
+
+const files = readdirSync(`${meshesDir}/formats`).filter((name) => !name.endsWith('.mtl'));
+
+test('every file in formats/ has an expected count', () => {
+  expect(files.sort()).toEqual(Object.keys(EXPECTED).sort());
+});
+
+test.describe('uploading every format', () => {
+  let page;
+  test.beforeAll(async ({ browser }) => {
+    page = await browser.newPage();
+    await openApp(page);
+  });
+  test.afterAll(() => page.close());
+
+  for (const name of Object.keys(EXPECTED)) {
+    test(name, async () => {
+      const outcome = await uploadFile(page, meshPath(`formats/${name}`));
+      expect(outcome).toMatchObject({ ok: true });
+      const [vertices, triangles] = EXPECTED[name];
+      expect(outcome.info).toMatchObject({ vertices, triangles });
+      await expect(page.getByTestId('error')).toBeHidden();
+    });
+  }
+});
+
+test('dropping a file on the page loads it', async ({ page }) => {
+  await openApp(page);
+  const bytes = [...readFileSync(meshPath('formats/spot_lowres.off'))];
+  const loaded = page.evaluate(
+    () =>
+      new Promise((resolve) => {
+        const off = window.anisoform.on('change', ({ reason }) => {
+          if (reason === 'load') {
+            off();
+            resolve(window.anisoform.info());
+          }
+        });
+      }),
+  );
+  const dataTransfer = await page.evaluateHandle((data) => {
+    const transfer = new DataTransfer();
+    transfer.items.add(new File([new Uint8Array(data)], 'spot_lowres.off'));
+    return transfer;
+  }, bytes);
+  await page.dispatchEvent('#viewport', 'dragenter', { dataTransfer });
+  await expect(page.locator('#drop-overlay')).toBeVisible();
+  await page.dispatchEvent('#viewport', 'drop', { dataTransfer });
+  expect(await loaded).toMatchObject({ vertices: 829, triangles: 1654 });
+  await expect(page.locator('#drop-overlay')).toBeHidden();
+});

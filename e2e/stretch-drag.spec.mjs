@@ -1,0 +1,47 @@
+// tool-stretch: a horizontal mouse drag on the mesh stretches it along the
+// drag (the screen direction projected onto the surface): the extent along
+// the camera's right axis grows, the extent along its up axis stays.
+import { armChange, canvasCentre, expect, extentAlong, openApp, test } from './support.mjs';
+
+test('a horizontal drag with the stretch tool stretches along the drag', async ({ page }) => {
+  await openApp(page);
+  await page.getByTestId('tool-stretch').click();
+  const before = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  const camera = await page.evaluate(() => window.anisoform.camera());
+  // Rows of the view matrix (column-major elements) are the camera axes in world space.
+  const right = [camera.view[0], camera.view[4], camera.view[8]];
+  const up = [camera.view[1], camera.view[5], camera.view[9]];
+
+  const centre = await canvasCentre(page);
+  const committed = await armChange(page, 'positions');
+  await page.mouse.move(...centre.page);
+  await page.mouse.down();
+  await page.mouse.move(centre.page[0] + 120, centre.page[1], { steps: 12 });
+  await page.mouse.up();
+  await committed();
+
+  const after = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  const growthRight = extentAlong(after, right) / extentAlong(before, right);
+  const growthUp = extentAlong(after, up) / extentAlong(before, up);
+  console.log(`stretch drag: right extent ×${growthRight.toFixed(3)}, up extent ×${growthUp.toFixed(3)}`);
+  expect(growthRight).toBeGreaterThan(1.1);
+  expect(Math.abs(growthUp - 1)).toBeLessThan(0.5 * (growthRight - 1));
+  expect(await page.evaluate(() => window.anisoform.undo())).toBe(true);
+});
+
+test('the drag previews live, and Esc cancels it', async ({ page }) => {
+  await openApp(page);
+  await page.getByTestId('tool-stretch').click();
+  const before = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  const centre = await canvasCentre(page);
+  await page.mouse.move(...centre.page);
+  await page.mouse.down();
+  await page.mouse.move(centre.page[0] + 100, centre.page[1], { steps: 10 });
+  // A live preview shows in the status bar while the button is still down.
+  await expect(page.getByTestId('status-solve')).toContainText('preview');
+  await page.keyboard.press('Escape');
+  await page.mouse.up();
+  const after = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  expect(after).toEqual(before);
+  expect(await page.evaluate(() => window.anisoform.undo())).toBe(false);
+});

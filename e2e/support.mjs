@@ -1,0 +1,108 @@
+// Shared helpers of the end-to-end tests: where the shared meshes are, opening
+// the page, loading a file through the real file input, and reading the
+// canvas. State is asserted through window.anisoform.
+import { existsSync } from 'node:fs';
+import { dirname, resolve } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { expect, test } from '../web/node_modules/@playwright/test/index.mjs';
+
+export { expect, test };
+
+const repoRoot = resolve(dirname(fileURLToPath(import.meta.url)), '..');
+
+/** shared/meshes: $ANISO_SHARED_DIR/meshes, or ../shared/meshes beside the repo. */
+export const meshesDir = resolve(process.env.ANISO_SHARED_DIR ?? resolve(repoRoot, '..', 'shared'), 'meshes');
+if (!existsSync(meshesDir)) {
+  throw new Error(`The shared meshes are not at ${meshesDir}: set ANISO_SHARED_DIR to the shared/ folder`);
+}
+export const meshPath = (relative) => resolve(meshesDir, relative);
+
+/** Opens the page and waits for the default mesh; fails on any page error. */
+export async function openApp(page) {
+  const pageErrors = [];
+  page.on('pageerror', (error) => pageErrors.push(error.message));
+  await page.goto('/');
+  await page.evaluate(() => window.anisoform.ready);
+  return pageErrors;
+}
+
+/**
+ * Picks `path` in the file input and waits for the outcome:
+ * {ok: true, info} after a load, {ok: false, message} after an error.
+ */
+export async function uploadFile(page, path) {
+  await page.evaluate(() => {
+    window.__nextLoad = new Promise((resolve) => {
+      const done = (outcome) => {
+        offChange();
+        offError();
+        resolve(outcome);
+      };
+      const offChange = window.anisoform.on('change', ({ reason }) => {
+        if (reason === 'load') done({ ok: true, info: window.anisoform.info() });
+      });
+      const offError = window.anisoform.on('error', ({ message }) => done({ ok: false, message }));
+    });
+  });
+  await page.getByTestId('file-input').setInputFiles(path);
+  return page.evaluate(() => window.__nextLoad);
+}
+
+/** Resolves in the page when the next committed change of `reason` happens. */
+export async function armChange(page, reason) {
+  await page.evaluate((wanted) => {
+    window.__nextChange = new Promise((resolve) => {
+      const off = window.anisoform.on('change', (event) => {
+        if (event.reason === wanted) {
+          off();
+          resolve(true);
+        }
+      });
+    });
+  }, reason);
+  return () => page.evaluate(() => window.__nextChange);
+}
+
+/** Number of canvas pixels that differ clearly from the background colour. */
+export async function litPixelCount(page) {
+  const png = await page.getByTestId('viewport').screenshot();
+  return page.evaluate(async (base64) => {
+    const image = new Image();
+    image.src = `data:image/png;base64,${base64}`;
+    await image.decode();
+    const canvas = new OffscreenCanvas(image.width, image.height);
+    const context = canvas.getContext('2d');
+    context.drawImage(image, 0, 0);
+    const { data } = context.getImageData(0, 0, image.width, image.height);
+    const background = [0x1d, 0x21, 0x27];
+    let lit = 0;
+    for (let i = 0; i < data.length; i += 4) {
+      const difference =
+        Math.abs(data[i] - background[0]) + Math.abs(data[i + 1] - background[1]) + Math.abs(data[i + 2] - background[2]);
+      if (difference > 30) lit++;
+    }
+    return { lit, total: image.width * image.height };
+  }, png.toString('base64'));
+}
+
+/** Centre of the viewport canvas in page coordinates and canvas coordinates. */
+export async function canvasCentre(page) {
+  const box = await page.getByTestId('viewport').boundingBox();
+  return {
+    page: [box.x + box.width / 2, box.y + box.height / 2],
+    canvas: [box.width / 2, box.height / 2],
+    box,
+  };
+}
+
+/** Extent (max - min) of positions along a unit vector. */
+export function extentAlong(positions, unit) {
+  let min = Infinity;
+  let max = -Infinity;
+  for (let i = 0; i < positions.length; i += 3) {
+    const value = positions[i] * unit[0] + positions[i + 1] * unit[1] + positions[i + 2] * unit[2];
+    min = Math.min(min, value);
+    max = Math.max(max, value);
+  }
+  return max - min;
+}

@@ -1,0 +1,131 @@
+// Public API of the Anisoform page: `window.anisoform`.
+// The same object drives the page's own panels, the Playwright tests and
+// embedders. Coordinates are model units; pixels are CSS pixels of the
+// viewport canvas, origin top-left, y down.
+
+export type Vec3 = [number, number, number];
+export type Pixel = [number, number];
+
+export interface MeshCounts {
+  vertices: number;
+  triangles: number;
+}
+
+export interface MeshInfo extends MeshCounts {
+  components: number;
+  boundaryLoops: number;
+}
+
+export type Region =
+  | { all: true }
+  | { sphere: { center: Vec3; radius: number } }
+  | { box: { min: Vec3; max: Vec3 } }
+  | { vertices: number[]; weights?: number[] };
+
+export interface SelectOptions {
+  /** Soft border width in model units, measured along mesh edges (default 0). */
+  falloff?: number;
+  /** 'replace' (default), 'add' (max of old and new) or 'subtract' (min of old and 1 - new). */
+  mode?: 'replace' | 'add' | 'subtract';
+}
+
+export type Direction =
+  | { type: 'global'; vector: Vec3 }
+  | { type: 'curvature'; which: 'min' | 'max' }
+  /** A drag on the canvas; the surface point under `from` anchors its depth. */
+  | { type: 'screen'; from: Pixel; to: Pixel }
+  /** Arrows at vertices, propagated to a smooth line field. */
+  | { type: 'constraints'; constraints: { vertex: number; direction: Vec3; su?: number; sv?: number }[] };
+
+export interface Transform {
+  /** [along the direction, across it] in the tangent plane. */
+  scale?: [number, number];
+  shear?: number;
+  rotate?: { axis: 'n' | 'u' | 'v'; degrees: number };
+  twist?: { axis: Vec3; degreesPerUnit: number };
+}
+
+export interface DeformOp {
+  method: 'anarap' | 'andefgrad' | 'arap' | 'linear';
+  direction?: Direction;
+  transform?: Transform;
+  /** ARAP with handles: the offset of the handles (default: the fully selected vertices). */
+  move?: Vec3;
+  handles?: number[];
+  pins?: number[];
+  maxIterations?: number;
+  tolerance?: number;
+}
+
+export interface DeformResult {
+  iterations: number;
+  energy: number;
+  /** Solver time in milliseconds. */
+  ms: number;
+}
+
+export interface Hit {
+  point: Vec3;
+  normal: Vec3;
+  triangle: number;
+  /** The triangle corner nearest to the hit. */
+  vertex: number;
+}
+
+export interface CameraState {
+  /** Column-major 4x4 matrices, as three.js `Matrix4.elements`. */
+  view: number[];
+  projection: number[];
+  viewport: [number, number, number, number];
+  position: Vec3;
+  target: Vec3;
+}
+
+export interface ChangeEvent {
+  reason: 'load' | 'positions' | 'selection';
+}
+export interface ErrorEvent {
+  code: 'bad-parameter' | 'bad-mesh' | 'bad-file' | 'numerical' | 'internal';
+  message: string;
+}
+export interface ProgressEvent {
+  stage: 'init' | 'read' | 'parse' | 'factorize' | 'done';
+  message: string;
+  /** In [0, 1] when known. */
+  fraction?: number;
+}
+
+export interface Anisoform {
+  readonly version: string;
+  /** Resolves when the WASM solver and the default mesh are loaded and drawn. */
+  readonly ready: Promise<void>;
+  /** Loads OBJ, PLY, STL, OFF or GLB; on failure rejects and keeps the current mesh. */
+  load(source: File | Blob | ArrayBuffer, name: string): Promise<MeshCounts>;
+  info(): MeshInfo;
+  /** A copy: xyz per vertex. */
+  positions(): Float32Array;
+  /** Returns the number of vertices with weight > 0. */
+  select(region: Region, options?: SelectOptions): number;
+  /** A copy: weight per vertex in [0, 1]. */
+  selection(): Float32Array;
+  /** One committed, undoable edit. An empty selection edits the whole mesh. */
+  deform(op: DeformOp): Promise<DeformResult>;
+  undo(): boolean;
+  redo(): boolean;
+  /** Back to the positions as loaded (undoable); false if nothing changed. */
+  reset(): boolean;
+  export(format: 'obj' | 'ply' | 'stl' | 'glb'): Promise<ArrayBuffer>;
+  /** Returns a function that removes the listener. */
+  on(event: 'change', callback: (event: ChangeEvent) => void): () => void;
+  on(event: 'error', callback: (event: ErrorEvent) => void): () => void;
+  on(event: 'progress', callback: (event: ProgressEvent) => void): () => void;
+  /** The surface under a canvas pixel, or null. */
+  pick(pixel: Pixel): Hit | null;
+  camera(): CameraState;
+}
+
+declare global {
+  interface Window {
+    anisoform: Anisoform;
+  }
+}

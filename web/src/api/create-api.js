@@ -1,0 +1,69 @@
+// The public API object (issue 3 §3), exposed as window.anisoform. The side
+// panel drives the editor through this same object wherever it offers the
+// operation (load, select, undo, redo, reset, export); tests and embedders
+// use nothing else. Declarations: anisoform.d.ts beside this file.
+const EVENTS = ['change', 'error', 'progress'];
+
+export function createAnisoformApi({ editor, viewer, picker, ready }) {
+  const document = () => {
+    if (!editor.document) throw Object.assign(new Error('no mesh is loaded yet: await anisoform.ready'), { code: 'bad-parameter' });
+    return editor.document;
+  };
+
+  return Object.freeze({
+    version: '0.1.0',
+    ready,
+
+    load: (source, name) => editor.load(source, name),
+
+    info() {
+      const { info } = document();
+      return {
+        vertices: info.vertices,
+        triangles: info.triangles,
+        components: info.components,
+        boundaryLoops: info.boundaryLoops,
+      };
+    },
+
+    positions: () => document().positions.slice(),
+
+    select(region, options = {}) {
+      document();
+      return editor.select(region, options);
+    },
+
+    selection: () => document().selection.slice(),
+
+    deform: (op) => editor.deform(op),
+
+    undo: () => editor.undo(),
+    redo: () => editor.redo(),
+    reset: () => editor.reset(),
+
+    export: (format) => editor.export(format),
+
+    on(event, callback) {
+      if (!EVENTS.includes(event)) {
+        throw Object.assign(new Error(`unknown event '${event}': use ${EVENTS.join(', ')}`), { code: 'bad-parameter' });
+      }
+      if (typeof callback !== 'function') {
+        throw Object.assign(new Error('on() needs a callback function'), { code: 'bad-parameter' });
+      }
+      return editor.on(event, callback);
+    },
+
+    pick([x, y]) {
+      document();
+      return picker.pick(x, y);
+    },
+
+    camera() {
+      return {
+        ...viewer.cameraState(),
+        position: viewer.camera.position.toArray(),
+        target: viewer.controls.target.toArray(),
+      };
+    },
+  });
+}

@@ -1,0 +1,356 @@
+// The editor: the page's model of an editing session, between the UI/API and
+// the solver worker. It owns the mesh document, the history and the live
+// gesture, and announces changes as events:
+//   'mesh'       a new mesh was loaded (payload: MeshDocument)
+//   'positions'  {positions, live}: committed positions, or a live preview
+//   'selection'  {weights, count, live}: committed weights, or a brush stroke in progress
+//   'history'    {canUndo, canRedo, undoLabel, redoLabel}
+//   'stats'      {ms, iterations, live, factorizations}
+//   'progress'   {stage, message, fraction?}; stage 'done' ends it
+//   'busy'       boolean: a committed edit is being solved
+//   'error'      {code, message}
+//   'notice'     {message}: what a load repaired or found (plain words)
+//   'change'     {reason}: anything committed changed (load, edit, selection, undo)
+import { PositionsCommand } from '../commands/positions-command.js';
+import { History } from '../commands/history.js';
+import { SelectionCommand } from '../commands/selection-command.js';
+import { importGltf } from '../io/import-gltf.js';
+import { exportMesh } from '../io/export-mesh.js';
+import { readerFor } from '../io/mesh-formats.js';
+import { readFileBytes } from '../io/read-file.js';
+import { applyFalloff, combineWeights, countSelected, regionWeights } from '../selection/region-weights.js';
+import { Request } from '../worker/protocol.js';
+import { EventEmitter } from './event-emitter.js';
+import { MeshDocument } from './mesh-document.js';
+import { describeProblems } from './problem-summary.js';
+import { toSolverOp, validateOp } from './solver-op.js';
+
+export class Editor extends EventEmitter {
+  /** @type {MeshDocument|null} */
+  document = null;
+  history = new History();
+  #client;
+  #view = null;
+  #selectionSent = null;
+  #gesture = null;
+  #committing = 0;
+  #gestureCount = 0;
+
+  constructor(client) {
+    super();
+    this.#client = client;
+    client.on('progress', (progress) => this.emit('progress', progress));
+    this.history.on('change', (state) => this.emit('history', state));
+  }
+
+  /** The viewer's camera and picking, needed for screen-space directions. */
+  attachView(view) {
+    this.#view = view;
+  }
+
+  async start() {
+    await this.#client.request(Request.init);
+  }
+
+  get busy() {
+    return this.#committing > 0;
+  }
+
+  get gestureActive() {
+    return this.#gesture !== null;
+  }
+
+  // ---- loading -------------------------------------------------------------
+
+  /** Loads a File, Blob or ArrayBuffer; on failure the current mesh stays. */
+  async load(source, name) {
+    try {
+      if (typeof name !== 'string' || !name) {
+        name = source?.name ?? '';
+        if (!name) throw Object.assign(new Error('load() needs a file name with its extension, e.g. "part.stl"'), { code: 'bad-parameter' });
+      }
+      const reader = readerFor(name);
+      const bytes = await this.#bytesOf(source, name);
+      this.emit('progress', { stage: 'parse', message: `Reading ${name}` });
+      let payload;
+      if (reader === 'core') {
+        payload = await this.#client.request(Request.loadFile, { bytes, name }, [bytes]);
+      } else {
+        const { positions, triangles, notes } = await importGltf(bytes, name);
+        // glTF splits vertices at seams; welding exact duplicates joins the surface.
+        payload = await this.#client.request(Request.setMesh, { positions, triangles, weld: true }, [
+          positions.buffer,
+          triangles.buffer,
+        ]);
+        payload.info.notes = [...notes, ...(payload.info.notes ?? [])];
+      }
+      this.#adopt(payload, name);
+      return { vertices: payload.info.vertices, triangles: payload.info.triangles };
+    } catch (error) {
+      this.emit('progress', { stage: 'done', message: '' });
+      throw this.#reportError(error, `Could not load ${name || 'the file'}`);
+    }
+  }
+
+  async #bytesOf(source, name) {
+    if (source instanceof ArrayBuffer) return source.slice(0); // the caller keeps theirs
+    if (ArrayBuffer.isView(source)) return source.buffer.slice(source.byteOffset, source.byteOffset + source.byteLength);
+    if (source instanceof Blob) {
+      this.emit('progress', { stage: 'read', message: `Reading ${name}`, fraction: 0 });
+      return readFileBytes(source, (fraction) =>
+        this.emit('progress', { stage: 'read', message: `Reading ${name}`, fraction }),
+      );
+    }
+    throw Object.assign(new Error('load() takes a File, Blob or ArrayBuffer'), { code: 'bad-parameter' });
+  }
+
+  #adopt({ info, positions, triangles }, name) {
+    this.#abandonGesture();
+    this.document = new MeshDocument({ name, positions, triangles, info });
+    this.#selectionSent = null;
+    this.history.clear();
+    this.emit('mesh', this.document);
+    const notice = describeProblems(info);
+    if (notice) this.emit('notice', { message: notice });
+    this.emit('change', { reason: 'load' });
+    this.#prepareSolver();
+  }
+
+  // Factorizes in the background; the page stays usable, and the first edit
+  // queues behind this in the worker instead of paying for it mid-drag.
+  #prepareSolver() {
+    const document = this.document;
+    this.#selectionSent = null; // prepare leaves an empty selection in the session
+    this.#client
+      .request(Request.prepare)
+      .then(() => {
+        if (this.document === document) this.emit('progress', { stage: 'done', message: 'Ready' });
+      })
+      .catch((error) => {
+        if (this.document === document) this.#reportError(error, 'The solver could not prepare this mesh');
+      });
+  }
+
+  // ---- selection -----------------------------------------------------------
+
+  select(region, options = {}) {
+    const document = this.#requireDocument();
+    let weights = regionWeights(document.positions, region);
+    const falloff = options.falloff ?? 0;
+    if (falloff !== 0) applyFalloff(weights, document.adjacency, document.positions, falloff);
+    weights = combineWeights(document.selection, weights, options.mode ?? 'replace');
+    return this.setSelection(weights, 'Select');
+  }
+
+  /** Commits new weights as one undoable step; returns the selected count. */
+  setSelection(weights, label) {
+    const document = this.#requireDocument();
+    const before = document.selection;
+    this.#applySelection(weights);
+    this.history.push(new SelectionCommand(label, before, weights, (w) => this.#applySelection(w)));
+    return document.selectionCount;
+  }
+
+  /** Shows weights of a stroke in progress without committing them. */
+  showSelection(weights) {
+    this.emit('selection', { weights, count: null, live: true });
+  }
+
+  #applySelection(weights) {
+    const document = this.#requireDocument();
+    document.setSelection(weights, countSelected(weights));
+    this.emit('selection', { weights, count: document.selectionCount, live: false });
+    this.emit('change', { reason: 'selection' });
+  }
+
+  // An empty selection means "the whole mesh": a first drag on a freshly
+  // loaded mesh does something visible instead of nothing.
+  #syncSelection() {
+    const document = this.#requireDocument();
+    const key = document.selectionCount === 0 ? 'whole' : document.selectionVersion;
+    if (key === this.#selectionSent) return;
+    const weights =
+      document.selectionCount === 0 ? new Float32Array(document.vertexCount).fill(1) : document.selection.slice();
+    this.#selectionSent = key;
+    // Requests are ordered, so the deform that follows sees these weights.
+    this.#client.request(Request.setSelection, { weights }, [weights.buffer]).catch((error) => {
+      this.#selectionSent = null;
+      this.#reportError(error, 'The selection could not be sent to the solver');
+    });
+  }
+
+  // ---- deformation ---------------------------------------------------------
+
+  /** One committed, undoable edit. */
+  async deform(op, label = describeEdit(op)) {
+    const document = this.#requireDocument();
+    validateOp(op);
+    if (this.#gesture) throw Object.assign(new Error('an interactive edit is in progress'), { code: 'bad-parameter' });
+    const solverOp = toSolverOp(op, document, this.#view);
+    return this.#commit(document, solverOp, label);
+  }
+
+  async #commit(document, solverOp, label) {
+    this.#syncSelection();
+    this.#committing++;
+    this.emit('busy', true);
+    try {
+      const before = document.positions;
+      const { positions, stats } = await this.#client.request(Request.deform, { op: solverOp, commit: true });
+      if (this.document !== document) return stats; // a new mesh arrived meanwhile
+      this.#applyPositions(positions);
+      this.history.push(new PositionsCommand(label, before, positions, (p) => this.#restorePositions(p)));
+      this.emit('stats', { ...stats, live: false });
+      return { iterations: stats.iterations, energy: stats.energy, ms: stats.ms };
+    } catch (error) {
+      throw this.#reportError(error, `${label} failed`);
+    } finally {
+      this.#committing--;
+      this.emit('busy', this.#committing > 0);
+    }
+  }
+
+  /** Starts a live edit (a drag). Returns false while another edit runs. */
+  beginGesture() {
+    if (!this.document || this.#gesture || this.#committing) return false;
+    this.#gesture = { id: ++this.#gestureCount, lastOp: null };
+    this.#syncSelection();
+    this.emit('gesture', true);
+    return true;
+  }
+
+  /** Shows the edit `op` live; stale results are dropped. */
+  updateGesture(op) {
+    const gesture = this.#gesture;
+    if (!gesture) return;
+    const solverOp = toSolverOp(op, this.document, this.#view);
+    gesture.lastOp = solverOp;
+    this.#client
+      .preview(solverOp)
+      .then((result) => {
+        if (!result || this.#gesture !== gesture) return;
+        this.emit('positions', { positions: result.positions, live: true });
+        this.emit('stats', { ...result.stats, live: true });
+      })
+      .catch((error) => {
+        if (this.#gesture === gesture) this.#reportError(error, 'The live preview failed');
+      });
+  }
+
+  /** Ends the live edit and commits its last state (fully solved) as one step. */
+  async commitGesture(label) {
+    const gesture = this.#gesture;
+    if (!gesture) return null;
+    this.#gesture = null;
+    this.#client.dropQueuedPreview();
+    this.emit('gesture', false);
+    if (!gesture.lastOp) {
+      await this.#client.request(Request.cancel);
+      return null;
+    }
+    const { preview, ...finalOp } = gesture.lastOp;
+    return this.#commit(this.document, finalOp, label);
+  }
+
+  /** Esc: drops the live edit; the mesh returns to its committed state. */
+  cancelGesture() {
+    if (!this.#gesture) return false;
+    this.#abandonGesture();
+    this.#client.request(Request.cancel).catch((error) => this.#reportError(error, 'Cancel failed'));
+    this.emit('positions', { positions: this.document.positions, live: false });
+    return true;
+  }
+
+  #abandonGesture() {
+    if (!this.#gesture) return;
+    this.#gesture = null;
+    this.#client.dropQueuedPreview();
+    this.emit('gesture', false);
+  }
+
+  /** Per-vertex unit directions of a direction source, for the glyphs. */
+  async directionField(direction) {
+    const document = this.#requireDocument();
+    const solverOp = toSolverOp({ method: 'anarap', direction, transform: {} }, document, this.#view);
+    const { field } = await this.#client.request(Request.directionField, { direction: solverOp.direction });
+    return this.document === document ? field : null;
+  }
+
+  // ---- history -------------------------------------------------------------
+
+  undo() {
+    if (this.#gesture || this.#committing) return false;
+    return this.history.undo();
+  }
+
+  redo() {
+    if (this.#gesture || this.#committing) return false;
+    return this.history.redo();
+  }
+
+  /** Back to the positions as loaded (undoable). */
+  reset() {
+    const document = this.#requireDocument();
+    if (this.#gesture || this.#committing || document.positions === document.loadedPositions) return false;
+    const before = document.positions;
+    this.#restorePositions(document.loadedPositions);
+    this.history.push(
+      new PositionsCommand('Reset to loaded mesh', before, document.loadedPositions, (p) => this.#restorePositions(p)),
+    );
+    return true;
+  }
+
+  #applyPositions(positions) {
+    this.document.positions = positions;
+    this.emit('positions', { positions, live: false });
+    this.emit('change', { reason: 'positions' });
+  }
+
+  // Undo, redo and reset: the worker's rest mesh follows (a copy is sent,
+  // because the history keeps the original).
+  #restorePositions(positions) {
+    const copy = positions.slice();
+    this.#client.request(Request.setPositions, { positions: copy }, [copy.buffer]).catch((error) => {
+      this.#reportError(error, 'The solver could not restore the positions');
+    });
+    this.#applyPositions(positions);
+  }
+
+  // ---- export --------------------------------------------------------------
+
+  async export(format) {
+    const document = this.#requireDocument();
+    const baseName = document.name.replace(/\.[^.]+$/, '') || 'anisoform';
+    try {
+      return await exportMesh(format, document.positions, document.triangles, baseName);
+    } catch (error) {
+      throw this.#reportError(error, `Export as ${format} failed`);
+    }
+  }
+
+  // ---- helpers -------------------------------------------------------------
+
+  #requireDocument() {
+    if (!this.document) throw Object.assign(new Error('no mesh is loaded yet'), { code: 'bad-parameter' });
+    return this.document;
+  }
+
+  // Emits the error in plain words and returns an Error to throw, with the
+  // code of the layer that raised it (core codes pass through unchanged).
+  #reportError(error, context) {
+    const code = error?.code ?? 'internal';
+    const detail = error?.message ?? String(error);
+    const message = `${context}: ${detail}`;
+    this.emit('error', { code, message });
+    return Object.assign(new Error(message), { code, cause: error });
+  }
+}
+
+const TRANSFORM_NAMES = { scale: 'Stretch', shear: 'Shear', rotate: 'Rotate', twist: 'Twist' };
+const METHOD_NAMES = { anarap: 'AnARAP', andefgrad: 'AnDefGrad', arap: 'ARAP', linear: 'Linear' };
+
+export function describeEdit(op) {
+  if (op.method === 'arap' && op.move) return 'Move (ARAP)';
+  const kind = Object.keys(op.transform ?? {}).find((key) => key in TRANSFORM_NAMES) ?? 'scale';
+  return `${TRANSFORM_NAMES[kind]} (${METHOD_NAMES[op.method] ?? op.method})`;
+}

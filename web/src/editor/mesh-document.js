@@ -1,0 +1,66 @@
+// The page's copy of the mesh being edited: committed positions, triangles,
+// the positions as loaded (for reset and the distortion heat map), selection
+// weights and the mesh check's report.
+//
+// Arrays are treated as immutable: an edit replaces `positions` or `selection`
+// with a new array instead of writing into it, so undo commands can keep
+// references instead of copies.
+import { buildVertexAdjacency } from '../selection/mesh-adjacency.js';
+
+export class MeshDocument {
+  #adjacency = null;
+
+  /**
+   * @param {{name: string, positions: Float32Array, triangles: Uint32Array, info: object}} mesh
+   */
+  constructor({ name, positions, triangles, info }) {
+    this.name = name;
+    this.positions = positions;
+    this.triangles = triangles;
+    this.loadedPositions = positions;
+    this.info = info;
+    this.selection = new Float32Array(positions.length / 3);
+    this.selectionCount = 0;
+    // Bumped on every selection change, so the solver client knows when to resend.
+    this.selectionVersion = 0;
+  }
+
+  get vertexCount() {
+    return this.positions.length / 3;
+  }
+
+  get triangleCount() {
+    return this.triangles.length / 3;
+  }
+
+  get adjacency() {
+    this.#adjacency ??= buildVertexAdjacency(this.vertexCount, this.triangles);
+    return this.#adjacency;
+  }
+
+  setSelection(weights, count) {
+    this.selection = weights;
+    this.selectionCount = count;
+    this.selectionVersion++;
+  }
+
+  /** Axis-aligned bounds of the committed positions: {min, max, center, diagonal}. */
+  bounds() {
+    return boundsOf(this.positions);
+  }
+}
+
+export function boundsOf(positions) {
+  const min = [Infinity, Infinity, Infinity];
+  const max = [-Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < positions.length; i += 3) {
+    for (let k = 0; k < 3; k++) {
+      const value = positions[i + k];
+      if (value < min[k]) min[k] = value;
+      if (value > max[k]) max[k] = value;
+    }
+  }
+  const center = [0, 1, 2].map((k) => (min[k] + max[k]) / 2);
+  const diagonal = Math.hypot(max[0] - min[0], max[1] - min[1], max[2] - min[2]);
+  return { min, max, center, diagonal };
+}

@@ -1,0 +1,48 @@
+// The editor's settings: active tool, method, direction source, brush and
+// the numeric amounts of every transform. Panels write them, tools read them;
+// a drag writes its amount back so the numeric field shows the live value.
+import { EventEmitter } from './event-emitter.js';
+
+export function defaultSettings() {
+  return {
+    tool: 'select',
+    // Iterations cap a committed AnARAP/ARAP solve; previews run a few, warm-started.
+    solver: { method: 'anarap', iterations: 50 },
+    direction: { source: 'screen', axis: 'x', custom: [1, 0, 0], curvature: 'max' },
+    // Arrows placed on the surface: [{vertex, point, direction}] (direction source 'arrows').
+    arrows: [],
+    // The last drag's screen direction, camera included, for "Apply" with the screen source.
+    lastScreen: null,
+    brush: { radiusPercent: 8, softnessPercent: 50, mode: 'add' },
+    stretch: { along: 1.5, across: 1 },
+    thicken: { factor: 1.3 },
+    shear: { amount: 0.5 },
+    rotate: { axis: 'n', degrees: 30 },
+    twist: { axis: 'y', custom: [0, 1, 0], degreesPerUnit: 90 },
+    display: { selection: true, glyphs: true, heatMap: 'off' },
+  };
+}
+
+export class Settings extends EventEmitter {
+  constructor(values = defaultSettings()) {
+    super();
+    this.values = values;
+  }
+
+  /** Merges `partial` into a section (or sets a top-level value) and announces it. */
+  update(section, partial) {
+    const current = this.values[section];
+    const isPlainObject = current && typeof current === 'object' && !Array.isArray(current);
+    this.values[section] = isPlainObject && partial && typeof partial === 'object' && !Array.isArray(partial)
+      ? { ...current, ...partial }
+      : partial;
+    this.emit('change', { section });
+  }
+}
+
+const AXES = { x: [1, 0, 0], y: [0, 1, 0], z: [0, 0, 1] };
+
+/** A unit vector for an axis setting: 'x' | 'y' | 'z' | 'custom' (then `custom`). */
+export function axisVector(axis, custom) {
+  return AXES[axis] ?? custom;
+}

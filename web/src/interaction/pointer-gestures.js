@@ -1,0 +1,77 @@
+// The one place that decides who gets a pointer gesture on the canvas: the
+// active tool when a left-button press lands on the mesh (or the tool wants
+// presses off the mesh too), otherwise the orbit controls. It listens in the
+// capture phase, so it runs before OrbitControls and can keep it out of a
+// tool's drag. Pointer capture keeps the drag alive outside the canvas.
+export class PointerGestures {
+  #active = null;
+
+  /**
+   * @param {import('../viewer/viewer.js').Viewer} viewer
+   * @param {import('./picker.js').Picker} picker
+   * @param {() => object|null} activeTool  the tool under the pointer, or null
+   */
+  constructor(viewer, picker, activeTool) {
+    this.viewer = viewer;
+    this.picker = picker;
+    this.activeTool = activeTool;
+    const canvas = viewer.canvas;
+    canvas.addEventListener('pointerdown', (event) => this.#down(event), { capture: true });
+    canvas.addEventListener('pointermove', (event) => this.#move(event));
+    canvas.addEventListener('pointerup', (event) => this.#up(event));
+    canvas.addEventListener('pointercancel', () => this.cancel());
+    canvas.addEventListener('pointerleave', () => this.activeTool()?.hover?.(null));
+  }
+
+  get active() {
+    return this.#active !== null;
+  }
+
+  #position(event) {
+    const rect = this.viewer.canvas.getBoundingClientRect();
+    return { x: event.clientX - rect.left, y: event.clientY - rect.top };
+  }
+
+  #down(event) {
+    if (event.button !== 0 || this.#active) return;
+    const tool = this.activeTool();
+    if (!tool) return;
+    const { x, y } = this.#position(event);
+    const hit = this.picker.pick(x, y);
+    if (!tool.wantsGesture(hit, event)) return;
+    event.stopImmediatePropagation();
+    event.preventDefault();
+    this.viewer.canvas.setPointerCapture(event.pointerId);
+    this.viewer.canvas.focus({ preventScroll: true });
+    this.#active = { tool, pointerId: event.pointerId };
+    tool.start({ x, y, hit, event });
+  }
+
+  #move(event) {
+    const { x, y } = this.#position(event);
+    if (!this.#active) {
+      const tool = this.activeTool();
+      if (tool?.hover && event.buttons === 0) tool.hover({ x, y, hit: this.picker.pick(x, y) });
+      return;
+    }
+    if (event.pointerId !== this.#active.pointerId) return;
+    this.#active.tool.move({ x, y, event });
+  }
+
+  #up(event) {
+    if (!this.#active || event.pointerId !== this.#active.pointerId) return;
+    const { tool } = this.#active;
+    this.#active = null;
+    this.viewer.canvas.releasePointerCapture(event.pointerId);
+    tool.end({ ...this.#position(event), event });
+  }
+
+  /** Esc or a lost pointer: the tool drops its gesture. */
+  cancel() {
+    if (!this.#active) return false;
+    const { tool } = this.#active;
+    this.#active = null;
+    tool.cancel();
+    return true;
+  }
+}

@@ -1,0 +1,76 @@
+// GLB / glTF import with three.js's GLTFLoader: every triangle primitive of
+// the scene, in world coordinates, merged into one indexed triangle list.
+// Points and lines are skipped (and counted), as the core's OBJ reader does.
+import { Matrix4, Vector3 } from 'three';
+import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+
+export class GltfImportError extends Error {
+  constructor(message) {
+    super(message);
+    this.name = 'GltfImportError';
+    this.code = 'bad-file';
+  }
+}
+
+/** @returns {Promise<{positions: Float32Array, triangles: Uint32Array, notes: string[]}>} */
+export async function importGltf(bytes, name) {
+  let gltf;
+  try {
+    gltf = await new GLTFLoader().parseAsync(bytes, '');
+  } catch (error) {
+    throw new GltfImportError(`${name} is not a readable glTF file: ${error?.message ?? error}`);
+  }
+  gltf.scene.updateMatrixWorld(true);
+
+  const parts = [];
+  let skipped = 0;
+  gltf.scene.traverse((object) => {
+    // Skinned meshes would need their pose evaluated; points and lines have no surface.
+    if (object.isMesh && !object.isSkinnedMesh && object.geometry.getAttribute('position')) parts.push(object);
+    else if (object.isLine || object.isPoints || object.isSkinnedMesh) skipped++;
+  });
+  if (parts.length === 0) throw new GltfImportError(`${name} contains no triangle mesh.`);
+
+  let vertexTotal = 0;
+  let indexTotal = 0;
+  for (const mesh of parts) {
+    const geometry = mesh.geometry;
+    vertexTotal += geometry.getAttribute('position').count;
+    indexTotal += geometry.index ? geometry.index.count : geometry.getAttribute('position').count;
+  }
+  const positions = new Float32Array(vertexTotal * 3);
+  const triangles = new Uint32Array(indexTotal);
+  const point = new Vector3();
+  const toWorld = new Matrix4();
+  let vertexOffset = 0;
+  let indexOffset = 0;
+  for (const mesh of parts) {
+    const geometry = mesh.geometry;
+    const position = geometry.getAttribute('position');
+    toWorld.copy(mesh.matrixWorld);
+    for (let i = 0; i < position.count; i++) {
+      point.fromBufferAttribute(position, i).applyMatrix4(toWorld);
+      const at = (vertexOffset + i) * 3;
+      positions[at] = point.x;
+      positions[at + 1] = point.y;
+      positions[at + 2] = point.z;
+    }
+    if (geometry.index) {
+      const index = geometry.index;
+      for (let k = 0; k < index.count; k++) triangles[indexOffset + k] = vertexOffset + index.getX(k);
+      indexOffset += index.count;
+    } else {
+      for (let k = 0; k < position.count; k++) triangles[indexOffset + k] = vertexOffset + k;
+      indexOffset += position.count;
+    }
+    vertexOffset += position.count;
+  }
+  if (indexOffset % 3 !== 0) {
+    throw new GltfImportError(`${name}: a triangle list has ${indexOffset} indices, not a multiple of 3.`);
+  }
+
+  const notes = [];
+  if (parts.length > 1) notes.push(`${parts.length} meshes of the glTF scene were merged into one.`);
+  if (skipped > 0) notes.push(`${skipped} point, line or skinned objects were skipped.`);
+  return { positions, triangles, notes };
+}

@@ -1,0 +1,20 @@
+// What the viewport shows besides the surface.
+import { section } from './dom.js';
+import { checkboxField, selectField } from './fields.js';
+
+export function displayPanel({ settings }) {
+  return section(
+    'Display',
+    checkboxField(settings, 'display', { key: 'selection', label: 'Selection weights' }),
+    checkboxField(settings, 'display', { key: 'glyphs', label: 'Direction glyphs' }),
+    selectField(settings, 'display', {
+      key: 'heatMap',
+      label: 'Heat map',
+      options: [
+        ['off', 'Off'],
+        ['area', 'Area change'],
+        ['stretch', 'Stretch'],
+      ],
+    }),
+  );
+}

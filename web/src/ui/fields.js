@@ -1,0 +1,73 @@
+// Form fields bound to a settings section: numbers, selects, checkboxes and
+// xyz vectors. A field shows the setting's current value (a drag writes its
+// amount there live) unless the user is typing in it.
+import { h } from './dom.js';
+
+export function numberField(settings, sectionName, { key, label, min, max, step }) {
+  const input = h('input', { type: 'number', min, max, step, id: `${sectionName}-${key}` });
+  const sync = () => {
+    if (document.activeElement !== input) input.value = settings.values[sectionName][key];
+  };
+  input.addEventListener('change', () => {
+    const value = Number(input.value);
+    if (Number.isFinite(value)) settings.update(sectionName, { [key]: clamp(value, min, max) });
+    sync();
+  });
+  settings.on('change', ({ section }) => section === sectionName && sync());
+  sync();
+  return h('label', { className: 'field', for: input.id }, h('span', {}, label), input);
+}
+
+export function selectField(settings, sectionName, { key, label, options }) {
+  const select = h(
+    'select',
+    { id: `${sectionName}-${key}` },
+    options.map(([value, text]) => h('option', { value }, text)),
+  );
+  const sync = () => (select.value = settings.values[sectionName][key]);
+  select.addEventListener('change', () => settings.update(sectionName, { [key]: select.value }));
+  settings.on('change', ({ section }) => section === sectionName && sync());
+  sync();
+  return h('label', { className: 'field', for: select.id }, h('span', {}, label), select);
+}
+
+export function checkboxField(settings, sectionName, { key, label }) {
+  const input = h('input', { type: 'checkbox', id: `${sectionName}-${key}` });
+  const sync = () => (input.checked = settings.values[sectionName][key]);
+  input.addEventListener('change', () => settings.update(sectionName, { [key]: input.checked }));
+  settings.on('change', ({ section }) => section === sectionName && sync());
+  sync();
+  return h('label', { className: 'field field-checkbox', for: input.id }, input, h('span', {}, label));
+}
+
+export function vectorField(settings, sectionName, { key, label }) {
+  const inputs = [0, 1, 2].map((axis) =>
+    h('input', { type: 'number', step: 0.1, 'aria-label': `${label} ${'xyz'[axis]}` }),
+  );
+  const sync = () => {
+    const vector = settings.values[sectionName][key];
+    inputs.forEach((input, axis) => document.activeElement !== input && (input.value = vector[axis]));
+  };
+  for (const input of inputs) {
+    input.addEventListener('change', () => {
+      const vector = inputs.map((field) => Number(field.value));
+      if (vector.every(Number.isFinite) && Math.hypot(...vector) > 0) settings.update(sectionName, { [key]: vector });
+      sync();
+    });
+  }
+  settings.on('change', ({ section }) => section === sectionName && sync());
+  sync();
+  return h('div', { className: 'field field-vector' }, h('span', {}, label), h('div', { className: 'xyz' }, inputs));
+}
+
+/** Shows `element` only while predicate(settings section values) holds. */
+export function showWhen(settings, sectionName, element, predicate) {
+  const sync = () => (element.hidden = !predicate(settings.values[sectionName]));
+  settings.on('change', ({ section }) => section === sectionName && sync());
+  sync();
+  return element;
+}
+
+function clamp(value, min, max) {
+  return Math.min(Math.max(value, min ?? -Infinity), max ?? Infinity);
+}

@@ -1,0 +1,34 @@
+// Selection commands: all, clear, invert, grow and shrink by one ring, and
+// a select-all with a soft border; each is one undo step.
+import { growSelection, invertSelection, shrinkSelection } from '../selection/selection-morphology.js';
+import { h, section } from './dom.js';
+
+export function selectionPanel({ api, editor }) {
+  const count = h('p', { className: 'selection-count' });
+  const withDocument = (action) => () => editor.document && action(editor.document);
+  const button = (label, testId, action) =>
+    h('button', { className: 'button', 'data-testid': testId, onclick: withDocument(action) }, label);
+
+  const sync = () => {
+    const document = editor.document;
+    count.textContent = !document
+      ? ''
+      : document.selectionCount === 0
+        ? 'Nothing selected: edits apply to the whole mesh.'
+        : `${document.selectionCount.toLocaleString()} of ${document.vertexCount.toLocaleString()} vertices selected`;
+  };
+  editor.on('selection', ({ live }) => !live && sync());
+  editor.on('mesh', sync);
+
+  return section(
+    'Selection',
+    count,
+    h('div', { className: 'button-grid' },
+      button('All', 'select-all', () => api.select({ all: true })),
+      button('Clear', 'select-clear', () => api.select({ vertices: [] })),
+      button('Invert', 'select-invert', (d) => editor.setSelection(invertSelection(d.selection), 'Invert selection')),
+      button('Grow', 'select-grow', (d) => editor.setSelection(growSelection(d.selection, d.adjacency), 'Grow selection')),
+      button('Shrink', 'select-shrink', (d) => editor.setSelection(shrinkSelection(d.selection, d.adjacency), 'Shrink selection')),
+    ),
+  );
+}

@@ -1,0 +1,39 @@
+// Status bar: mesh size, selection, last solve time, frames per second, and
+// progress of loading / factorizing (a bar with a fraction, or an
+// indeterminate one when the worker cannot tell how far it is).
+import { h } from './dom.js';
+
+export function statusBar(container, { editor, viewer }) {
+  const mesh = h('span', { className: 'status-item', 'data-testid': 'status-mesh' });
+  const solve = h('span', { className: 'status-item', 'data-testid': 'status-solve' }, 'solve —');
+  const fps = h('span', { className: 'status-item', 'data-testid': 'status-fps' });
+  const bar = h('span', { className: 'progress-bar' }, h('span', { className: 'progress-fill' }));
+  const progressText = h('span', { className: 'progress-text' });
+  const progress = h('span', { className: 'status-item progress', 'data-testid': 'progress', hidden: true }, bar, progressText);
+  container.append(mesh, progress, h('span', { className: 'spacer' }), solve, fps);
+
+  editor.on('mesh', (document) => {
+    mesh.textContent = `${document.vertexCount.toLocaleString()} vertices · ${document.triangleCount.toLocaleString()} triangles`;
+  });
+  editor.on('stats', ({ ms, iterations, live }) => {
+    solve.textContent = `${live ? 'preview' : 'solve'} ${ms.toFixed(1)} ms · ${iterations} it`;
+  });
+  editor.on('progress', ({ stage, message, fraction }) => {
+    progress.hidden = stage === 'done';
+    progressText.textContent = message;
+    bar.classList.toggle('indeterminate', fraction === undefined);
+    bar.firstChild.style.width = fraction === undefined ? '' : `${Math.round(fraction * 100)}%`;
+  });
+  editor.on('busy', (busy) => {
+    progress.hidden = !busy;
+    if (busy) {
+      progressText.textContent = 'Solving';
+      bar.classList.add('indeterminate');
+    }
+  });
+  // Frames are drawn on demand, so an idle view draws none.
+  setInterval(() => {
+    const frames = viewer.framesPerSecond;
+    fps.textContent = frames > 0 ? `${frames} fps` : 'idle';
+  }, 500);
+}

@@ -1,0 +1,66 @@
+// Tool buttons and the active tool's options: brush settings for Select,
+// numeric amounts with Apply for the transforms, the arrow list for Arrows.
+import { h, section } from './dom.js';
+import { numberField, selectField, showWhen, vectorField } from './fields.js';
+
+export function toolPanel({ settings, tools, reportError }) {
+  const buttons = [...tools.values()].map((tool) =>
+    h('button', {
+      className: 'tool-button',
+      'data-testid': `tool-${tool.id}`,
+      'aria-pressed': 'false',
+      title: tool.hint,
+      onclick: () => settings.update('tool', tool.id),
+    }, tool.label),
+  );
+  const options = new Map([...tools.values()].map((tool) => [tool.id, toolOptions(tool, settings, reportError)]));
+  const hint = h('p', { className: 'hint tool-hint' });
+  const optionsHost = h('div', { className: 'tool-options' }, [...options.values()]);
+
+  const sync = () => {
+    const active = settings.values.tool;
+    buttons.forEach((button, index) => button.setAttribute('aria-pressed', String([...tools.keys()][index] === active)));
+    for (const [id, element] of options) element.hidden = id !== active;
+    hint.textContent = tools.get(active)?.hint ?? '';
+  };
+  settings.on('change', ({ section: name }) => name === 'tool' && sync());
+  sync();
+  return section('Tool', h('div', { className: 'tool-grid' }, buttons), hint, optionsHost);
+}
+
+function toolOptions(tool, settings, reportError) {
+  if (tool.id === 'select') {
+    return h('div', {},
+      numberField(settings, 'brush', { key: 'radiusPercent', label: 'Radius %', min: 0.5, max: 100, step: 0.5 }),
+      numberField(settings, 'brush', { key: 'softnessPercent', label: 'Soft edge %', min: 0, max: 100, step: 5 }),
+      selectField(settings, 'brush', { key: 'mode', label: 'Mode', options: [['add', 'Add'], ['subtract', 'Subtract']] }),
+    );
+  }
+  if (tool.id === 'arrows') {
+    const count = h('span', {});
+    const sync = () => (count.textContent = `${settings.values.arrows.length} arrow(s) placed`);
+    settings.on('change', ({ section: name }) => name === 'arrows' && sync());
+    sync();
+    return h('div', { className: 'row' }, count,
+      h('button', { className: 'button', onclick: () => settings.update('arrows', []) }, 'Clear arrows'));
+  }
+  const fields = tool.fields.map((field) => {
+    let element;
+    if (field.options) element = selectField(settings, tool.id, field);
+    else if (field.vector) element = vectorField(settings, tool.id, field);
+    else element = numberField(settings, tool.id, field);
+    return field.showWhen ? showWhen(settings, tool.id, element, field.showWhen) : element;
+  });
+  const apply = h('button', {
+    className: 'button button-primary',
+    'data-testid': `apply-${tool.id}`,
+    onclick: () => {
+      try {
+        tool.apply().catch(() => {}); // the editor reports solver errors
+      } catch (error) {
+        reportError(error);
+      }
+    },
+  }, 'Apply');
+  return h('div', {}, fields, h('div', { className: 'row' }, apply));
+}

@@ -1,0 +1,26 @@
+// The mesh's material: a ShaderMaterial built from the GLSL in ../../../shaders,
+// composed with #include like three.js's own chunks (the overlay and heat-map
+// chunks are registered in ShaderChunk under aniso_* names).
+import { Color, ShaderChunk, ShaderMaterial } from 'three';
+import distortionHeatmap from '../../../shaders/distortion_heatmap.glsl?raw';
+import selectionOverlay from '../../../shaders/selection_overlay.glsl?raw';
+import surfaceFragment from '../../../shaders/surface.frag.glsl?raw';
+import surfaceVertex from '../../../shaders/surface.vert.glsl?raw';
+
+ShaderChunk.aniso_selection_overlay = selectionOverlay;
+ShaderChunk.aniso_distortion_heatmap = distortionHeatmap;
+
+export function createSurfaceMaterial() {
+  return new ShaderMaterial({
+    vertexShader: surfaceVertex,
+    fragmentShader: surfaceFragment,
+    uniforms: {
+      uBaseColor: { value: new Color(0xc9c4bb) },
+      uSelectionColor: { value: new Color(0xff7a1a) },
+      uSelectionOpacity: { value: 0.75 },
+      uShowSelection: { value: true },
+      uShowHeatMap: { value: false },
+      uHeatRange: { value: 1.0 },
+    },
+  });
+}

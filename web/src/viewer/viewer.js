@@ -1,0 +1,95 @@
+// The viewport: renderer, camera, orbit controls and the render loop.
+// Frames are drawn on demand (requestRender), so an idle editor costs no GPU
+// time; the loop also measures frames per second for the status bar.
+import { Color, PerspectiveCamera, Scene, Vector3, WebGLRenderer } from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { EventEmitter } from '../editor/event-emitter.js';
+
+// A three-quarter view from the front right, slightly above.
+const DEFAULT_VIEW_DIRECTION = new Vector3(0.8, 0.35, -1).normalize();
+
+export class Viewer extends EventEmitter {
+  #needsRender = true;
+  #frameTimes = [];
+
+  constructor(container) {
+    super();
+    this.container = container;
+    this.renderer = new WebGLRenderer({ antialias: true });
+    this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
+    this.renderer.setClearColor(new Color(0x1d2127));
+    this.canvas = this.renderer.domElement;
+    this.canvas.dataset.testid = 'viewport';
+    this.canvas.setAttribute('aria-label', '3D viewport: drag on the mesh to use the tool, elsewhere to orbit');
+    this.canvas.tabIndex = 0;
+    container.prepend(this.canvas);
+
+    this.scene = new Scene();
+    this.camera = new PerspectiveCamera(35, 1, 0.01, 100);
+    this.controls = new OrbitControls(this.camera, this.canvas);
+    this.controls.addEventListener('change', () => this.requestRender());
+
+    new ResizeObserver(() => this.#resize()).observe(container);
+    this.#resize();
+    this.renderer.setAnimationLoop(() => this.#tick());
+  }
+
+  requestRender() {
+    this.#needsRender = true;
+  }
+
+  #tick() {
+    if (!this.#needsRender) return;
+    this.#needsRender = false;
+    this.renderer.render(this.scene, this.camera);
+    const now = performance.now();
+    this.#frameTimes.push(now);
+    while (this.#frameTimes[0] < now - 1000) this.#frameTimes.shift();
+    this.emit('frame', now);
+  }
+
+  /** Frames drawn during the last second. */
+  get framesPerSecond() {
+    const now = performance.now();
+    return this.#frameTimes.filter((time) => time >= now - 1000).length;
+  }
+
+  #resize() {
+    const width = Math.max(1, this.container.clientWidth);
+    const height = Math.max(1, this.container.clientHeight);
+    this.renderer.setSize(width, height, false);
+    this.canvas.style.width = '100%';
+    this.canvas.style.height = '100%';
+    this.camera.aspect = width / height;
+    this.camera.updateProjectionMatrix();
+    this.requestRender();
+  }
+
+  /** Points the camera at bounds {center, diagonal} from the default direction. */
+  frame({ center, diagonal }) {
+    const radius = Math.max(diagonal / 2, 1e-6);
+    const distance = radius / Math.sin((this.camera.fov * Math.PI) / 360) * 1.1;
+    this.controls.target.fromArray(center);
+    this.camera.position.copy(this.controls.target).addScaledVector(DEFAULT_VIEW_DIRECTION, distance);
+    this.camera.near = distance / 100;
+    this.camera.far = distance * 100;
+    this.camera.updateProjectionMatrix();
+    this.controls.update();
+    this.requestRender();
+  }
+
+  /** The camera as the solver needs it for screen drags (wasm/CONTRACT.md). */
+  cameraState() {
+    this.camera.updateMatrixWorld();
+    return {
+      view: Array.from(this.camera.matrixWorldInverse.elements),
+      projection: Array.from(this.camera.projectionMatrix.elements),
+      viewport: [0, 0, this.canvas.clientWidth, this.canvas.clientHeight],
+    };
+  }
+
+  /** Canvas pixel (CSS px, y down) to normalized device coordinates. */
+  toNdc(x, y) {
+    return { x: (x / this.canvas.clientWidth) * 2 - 1, y: -(y / this.canvas.clientHeight) * 2 + 1 };
+  }
+}

@@ -1,0 +1,60 @@
+// The typed message protocol between the page and the solver worker.
+//
+// Every request is `{id, kind, ...payload}` and gets exactly one reply
+// `{id, ok: true, result}` or `{id, ok: false, error: {code, message}}`.
+// Between them the worker may post `{kind: 'progress', stage, message}`.
+// The worker handles requests strictly in order; the client (solver-client.js)
+// coalesces preview requests so the queue never holds a stale one.
+// Typed arrays travel as transferables: the sender gives them up.
+
+export const Request = Object.freeze({
+  /** {} -> {version}: load the WASM module and create the session. */
+  init: 'init',
+  /** {bytes: ArrayBuffer, name} -> MeshPayload: core readers (OBJ, OFF, PLY, STL). */
+  loadFile: 'loadFile',
+  /** {positions: Float32Array, triangles: Uint32Array, weld} -> MeshPayload (GLB). */
+  setMesh: 'setMesh',
+  /** {} -> {ms}: factorize ahead of the first edit, so the first drag is live. */
+  prepare: 'prepare',
+  /** {weights: Float32Array} -> {count}. */
+  setSelection: 'setSelection',
+  /** {op, commit} -> {positions, stats}: a preview (commit false) or a committed edit. */
+  deform: 'deform',
+  /** {} -> {positions}: drop the preview, back to the rest mesh. */
+  cancel: 'cancel',
+  /** {positions} -> {}: undo/redo/reset; the positions become the rest mesh. */
+  setPositions: 'setPositions',
+  /** {direction} -> {field: Float32Array}: per-vertex unit directions for glyphs. */
+  directionField: 'directionField',
+});
+
+export const PROGRESS = 'progress';
+
+/**
+ * @typedef {object} MeshInfo
+ * @property {number} vertices
+ * @property {number} triangles
+ * @property {number} components
+ * @property {number} boundaryLoops
+ * @property {boolean} edgeManifold
+ * @property {number} degenerateTriangles
+ * @property {{kind: string, element: number, message: string}[]} problems
+ * @property {string[]} notes
+ */
+
+/**
+ * @typedef {object} MeshPayload
+ * @property {MeshInfo} info
+ * @property {Float32Array} positions   xyz per vertex
+ * @property {Uint32Array} triangles    three vertex indices per triangle
+ */
+
+/**
+ * @typedef {object} DeformStats
+ * @property {number} iterations
+ * @property {number} energy
+ * @property {number} ms           solver time reported by the core
+ * @property {number} factorizations
+ * @property {boolean} converged
+ * @property {number} directionsFilled
+ */

@@ -1,0 +1,109 @@
+// Inside the worker: one WASM Session and a handler per protocol request
+// (protocol.js). Results hand out copies of the session's heap views: a view
+// detaches when WASM memory grows, and a copy can be transferred to the page.
+import { Request } from './protocol.js';
+
+export class SessionHost {
+  /**
+   * @param {object} wasm        the module from createAnisoformWasm()
+   * @param {(stage: string, message: string) => void} reportProgress
+   */
+  constructor(wasm, reportProgress) {
+    this.session = new wasm.Session();
+    this.reportProgress = reportProgress;
+    this.handlers = {
+      [Request.loadFile]: (payload) => this.loadFile(payload),
+      [Request.setMesh]: (payload) => this.setMesh(payload),
+      [Request.prepare]: () => this.prepare(),
+      [Request.setSelection]: (payload) => this.setSelection(payload),
+      [Request.deform]: (payload) => this.deform(payload),
+      [Request.cancel]: () => this.cancel(),
+      [Request.setPositions]: (payload) => this.setPositions(payload),
+      [Request.directionField]: (payload) => this.directionField(payload),
+    };
+  }
+
+  /** @returns {{result: object, transfer: Transferable[]}} */
+  handle(kind, payload) {
+    const handler = this.handlers[kind];
+    if (!handler) throw new Error(`unknown request '${kind}'`);
+    return handler(payload);
+  }
+
+  loadFile({ bytes, name }) {
+    this.reportProgress('parse', `Reading ${name}`);
+    const info = this.session.loadMesh(new Uint8Array(bytes), name);
+    return this.meshPayload(info);
+  }
+
+  setMesh({ positions, triangles, weld }) {
+    this.reportProgress('parse', 'Checking the mesh');
+    const info = this.session.setMesh(positions, triangles, { weld });
+    return this.meshPayload(info);
+  }
+
+  meshPayload(info) {
+    const positions = this.session.positions().slice();
+    const triangles = this.session.triangles().slice();
+    return { result: { info, positions, triangles }, transfer: [positions.buffer, triangles.buffer] };
+  }
+
+  // Factorizes the Laplacian now (a one-iteration identity edit of the whole
+  // mesh, then cancel), so the first drag does not pay for it. The page's
+  // selection is sent again before the next edit.
+  prepare() {
+    this.reportProgress('factorize', 'Preparing the solver');
+    const started = performance.now();
+    const vertexCount = this.session.info().vertices;
+    this.session.setSelection(new Float32Array(vertexCount).fill(1));
+    this.session.deform({
+      method: 'anarap',
+      direction: { type: 'global', vector: [1, 0, 0] },
+      transform: { scale: [1, 1] },
+      maxIterations: 1,
+      preview: true,
+    });
+    this.session.cancel();
+    this.session.setSelection(new Float32Array(vertexCount));
+    return { result: { ms: performance.now() - started }, transfer: [] };
+  }
+
+  setSelection({ weights }) {
+    return { result: { count: this.session.setSelection(weights) }, transfer: [] };
+  }
+
+  deform({ op, commit }) {
+    const stats = this.session.deform(op);
+    if (commit) this.session.commit();
+    const positions = this.session.positions().slice();
+    return { result: { positions, stats: plainStats(stats) }, transfer: [positions.buffer] };
+  }
+
+  cancel() {
+    this.session.cancel();
+    const positions = this.session.positions().slice();
+    return { result: { positions }, transfer: [positions.buffer] };
+  }
+
+  setPositions({ positions }) {
+    this.session.setPositions(positions);
+    return { result: {}, transfer: [] };
+  }
+
+  directionField({ direction }) {
+    const field = this.session.directionField(direction).slice();
+    return { result: { field }, transfer: [field.buffer] };
+  }
+}
+
+// Embind value objects may carry extra fields; the page gets a plain object.
+function plainStats(stats) {
+  return {
+    iterations: stats.iterations,
+    energy: stats.energy,
+    ms: stats.ms,
+    factorizations: stats.factorizations,
+    converged: stats.converged,
+    directionsFilled: stats.directionsFilled,
+  };
+}

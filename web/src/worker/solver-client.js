@@ -1,0 +1,95 @@
+// The page's side of the solver worker: promises per request, progress
+// events, and coalescing of live previews.
+//
+// Coalescing: at most one preview is in flight and at most one waits. A newer
+// preview replaces the waiting one (whose promise resolves with null), so
+// while the pointer moves faster than the solver, the worker only ever solves
+// the latest position, never a backlog of stale ones.
+import { EventEmitter } from '../editor/event-emitter.js';
+import { PROGRESS, Request } from './protocol.js';
+
+export class SolverError extends Error {
+  constructor({ code, message }) {
+    super(message);
+    this.name = 'SolverError';
+    this.code = code;
+  }
+}
+
+export class SolverClient extends EventEmitter {
+  #worker;
+  #nextId = 1;
+  #pending = new Map();
+  #previewInFlight = false;
+  #queuedPreview = null;
+
+  constructor() {
+    super();
+    this.#worker = new Worker(new URL('./solver-worker.js', import.meta.url), { type: 'module' });
+    this.#worker.onmessage = (event) => this.#receive(event.data);
+    this.#worker.onerror = (event) => {
+      const failure = new SolverError({
+        code: 'internal',
+        message: `The solver stopped: ${event.message || 'the worker could not start'}`,
+      });
+      for (const { reject } of this.#pending.values()) reject(failure);
+      this.#pending.clear();
+    };
+  }
+
+  #receive(message) {
+    if (message.kind === PROGRESS) {
+      this.emit('progress', { stage: message.stage, message: message.message });
+      return;
+    }
+    const pending = this.#pending.get(message.id);
+    if (!pending) return;
+    this.#pending.delete(message.id);
+    if (message.ok) pending.resolve(message.result);
+    else pending.reject(new SolverError(message.error));
+  }
+
+  request(kind, payload = {}, transfer = []) {
+    const id = this.#nextId++;
+    return new Promise((resolve, reject) => {
+      this.#pending.set(id, { resolve, reject });
+      this.#worker.postMessage({ id, kind, ...payload }, transfer);
+    });
+  }
+
+  /** True while a request is waiting for the worker. */
+  get busy() {
+    return this.#pending.size > 0;
+  }
+
+  /** Resolves with {positions, stats}, or null when a newer preview superseded it. */
+  preview(op) {
+    return new Promise((resolve, reject) => {
+      this.#queuedPreview?.resolve(null);
+      this.#queuedPreview = { op, resolve, reject };
+      this.#sendQueuedPreview();
+    });
+  }
+
+  /** Forgets a waiting preview (the gesture ended); the one in flight still answers. */
+  dropQueuedPreview() {
+    this.#queuedPreview?.resolve(null);
+    this.#queuedPreview = null;
+  }
+
+  #sendQueuedPreview() {
+    if (this.#previewInFlight || !this.#queuedPreview) return;
+    const { op, resolve, reject } = this.#queuedPreview;
+    this.#queuedPreview = null;
+    this.#previewInFlight = true;
+    // A preview runs the solver's few warm-started iterations; the committed
+    // edit on release gets the iteration cap.
+    const { maxIterations, ...previewOp } = op;
+    this.request(Request.deform, { op: { ...previewOp, preview: true }, commit: false })
+      .then(resolve, reject)
+      .finally(() => {
+        this.#previewInFlight = false;
+        this.#sendQueuedPreview();
+      });
+  }
+}

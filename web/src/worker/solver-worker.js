@@ -1,0 +1,50 @@
+// The solver worker: hosts the WASM session off the main thread, so the page
+// keeps drawing and answering input while a solve runs. Requests are handled
+// one at a time, in order (see protocol.js).
+import { createAnisoformWasm } from '../wasm/anisoform-wasm.mjs';
+import { PROGRESS, Request } from './protocol.js';
+import { SessionHost } from './session-host.js';
+
+let host = null;
+
+function reportProgress(stage, message) {
+  self.postMessage({ kind: PROGRESS, stage, message });
+}
+
+async function initialize() {
+  reportProgress('init', 'Loading the solver');
+  const wasm = await createAnisoformWasm();
+  host = new SessionHost(wasm, reportProgress);
+  return { result: {}, transfer: [] };
+}
+
+// Errors become {code, message}: AnisoformError carries the core's code;
+// anything else is an internal error, reported with its message.
+function describeError(error) {
+  if (error && typeof error === 'object') {
+    return { code: error.code ?? 'internal', message: error.message ?? String(error) };
+  }
+  return { code: 'internal', message: String(error) };
+}
+
+// Module workers may receive messages while `initialize` awaits; chaining
+// every request on one promise keeps them in order.
+let queue = Promise.resolve();
+
+self.onmessage = (event) => {
+  const { id, kind, ...payload } = event.data;
+  queue = queue.then(async () => {
+    try {
+      const { result, transfer } =
+        kind === Request.init ? await initialize() : requireHost().handle(kind, payload);
+      self.postMessage({ id, ok: true, result }, transfer);
+    } catch (error) {
+      self.postMessage({ id, ok: false, error: describeError(error) });
+    }
+  });
+};
+
+function requireHost() {
+  if (!host) throw new Error('the solver is not initialized');
+  return host;
+}

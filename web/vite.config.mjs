@@ -1,0 +1,23 @@
+// Vite build of the Anisoform page: a self-contained static site in dist/
+// (relative base, so it works from any folder of any static server).
+import { defineConfig } from 'vite';
+import { fileURLToPath } from 'node:url';
+
+const repoRoot = fileURLToPath(new URL('..', import.meta.url));
+
+export default defineConfig({
+  base: './',
+  // The solver worker imports the Emscripten ES module; module workers keep
+  // that import as is.
+  worker: { format: 'es' },
+  // GLSL chunks live in the top-level shaders/ folder, outside web/.
+  server: { fs: { allow: [repoRoot] } },
+  build: {
+    outDir: 'dist',
+    emptyOutDir: true,
+    target: 'es2022',
+    // three.js alone is ~600 KB minified; a split would not make the first
+    // frame faster, since everything is needed to show the mesh.
+    chunkSizeWarningLimit: 1500,
+  },
+});
