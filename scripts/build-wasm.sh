@@ -2,11 +2,11 @@
 # Builds the WASM module (core + wasm/ bindings) with emcmake and checks that
 # the CMake build copied it into web/src/wasm/, where the site imports it.
 # Called by `npm run build --prefix web` (script build:wasm).
-#   ANISO_WASM_BUILD_DIR  build folder (default: build-wasm beside the repo)
+#   ANISO_WASM_BUILD_DIR  build folder (default: build-wasm/ in the repo, git-ignored)
 set -euo pipefail
 
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build_dir="${ANISO_WASM_BUILD_DIR:-${repo_root}/../build-wasm}"
+build_dir="${ANISO_WASM_BUILD_DIR:-${repo_root}/build-wasm}"
 
 for tool in emcmake cmake node; do
   if ! command -v "$tool" >/dev/null; then

@@ -72,6 +72,8 @@ ArapIterations::ArapIterations(const Mesh& rest, const CotanWeights& weights,
       for (int k = 0; k < 3; ++k) rest_covariance_[rest.F(t, k)] += C;
     }
   }
+  energy_scale_ = 0.0;
+  for (int i = 0; i < n_; ++i) energy_scale_ += std::abs(rest_covariance_[i].trace());
   T_.assign(n_, Eigen::Matrix3d::Identity());
   P_ = T_;
   B_ = T_;
@@ -149,7 +151,9 @@ double ArapIterations::local_step(const Positions& V) {
     B_[i].noalias() = rotation_[i].toRotationMatrix() * T_[i];
     energy += cell_energy(edge_energy[i], A[i], B_[i], rest_covariance_[i]);
   }
-  return std::max(energy, 0.0);
+  // Negative cotangent weights (obtuse triangles) can make this sum slightly
+  // negative near the optimum: it is reported as it is.
+  return energy;
 }
 
 void ArapIterations::global_rhs(Positions& b) const {
@@ -187,8 +191,11 @@ int ArapIterations::run(const LaplacianSolver& solver, Positions& V, int max_ite
     const double energy = local_step(V);
     history.push_back(energy);
     ++iterations;
-    const double scale = std::max(previous, 1e-300);
-    if (tolerance >= 0.0 && (std::abs(previous - energy) <= tolerance * scale || energy <= 1e-28)) break;
+    // Relative change, measured against the energy's own size but never
+    // against less than a 1e-12 part of the fans' rest size, so that an exact
+    // solution (energy ~ 0) stops too.
+    const double reference = std::max(std::abs(previous), 1e-12 * energy_scale_);
+    if (tolerance >= 0.0 && std::abs(previous - energy) <= tolerance * reference) break;
     previous = energy;
   }
   return iterations;

@@ -23,7 +23,6 @@ CotanWeights cotangent_weights(const Mesh& mesh) {
   const int m = mesh.num_triangles();
   CotanWeights out;
   out.weight.setZero(m, 3);
-  std::vector<char> degenerate(m, 0);
   for (int t = 0; t < m; ++t) {
     const Eigen::Vector3d p[3] = {mesh.V.row(mesh.F(t, 0)).transpose(),
                                   mesh.V.row(mesh.F(t, 1)).transpose(),
@@ -39,40 +38,37 @@ CotanWeights cotangent_weights(const Mesh& mesh) {
       ok = std::abs(cot[k]) <= kMaxCot;
     }
     if (!ok) {
-      degenerate[t] = 1;
       ++out.degenerate_triangles;
       continue;
     }
     out.weight.row(t) = 0.5 * cot.transpose();
   }
-  if (out.degenerate_triangles == 0) return out;
-
-  // Rule 2: edges used only by degenerate triangles get the floor weight.
-  std::unordered_map<std::uint64_t, std::pair<int, int>> edge_use;  // (good uses, degenerate uses)
-  edge_use.reserve(static_cast<std::size_t>(m) * 2);
+  // Rule 2: every edge weight at least the floor (edges of obtuse pairs, of
+  // right-angled grids and of degenerate triangles only).
+  std::unordered_map<std::uint64_t, std::pair<double, int>> edge_sum;  // (sum, uses)
+  edge_sum.reserve(static_cast<std::size_t>(m) * 2);
+  for (int t = 0; t < m; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      auto& entry = edge_sum[edge_key(mesh.F(t, (k + 1) % 3), mesh.F(t, (k + 2) % 3))];
+      entry.first += out.weight(t, k);
+      entry.second += 1;
+    }
+  }
   double total = 0.0;
-  int counted = 0;
-  for (int t = 0; t < m; ++t) {
-    for (int k = 0; k < 3; ++k) {
-      auto& use = edge_use[edge_key(mesh.F(t, (k + 1) % 3), mesh.F(t, (k + 2) % 3))];
-      (degenerate[t] ? use.second : use.first) += 1;
-      if (!degenerate[t]) {
-        total += std::abs(out.weight(t, k));
-        ++counted;
-      }
-    }
-  }
+  for (const auto& kv : edge_sum) total += std::abs(kv.second.first);
   // A mesh of degenerate triangles only still needs a connected system.
-  const double floor = counted > 0 && total > 0.0 ? kMinWeightFraction * total / counted : 1.0;
-  for (int t = 0; t < m; ++t) {
-    if (!degenerate[t]) continue;
-    for (int k = 0; k < 3; ++k) {
-      const auto& use = edge_use[edge_key(mesh.F(t, (k + 1) % 3), mesh.F(t, (k + 2) % 3))];
-      if (use.first == 0) out.weight(t, k) = floor / use.second;
-    }
+  const double floor = total > 0.0 ? kMinWeightFraction * total / static_cast<double>(edge_sum.size()) : 1.0;
+  for (auto& kv : edge_sum) {
+    // From here on `first` holds the raise each of the edge's triangles adds.
+    const double sum = kv.second.first;
+    kv.second.first = sum < floor ? (floor - sum) / kv.second.second : 0.0;
+    if (sum < floor) ++out.raised_edges;
   }
-  for (const auto& kv : edge_use) {
-    if (kv.second.first == 0) ++out.raised_edges;
+  if (out.raised_edges == 0) return out;
+  for (int t = 0; t < m; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      out.weight(t, k) += edge_sum[edge_key(mesh.F(t, (k + 1) % 3), mesh.F(t, (k + 2) % 3))].first;
+    }
   }
   return out;
 }

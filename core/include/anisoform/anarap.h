@@ -68,6 +68,7 @@ class ArapIterations {
   std::vector<Eigen::Matrix3d> covariance_;
   Eigen::VectorXd edge_energy_;
   bool symmetric_targets_ = true;
+  double energy_scale_ = 0.0;  // sum of |tr C_i|: the size of the rest fans
 };
 
 }  // namespace aniso

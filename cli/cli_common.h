@@ -1,0 +1,139 @@
+// What every `anisoform` subcommand shares: the exit-status contract, strict
+// parsing of option values, reading the input mesh and writing the output one
+// with the right error codes, and printing the one-line JSON result.
+//
+// Option values are taken from CLI11 as plain strings and parsed here, so that
+// every number on the command line goes through the same strict rules: the
+// whole text must be a finite number ("1.5x", "nan", "inf" are refused), and a
+// refusal is an Error(BadParameter) that names the option (exit status 2).
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include "anisoform/deformer.h"
+#include "anisoform/error.h"
+#include "anisoform/mesh.h"
+#include "anisoform/mesh_check.h"
+#include "anisoform/mesh_io.h"
+#include "anisoform/selection.h"
+#include "anisoform/transforms.h"
+
+namespace aniso::cli {
+
+// Keys in the order they are written: the contract's keys first, for people
+// reading the output (scripts do not care).
+using Json = nlohmann::ordered_json;
+
+// ---- exit statuses -------------------------------------------------------
+
+constexpr int kExitSuccess = 0;
+constexpr int kExitBadUsage = 2;  // bad command line or parameter
+constexpr int kExitBadMesh = 3;   // bad input mesh, or a numerical failure it causes
+
+int exit_status_for(ErrorCode code);
+
+// Runs a subcommand's body and turns every exception into one line on stderr
+// ("anisoform COMMAND: error: ...", COMMAND may be empty) and the contract's
+// exit status:
+// Error -> by code, std::bad_alloc and any other std::exception -> 3.
+// Nothing escapes, so no input can end the process with a signal.
+int run_reporting_errors(const std::string& command, const std::function<int()>& body);
+
+// ---- strict values -------------------------------------------------------
+
+// The whole text as a finite number (a leading '+' is allowed).
+double parse_number(const std::string& text, const std::string& option);
+// The whole text as an integer that fits in an int.
+int parse_integer(const std::string& text, const std::string& option);
+// Comma-separated finite numbers; `expected` > 0 demands exactly that many.
+std::vector<double> parse_number_list(const std::string& text, const std::string& option,
+                                      int expected = 0);
+Eigen::Vector3d parse_vector3(const std::string& text, const std::string& option);
+// A non-zero vector, normalised.
+Eigen::Vector3d parse_unit_vector3(const std::string& text, const std::string& option);
+
+// Splits "KIND:REST" at the first ':' (REST may hold more ':'); throws naming
+// the option and `expected_form` when there is no ':'.
+struct Prefixed {
+  std::string kind;
+  std::string rest;
+};
+Prefixed split_prefixed(const std::string& text, const std::string& option,
+                        const std::string& expected_form);
+
+// Runs `parse` and puts "OPTION: " before the message of a BadParameter
+// error it throws: the core's parsers cannot know which option the text came
+// from, and --select, --pin and --handle take the same forms.
+template <typename Parse>
+auto naming_option(const std::string& option, Parse&& parse) -> decltype(parse()) {
+  try {
+    return parse();
+  } catch (const Error& e) {
+    if (e.code() != ErrorCode::BadParameter) throw;
+    throw Error(e.code(), option + ": " + e.what());
+  }
+}
+
+// ---- transforms and directions ------------------------------------------
+
+// "SU" or "SU,SV" into spec.su / spec.sv (sv stays 1 when omitted).
+void parse_scale(const std::string& text, TransformSpec& spec);
+// "n|u|v:DEGREES".
+void parse_rotation(const std::string& text, TransformSpec& spec);
+// "X,Y,Z:DEGREES_PER_UNIT": the axis is normalised (a zero axis is refused);
+// the origin is left for the caller, who knows the selection.
+void parse_twist(const std::string& text, TransformSpec& spec);
+
+// Where the direction field comes from, as given by --direction (the mesh is
+// needed to finish it: curvature and constraint fields are built by the core).
+struct DirectionChoice {
+  DirectionSource::Kind kind = DirectionSource::Kind::Global;
+  Eigen::Vector3d vector = Eigen::Vector3d::UnitX();  // Global: unit
+  std::string field_path;                             // Constraints: the file
+  std::string description;                            // echoed in the JSON
+};
+// "global:X,Y,Z" | "curvature:min" | "curvature:max" | "field:PATH".
+DirectionChoice parse_direction(const std::string& text);
+// The unit axis along the longest side of the mesh's bounding box (x on ties),
+// described as "global:0,0,1 (longest axis)".
+DirectionChoice longest_axis_direction(const Mesh& mesh);
+
+// ---- regions -------------------------------------------------------------
+
+// The vertices a region gives a positive weight: the index lists of --pin and
+// --handle. A region that holds no vertex is refused naming `option`, since
+// pinning or moving nothing is surely not what was meant.
+std::vector<int> region_vertices(const Mesh& mesh, const Region& region,
+                                 const std::string& option);
+
+// ---- files ---------------------------------------------------------------
+
+// A whole text file; Error(BadParameter) "cannot open PATH ..." when it cannot
+// be read (files named by options are parameters).
+std::string read_text_file(const std::string& path, const std::string& option);
+
+// Reads the input mesh: an unknown extension is Error(BadParameter); a missing
+// or unreadable file Error(BadFile) "cannot open PATH: ..."; parse errors keep
+// the reader's code with the path in front of the message.
+ReadResult read_input_mesh(const std::string& path);
+
+// Checks OUT before any work is done: a known extension and an existing
+// directory, else Error(BadParameter). Returns the format.
+MeshFormat check_output_path(const std::string& path);
+// Writes OUT; a failure to write is Error(BadParameter) (OUT is a parameter).
+void write_output_mesh(const std::string& path, const Mesh& mesh, const WriteOptions& options);
+
+// ---- JSON ----------------------------------------------------------------
+
+Json to_json(const Eigen::Vector3d& v);
+Json to_json(const BoundingBox& box);
+Json to_json(const ReadReport& report);
+// The result object as one line plus a newline on stdout.
+void print_json(const Json& result);
+
+}  // namespace aniso::cli

@@ -1,0 +1,323 @@
+// `anisoform flatten IN OUT [options]`: a garment pattern from an open patch,
+// with the wanted compression built in (or the industry baseline), written as
+// OBJ with texture coordinates, SVG or DXF.
+//
+// The order of the work follows the exit-status contract, as for deform: the
+// command line alone first (exit 2), then the input mesh (exit 3: unreadable,
+// unsolvable, or closed, since a closed surface has no boundary to flatten
+// to), then what needs both (a field naming a vertex outside the patch: exit
+// 2), and only then the solve and the output file.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <optional>
+
+#include "anisoform/direction_field.h"
+#include "anisoform/flatten.h"
+#include "anisoform/pattern_export.h"
+#include "cli_common.h"
+#include "commands.h"
+
+namespace aniso::cli {
+
+namespace {
+
+// The options exactly as typed; empty means "not given".
+struct FlattenArguments {
+  std::string input;
+  std::string output;
+  std::string select = "all";
+  std::string compress;
+  std::string direction;
+  std::string baseline;
+  std::string mm_per_unit;
+  std::string iterations;
+  std::string tolerance;
+};
+
+enum class PatternFormat { Obj, Svg, Dxf };
+
+// What the command line alone decides, checked before the mesh is read.
+struct FlattenPlan {
+  PatternFormat format = PatternFormat::Obj;
+  Region selection;
+  double su = 1.0;
+  double sv = 1.0;
+  std::optional<DirectionChoice> direction;  // none: the mesh's longest axis
+  std::vector<DirectionConstraint> field_constraints;
+  FlattenMethod method = FlattenMethod::Anisotropic;
+  double mm_per_unit = 1.0;
+  ArapFlattenSettings solver;
+};
+
+std::string lowercase_extension(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return extension;
+}
+
+// OUT's format by extension, and a directory to write it in.
+PatternFormat check_pattern_output(const std::string& path) {
+  const std::string extension = lowercase_extension(path);
+  PatternFormat format;
+  if (extension == ".obj") {
+    format = PatternFormat::Obj;
+  } else if (extension == ".svg") {
+    format = PatternFormat::Svg;
+  } else if (extension == ".dxf") {
+    format = PatternFormat::Dxf;
+  } else {
+    fail(ErrorCode::BadParameter, "OUT: '" + path +
+                                      "' has no pattern extension: use .obj (3D with vt), .svg or .dxf");
+  }
+  std::error_code ignored;
+  if (std::filesystem::is_directory(path, ignored)) {
+    fail(ErrorCode::BadParameter, "OUT: cannot write " + path + ": it is a directory");
+  }
+  const std::filesystem::path directory = std::filesystem::path(path).parent_path();
+  if (!directory.empty() && !std::filesystem::is_directory(directory, ignored)) {
+    fail(ErrorCode::BadParameter,
+         "OUT: cannot write " + path + ": directory " + directory.string() + " does not exist");
+  }
+  return format;
+}
+
+double positive_number(const std::string& text, const std::string& option) {
+  const double value = parse_number(text, option);
+  if (!(value > 0.0)) fail(ErrorCode::BadParameter, option + ": must be > 0, got " + text);
+  return value;
+}
+
+FlattenPlan plan_flatten(const FlattenArguments& args) {
+  FlattenPlan plan;
+  plan.format = check_pattern_output(args.output);
+  plan.selection = parse_region(args.select);
+  if (!args.compress.empty()) {
+    const std::vector<double> amounts = parse_number_list(args.compress, "--compress");
+    if (amounts.empty() || amounts.size() > 2) {
+      fail(ErrorCode::BadParameter, "--compress: expected SU or SU,SV, got '" + args.compress + "'");
+    }
+    plan.su = amounts[0];
+    plan.sv = amounts.size() > 1 ? amounts[1] : 1.0;
+    if (!(plan.su > 0.0 && plan.sv > 0.0)) {
+      fail(ErrorCode::BadParameter, "--compress: stretches must be > 0, got '" + args.compress + "'");
+    }
+  }
+  if (!args.direction.empty()) {
+    plan.direction = parse_direction(args.direction);
+    if (plan.direction->kind == DirectionSource::Kind::Constraints) {
+      const std::string& path = plan.direction->field_path;
+      plan.field_constraints =
+          parse_direction_constraints(read_text_file(path, "--direction"), path);
+    } else if (plan.direction->kind != DirectionSource::Kind::Global) {
+      fail(ErrorCode::BadParameter,
+           "--direction: flatten takes global:X,Y,Z or field:PATH, got '" + args.direction + "'");
+    }
+  }
+  if (!args.baseline.empty()) {
+    if (args.baseline != "uniform") {
+      fail(ErrorCode::BadParameter, "--baseline: the one baseline is 'uniform', got '" + args.baseline + "'");
+    }
+    plan.method = FlattenMethod::UniformBaseline;
+  }
+  if (!args.mm_per_unit.empty()) plan.mm_per_unit = positive_number(args.mm_per_unit, "--mm-per-unit");
+  if (!args.iterations.empty()) {
+    plan.solver.max_iterations = parse_integer(args.iterations, "--iterations");
+    if (plan.solver.max_iterations < 1) {
+      fail(ErrorCode::BadParameter, "--iterations: must be at least 1, got " + args.iterations);
+    }
+  }
+  if (!args.tolerance.empty()) {
+    plan.solver.tolerance = parse_number(args.tolerance, "--tolerance");
+    if (plan.solver.tolerance < 0.0) {
+      fail(ErrorCode::BadParameter, "--tolerance: must be >= 0, got " + args.tolerance);
+    }
+  }
+  return plan;
+}
+
+struct PreparedMesh {
+  Mesh mesh;
+  std::vector<std::string> warnings;
+};
+
+PreparedMesh prepare_mesh(const std::string& path) {
+  PreparedMesh prepared{read_input_mesh(path).mesh, {}};
+  if (is_triangle_soup(prepared.mesh)) {
+    const int before = prepared.mesh.num_vertices();
+    prepared.mesh = weld_vertices(prepared.mesh);
+    prepared.warnings.push_back("the input is a triangle soup (no shared vertices): welded by exact "
+                                "position, " + std::to_string(before) + " -> " +
+                                std::to_string(prepared.mesh.num_vertices()) + " vertices");
+  }
+  const MeshReport report = check_mesh(prepared.mesh);
+  if (!report.solvable()) {
+    fail(ErrorCode::BadMesh, path + ": cannot flatten this mesh: " + report.blocking_summary());
+  }
+  if (report.unreferenced_vertices > 0) {
+    prepared.warnings.push_back(std::to_string(report.unreferenced_vertices) +
+                                " unreferenced vertex(es): not part of the pattern");
+  }
+  return prepared;
+}
+
+// Selected vertices as a mask (empty: everything).
+std::vector<char> selection_mask(const Mesh& mesh, const Region& region) {
+  if (region.kind == Region::Kind::All) return {};
+  const Eigen::VectorXd weights = region_weights(mesh, region);
+  std::vector<char> mask(mesh.num_vertices(), 0);
+  for (int i = 0; i < mesh.num_vertices(); ++i) mask[i] = weights[i] > 0.0;
+  return mask;
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream file(path, std::ios::binary);
+  if (!file || !(file << text) || !file.flush()) {
+    fail(ErrorCode::BadParameter, "OUT: cannot write " + path);
+  }
+}
+
+std::string short_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+std::string pattern_note(const FlattenPlan& plan, const std::string& direction) {
+  std::string note = plan.method == FlattenMethod::UniformBaseline ? "uniform baseline" : "anisotropic";
+  note += ", su " + short_number(plan.su) + " sv " + short_number(plan.sv);
+  note += ", direction " + direction + "; grainline = mean compression direction";
+  return note;
+}
+
+nlohmann::json result_json(const FlattenArguments& args, const FlattenPlan& plan,
+                           const std::string& direction, const PreparedMesh& prepared,
+                           const FlattenResult& result) {
+  const FlattenMetrics& m = result.metrics;
+  nlohmann::json grainlines = nlohmann::json::array();
+  for (const Eigen::Vector2d& g : result.grainline) grainlines.push_back({g.x(), g.y()});
+  return {
+      {"method", m.method},
+      {"input", args.input},
+      {"output", args.output},
+      {"triangles", m.triangles},
+      {"vertices", m.vertices},
+      {"components", m.components},
+      {"boundary_loops", m.boundary_loops},
+      {"flipped", m.flipped},
+      {"su", plan.su},
+      {"sv", plan.sv},
+      {"direction", direction},
+      {"compression_error_mean", m.compression_error_mean},
+      {"compression_error_max", m.compression_error_max},
+      {"cross_error_mean", m.cross_error_mean},
+      {"cross_error_max", m.cross_error_max},
+      {"area_distortion_mean", m.area_distortion_mean},
+      {"iterations", m.iterations},
+      {"converged", m.converged},
+      {"energy", m.energy},
+      {"initialization", m.initialization},
+      {"directions_filled", m.filled_directions},
+      {"grainline", grainlines},
+      {"mm_per_unit", plan.mm_per_unit},
+      {"seconds", m.seconds},
+      {"warnings", prepared.warnings},
+  };
+}
+
+int run_flatten(const FlattenArguments& args) {
+  const FlattenPlan plan = plan_flatten(args);
+  const PreparedMesh prepared = prepare_mesh(args.input);
+  const std::vector<char> mask = selection_mask(prepared.mesh, plan.selection);
+
+  const DirectionChoice direction =
+      plan.direction ? *plan.direction : longest_axis_direction(prepared.mesh);
+  FlattenOptions options;
+  options.method = plan.method;
+  options.su = plan.su;
+  options.sv = plan.sv;
+  options.solver = plan.solver;
+  if (direction.kind == DirectionSource::Kind::Constraints) {
+    options.directions.kind = FlattenDirections::Kind::Constraints;
+    options.directions.constraints = plan.field_constraints;
+  } else {
+    options.directions.global = direction.vector;
+  }
+  const FlattenOutput flattened = flatten(prepared.mesh, mask, options);
+
+  PatternExportOptions pattern_options;
+  pattern_options.mm_per_unit = plan.mm_per_unit;
+  pattern_options.note = pattern_note(plan, direction.description);
+  switch (plan.format) {
+    case PatternFormat::Obj:
+      write_text(args.output, write_obj_with_uv(flattened.patch.mesh, flattened.result.uv));
+      break;
+    case PatternFormat::Svg:
+      write_text(args.output,
+                 write_pattern_svg(make_pattern(flattened.patch, flattened.result), pattern_options));
+      break;
+    case PatternFormat::Dxf:
+      write_text(args.output,
+                 write_pattern_dxf(make_pattern(flattened.patch, flattened.result), pattern_options));
+      break;
+  }
+  print_json(result_json(args, plan, direction.description, prepared, flattened.result));
+  return kExitSuccess;
+}
+
+constexpr const char* kFlattenHelp =
+    "Flatten an open patch of IN into a garment pattern with the wanted compression built in "
+    "(free-boundary anisotropic ARAP, LSCM start) and write OUT: .obj (3D positions, vt = pattern "
+    "coordinates in model units, faces v/vt; the patch only), .svg or .dxf (outlines in mm, "
+    "grainline, scale note). Prints one JSON object: method, triangles, vertices, components, "
+    "boundary_loops, flipped, su, sv, direction, compression_error_mean, compression_error_max "
+    "(|achieved along / su - 1| per triangle: area-weighted mean, max), cross_error_mean, "
+    "cross_error_max (the same across, with sv), area_distortion_mean, iterations, converged, "
+    "energy, initialization, directions_filled, grainline, mm_per_unit, seconds, warnings.\n"
+    "The patch is the faces whose vertices are all in --select; every component must have a "
+    "boundary: a closed mesh or patch exits 3. Several boundary loops and several pieces are "
+    "fine (pieces are laid out side by side).";
+
+void add_flatten_options(CLI::App& command, FlattenArguments& args) {
+  command.add_option("IN", args.input, "Input mesh (.obj .off .ply .stl)")->required();
+  command.add_option("OUT", args.output, "Pattern: .obj, .svg or .dxf (other: exit 2)")->required();
+  command.add_option("--select", args.select,
+                     "Region to flatten (default all): all | box:X0,Y0,Z0,X1,Y1,Z1 | "
+                     "sphere:X,Y,Z,R | file:PATH")
+      ->type_name("REGION");
+  command.add_option("--compress", args.compress,
+                     "Wanted stretch SU along the direction and SV across it (default 1,1; "
+                     "0.8 = 20 % shrinkage)")
+      ->type_name("SU[,SV]");
+  command.add_option("--direction", args.direction,
+                     "global:X,Y,Z | field:PATH (lines \"INDEX DX DY DZ [SU [SV]]\": propagated "
+                     "over the patch; amounts in the file override --compress). Default: global "
+                     "along the longest bounding-box axis")
+      ->type_name("SOURCE");
+  command.add_option("--baseline", args.baseline,
+                     "uniform: the industry baseline (flatten without compression, then scale "
+                     "each piece along its mean flattened direction)")
+      ->type_name("uniform");
+  command.add_option("--mm-per-unit", args.mm_per_unit,
+                     "Millimetres per model unit for SVG/DXF (default 1)")
+      ->type_name("K");
+  command.add_option("--iterations", args.iterations, "ARAP iteration cap, >= 1 (default 500)")
+      ->type_name("N");
+  command.add_option("--tolerance", args.tolerance,
+                     "Relative energy change that ends the iterations, >= 0 (default 1e-8)")
+      ->type_name("T");
+}
+
+}  // namespace
+
+void register_flatten(CLI::App& app, Action& action) {
+  auto args = std::make_shared<FlattenArguments>();
+  CLI::App* command = app.add_subcommand("flatten", kFlattenHelp);
+  add_flatten_options(*command, *args);
+  command->callback([args, &action] {
+    action = [args] { return run_reporting_errors("flatten", [&] { return run_flatten(*args); }); };
+  });
+}
+
+}  // namespace aniso::cli

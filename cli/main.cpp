@@ -1,0 +1,42 @@
+// Entry point of the `anisoform` command-line tool: parses the command line
+// with CLI11, runs the chosen subcommand, and maps every failure to the exit
+// statuses of the contract (commands.h). Nothing escapes main: scripts rely on
+// a status, never a signal.
+#include <CLI/CLI.hpp>
+
+#include "cli_common.h"
+#include "commands.h"
+
+namespace {
+
+int parse_and_run(int argc, char** argv) {
+  CLI::App app{"Anisotropic mesh deformation (Colaianni et al. 2017): local shape control "
+               "by anisotropic scale, shear, rotation and twist.",
+               "anisoform"};
+  app.require_subcommand(1);
+  app.footer(
+      "Results are one JSON object on stdout; messages go to stderr.\n"
+      "Exit status: 0 success, 2 bad command line or parameter (including an\n"
+      "unwritable or unknown-format OUT), 3 bad or unreadable input mesh.");
+
+  aniso::cli::Action action;
+  aniso::cli::register_info(app, action);
+  aniso::cli::register_deform(app, action);
+  aniso::cli::register_flatten(app, action);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help is a ParseError whose exit code is 0 (app.exit prints the help on
+    // stdout); CLI11 gives other errors codes of its own, all of which are a
+    // bad command line under our contract.
+    return app.exit(e) == 0 ? aniso::cli::kExitSuccess : aniso::cli::kExitBadUsage;
+  }
+  return action ? action() : aniso::cli::kExitBadUsage;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return aniso::cli::run_reporting_errors("", [&] { return parse_and_run(argc, argv); });
+}

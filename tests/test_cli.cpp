@@ -1,0 +1,601 @@
+// The `anisoform` command-line contract, tested on the real binary: exit
+// statuses, the JSON on stdout, messages on stderr, the output files, and that
+// no malformed input or bad option ends the process with a signal or a hang.
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include "anisoform/mesh_io.h"
+#include "test_support.h"
+
+extern char** environ;
+
+namespace {
+
+using nlohmann::json;
+
+struct CliRun {
+  int exit_status = -1;
+  bool signaled = false;
+  bool timed_out = false;
+  std::string out;
+  std::string err;
+};
+
+// Every file temp_path handed out, removed when the test process ends.
+class TempFiles {
+ public:
+  ~TempFiles() {
+    std::error_code ignored;
+    for (const std::string& path : paths_) std::filesystem::remove(path, ignored);
+  }
+  void add(const std::string& path) { paths_.push_back(path); }
+
+ private:
+  std::vector<std::string> paths_;
+};
+
+// A path in the test temp dir that no other test process uses (ctest may run
+// the test cases in parallel).
+std::string temp_path(const std::string& name) {
+  static TempFiles files;
+  static std::atomic<int> counter{0};
+  const std::string path = std::string(ANISO_TEST_TMP) + "/cli_" + std::to_string(getpid()) +
+                           "_" + std::to_string(counter++) + "_" + name;
+  files.add(path);
+  return path;
+}
+
+std::string slurp(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  std::ostringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+// Runs the CLI with stdout and stderr sent to files (no pipe can fill up and
+// block the child), stdin from /dev/null, and a deadline: a hang is a failure.
+CliRun run_cli(const std::vector<std::string>& args, int timeout_seconds = 60) {
+  const std::string out_path = temp_path("stdout.txt");
+  const std::string err_path = temp_path("stderr.txt");
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+
+  std::vector<std::string> command{ANISO_CLI_PATH};
+  command.insert(command.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& arg : command) argv.push_back(arg.data());
+  argv.push_back(nullptr);
+
+  CliRun run;
+  pid_t pid = 0;
+  const int spawned = posix_spawn(&pid, ANISO_CLI_PATH, &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  REQUIRE(spawned == 0);
+
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(timeout_seconds);
+  int status = 0;
+  while (waitpid(pid, &status, WNOHANG) == 0) {
+    if (std::chrono::steady_clock::now() > deadline) {
+      kill(pid, SIGKILL);
+      waitpid(pid, &status, 0);
+      run.timed_out = true;
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  run.signaled = WIFSIGNALED(status);
+  if (WIFEXITED(status)) run.exit_status = WEXITSTATUS(status);
+  run.out = slurp(out_path);
+  run.err = slurp(err_path);
+  return run;
+}
+
+std::string describe(const std::vector<std::string>& args, const CliRun& run) {
+  std::string text = "anisoform";
+  for (const std::string& arg : args) text += " " + arg;
+  return text + "\n  exit " + std::to_string(run.exit_status) + (run.signaled ? " (signal)" : "") +
+         (run.timed_out ? " (timed out)" : "") + "\n  stdout: " + run.out + "\n  stderr: " + run.err;
+}
+
+// Stdout must be exactly one JSON object on one line.
+json stdout_json(const CliRun& run) {
+  REQUIRE(!run.out.empty());
+  REQUIRE(run.out.back() == '\n');
+  REQUIRE(run.out.find('\n') == run.out.size() - 1);
+  const json result = json::parse(run.out);
+  REQUIRE(result.is_object());
+  return result;
+}
+
+CliRun run_expecting(const std::vector<std::string>& args, int expected_exit) {
+  const CliRun run = run_cli(args);
+  INFO(describe(args, run));
+  REQUIRE_FALSE(run.signaled);
+  REQUIRE_FALSE(run.timed_out);
+  REQUIRE(run.exit_status == expected_exit);
+  return run;
+}
+
+json info_of(const std::string& path) { return stdout_json(run_expecting({"info", path}, 0)); }
+
+std::string mesh(const std::string& relative) { return aniso::test::mesh_path(relative); }
+
+std::string write_temp_file(const std::string& name, const std::string& text) {
+  const std::string path = temp_path(name);
+  std::ofstream(path) << text;
+  return path;
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+}  // namespace
+
+TEST_CASE("cli: info reports the torus's size and topology as JSON", "[cli]") {
+  const json info = info_of(mesh("closed/torus.obj"));
+  CHECK(info["vertices"] == 2304);
+  CHECK(info["triangles"] == 4608);
+  CHECK(info["components"] == 1);
+  CHECK(info["boundary_loops"] == 0);
+  CHECK(info["edge_manifold"] == true);
+  CHECK(info["vertex_manifold"] == true);
+  CHECK(info["consistently_oriented"] == true);
+  CHECK(info["degenerate_triangles"] == 0);
+  CHECK(info["duplicate_faces"] == 0);
+  CHECK(info["non_manifold_edges"] == 0);
+  CHECK(info["non_manifold_vertices"] == 0);
+  CHECK(info["non_finite_vertices"] == 0);
+  CHECK(info["unreferenced_vertices"] == 0);
+  CHECK(info["triangle_soup"] == false);
+  CHECK(info["solvable"] == true);
+  CHECK(info["problem_count"] == 0);
+  CHECK(info["problems"].empty());
+  CHECK(info["bbox"]["min"][0].get<double>() == Approx(-1.25));
+  CHECK(info["bbox"]["max"][1].get<double>() == Approx(0.25));
+  CHECK(info["read"].is_object());
+}
+
+TEST_CASE("cli: info counts the hemisphere's one boundary loop", "[cli]") {
+  const json info = info_of(mesh("open/hemisphere.obj"));
+  CHECK(info["vertices"] == 2051);
+  CHECK(info["triangles"] == 4000);
+  CHECK(info["boundary_loops"] == 1);
+  CHECK(info["components"] == 1);
+  CHECK(info["edge_manifold"] == true);
+}
+
+TEST_CASE("cli: info reports what the reader did to a polygon mesh", "[cli]") {
+  const json info = info_of(mesh("formats/spot_quadrangulated.obj"));
+  CHECK(info["vertices"] == 2930);
+  CHECK(info["triangles"] == 2 * 2928);
+  CHECK(info["read"]["polygons_triangulated"] == 2928);
+}
+
+namespace {
+
+// What `info` and `deform` must do with one malformed file. For exit 0, info
+// must report the defect (`info_check`); for exit 3, stderr must name the
+// problem (`stderr_names`, or any message when empty).
+struct MalformedCase {
+  std::string file;
+  int info_exit;
+  int deform_exit;
+  std::string stderr_names;
+  std::function<void(const json&)> info_check;
+};
+
+std::vector<MalformedCase> malformed_cases() {
+  const auto has_problems = [](const json& info) { CHECK(info["problem_count"] > 0); };
+  return {
+      {"Spider_binary.stl", 0, 0, "",
+       [](const json& info) {
+         CHECK(info["edge_manifold"] == false);
+         CHECK(info["components"] == 18);
+         CHECK(info["degenerate_triangles"] == 56);
+         CHECK(info["consistently_oriented"] == false);
+       }},
+      {"bad_degenerate_faces.obj", 0, 0, "",
+       [](const json& info) { CHECK(info["degenerate_triangles"] == 6); }},
+      {"bad_flipped_faces.obj", 0, 0, "",
+       [](const json& info) { CHECK(info["consistently_oriented"] == false); }},
+      // Two bad faces (21 uses vertex 840, 1655 uses index 0): the first in
+      // the file is named.
+      {"bad_index_out_of_range.obj", 3, 3, "vertex 840", nullptr},
+      {"bad_index_out_of_range.off", 3, 3, "829", nullptr},
+      {"bad_nan_coordinate.obj", 0, 3, "vertex 5",
+       [](const json& info) {
+         CHECK(info["non_finite_vertices"] == 1);
+         CHECK(info["solvable"] == false);
+         CHECK(info["problems"][0]["element"] == 5);
+       }},
+      {"bad_nonmanifold_edge.obj", 0, 0, "",
+       [](const json& info) {
+         CHECK(info["edge_manifold"] == false);
+         CHECK(info["non_manifold_edges"] == 1);
+       }},
+      {"bad_triangle_soup.obj", 0, 0, "",
+       [](const json& info) {
+         CHECK(info["vertices"] == 4962);
+         CHECK(info["components"] == 1654);
+         CHECK(info["triangle_soup"] == true);
+       }},
+      // GLB is not one of the formats we read: an unknown extension is a bad
+      // parameter (exit 2), as for any other file name.
+      {"boxNotManifold.glb", 2, 2, "", nullptr},
+      {"boxNotManifold.obj", 0, 0, "",
+       [](const json& info) { CHECK(info["boundary_loops"] == 1); }},
+      {"box_UTF16BE.obj", 0, 0, "",
+       [](const json& info) {
+         CHECK(info["vertices"] == 8);
+         CHECK(info["triangles"] == 12);
+         CHECK(contains(info["read"]["notes"].dump(), "UTF-16"));
+       }},
+      {"box_without_lineending.obj", 0, 0, "",
+       [](const json& info) {
+         CHECK(info["vertices"] == 8);
+         CHECK(info["triangles"] == 12);
+         CHECK(info["problem_count"] == 0);
+       }},
+      {"degtri_sliding.off", 0, 0, "",
+       [](const json& info) { CHECK(info["degenerate_triangles"] == 4); }},
+      {"empty.obj", 3, 3, "is empty", nullptr},
+      {"empty.off", 3, 3, "is empty", nullptr},
+      {"empty.ply", 3, 3, "is empty", nullptr},
+      {"empty.stl", 3, 3, "is empty", nullptr},
+      {"empty_mesh_header_only.off", 0, 3, "no vertices",
+       [has_problems](const json& info) {
+         CHECK(info["vertices"] == 0);
+         has_problems(info);
+       }},
+      {"empty_mesh_header_only.ply", 0, 3, "no vertices",
+       [has_problems](const json& info) {
+         CHECK(info["vertices"] == 0);
+         has_problems(info);
+       }},
+      {"empty_mesh_zero_triangles.stl", 0, 3, "no triangles",
+       [has_problems](const json& info) {
+         CHECK(info["triangles"] == 0);
+         has_problems(info);
+       }},
+      {"multi_component.obj", 0, 0, "",
+       [](const json& info) { CHECK(info["components"] == 2); }},
+      {"number_formats.obj", 3, 3, "3.1+e2", nullptr},
+      {"openscad-nonmanifold-crash.obj", 0, 0, "",
+       [](const json& info) {
+         CHECK(info["components"] == 2);
+         CHECK(info["degenerate_triangles"] == 1);
+       }},
+      {"testmixed.obj", 0, 0, "",
+       [](const json& info) {
+         CHECK(info["vertices"] == 8);
+         CHECK(info["triangles"] == 12);
+         CHECK(info["read"]["elements_skipped"] > 0);
+       }},
+      {"truncated_binary.ply", 3, 3, "", nullptr},
+      {"truncated_binary.stl", 3, 3, "", nullptr},
+  };
+}
+
+void check_refusal_names_problem(const CliRun& run, const std::string& stderr_names) {
+  CHECK_FALSE(run.err.empty());
+  CHECK(run.out.empty());
+  if (!stderr_names.empty()) CHECK(contains(run.err, stderr_names));
+}
+
+}  // namespace
+
+TEST_CASE("cli: the malformed-case table covers every file in malformed/", "[cli]") {
+  std::vector<std::string> listed;
+  for (const MalformedCase& c : malformed_cases()) listed.push_back(c.file);
+  std::vector<std::string> present;
+  for (const auto& entry : std::filesystem::directory_iterator(mesh("malformed"))) {
+    present.push_back(entry.path().filename().string());
+  }
+  std::sort(listed.begin(), listed.end());
+  std::sort(present.begin(), present.end());
+  CHECK(listed == present);
+}
+
+TEST_CASE("cli: info on every malformed file reports the problem or refuses it by name", "[cli]") {
+  for (const MalformedCase& c : malformed_cases()) {
+    SECTION(c.file) {
+      const std::vector<std::string> args{"info", mesh("malformed/" + c.file)};
+      const CliRun run = run_expecting(args, c.info_exit);
+      INFO(describe(args, run));
+      if (c.info_exit == 0) {
+        const json info = stdout_json(run);
+        if (c.info_check) c.info_check(info);
+      } else {
+        check_refusal_names_problem(run, c.stderr_names);
+      }
+    }
+  }
+}
+
+TEST_CASE("cli: deform on every malformed file repairs, warns or refuses by name", "[cli]") {
+  for (const MalformedCase& c : malformed_cases()) {
+    SECTION(c.file) {
+      const std::vector<std::string> args{
+          "deform", mesh("malformed/" + c.file), temp_path("malformed_out.obj"),
+          "--scale", "1.3", "--iterations", "5"};
+      const CliRun run = run_expecting(args, c.deform_exit);
+      INFO(describe(args, run));
+      if (c.deform_exit == 0) {
+        const json result = stdout_json(run);
+        CHECK(result["vertices"] > 0);
+      } else {
+        check_refusal_names_problem(run, c.stderr_names);
+      }
+    }
+  }
+}
+
+TEST_CASE("cli: deform welds a triangle soup and says so", "[cli]") {
+  const std::string out = temp_path("welded.obj");
+  const json result = stdout_json(run_expecting(
+      {"deform", mesh("malformed/bad_triangle_soup.obj"), out, "--scale", "1.2"}, 0));
+  CHECK(result["vertices"] == 829);
+  CHECK(result["triangles"] == 1654);
+  bool warned = false;
+  for (const json& warning : result["warnings"]) {
+    warned = warned || contains(warning.get<std::string>(), "welded");
+  }
+  CHECK(warned);
+  CHECK(info_of(out)["components"] == 1);
+}
+
+TEST_CASE("cli: deform warns about the problems it solves through", "[cli]") {
+  const json result = stdout_json(run_expecting(
+      {"deform", mesh("malformed/bad_degenerate_faces.obj"), temp_path("degenerate.obj"),
+       "--method", "andefgrad", "--scale", "1.2"},
+      0));
+  REQUIRE(result["warnings"].size() > 0);
+  CHECK(contains(result["warnings"].dump(), "zero-area"));
+}
+
+TEST_CASE("cli: bad command lines and parameters exit with status 2", "[cli]") {
+  const std::string in = mesh("formats/spot_lowres.obj");
+  const std::string out = temp_path("bad_usage.obj");
+  const std::vector<std::vector<std::string>> bad_command_lines{
+      {},
+      {"frobnicate"},
+      {"info"},
+      {"deform", in},  // missing OUT
+      {"deform", in, out, "--frobnicate"},
+      {"deform", in, out, "--method", "unknown"},
+      {"deform", in, out, "--scale", "0"},
+      {"deform", in, out, "--scale", "-1"},
+      {"deform", in, out, "--scale", "abc"},
+      {"deform", in, out, "--scale", "1.5x"},
+      {"deform", in, out, "--scale", "nan"},
+      {"deform", in, out, "--scale", "inf"},
+      {"deform", in, out, "--scale", "1,2,3"},
+      {"deform", in, out, "--scale", "1,,2"},
+      {"deform", in, out, "--scale", " 1"},
+      {"deform", in, out, "--thicken", "0"},
+      {"deform", in, out, "--shear", "1e999"},
+      {"deform", in, out, "--select", "box:0,0,0,1,1"},
+      {"deform", in, out, "--select", "sphere:0,0,0,-1"},
+      {"deform", in, out, "--select", "cone:1"},
+      {"deform", in, out, "--select", "file:/nonexistent/selection.txt"},
+      {"deform", in, out, "--rotate", "q:10"},
+      {"deform", in, out, "--rotate", "n:ten"},
+      {"deform", in, out, "--rotate", "n"},
+      {"deform", in, out, "--twist", "0,0,0:10"},
+      {"deform", in, out, "--twist", "0,0,1"},
+      {"deform", in, out, "--direction", "global:0,0,0"},
+      {"deform", in, out, "--direction", "curvature:mean"},
+      {"deform", in, out, "--direction", "field:/nonexistent/field.txt"},
+      {"deform", in, out, "--direction", "north"},
+      {"deform", in, out, "--handle", "all", "--move", "0,0,1"},  // not arap
+      {"deform", in, out, "--method", "arap", "--move", "0,0,1"},  // no handle
+      {"deform", in, out, "--method", "arap", "--handle", "all", "--move", "0,1"},
+      {"deform", in, out, "--pin", "box:10,10,10,11,11,11"},  // holds no vertex
+      {"deform", in, out, "--falloff", "-1"},
+      {"deform", in, out, "--iterations", "0"},
+      {"deform", in, out, "--iterations", "-3"},
+      {"deform", in, out, "--iterations", "2.5"},
+      {"deform", in, out, "--tolerance", "-1e-3"},
+      {"deform", in, out, "--elements", "rims"},
+      {"deform", in, temp_path("out.xyz")},                 // unknown output format
+      {"deform", in, "/nonexistent-directory/out.obj"},     // unwritable output
+      {"deform", in, out, "--scale", "1.2", "--scale", "1.3"},  // given twice
+  };
+  for (const std::vector<std::string>& args : bad_command_lines) {
+    const CliRun run = run_expecting(args, 2);
+    INFO(describe(args, run));
+    CHECK_FALSE(run.err.empty());
+    CHECK(run.out.empty());
+  }
+}
+
+TEST_CASE("cli: an index out of range in a selection file is a bad parameter", "[cli]") {
+  const std::string selection = write_temp_file("selection.txt", "1\n5000\n");
+  const CliRun run = run_expecting({"deform", mesh("formats/spot_lowres.obj"),
+                                    temp_path("out.obj"), "--select", "file:" + selection},
+                                   2);
+  CHECK(contains(run.err, "5000"));
+}
+
+TEST_CASE("cli: a missing input says cannot open and exits 3", "[cli]") {
+  for (const std::string& command : {"info", "deform"}) {
+    std::vector<std::string> args{command, "/nonexistent/mesh.obj"};
+    if (command == "deform") args.push_back(temp_path("out.obj"));
+    const CliRun run = run_expecting(args, 3);
+    CHECK(contains(run.err, "cannot open"));
+    CHECK(run.out.empty());
+  }
+}
+
+TEST_CASE("cli: an input of unknown format exits 2", "[cli]") {
+  const std::string path = write_temp_file("mesh.xyz", "0 0 0\n");
+  const CliRun run = run_expecting({"info", path}, 2);
+  CHECK(contains(run.err, "xyz"));
+}
+
+TEST_CASE("cli: --help succeeds with the usage on stdout", "[cli]") {
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"--help"}, {"info", "--help"}, {"deform", "--help"}}) {
+    const CliRun run = run_expecting(args, 0);
+    CHECK(contains(run.out, "Usage"));
+  }
+  CHECK(contains(run_expecting({"deform", "--help"}, 0).out, "--thicken"));
+}
+
+TEST_CASE("cli: deform prints every contract key with its type", "[cli]") {
+  const std::string out = temp_path("keys.obj");
+  const json result = stdout_json(
+      run_expecting({"deform", mesh("formats/spot_lowres.obj"), out, "--scale", "1.5,0.9",
+                     "--select", "sphere:0,0.5,0.8,0.3", "--falloff", "0.1"},
+                    0));
+  CHECK(result["method"] == "anarap");
+  CHECK(result["vertices"] == 829);
+  CHECK(result["triangles"] == 1654);
+  CHECK(result["selected"].is_number_integer());
+  CHECK(result["selected"] > 0);
+  CHECK(result["selected"] < 829);
+  CHECK(result["iterations"].is_number_integer());
+  CHECK(result["iterations"] >= 1);
+  CHECK(result["energy"].is_number());
+  CHECK(result["factorizations"].is_number_integer());
+  CHECK(result["factorizations"] >= 1);
+  CHECK(result["precompute_ms"].is_number());
+  CHECK(result["solve_ms"].is_number());
+  CHECK(result["converged"].is_boolean());
+  CHECK(result["energy_history"].is_array());
+  CHECK(result["energy_history"].size() == result["iterations"].get<std::size_t>());
+  CHECK(result["directions_filled"].is_number_integer());
+  CHECK(result["warnings"].is_array());
+  CHECK(result["max_displacement"].get<double>() > 0.0);
+  CHECK(result["direction"] == "global:0,0,1 (longest axis)");
+}
+
+TEST_CASE("cli: deform writes every output format and info reads it back", "[cli]") {
+  for (const std::string& extension : {"obj", "off", "ply", "stl"}) {
+    SECTION(extension) {
+      const std::string out = temp_path("spot." + extension);
+      run_expecting({"deform", mesh("formats/spot_lowres.obj"), out, "--method", "andefgrad",
+                     "--scale", "1.4", "--select", "box:-1,-1,0.5,1,2,2"},
+                    0);
+      const json info = info_of(out);
+      CHECK(info["vertices"] == 829);
+      CHECK(info["triangles"] == 1654);
+    }
+  }
+  SECTION("ascii ply") {
+    const std::string out = temp_path("spot_ascii.ply");
+    run_expecting({"deform", mesh("formats/spot_lowres.obj"), out, "--ascii"}, 0);
+    CHECK(contains(slurp(out), "format ascii"));
+  }
+}
+
+TEST_CASE("cli: andefgrad with scale 1 leaves the mesh where it was", "[cli]") {
+  const std::string in = mesh("closed/spool.off");
+  const std::string out = temp_path("identity.off");
+  run_expecting({"deform", in, out, "--method", "andefgrad", "--scale", "1"}, 0);
+  const aniso::Mesh rest = aniso::read_mesh(in).mesh;
+  const aniso::Mesh deformed = aniso::read_mesh(out).mesh;
+  REQUIRE(deformed.num_vertices() == rest.num_vertices());
+  REQUIRE(deformed.num_triangles() == rest.num_triangles());
+  CHECK(deformed.F == rest.F);
+  const double diagonal = aniso::bounding_box(rest.V).diagonal();
+  CHECK((deformed.V - rest.V).cwiseAbs().maxCoeff() <= 1e-6 * diagonal);
+}
+
+TEST_CASE("cli: pinned vertices stay and arap handles move by the offset", "[cli]") {
+  const std::string in = mesh("formats/spot_lowres.obj");
+  const std::string out = temp_path("handles.obj");
+  // Handle: the tip of the head (z > 0.9); pins: the back (z < -0.4).
+  const json result = stdout_json(run_expecting(
+      {"deform", in, out, "--method", "arap", "--handle", "box:-1,-1,0.9,1,2,2", "--move",
+       "0,0.1,0", "--pin", "box:-1,-1,-1,1,2,-0.4"},
+      0));
+  CHECK(result["method"] == "arap");
+  CHECK(result["handles"] > 0);
+  CHECK(result["pins"] > 0);
+  const aniso::Mesh rest = aniso::read_mesh(in).mesh;
+  const aniso::Mesh deformed = aniso::read_mesh(out).mesh;
+  REQUIRE(deformed.num_vertices() == rest.num_vertices());
+  int handles = 0;
+  int pins = 0;
+  for (int i = 0; i < rest.num_vertices(); ++i) {
+    const Eigen::RowVector3d moved = deformed.V.row(i) - rest.V.row(i);
+    if (rest.V(i, 2) >= 0.9) {
+      ++handles;
+      CHECK((moved - Eigen::RowVector3d(0, 0.1, 0)).norm() < 1e-5);
+    } else if (rest.V(i, 2) <= -0.4) {
+      ++pins;
+      CHECK(moved.norm() < 1e-5);
+    }
+  }
+  CHECK(result["handles"] == handles);
+  CHECK(result["pins"] == pins);
+}
+
+TEST_CASE("cli: deform runs every method and direction source", "[cli]") {
+  const std::string in = mesh("formats/spot_lowres.obj");
+  const std::string field = write_temp_file("field.txt", "# two arrows\n0 1 0 0\n400 0 1 0\n");
+  const std::string selection = write_temp_file("selection.txt", "0\n1 0.5\n2\n3 1\n400\n");
+  const std::vector<std::vector<std::string>> edits{
+      {"--method", "anarap", "--rotate", "n:20", "--iterations", "3"},
+      {"--method", "anarap", "--elements", "spokes-rims", "--scale", "1.3"},
+      {"--method", "andefgrad", "--shear", "0.4", "--direction", "global:0,1,0"},
+      {"--method", "andefgrad", "--twist", "0,0,1:45", "--select", "box:-1,-1,0,1,2,2"},
+      {"--method", "linear", "--scale", "1.5", "--direction", "curvature:max"},
+      {"--method", "andefgrad", "--scale", "0.8", "--direction", "curvature:min"},
+      {"--method", "andefgrad", "--scale", "1.2", "--direction", "field:" + field},
+      {"--method", "anarap", "--thicken", "1.3", "--select", "file:" + selection,
+       "--falloff", "0.05", "--tolerance", "1e-4"},
+      {"--method", "arap"},  // no handles: the mesh stays as it is
+  };
+  for (const std::vector<std::string>& edit : edits) {
+    std::vector<std::string> args{"deform", in, temp_path("edit.obj")};
+    args.insert(args.end(), edit.begin(), edit.end());
+    const json result = stdout_json(run_expecting(args, 0));
+    CHECK(result["vertices"] == 829);
+  }
+}
+
+TEST_CASE("cli: --direction echoes the source it was given", "[cli]") {
+  const json result = stdout_json(run_expecting(
+      {"deform", mesh("closed/torus.obj"), temp_path("torus.obj"), "--direction", "global:0,1,0",
+       "--method", "andefgrad"},
+      0));
+  CHECK(result["direction"] == "global:0,1,0");
+  const json default_direction = stdout_json(run_expecting(
+      {"deform", mesh("closed/torus.obj"), temp_path("torus.obj"), "--method", "andefgrad"}, 0));
+  CHECK(default_direction["direction"] == "global:1,0,0 (longest axis)");
+}
+
+TEST_CASE("cli: signed numbers are values, not options", "[cli]") {
+  const std::string in = mesh("formats/spot_lowres.obj");
+  const json result = stdout_json(run_expecting(
+      {"deform", in, temp_path("signed.obj"), "--method", "arap", "--handle",
+       "box:-1,-1,0.9,1,2,2", "--move", "-0.05,0,+0.02", "--pin", "box:-1,-1,-1,1,2,-0.4"},
+      0));
+  CHECK(result["handles"] > 0);
+  run_expecting({"deform", in, temp_path("signed.obj"), "--scale", "+1.2", "--shear", "-0.3",
+                 "--method", "andefgrad"},
+                0);
+}
