@@ -1,0 +1,252 @@
+// Principal curvatures and directions, checked against what the real meshes
+// are: a torus (directions and curvatures known in closed form once its axis
+// and radii are read off the data) and a knotted tube (the min-curvature
+// direction runs along the tube).
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "anisoform/curvature.h"
+#include "anisoform/error.h"
+#include "anisoform/frames.h"
+#include "anisoform/topology.h"
+#include "test_support.h"
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A torus described by its data: centre, axis (the direction of least
+// variance of the vertices) and the radii of the big circle (R) and the tube (r).
+struct TorusShape {
+  Eigen::Vector3d center;
+  Eigen::Vector3d axis;
+  double R = 0.0;
+  double r = 0.0;
+
+  Eigen::Vector3d radial(const Eigen::Vector3d& p) const {
+    const Eigen::Vector3d q = p - center;
+    return (q - q.dot(axis) * axis).normalized();
+  }
+  // Unit tangent of the big circle through p.
+  Eigen::Vector3d big_circle_tangent(const Eigen::Vector3d& p) const { return axis.cross(radial(p)); }
+  // cos of the angle around the tube (1 on the outer equator, -1 on the inner).
+  double cos_around_tube(const Eigen::Vector3d& p) const {
+    const Eigen::Vector3d tube_center = center + R * radial(p);
+    return (p - tube_center).normalized().dot(radial(p));
+  }
+};
+
+TorusShape fit_torus(const aniso::Positions& V) {
+  TorusShape torus;
+  torus.center = V.colwise().mean().transpose();
+  const Eigen::MatrixXd centered = V.rowwise() - torus.center.transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> pca(centered.transpose() * centered);
+  torus.axis = pca.eigenvectors().col(0);  // eigenvalues ascending
+  double rho_min = INFINITY;
+  double rho_max = 0.0;
+  for (Eigen::Index i = 0; i < V.rows(); ++i) {
+    const Eigen::Vector3d q = V.row(i).transpose() - torus.center;
+    const double rho = (q - q.dot(torus.axis) * torus.axis).norm();
+    rho_min = std::min(rho_min, rho);
+    rho_max = std::max(rho_max, rho);
+  }
+  torus.R = 0.5 * (rho_max + rho_min);
+  torus.r = 0.5 * (rho_max - rho_min);
+  return torus;
+}
+
+double fraction_where(const std::vector<double>& values, double limit, bool below) {
+  const auto count = std::count_if(values.begin(), values.end(),
+                                   [&](double v) { return below ? v < limit : v > limit; });
+  return double(count) / double(values.size());
+}
+
+double median(std::vector<double> values) {
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+
+// Mean angle (radians) between the lines of neighbouring vertices.
+double mean_neighbour_line_angle(const aniso::Mesh& mesh, const aniso::Positions& directions) {
+  const aniso::VertexAdjacency adjacency = aniso::vertex_adjacency(mesh.F, mesh.num_vertices());
+  double sum = 0.0;
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    for (int k = adjacency.offsets[i]; k < adjacency.offsets[i + 1]; ++k) {
+      const double c = std::abs(directions.row(i).dot(directions.row(adjacency.neighbors[k])));
+      sum += std::acos(std::min(1.0, c));
+    }
+  }
+  return sum / double(adjacency.neighbors.size());
+}
+
+// The local tube axis at every vertex, independent of any curvature estimate:
+// the normals of a tube's neighbourhood are all perpendicular to its axis, so
+// the axis is the direction of least spread of the normals within three rings.
+aniso::Positions tube_axes(const aniso::Mesh& mesh) {
+  const aniso::Positions normals = aniso::vertex_normals(mesh);
+  const aniso::VertexAdjacency adjacency = aniso::vertex_adjacency(mesh.F, mesh.num_vertices());
+  aniso::Positions axes(mesh.num_vertices(), 3);
+  std::vector<int> ring_of(mesh.num_vertices(), -1);
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    std::vector<int> reached{i};
+    ring_of[i] = 0;
+    for (std::size_t head = 0; head < reached.size(); ++head) {
+      const int v = reached[head];
+      if (ring_of[v] == 3) continue;
+      for (int k = adjacency.offsets[v]; k < adjacency.offsets[v + 1]; ++k) {
+        const int w = adjacency.neighbors[k];
+        if (ring_of[w] >= 0) continue;
+        ring_of[w] = ring_of[v] + 1;
+        reached.push_back(w);
+      }
+    }
+    Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
+    for (int v : reached) {
+      spread += normals.row(v).transpose() * normals.row(v);
+      ring_of[v] = -1;
+    }
+    axes.row(i) = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(spread).eigenvectors().col(0).transpose();
+  }
+  return axes;
+}
+
+void check_unit_tangent(const aniso::Mesh& mesh, const aniso::Positions& directions) {
+  const aniso::Positions normals = aniso::vertex_normals(mesh);
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    REQUIRE(directions.row(i).norm() == Approx(1.0).margin(1e-12));
+    REQUIRE(std::abs(directions.row(i).dot(normals.row(i))) < 1e-12);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("curvature: on a torus max directions follow the tube, min directions the big circle",
+          "[curvature]") {
+  const aniso::Mesh mesh = aniso::test::load("closed/torus.obj");
+  const TorusShape torus = fit_torus(mesh.V);
+  REQUIRE(torus.r > 0.1 * torus.R);
+
+  const aniso::PrincipalCurvature pc = aniso::principal_curvature(mesh);
+  check_unit_tangent(mesh, pc.max_direction);
+  check_unit_tangent(mesh, pc.min_direction);
+
+  // |cos| of the angle between each principal direction and the big circle.
+  std::vector<double> max_along_big, min_along_big;
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    const Eigen::Vector3d t = torus.big_circle_tangent(mesh.V.row(i).transpose());
+    max_along_big.push_back(std::abs(pc.max_direction.row(i).dot(t)));
+    min_along_big.push_back(std::abs(pc.min_direction.row(i).dot(t)));
+  }
+  const double within_3_degrees = std::sin(3.0 * kPi / 180.0);
+  INFO("R = " << torus.R << ", r = " << torus.r << "; within 3 degrees: max "
+              << fraction_where(max_along_big, within_3_degrees, true) << ", min "
+              << fraction_where(min_along_big, std::cos(3.0 * kPi / 180.0), false));
+  CHECK(fraction_where(max_along_big, within_3_degrees, true) > 0.9);
+  CHECK(fraction_where(min_along_big, std::cos(3.0 * kPi / 180.0), false) > 0.9);
+}
+
+TEST_CASE("curvature: torus curvatures are 1/r around the tube and cos/(R + r cos) along it",
+          "[curvature]") {
+  const aniso::Mesh mesh = aniso::test::load("closed/torus.obj");
+  const TorusShape torus = fit_torus(mesh.V);
+  const aniso::PrincipalCurvature pc = aniso::principal_curvature(mesh);
+
+  std::vector<double> k_max_error, k_min_error;
+  int sign_checked = 0, sign_right = 0;
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    const double c = torus.cos_around_tube(mesh.V.row(i).transpose());
+    const double k_along = c / (torus.R + torus.r * c);  // the big circle's normal curvature
+    REQUIRE(pc.k_min[i] <= pc.k_max[i]);
+    k_max_error.push_back(std::abs(pc.k_max[i] * torus.r - 1.0));
+    k_min_error.push_back(std::abs(pc.k_min[i] - k_along) * torus.r);
+    if (std::abs(c) > 0.3) {
+      ++sign_checked;
+      // Outer half convex (k_min > 0), inner half saddle-shaped (k_min < 0).
+      if ((pc.k_min[i] > 0) == (c > 0)) ++sign_right;
+    }
+  }
+  INFO("median |k_max r - 1| = " << median(k_max_error) << ", median |k_min - k_along| r = "
+                                  << median(k_min_error));
+  CHECK(median(k_max_error) < 0.03);
+  CHECK(fraction_where(k_max_error, 0.1, true) > 0.95);
+  CHECK(median(k_min_error) < 0.03);
+  CHECK(sign_right == sign_checked);
+}
+
+TEST_CASE("curvature: curvatures scale with 1/size and directions do not change", "[curvature]") {
+  aniso::Mesh mesh = aniso::test::load("closed/spot_triangulated.obj");
+  const aniso::PrincipalCurvature original = aniso::principal_curvature(mesh);
+  mesh.V *= 1e3;
+  const aniso::PrincipalCurvature scaled = aniso::principal_curvature(mesh);
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    CHECK(scaled.k_max[i] * 1e3 == Approx(original.k_max[i]).margin(1e-9 * std::abs(original.k_max[i]) + 1e-9));
+    CHECK(scaled.k_min[i] * 1e3 == Approx(original.k_min[i]).margin(1e-9 * std::abs(original.k_min[i]) + 1e-9));
+    if (original.k_max[i] - original.k_min[i] > 1e-3) {
+      CHECK(std::abs(scaled.max_direction.row(i).dot(original.max_direction.row(i))) > 1.0 - 1e-9);
+    }
+  }
+}
+
+TEST_CASE("curvature: a flat mesh has zero curvature and still unit tangent directions", "[curvature]") {
+  const aniso::Mesh mesh = aniso::test::load("open/plane.off");
+  const aniso::PrincipalCurvature pc = aniso::principal_curvature(mesh);
+  CHECK(pc.k_min.cwiseAbs().maxCoeff() < 1e-12);
+  CHECK(pc.k_max.cwiseAbs().maxCoeff() < 1e-12);
+  check_unit_tangent(mesh, pc.min_direction);
+  check_unit_tangent(mesh, aniso::curvature_direction_field(mesh, aniso::CurvatureDirection::Max, 5));
+}
+
+TEST_CASE("curvature: on a knotted tube the smoothed min direction runs along the tube", "[curvature]") {
+  const aniso::Mesh mesh = aniso::test::load("closed/knot1.off");
+  const aniso::Positions axes = tube_axes(mesh);
+  const aniso::Positions raw = aniso::curvature_direction_field(mesh, aniso::CurvatureDirection::Min, 0);
+  const aniso::Positions smooth = aniso::curvature_direction_field(mesh, aniso::CurvatureDirection::Min, 10);
+  const aniso::Positions across = aniso::curvature_direction_field(mesh, aniso::CurvatureDirection::Max, 10);
+  check_unit_tangent(mesh, smooth);
+  check_unit_tangent(mesh, across);
+
+  std::vector<double> along, across_axis;
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    along.push_back(std::abs(smooth.row(i).dot(axes.row(i))));
+    across_axis.push_back(std::abs(across.row(i).dot(axes.row(i))));
+  }
+  const double mean_along = std::accumulate(along.begin(), along.end(), 0.0) / along.size();
+  const double mean_across = std::accumulate(across_axis.begin(), across_axis.end(), 0.0) / along.size();
+  INFO("mean |d_min . axis| = " << mean_along << ", mean |d_max . axis| = " << mean_across);
+  CHECK(mean_along > 0.97);
+  CHECK(fraction_where(along, std::cos(10.0 * kPi / 180.0), false) > 0.9);
+  CHECK(mean_across < 0.1);
+
+  const double raw_angle = mean_neighbour_line_angle(mesh, raw);
+  const double smooth_angle = mean_neighbour_line_angle(mesh, smooth);
+  INFO("mean neighbour angle raw " << raw_angle * 180 / kPi << " deg, smoothed " << smooth_angle * 180 / kPi);
+  CHECK(smooth_angle < raw_angle);  // the raw field of this clean tube is already smooth
+}
+
+TEST_CASE("curvature: smoothing makes a noisy organic field more coherent", "[curvature]") {
+  const aniso::Mesh mesh = aniso::test::load("closed/cat-low-resolution.obj");
+  const aniso::Positions raw = aniso::curvature_direction_field(mesh, aniso::CurvatureDirection::Min, 0);
+  const aniso::Positions smooth = aniso::curvature_direction_field(mesh, aniso::CurvatureDirection::Min, 10);
+  check_unit_tangent(mesh, smooth);
+  const double raw_angle = mean_neighbour_line_angle(mesh, raw);
+  const double smooth_angle = mean_neighbour_line_angle(mesh, smooth);
+  INFO("mean neighbour angle raw " << raw_angle * 180 / kPi << " deg, smoothed " << smooth_angle * 180 / kPi);
+  CHECK(smooth_angle < 0.6 * raw_angle);
+}
+
+TEST_CASE("curvature: negative smoothing steps are refused", "[curvature]") {
+  const aniso::Mesh mesh = aniso::test::load("open/plane.off");
+  try {
+    aniso::curvature_direction_field(mesh, aniso::CurvatureDirection::Min, -1);
+    FAIL("no error");
+  } catch (const aniso::Error& e) {
+    CHECK(e.code() == aniso::ErrorCode::BadParameter);
+    CHECK_THAT(e.what(), Catch::Contains("smoothing steps must be >= 0, got -1"));
+  }
+}

@@ -1,0 +1,552 @@
+// Mesh readers and writers on the real files of ../shared/meshes: the same
+// mesh from every format, polygon triangulation, clean errors for malformed
+// files, exact round trips, and robustness against truncated and corrupted
+// bytes.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <ctime>
+#include <fstream>
+#include <map>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "anisoform/error.h"
+#include "anisoform/mesh_check.h"
+#include "anisoform/mesh_io.h"
+#include "test_support.h"
+
+using aniso::Mesh;
+using aniso::MeshFormat;
+using aniso::ReadResult;
+using aniso::test::load;
+using aniso::test::mesh_path;
+
+namespace {
+
+std::string file_bytes(const std::string& relative) {
+  std::ifstream in(mesh_path(relative), std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+ReadResult read_text(const std::string& text, MeshFormat format) {
+  return aniso::read_mesh_from_memory(text.data(), text.size(), format);
+}
+
+// The message of the aniso::Error with `code` that `call` throws.
+template <class Call>
+std::string error_message(Call call, aniso::ErrorCode code = aniso::ErrorCode::BadFile) {
+  try {
+    call();
+  } catch (const aniso::Error& error) {
+    CHECK(error.code() == code);
+    return error.what();
+  }
+  FAIL("no aniso::Error was thrown");
+  return "";
+}
+
+std::string read_error(const std::string& relative) {
+  return error_message([&] { aniso::read_mesh(mesh_path(relative)); });
+}
+
+using Position = std::array<double, 3>;
+
+Position position_of(const Mesh& mesh, int v, bool as_float32) {
+  Position p;
+  for (int k = 0; k < 3; ++k) p[k] = as_float32 ? static_cast<float>(mesh.V(v, k)) : mesh.V(v, k);
+  return p;
+}
+
+// `mesh`'s triangles in `reference`'s vertex numbering, matched by position
+// (rounded to float32 when the file stored float32), each rotated to start at
+// its smallest index so that winding is kept; sorted.
+std::vector<std::array<int, 3>> triangles_in_numbering_of(const Mesh& reference, const Mesh& mesh,
+                                                         bool as_float32) {
+  std::map<Position, int> reference_index;
+  for (int v = 0; v < reference.num_vertices(); ++v) reference_index[position_of(reference, v, as_float32)] = v;
+  std::vector<std::array<int, 3>> triangles;
+  for (int f = 0; f < mesh.num_triangles(); ++f) {
+    std::array<int, 3> t;
+    for (int k = 0; k < 3; ++k) {
+      const auto found = reference_index.find(position_of(mesh, mesh.F(f, k), as_float32));
+      REQUIRE(found != reference_index.end());
+      t[k] = found->second;
+    }
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    triangles.push_back(t);
+  }
+  std::sort(triangles.begin(), triangles.end());
+  return triangles;
+}
+
+double triangle_area(const Mesh& mesh, int f) {
+  const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)).transpose();
+  const Eigen::Vector3d b = mesh.V.row(mesh.F(f, 1)).transpose();
+  const Eigen::Vector3d c = mesh.V.row(mesh.F(f, 2)).transpose();
+  return 0.5 * (b - a).cross(c - a).norm();
+}
+
+// Median process CPU time of a few runs, in milliseconds: on a shared
+// machine wall time mostly measures the neighbours.
+template <class Call>
+double median_cpu_ms(Call call) {
+  std::vector<double> times;
+  for (int run = 0; run < 3; ++run) {
+    const std::clock_t start = std::clock();
+    call();
+    times.push_back(1000.0 * static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC);
+  }
+  std::sort(times.begin(), times.end());
+  return times[1];
+}
+
+}  // namespace
+
+TEST_CASE("mesh_io: every spot_lowres file in formats/ reads to the same mesh as spot_lowres.obj", "[io]") {
+  const Mesh reference = load("formats/spot_lowres.obj");
+  REQUIRE(reference.num_vertices() == 829);
+  REQUIRE(reference.num_triangles() == 1654);
+
+  SECTION("OBJ, OFF and ASCII PLY: identical positions and faces") {
+    for (const char* file : {"formats/spot_lowres.off", "formats/spot_lowres_ascii.ply"}) {
+      INFO(file);
+      const Mesh mesh = load(file);
+      CHECK(mesh.V == reference.V);
+      CHECK(mesh.F == reference.F);
+    }
+  }
+  SECTION("binary PLY: float32 positions within 1e-6 relative, identical faces") {
+    const Mesh mesh = load("formats/spot_lowres_binary.ply");
+    REQUIRE(mesh.num_vertices() == 829);
+    CHECK(mesh.F == reference.F);
+    const double scale = reference.V.cwiseAbs().maxCoeff();
+    CHECK((mesh.V - reference.V).cwiseAbs().maxCoeff() <= 1e-6 * scale);
+  }
+  SECTION("STL: after welding, the same triangles up to vertex numbering") {
+    const auto expected = triangles_in_numbering_of(reference, reference, false);
+    for (const auto& [file, float32] : {std::pair{"formats/spot_lowres_ascii.stl", false},
+                                        std::pair{"formats/spot_lowres_binary.stl", true}}) {
+      INFO(file);
+      const ReadResult read = aniso::read_mesh(mesh_path(file));
+      CHECK(read.mesh.num_vertices() == 829);
+      CHECK(read.mesh.num_triangles() == 1654);
+      CHECK(read.report.vertices_welded == 3 * 1654 - 829);
+      CHECK(triangles_in_numbering_of(reference, read.mesh, float32) == expected);
+    }
+  }
+}
+
+TEST_CASE("mesh_io: polygons triangulate into n-2 triangles of positive area, wound like their neighbours", "[io]") {
+  struct Case {
+    const char* file;
+    int triangles;  // sum of (corners - 2) over the file's polygons
+    int polygons;   // faces with more than 3 corners
+    int boundary_loops;
+  };
+  const Case cases[] = {
+      {"formats/spot_quadrangulated.obj", 2 * 2928, 2928, 0},
+      {"formats/spot_control_mesh.obj", 4 + 2 * 160 + 3 * 16, 160 + 16, 0},
+      {"formats/concave_polygon.obj", 66 - 2, 1, 2},  // outer rim and hole, joined by a bridge
+      {"malformed/box_without_lineending.obj", 12, 6, 0},
+  };
+  for (const Case& c : cases) {
+    INFO(c.file);
+    const ReadResult read = aniso::read_mesh(mesh_path(c.file));
+    CHECK(read.mesh.num_triangles() == c.triangles);
+    CHECK(read.report.polygons_triangulated == c.polygons);
+    const aniso::MeshReport report = aniso::check_mesh(read.mesh);
+    CHECK(report.degenerate_triangles == 0);
+    CHECK(report.consistently_oriented);
+    CHECK(report.edge_manifold);
+    CHECK(report.vertex_manifold);
+    CHECK(report.boundary_loops == c.boundary_loops);
+    for (int f = 0; f < read.mesh.num_triangles(); ++f) CHECK(triangle_area(read.mesh, f) > 0);
+  }
+}
+
+TEST_CASE("mesh_io: the concave 66-gon's triangles cover exactly its area and face along its normal", "[io]") {
+  const Mesh mesh = load("formats/concave_polygon.obj");
+  // The file's corners, in order: the polygon's signed area (rim minus hole)
+  // is half its Newell normal.
+  const std::vector<int> corners = {27, 23, 19, 15, 11, 5,  2,  1,  3,  6,  12, 16, 20, 24, 28, 34, 38,
+                                    42, 46, 50, 54, 60, 63, 64, 62, 59, 53, 49, 45, 41, 37, 31, 32, 35,
+                                    39, 43, 47, 51, 55, 57, 61, 58, 56, 52, 48, 44, 40, 36, 33, 30, 26,
+                                    22, 18, 14, 10, 8,  4,  7,  9,  13, 17, 21, 25, 29, 32, 31};
+  Eigen::Vector3d newell = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    const Eigen::Vector3d p = mesh.V.row(corners[i] - 1).transpose();
+    const Eigen::Vector3d q = mesh.V.row(corners[(i + 1) % corners.size()] - 1).transpose();
+    newell += p.cross(q);
+  }
+  double covered = 0;
+  for (int f = 0; f < mesh.num_triangles(); ++f) {
+    const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)).transpose();
+    const Eigen::Vector3d normal = (mesh.V.row(mesh.F(f, 1)).transpose() - a).cross(mesh.V.row(mesh.F(f, 2)).transpose() - a);
+    CHECK(normal.dot(newell) > 0);  // the polygon's winding is kept
+    covered += 0.5 * normal.norm();
+  }
+  CHECK(covered == Approx(0.5 * newell.norm()).epsilon(1e-9));
+}
+
+TEST_CASE("mesh_io: malformed files fail with a message naming the problem", "[io]") {
+  for (const char* file : {"malformed/empty.obj", "malformed/empty.off", "malformed/empty.ply", "malformed/empty.stl"}) {
+    INFO(file);
+    CHECK_THAT(read_error(file), Catch::Contains("file is empty"));
+  }
+  const std::string obj_index = read_error("malformed/bad_index_out_of_range.obj");
+  CHECK_THAT(obj_index, Catch::Contains("face 21 references vertex 840, but the file has 829 vertices (line 852)"));
+  const std::string off_index = read_error("malformed/bad_index_out_of_range.off");
+  CHECK_THAT(off_index, Catch::Contains("face 31 references vertex 829, but the file has 829 vertices"));
+  CHECK_THAT(off_index, Catch::Contains("line 862"));
+  const std::string stl = read_error("malformed/truncated_binary.stl");
+  CHECK_THAT(stl, Catch::Contains("truncated") && Catch::Contains("1654 triangles") &&
+                      Catch::Contains("82784 bytes") && Catch::Contains("50107 bytes") &&
+                      Catch::Contains("1000 complete triangles"));
+  CHECK_THAT(read_error("malformed/truncated_binary.ply"),
+             Catch::Contains("truncated") && Catch::Contains("ends after 900 of 1654 faces"));
+  CHECK_THAT(read_error("malformed/number_formats.obj"),
+             Catch::Contains("'3.1+e2' is not a number (line 11)"));
+  // The path is named, so a user knows which file of several is at fault.
+  CHECK_THAT(read_error("malformed/empty.obj"), Catch::Contains("malformed/empty.obj"));
+}
+
+TEST_CASE("mesh_io: odd but valid files read as their MANIFEST entries say", "[io]") {
+  SECTION("a UTF-16 file is decoded, with a note") {
+    const ReadResult read = aniso::read_mesh(mesh_path("malformed/box_UTF16BE.obj"));
+    CHECK(read.mesh.num_vertices() == 8);
+    CHECK(read.mesh.num_triangles() == 12);
+    CHECK(read.report.polygons_triangulated == 6);
+    REQUIRE_FALSE(read.report.notes.empty());
+    CHECK_THAT(read.report.notes.front(), Catch::Contains("UTF-16"));
+    CHECK(aniso::check_mesh(read.mesh).boundary_loops == 0);
+  }
+  SECTION("lines and points are skipped and counted") {
+    const ReadResult read = aniso::read_mesh(mesh_path("malformed/testmixed.obj"));
+    CHECK(read.mesh.num_vertices() == 8);
+    CHECK(read.mesh.num_triangles() == 12);
+    CHECK(read.report.elements_skipped == 12);
+  }
+  SECTION("header-only files are empty meshes that check_mesh reports") {
+    for (const char* file : {"malformed/empty_mesh_header_only.off", "malformed/empty_mesh_header_only.ply",
+                             "malformed/empty_mesh_zero_triangles.stl"}) {
+      INFO(file);
+      const Mesh mesh = load(file);
+      CHECK(mesh.num_vertices() == 0);
+      CHECK(mesh.num_triangles() == 0);
+      const aniso::MeshReport report = aniso::check_mesh(mesh);
+      CHECK_FALSE(report.solvable());
+      REQUIRE_FALSE(report.problems.empty());
+      CHECK(report.problems.front().kind == aniso::ProblemKind::EmptyMesh);
+    }
+  }
+}
+
+TEST_CASE("mesh_io: MANIFEST counts hold for the closed, open and format meshes", "[io]") {
+  struct Entry {
+    const char* file;
+    int vertices, faces, components, boundary_loops;
+  };
+  const Entry entries[] = {
+      {"closed/spot_triangulated.obj", 2930, 5856, 1, 0},
+      {"closed/bunny_npm.obj", 1839, 3674, 1, 0},
+      {"closed/fandisk.off", 6475, 12946, 1, 0},
+      {"closed/torus.obj", 2304, 4608, 1, 0},
+      {"closed/cat-low-resolution.obj", 7949, 15894, 1, 0},
+      {"closed/spool.off", 649, 1294, 1, 0},
+      {"closed/knot1.off", 3200, 6400, 1, 0},
+      {"closed/human_woman.obj", 6890, 13776, 1, 0},
+      {"closed/armadillo.off", 26002, 52000, 1, 0},
+      {"closed/nefertiti-lowres.obj", 35002, 70000, 1, 0},
+      {"open/demosthenes-low-res.obj", 8394, 16719, 1, 1},
+      {"open/hemisphere.obj", 2051, 4000, 1, 1},
+      {"open/spothead.obj", 4537, 9024, 1, 1},
+      {"open/hand_lowres.obj", 810, 1602, 1, 1},
+      {"open/nefertiti_face.off", 299, 562, 1, 1},
+      {"open/plane.off", 841, 1600, 1, 1},
+      {"open/cube_no_bottom.obj", 25, 40, 1, 1},
+      {"open/stanford-bunny.obj", 35947, 69451, 1, 5},
+      {"open/human_woman_torso_front_patch.obj", 531, 972, 1, 1},
+      {"formats/fandisk_binary.stl", 6475, 12946, 1, 0},
+      {"formats/armadillo_binary.ply", 26002, 52000, 1, 0},
+      {"malformed/multi_component.obj", 1774, 3540, 2, 0},
+      {"malformed/boxNotManifold.obj", 9, 12, 1, 1},
+      {"malformed/openscad-nonmanifold-crash.obj", 717, 1442, 2, 0},
+      {"malformed/degtri_sliding.off", 8, 8, 1, 1},
+  };
+  for (const Entry& entry : entries) {
+    INFO(entry.file);
+    const aniso::MeshReport report = aniso::check_mesh(load(entry.file));
+    CHECK(report.vertices == entry.vertices);
+    CHECK(report.triangles == entry.faces);
+    CHECK(report.components == entry.components);
+    CHECK(report.boundary_loops == entry.boundary_loops);
+    CHECK(report.edge_manifold);
+    CHECK(report.solvable());
+  }
+  SECTION("the 200k-vertex PLY") {
+    const Mesh koala = load("large/koala_loop1_200k.ply");
+    CHECK(koala.num_vertices() == 199990);
+    CHECK(koala.num_triangles() == 399976);
+  }
+}
+
+TEST_CASE("mesh_io: writers round-trip every format", "[io]") {
+  const Mesh mesh = load("formats/spot_lowres.obj");
+  struct Case {
+    MeshFormat format;
+    bool binary;
+  };
+  for (const Case c : {Case{MeshFormat::Obj, false}, Case{MeshFormat::Off, false}, Case{MeshFormat::Ply, true},
+                       Case{MeshFormat::Ply, false}, Case{MeshFormat::Stl, true}, Case{MeshFormat::Stl, false}}) {
+    INFO(aniso::format_name(c.format) << (c.binary ? " binary" : " ascii"));
+    aniso::WriteOptions options;
+    options.binary = c.binary;
+    const std::string bytes = aniso::write_mesh_to_memory(mesh, c.format, options);
+    const Mesh back = aniso::read_mesh_from_memory(bytes.data(), bytes.size(), c.format).mesh;
+    if (c.format == MeshFormat::Stl) {
+      // STL welds: the same triangles, numbered by first use; binary is float32.
+      CHECK(triangles_in_numbering_of(mesh, back, c.binary) == triangles_in_numbering_of(mesh, mesh, false));
+    } else {
+      CHECK(back.V == mesh.V);  // shortest round-trip text, or doubles: exact
+      CHECK(back.F == mesh.F);
+    }
+  }
+  SECTION("through a file, format from the extension") {
+    const std::string path = std::string(ANISO_TEST_TMP) + "/round_trip_spot.ply";
+    aniso::write_mesh(path, mesh);
+    const Mesh back = aniso::read_mesh(path).mesh;
+    CHECK(back.V == mesh.V);
+    CHECK(back.F == mesh.F);
+  }
+  SECTION("a mesh with an index out of range is refused, not written") {
+    Mesh bad = mesh;
+    bad.F(7, 1) = 829;
+    CHECK_THAT(error_message([&] { aniso::write_mesh_to_memory(bad, MeshFormat::Stl); }, aniso::ErrorCode::BadMesh),
+               Catch::Contains("face 7"));
+  }
+}
+
+TEST_CASE("mesh_io: write_obj_with_uv writes one vt per vertex and faces a/a b/b c/c", "[io]") {
+  const Mesh mesh = load("open/nefertiti_face.off");
+  Eigen::MatrixX2d uv(mesh.num_vertices(), 2);
+  uv.col(0) = mesh.V.col(0);
+  uv.col(1) = mesh.V.col(1);
+  const std::string text = aniso::write_obj_with_uv(mesh, uv);
+  std::istringstream lines(text);
+  int vt = 0;
+  for (std::string line; std::getline(lines, line);) vt += line.rfind("vt ", 0) == 0;
+  CHECK(vt == mesh.num_vertices());
+  CHECK_THAT(text, Catch::Contains("f 1/1 "));
+  const Mesh back = read_text(text, MeshFormat::Obj).mesh;
+  CHECK(back.V == mesh.V);
+  CHECK(back.F == mesh.F);
+  CHECK_THAT(error_message([&] { aniso::write_obj_with_uv(mesh, Eigen::MatrixX2d(3, 2)); },
+                           aniso::ErrorCode::BadParameter),
+             Catch::Contains("uv"));
+}
+
+TEST_CASE("mesh_io: format_from_path maps extensions and leaves GLB to the browser app", "[io]") {
+  CHECK(aniso::format_from_path("a/b.OBJ") == MeshFormat::Obj);
+  CHECK(aniso::format_from_path("x.off") == MeshFormat::Off);
+  CHECK(aniso::format_from_path("x.Ply") == MeshFormat::Ply);
+  CHECK(aniso::format_from_path("dir.v2/x.stl") == MeshFormat::Stl);
+  CHECK_THAT(error_message([] { aniso::format_from_path("x.glb"); }, aniso::ErrorCode::BadParameter),
+             Catch::Contains("GLB") && Catch::Contains("browser app only"));
+  CHECK_THAT(error_message([] { aniso::read_mesh(mesh_path("formats/box.glb")); }, aniso::ErrorCode::BadParameter),
+             Catch::Contains("browser app only"));
+  CHECK_THAT(error_message([] { aniso::format_from_path("x.3ds"); }, aniso::ErrorCode::BadParameter),
+             Catch::Contains("'.3ds'"));
+  CHECK_THAT(error_message([] { aniso::format_from_path("dir.v2/mesh"); }, aniso::ErrorCode::BadParameter),
+             Catch::Contains("no file extension"));
+  CHECK_THAT(error_message([] { aniso::read_mesh("/nonexistent/x.obj"); }), Catch::Contains("cannot open"));
+}
+
+TEST_CASE("mesh_io: OBJ accepts every corner form, relative indices, CRLF and no final newline", "[io]") {
+  const std::string text =
+      "# a quad and a triangle\r\n"
+      "o square\r\n"
+      "v 0 0 0\r\nv 1 0 0\r\nv 1 1 0 1.0\r\nv 0 1 0 0.5 0.5 0.5\r\n"
+      "vt 0 0\r\nvn 0 0 1\r\n"
+      "f 1/1/1 2/1/1 3//1 -1/1\r\n"
+      "g tail\r\n"
+      "v 2 0 0\r\n"
+      "f -4 -1 -3";
+  const ReadResult read = read_text(text, MeshFormat::Obj);
+  REQUIRE(read.mesh.num_vertices() == 5);
+  REQUIRE(read.mesh.num_triangles() == 3);
+  CHECK(read.report.polygons_triangulated == 1);
+  CHECK(read.mesh.F.row(2) == Eigen::RowVector3i(1, 4, 2));
+  CHECK(read.mesh.V(3, 1) == 1.0);
+
+  CHECK_THAT(error_message([] { read_text("v 0 0 0\nv 1 0 0\nf 1 2 -3\n", MeshFormat::Obj); }),
+             Catch::Contains("relative index -3") && Catch::Contains("line 3"));
+  CHECK_THAT(error_message([] { read_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", MeshFormat::Obj); }),
+             Catch::Contains("face 1 has 2 corners"));
+  CHECK_THAT(error_message([] { read_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2/ 3\n", MeshFormat::Obj); }),
+             Catch::Contains("malformed corner '2/'"));
+  CHECK_THAT(error_message([] { read_text("v 0 0\n", MeshFormat::Obj); }), Catch::Contains("fewer than 3"));
+  CHECK_THAT(error_message([] { read_text(std::string("v 0 0 0\n\0\1\2", 11), MeshFormat::Obj); }),
+             Catch::Contains("binary data"));
+}
+
+TEST_CASE("mesh_io: numbers are parsed strictly, with the unusual valid spellings accepted", "[io]") {
+  const ReadResult read =
+      read_text("v +1 2. -3.0\nv 1e2 +2.e+1 .5E-1\nv nan inf -inf\nf 1 2 3\n", MeshFormat::Obj);
+  CHECK(read.mesh.V.row(0) == Eigen::RowVector3d(1, 2, -3));
+  CHECK(read.mesh.V.row(1) == Eigen::RowVector3d(100, 20, 0.05));
+  CHECK(std::isnan(read.mesh.V(2, 0)));
+  CHECK(std::isinf(read.mesh.V(2, 2)));
+  for (const char* bad : {"3.1+e2", "3.1-e2", "1,5", "0x10", "--1", "+-1", "1e", "e5", "."}) {
+    INFO(bad);
+    CHECK_THAT(error_message([&] { read_text(std::string("v 0 0 ") + bad + "\n", MeshFormat::Obj); }),
+               Catch::Contains("is not a number (line 1)"));
+  }
+}
+
+TEST_CASE("mesh_io: PLY reads either byte order and any types, skipping other properties and elements", "[io]") {
+  // A big-endian file: double coordinates between a uchar and a float
+  // property, uint list counts with ushort indices, an int property after
+  // the list, and an 'edge' element between vertices and faces.
+  std::string big_endian =
+      "ply\r\nformat binary_big_endian 1.0\r\ncomment made by hand\r\n"
+      "element vertex 4\r\nproperty uchar flag\r\nproperty double x\r\nproperty double y\r\n"
+      "property double z\r\nproperty float confidence\r\n"
+      "element edge 1\r\nproperty list uchar int vertex_pair\r\n"
+      "element face 1\r\nproperty list uint ushort vertex_indices\r\nproperty int material\r\n"
+      "end_header\r\n";
+  auto append_big = [&](auto value) {
+    char bytes[sizeof value];
+    std::memcpy(bytes, &value, sizeof value);
+    std::reverse(bytes, bytes + sizeof value);  // the test machines are little endian
+    big_endian.append(bytes, sizeof value);
+  };
+  const double square[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0.5}, {0, 1, 0}};
+  for (const auto& p : square) {
+    append_big(std::uint8_t{7});
+    for (double coordinate : p) append_big(coordinate);
+    append_big(0.25f);
+  }
+  append_big(std::uint8_t{2});
+  append_big(std::int32_t{0});
+  append_big(std::int32_t{1});
+  append_big(std::uint32_t{4});
+  for (std::uint16_t i : {0, 1, 2, 3}) append_big(i);
+  append_big(std::int32_t{-1});
+  const ReadResult read = read_text(big_endian, MeshFormat::Ply);
+  REQUIRE(read.mesh.num_vertices() == 4);
+  REQUIRE(read.mesh.num_triangles() == 2);
+  CHECK(read.mesh.V.row(2) == Eigen::RowVector3d(1, 1, 0.5));
+  CHECK(read.report.elements_skipped == 1);
+  CHECK(read.report.polygons_triangulated == 1);
+
+  SECTION("ASCII with int coordinates and a 'vertex_index' list") {
+    const std::string ascii =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty int x\nproperty short y\nproperty uchar z\n"
+        "element face 1\nproperty list uchar uint vertex_index\nend_header\n0 0 0\n2 0 0\n0 -3 1\n3 0 1 2\n";
+    const Mesh mesh = read_text(ascii, MeshFormat::Ply).mesh;
+    CHECK(mesh.V.row(2) == Eigen::RowVector3d(0, -3, 1));
+    CHECK(mesh.F.row(0) == Eigen::RowVector3i(0, 1, 2));
+  }
+  SECTION("errors name the element") {
+    const std::string header =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
+    CHECK_THAT(error_message([&] { read_text(header + "3 0 1 3\n", MeshFormat::Ply); }),
+               Catch::Contains("face 1 references vertex 3, but the file has 3 vertices"));
+    CHECK_THAT(error_message([&] { read_text(header + "3 0 1\n", MeshFormat::Ply); }),
+               Catch::Contains("ends after 0 of 1 faces"));
+    CHECK_THAT(error_message([&] { read_text("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
+                                             "property float y\nend_header\n0 0\n", MeshFormat::Ply); }),
+               Catch::Contains("x, y or z"));
+    CHECK_THAT(error_message([] { read_text("solid x\n", MeshFormat::Ply); }), Catch::Contains("'ply'"));
+  }
+}
+
+TEST_CASE("mesh_io: STL is binary when its size says so, even when the header starts with 'solid'", "[io]") {
+  const Mesh mesh = load("formats/spot_lowres.obj");
+  std::string binary = aniso::write_mesh_to_memory(mesh, MeshFormat::Stl);
+  binary.replace(0, 10, "solid spot");
+  const Mesh back = read_text(binary, MeshFormat::Stl).mesh;
+  CHECK(back.num_vertices() == 829);
+  CHECK(back.num_triangles() == 1654);
+
+  const std::string ascii =
+      "solid two\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 0 0\n   vertex 0 1 0\n"
+      "  endloop\n endfacet\n facet normal 0 0 1\n  outer loop\n   vertex 1 0 0\n   vertex 1 1 0\n"
+      "   vertex 0 1 0\n  endloop\n endfacet\nendsolid two\n";
+  const ReadResult read = read_text(ascii, MeshFormat::Stl);
+  CHECK(read.mesh.num_vertices() == 4);
+  CHECK(read.mesh.num_triangles() == 2);
+  CHECK(read.report.vertices_welded == 2);
+  CHECK_THAT(error_message([&] { read_text(ascii.substr(0, 70), MeshFormat::Stl); }),
+             Catch::Contains("truncated"));
+  CHECK_THAT(error_message([] { read_text("solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0 0\n vertex 1 0 0\n"
+                                          " vertex 0 1 0\n vertex 1 1 1\n", MeshFormat::Stl); }),
+             Catch::Contains("more than 3 vertices"));
+  CHECK_THAT(error_message([] { read_text("not an stl", MeshFormat::Stl); }), Catch::Contains("too short"));
+}
+
+TEST_CASE("mesh_io: readers never crash or hang on truncated or corrupted bytes", "[io]") {
+  std::mt19937 random(20261122);
+  const std::pair<const char*, MeshFormat> files[] = {
+      {"formats/spot_lowres.obj", MeshFormat::Obj},        {"formats/spot_lowres.off", MeshFormat::Off},
+      {"formats/spot_lowres_ascii.ply", MeshFormat::Ply},  {"formats/spot_lowres_binary.ply", MeshFormat::Ply},
+      {"formats/spot_lowres_ascii.stl", MeshFormat::Stl},  {"formats/spot_lowres_binary.stl", MeshFormat::Stl},
+      {"formats/concave_polygon.obj", MeshFormat::Obj},
+  };
+  int reads = 0, errors = 0;
+  auto try_read = [&](const std::string& bytes, MeshFormat format) {
+    ++reads;
+    try {
+      const Mesh mesh = aniso::read_mesh_from_memory(bytes.data(), bytes.size(), format).mesh;
+      aniso::check_mesh(mesh);  // whatever was read is a mesh check_mesh can take
+    } catch (const aniso::Error&) {
+      ++errors;
+    }
+  };
+  for (const auto& [file, format] : files) {
+    INFO(file);
+    const std::string original = file_bytes(file);
+    REQUIRE(!original.empty());
+    for (int cut = 0; cut < 40; ++cut) try_read(original.substr(0, random() % original.size()), format);
+    for (int mutation = 0; mutation < 60; ++mutation) {
+      std::string corrupted = original;
+      // Mostly within the first kilobyte, where headers and counts are.
+      const std::size_t span = mutation % 2 ? std::min<std::size_t>(1024, corrupted.size()) : corrupted.size();
+      for (int flips = 1 + mutation % 4; flips > 0; --flips) {
+        corrupted[random() % span] = static_cast<char>(random() % 256);
+      }
+      try_read(corrupted, format);
+    }
+  }
+  for (MeshFormat format : {MeshFormat::Obj, MeshFormat::Off, MeshFormat::Ply, MeshFormat::Stl}) {
+    for (int garbage = 0; garbage < 20; ++garbage) {
+      std::string bytes(random() % 300, '\0');
+      for (char& c : bytes) c = static_cast<char>(random() % 256);
+      try_read(bytes, format);
+    }
+  }
+  CHECK(reads == 7 * 100 + 80);
+  CHECK(errors > 0);
+}
+
+TEST_CASE("mesh_io: armadillo reads well under 100 ms, the 200k-vertex PLY under 300 ms", "[io][timing]") {
+  const double armadillo_off = median_cpu_ms([] { aniso::read_mesh(mesh_path("closed/armadillo.off")); });
+  const double armadillo_ply = median_cpu_ms([] { aniso::read_mesh(mesh_path("formats/armadillo_binary.ply")); });
+  const double koala = median_cpu_ms([] { aniso::read_mesh(mesh_path("large/koala_loop1_200k.ply")); });
+  WARN("CPU ms: armadillo.off " << armadillo_off << ", armadillo_binary.ply " << armadillo_ply
+                                << ", koala_loop1_200k.ply " << koala);
+  CHECK(armadillo_off < 100);
+  CHECK(armadillo_ply < 100);
+  CHECK(koala < 300);
+}

@@ -1,0 +1,18 @@
+// aniso::test::load: the shared meshes, read through the real reader.
+#include <catch2/catch.hpp>
+
+#include "anisoform/mesh_io.h"
+#include "test_support.h"
+
+namespace aniso::test {
+
+Mesh load(const std::string& relative) {
+  try {
+    return read_mesh(mesh_path(relative)).mesh;
+  } catch (const std::exception& error) {
+    FAIL("cannot load " << relative << ": " << error.what());
+  }
+  return {};
+}
+
+}  // namespace aniso::test
