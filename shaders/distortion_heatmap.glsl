@@ -2,7 +2,9 @@
 // The input is log2 of a ratio against the loaded mesh (area ratio, or the
 // largest stretch), so growing and shrinking by the same factor get the same
 // strength: blue = shrunk, white = unchanged, red = grown. uHeatRange is the
-// log2 ratio that saturates the colour (1.0 = twice / half).
+// value that saturates the colour (1.0 = twice / half). A flattening's
+// compression error (|achieved / wanted - 1|, never negative) uses the red
+// half only, with uHeatRange = the error shown at full red.
 uniform float uHeatRange;
 
 vec3 distortionColor(float log2Ratio) {

@@ -351,7 +351,7 @@ TEST_CASE("field: amounts obey the maximum principle on a mesh with non-negative
   CHECK(strictly_inside == flat.mesh.num_vertices() - 2);
 }
 
-TEST_CASE("field: a region limits the field; a part without constraints gets no direction", "[field]") {
+TEST_CASE("field: a region limits the field, and a part without constraints gets no direction", "[field]") {
   const FlatSquare square = plane_off();
   const int n = square.mesh.num_vertices();
   const double width = square.box.max.x() - square.box.min.x();

@@ -141,7 +141,7 @@ TEST_CASE("flatten: a cone piece flattens isometrically with su = sv = 1", "[fla
   CHECK(max_relative_edge_change(out.patch.mesh, out.result.uv) < 1e-6);
 }
 
-TEST_CASE("flatten: su = 0.8 along a cone's generators is reached; the uniform baseline is 3x worse",
+TEST_CASE("flatten: su = 0.8 along a cone's generators is reached, and the uniform baseline is 3x worse",
           "[flatten]") {
   const Mesh cone = cone_piece();
   const auto field = cone_generators(cone);
@@ -326,7 +326,7 @@ TEST_CASE("flatten: one factorization serves every amount, direction and method"
   CHECK(flattener.factorizations() == 1);
 }
 
-TEST_CASE("flatten: a selection flattens only its faces; unreferenced vertices are ignored",
+TEST_CASE("flatten: a selection flattens only its faces, and unreferenced vertices are ignored",
           "[flatten]") {
   const Mesh plane = test::load("open/plane.off");
   std::vector<char> mask(plane.num_vertices(), 0);

@@ -316,7 +316,7 @@ TEST_CASE("fig. 4: shearing the top of a post moves it along the shear, the rest
   }
 }
 
-TEST_CASE("fig. 5: a local rotation bends the post; AnDefGrad keeps it more local than AnARAP", "[figures]") {
+TEST_CASE("fig. 5: a local rotation bends the post, and AnDefGrad keeps it more local than AnARAP", "[figures]") {
   const Mesh mesh = test::load("closed/spool.off");
   const int up = longest_axis(mesh.V);
   const double lo = mesh.V.col(up).minCoeff(), hi = mesh.V.col(up).maxCoeff();

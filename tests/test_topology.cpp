@@ -114,7 +114,7 @@ TEST_CASE("topology: the walk ends at pinched and inconsistently oriented bounda
   }
 }
 
-TEST_CASE("topology: components count faces joined through shared vertices; unreferenced vertices stand alone", "[topology]") {
+TEST_CASE("topology: components count faces joined through shared vertices, and unreferenced vertices stand alone", "[topology]") {
   const Mesh two = load("malformed/multi_component.obj");
   CHECK(aniso::count_face_components(two.F, two.num_vertices()) == 2);
   int count = 0;

@@ -15,8 +15,8 @@
 //
 // Arrays out: positions, triangles and selection are views on the WASM heap
 // (typed_memory_view, no copy). Any later call may grow the memory and detach
-// them, so the JS layer fetches them afresh every time. Everything else is
-// returned as a JS-owned copy.
+// them, so the JS layer fetches them afresh every time. Everything else
+// (flatten results and pattern files included) is returned as a JS-owned copy.
 #include <cstdint>
 #include <new>
 #include <string>
@@ -135,6 +135,54 @@ val edit_result_to_js(const SessionEditResult& r) {
   return out;
 }
 
+val metrics_to_js(const FlattenMetrics& m) {
+  val out = val::object();
+  out.set("triangles", m.triangles);
+  out.set("vertices", m.vertices);
+  out.set("components", m.components);
+  out.set("boundaryLoops", m.boundary_loops);
+  out.set("flipped", m.flipped);
+  out.set("compressionErrorMean", m.compression_error_mean);
+  out.set("compressionErrorMax", m.compression_error_max);
+  out.set("crossErrorMean", m.cross_error_mean);
+  out.set("crossErrorMax", m.cross_error_max);
+  out.set("areaDistortionMean", m.area_distortion_mean);
+  out.set("iterations", m.iterations);
+  out.set("energy", m.energy);
+  out.set("converged", m.converged);
+  out.set("seconds", m.seconds);
+  out.set("filledDirections", m.filled_directions);
+  out.set("initialization", m.initialization);
+  out.set("method", m.method);
+  return out;
+}
+
+val flatten_result_to_js(const SessionFlattenResult& r) {
+  val out = val::object();
+  out.set("uv", copy_to_js(r.uv.data(), r.uv.size()));
+  out.set("triangles", copy_to_js(r.triangles.data(), r.triangles.size()));
+  out.set("compressionError", copy_to_js(r.compression_error.data(), r.compression_error.size()));
+  out.set("crossError", copy_to_js(r.cross_error.data(), r.cross_error.size()));
+  out.set("vertexError", copy_to_js(r.vertex_error.data(), r.vertex_error.size()));
+  val grainlines = val::array();
+  for (const Eigen::Vector2d& g : r.grainlines) {
+    val pair = val::array();
+    pair.call<void>("push", g.x());
+    pair.call<void>("push", g.y());
+    grainlines.call<void>("push", pair);
+  }
+  out.set("grainlines", grainlines);
+  val outlines = val::array();
+  for (const std::vector<std::uint32_t>& loop : r.outlines) {
+    outlines.call<void>("push", copy_to_js(loop.data(), loop.size()));
+  }
+  out.set("outlines", outlines);
+  out.set("outlinePieces", copy_to_js(r.outline_pieces.data(), r.outline_pieces.size()));
+  out.set("metrics", metrics_to_js(r.metrics));
+  out.set("factorizations", r.factorizations);
+  return out;
+}
+
 MeshFormat export_format(const std::string& name) {
   if (name == "obj") return MeshFormat::Obj;
   if (name == "off") return MeshFormat::Off;
@@ -229,6 +277,17 @@ val export_mesh(Session& s, const std::string& format) {
   return guarded([&] {
     const std::string bytes = s.export_mesh(export_format(format));
     return copy_to_js(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+  });
+}
+
+val flatten(Session& s, const val& request) {
+  return guarded([&] { return flatten_result_to_js(s.flatten(flatten_from_js(request))); });
+}
+
+val export_pattern(Session& s, const std::string& format, double mm_per_unit) {
+  return guarded([&] {
+    const std::string text = s.export_pattern(format, mm_per_unit);
+    return copy_to_js(reinterpret_cast<const std::uint8_t*>(text.data()), text.size());
   });
 }
 
@@ -330,6 +389,8 @@ EMSCRIPTEN_BINDINGS(anisoform) {
       .function("directionField", &direction_field)
       .function("distortion", &distortion)
       .function("exportMesh", &export_mesh)
+      .function("flatten", &flatten)
+      .function("exportPattern", &export_pattern)
       .function("factorizations", &factorizations);
   emscripten::function("cappedCylinder", &capped_cylinder_js);
   emscripten::class_<LaplacianFloor>("LaplacianFloor")

@@ -174,6 +174,37 @@ SessionEdit edit_from_js(const val& request) {
   return edit;
 }
 
+SessionFlatten flatten_from_js(const val& request) {
+  SessionFlatten out;
+  out.use_selection = flag(request, "useSelection");
+  out.su = number(request, "su");
+  out.sv = number(request, "sv");
+  const val direction = field(request, "direction");
+  const std::string kind = text(direction, "kind");
+  if (kind == "global") {
+    out.directions.kind = FlattenDirections::Kind::Global;
+    out.directions.global = fixed_vector<3>(direction, "vector");
+  } else if (kind == "constraints") {
+    out.directions.kind = FlattenDirections::Kind::Constraints;
+    const val constraints = field(direction, "constraints");
+    const int count = constraints["length"].as<int>();
+    for (int i = 0; i < count; ++i) out.directions.constraints.push_back(constraint_from_js(constraints[i]));
+  } else {
+    fail_field("kind", "must be global or constraints for flatten, got '" + kind + "'");
+  }
+  const std::string method = text(request, "method");
+  if (method == "anisotropic") {
+    out.method = FlattenMethod::Anisotropic;
+  } else if (method == "uniform-baseline") {
+    out.method = FlattenMethod::UniformBaseline;
+  } else {
+    fail_field("method", "must be anisotropic or uniform-baseline, got '" + method + "'");
+  }
+  out.max_iterations = integer(request, "maxIterations");
+  out.tolerance = number(request, "tolerance");
+  return out;
+}
+
 Region region_from_js(const val& region) {
   Region out;
   const std::string kind = text(region, "kind");

@@ -21,6 +21,11 @@ namespace aniso::wasm {
 // js/anisoform-wasm.mjs (normalizeOp).
 SessionEdit edit_from_js(const emscripten::val& request);
 
+// request: {useSelection, su, sv, direction: {kind: 'global'|'constraints', vector,
+//           constraints}, method: 'anisotropic'|'uniform-baseline', maxIterations,
+//           tolerance}, as built by js/anisoform-wasm.mjs (normalizeFlatten).
+SessionFlatten flatten_from_js(const emscripten::val& request);
+
 // direction: {kind, vector, constraints, screen, dense, smoothing}.
 DirectionSource direction_from_js(const emscripten::val& direction);
 

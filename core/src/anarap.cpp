@@ -2,26 +2,47 @@
 
 #include <cmath>
 
+#include <Eigen/Cholesky>
+
 #include "anisoform/transforms.h"
 
 namespace aniso {
 namespace {
 
-// Rotation maximizing tr(R^T S), by Müller et al.'s iteration from the warm
-// start q. The step uses the first-order quaternion exponential (no trig):
-// near convergence it matches the exact one, far from it it is merely shorter.
+// Rotation maximizing f(R) = tr(R^T S), warm-started from q. Each step
+// perturbs on the right, R = R0 exp([d]x), with M = R0^T S:
+//   f = tr M + g.d - 1/2 d^T H d + O(|d|^3),
+//   g = (M32 - M23, M13 - M31, M21 - M12),  H = tr(M) I - sym(M),
+// and takes Newton's step d = H^-1 g while H is positive definite (near the
+// maximum it is, and the iteration converges quadratically: one or two
+// steps from a warm start). Where H is not (far from the maximum, or S
+// nearly singular) it takes Müller et al.'s (2016) scaled-gradient step
+// d = g / |tr M|, which always ascends. The rotation stays exactly
+// orthonormal (a unit quaternion) whatever S is: no SVD, no reflection.
 void fit_rotation(const Eigen::Matrix3d& S, Eigen::Quaterniond& q) {
   const double scale = S.cwiseAbs().sum();
   if (!(scale > 0.0)) return;
   for (int it = 0; it < 24; ++it) {
-    const Eigen::Matrix3d R = q.toRotationMatrix();
-    Eigen::Vector3d omega = R.col(0).cross(S.col(0)) + R.col(1).cross(S.col(1)) + R.col(2).cross(S.col(2));
-    const double alignment = R.col(0).dot(S.col(0)) + R.col(1).dot(S.col(1)) + R.col(2).dot(S.col(2));
-    omega /= std::abs(alignment) + 1e-12 * scale;
-    if (omega.squaredNorm() < 1e-22) break;
-    const Eigen::Vector3d half = 0.5 * omega;
-    Eigen::Quaterniond step(1.0, half.x(), half.y(), half.z());
-    q = (step * q).normalized();
+    const Eigen::Matrix3d M = q.toRotationMatrix().transpose() * S;
+    const Eigen::Vector3d g(M(2, 1) - M(1, 2), M(0, 2) - M(2, 0), M(1, 0) - M(0, 1));
+    const double trace = M.trace();
+    Eigen::Matrix3d H = -0.5 * (M + M.transpose());
+    H.diagonal().array() += trace;
+    Eigen::Vector3d d;
+    const Eigen::LLT<Eigen::Matrix3d> llt(H);
+    if (llt.info() == Eigen::Success && H.diagonal().minCoeff() > 1e-12 * scale) {
+      d = llt.solve(g);
+    } else {
+      d = g / (std::abs(trace) + 1e-12 * scale);
+    }
+    const double step = d.squaredNorm();
+    if (!std::isfinite(step)) return;
+    // Exact exponential of the half-angle: long first steps stay rotations of the right size.
+    const double angle = std::sqrt(step);
+    const double half_sin = angle > 1e-8 ? std::sin(0.5 * angle) / angle : 0.5;
+    const Eigen::Quaterniond delta(std::cos(0.5 * angle), half_sin * d.x(), half_sin * d.y(), half_sin * d.z());
+    q = (q * delta).normalized();
+    if (step < 1e-16) break;
   }
 }
 

@@ -8,6 +8,7 @@
 #include "anisoform/element_targets.h"
 #include "anisoform/error.h"
 #include "anisoform/frames.h"
+#include "session_flatten_state.h"
 
 namespace aniso {
 namespace {
@@ -67,7 +68,7 @@ int count_selected(const Eigen::VectorXd& weights) {
 
 }  // namespace
 
-Session::Session() = default;
+Session::Session() : flatten_(std::make_unique<SessionFlattenState>()) {}
 Session::~Session() = default;
 
 void Session::require_mesh() const {
@@ -176,6 +177,9 @@ const SessionMeshInfo& Session::adopt_mesh(Mesh mesh, std::vector<std::string> n
 }
 
 void Session::set_current(Positions V) {
+  // Every change of the positions passes here: a flattening of the old ones
+  // can be neither reused nor exported.
+  flatten_->positions_changed();
   current_ = std::move(V);
   positions_f32_ = to_float32(current_);
 }
@@ -299,7 +303,8 @@ std::string Session::export_mesh(MeshFormat format) const {
 }
 
 int Session::factorizations() const {
-  return retired_factorizations_ + (deformer_ ? deformer_->factorizations() : 0);
+  return retired_factorizations_ + (deformer_ ? deformer_->factorizations() : 0) +
+         flatten_->factorizations();
 }
 
 }  // namespace aniso

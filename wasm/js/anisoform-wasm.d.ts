@@ -23,6 +23,13 @@ export const DEFAULTS: Readonly<{
   elements: 'spokes';
 }>;
 
+export const FLATTEN_DEFAULTS: Readonly<{
+  compress: readonly [1, 1];
+  patch: 'mesh';
+  maxIterations: 500;
+  tolerance: 1e-8;
+}>;
+
 export type ProblemKind =
   | 'empty-mesh' | 'non-finite-coordinate' | 'index-out-of-range' | 'repeated-corner'
   | 'zero-area-triangle' | 'duplicate-face' | 'non-manifold-edge' | 'non-manifold-vertex'
@@ -143,6 +150,76 @@ export interface DeformResult {
   ms: number;
 }
 
+export interface FlattenOptions {
+  /** Wanted stretch su along the direction and sv across it (default [1, 1]; 0.8 = 20 % shrinkage). */
+  compress?: number | [number] | [number, number];
+  /**
+   * Where the wanted direction runs (default: global along the longest side of the current
+   * positions' bounding box, as the CLI). Constraint amounts override `compress`.
+   */
+  direction?:
+    | { type: 'global'; vector: Vec3 | Numbers }
+    | { type: 'constraints'; constraints: Array<{ vertex: number; direction: Vec3 | Numbers; su?: number; sv?: number }> };
+  /** 'uniform': the industry baseline (flatten isometrically, then scale each piece). */
+  baseline?: 'uniform';
+  /** 'mesh' (default): every triangle; 'selection': the triangles whose 3 vertices have weight > 0. */
+  patch?: 'mesh' | 'selection';
+  /** ARAP iteration cap (default 500). */
+  maxIterations?: number;
+  /** Relative energy change that ends the iterations (default 1e-8). */
+  tolerance?: number;
+}
+
+export interface FlattenMetrics {
+  /** Patch triangles and vertices. */
+  triangles: number;
+  vertices: number;
+  components: number;
+  boundaryLoops: number;
+  /** Folded-over triangles. */
+  flipped: number;
+  /** |achieved along / su - 1|: area-weighted mean and max over the patch. */
+  compressionErrorMean: number;
+  compressionErrorMax: number;
+  /** |achieved across / sv - 1|. */
+  crossErrorMean: number;
+  crossErrorMax: number;
+  /** Area-weighted mean of |A2d / (A3d su sv) - 1|. */
+  areaDistortionMean: number;
+  iterations: number;
+  energy: number;
+  converged: boolean;
+  /** Wall time of the solve and measuring; the patch's precompute (once per patch and positions) is not included. */
+  seconds: number;
+  /** Triangles whose direction was normal to them, filled from neighbours. */
+  filledDirections: number;
+  initialization: 'lscm' | 'tutte';
+  method: 'anisotropic' | 'uniform-baseline';
+}
+
+/** All arrays are copies (JS-owned). */
+export interface FlattenResult {
+  /** #V*2 pattern coordinates (model units) per input vertex; NaN outside the patch. */
+  uv: Float32Array;
+  /** Patch triangles, 3 input-vertex indices each (#T*3). */
+  triangles: Uint32Array;
+  /** Per patch triangle: |along / su - 1|; NaN for a degenerate triangle. */
+  compressionError: Float32Array;
+  /** Per patch triangle: |across / sv - 1|; NaN for a degenerate triangle. */
+  crossError: Float32Array;
+  /** #V: area-weighted mean compression error of the vertex's patch triangles; NaN outside the patch. */
+  vertexError: Float32Array;
+  /** Per component: the grainline, a unit 2D vector in uv. */
+  grainlines: Vec2[];
+  /** Boundary loops (pattern outlines), input-vertex indices in walking order. */
+  outlines: Uint32Array[];
+  /** Per outline: the piece (component) it bounds, the index of its grainline. */
+  outlinePieces: Int32Array;
+  metrics: FlattenMetrics;
+  /** Factorizations so far in this session (a repeated flatten of the same patch adds none). */
+  factorizations: number;
+}
+
 /** One editing session on the WASM heap. Call delete() when done. */
 export interface Session {
   /** Replaces the mesh; the format comes from `name`'s extension (.obj .off .ply .stl). On failure the session keeps its mesh. */
@@ -174,6 +251,15 @@ export interface Session {
   distortion(kind: 'area' | 'stretch', reference?: 'rest' | 'loaded'): Float32Array;
   /** The current mesh as file bytes (a copy; PLY and STL binary). */
   exportMesh(format: 'obj' | 'off' | 'ply' | 'stl'): Uint8Array;
+  /**
+   * Flattens the current positions into a garment pattern. The patch's factorization is kept while
+   * the positions and the patch are unchanged. A closed patch -> 'bad-mesh'; an empty selection
+   * -> 'bad-parameter'; the session is then unchanged.
+   */
+  flatten(options?: FlattenOptions): FlattenResult;
+  /** The last flatten() as SVG or DXF text bytes in millimetres (a copy); 'bad-parameter' "flatten first" when the positions changed since. */
+  exportPattern(format: 'svg' | 'dxf', options?: { /** millimetres per model unit, default 1 */ mmPerUnit?: number }): Uint8Array;
+  /** Over the whole session: every rest pose and every flattened patch. */
   factorizations(): number;
   delete(): void;
   isDeleted(): boolean;

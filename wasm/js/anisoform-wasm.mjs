@@ -32,6 +32,14 @@ export const DEFAULTS = Object.freeze({
   elements: 'spokes',
 });
 
+// Defaults of a flatten, as the CLI's `anisoform flatten` (ArapFlattenSettings).
+export const FLATTEN_DEFAULTS = Object.freeze({
+  compress: Object.freeze([1, 1]),
+  patch: 'mesh',
+  maxIterations: 500,
+  tolerance: 1e-8,
+});
+
 // ---- errors ---------------------------------------------------------------
 
 function toAnisoformError(error) {
@@ -327,12 +335,82 @@ function normalizeOp(op, defaultDirection) {
 
 // The CLI's default direction: the longest side of the bounding box (x on ties).
 function longestAxisDirection(info) {
-  const extent = info.bbox.max.map((x, k) => x - info.bbox.min[k]);
+  return longestAxisOfBox(info.bbox.min, info.bbox.max);
+}
+
+function longestAxisOfBox(min, max) {
+  const extent = max.map((x, k) => x - min[k]);
   let axis = 0;
   for (let k = 1; k < 3; ++k) if (extent[k] > extent[axis]) axis = k;
   const vector = [0, 0, 0];
   vector[axis] = 1;
   return { kind: 'global', vector };
+}
+
+// The same of the current positions (xyz per vertex): flatten works on what
+// the user sees, which an edit may have moved away from info().bbox.
+function longestAxisOfPositions(xyz) {
+  const min = [Infinity, Infinity, Infinity];
+  const max = [-Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < xyz.length; i += 3) {
+    for (let k = 0; k < 3; ++k) {
+      min[k] = Math.min(min[k], xyz[i + k]);
+      max[k] = Math.max(max[k], xyz[i + k]);
+    }
+  }
+  return longestAxisOfBox(min, max);
+}
+
+const FLATTEN_KEYS = ['compress', 'direction', 'baseline', 'patch', 'maxIterations', 'tolerance'];
+
+// options: {compress?: su | [su] | [su, sv], direction?: {type:'global', vector}
+//           | {type:'constraints', constraints}, baseline?: 'uniform',
+//           patch?: 'mesh'|'selection', maxIterations?, tolerance?}
+// -> the request of js_values.h flatten_from_js.
+function normalizeFlatten(options, defaultDirection) {
+  const name = 'flatten: options';
+  requireObject(options, name);
+  rejectUnknownKeys(options, FLATTEN_KEYS, name);
+  const positive = (value, field) => {
+    finiteNumber(value, field);
+    if (!(value > 0)) throw badParameter(`${field} must be > 0, got ${describe(value)}`);
+    return value;
+  };
+  let [su, sv] = FLATTEN_DEFAULTS.compress;
+  const { compress } = options;
+  if (typeof compress === 'number') {
+    su = positive(compress, `${name}.compress`);
+  } else if (compress !== undefined) {
+    const isPair = Array.isArray(compress) && (compress.length === 1 || compress.length === 2);
+    if (!isPair) throw badParameter(`${name}.compress must be su, [su] or [su, sv], got ${describe(compress)}`);
+    su = positive(compress[0], `${name}.compress[0]`);
+    if (compress.length === 2) sv = positive(compress[1], `${name}.compress[1]`);
+  }
+  let direction;
+  if (options.direction === undefined) {
+    direction = defaultDirection();
+  } else {
+    requireObject(options.direction, `${name}.direction`);
+    oneOf(options.direction.type, ['global', 'constraints'], `${name}.direction.type`);
+    direction = normalizeDirection(options.direction, `${name}.direction`);
+    direction.constraints?.forEach((c, i) => {
+      if (c.hasAmounts) {
+        positive(c.su, `${name}.direction.constraints[${i}].su`);
+        positive(c.sv, `${name}.direction.constraints[${i}].sv`);
+      }
+    });
+  }
+  const method = options.baseline === undefined ? 'anisotropic'
+    : (oneOf(options.baseline, ['uniform'], `${name}.baseline`), 'uniform-baseline');
+  const patch = oneOf(options.patch ?? FLATTEN_DEFAULTS.patch, ['mesh', 'selection'], `${name}.patch`);
+  const maxIterations = options.maxIterations === undefined ? FLATTEN_DEFAULTS.maxIterations
+    : integerAtLeast(options.maxIterations, 1, `${name}.maxIterations`);
+  let tolerance = FLATTEN_DEFAULTS.tolerance;
+  if (options.tolerance !== undefined) {
+    tolerance = finiteNumber(options.tolerance, `${name}.tolerance`);
+    if (tolerance < 0) throw badParameter(`${name}.tolerance must be >= 0, got ${describe(tolerance)}`);
+  }
+  return { useSelection: patch === 'selection', su, sv, direction, method, maxIterations, tolerance };
 }
 
 function toBytes(bytes) {
@@ -462,6 +540,23 @@ export async function createAnisoformWasm(options = {}) {
     exportMesh(format) {
       oneOf(format, ['obj', 'off', 'ply', 'stl'], 'exportMesh: format');
       return guarded(() => this.#session.exportMesh(format));
+    }
+
+    // A garment pattern of the current positions (the whole mesh or the
+    // selected patch); see CONTRACT.md for the options and the result.
+    flatten(options = {}) {
+      const request = normalizeFlatten(options, () => longestAxisOfPositions(this.positions()));
+      return guarded(() => this.#session.flatten(request));
+    }
+
+    // The last flatten() as SVG or DXF text bytes, in millimetres.
+    exportPattern(format, options = {}) {
+      oneOf(format, ['svg', 'dxf'], 'exportPattern: format');
+      requireObject(options, 'exportPattern options');
+      rejectUnknownKeys(options, ['mmPerUnit'], 'exportPattern options');
+      const mmPerUnit = options.mmPerUnit === undefined ? 1 : finiteNumber(options.mmPerUnit, 'exportPattern: options.mmPerUnit');
+      if (!(mmPerUnit > 0)) throw badParameter(`exportPattern: options.mmPerUnit must be > 0, got ${mmPerUnit}`);
+      return guarded(() => this.#session.exportPattern(format, mmPerUnit));
     }
 
     factorizations() {

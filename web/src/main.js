@@ -12,9 +12,13 @@ import { directionPanel } from './ui/direction-panel.js';
 import { displayPanel } from './ui/display-panel.js';
 import { installDropZone } from './ui/drop-zone.js';
 import { filePanel } from './ui/file-panel.js';
+import { flattenPanel } from './ui/flatten-panel.js';
+import { showWhen } from './ui/fields.js';
 import { historyButtons } from './ui/history-panel.js';
 import { installMessages } from './ui/messages.js';
 import { methodPanel } from './ui/method-panel.js';
+import { modeSwitch } from './ui/mode-switch.js';
+import { patternPane } from './ui/pattern-pane.js';
 import { selectionPanel } from './ui/selection-panel.js';
 import { statusBar } from './ui/status-bar.js';
 import { toolPanel } from './ui/tool-panel.js';
@@ -100,15 +104,19 @@ const api = createAnisoformApi({ editor, viewer, picker, ready });
 window.anisoform = api;
 
 const panel = document.getElementById('side-panel');
+const inMode = (mode, element) => showWhen(settings, 'mode', element, (current) => current === mode);
 panel.append(
+  modeSwitch({ settings, app: document.getElementById('app') }),
   filePanel({ api, editor }),
   historyButtons({ api, editor }),
   toolPanel({ settings, tools, reportError }),
   selectionPanel({ api, editor }),
-  directionPanel({ settings }),
-  methodPanel({ settings }),
+  inMode('deform', directionPanel({ settings })),
+  inMode('deform', methodPanel({ settings })),
+  inMode('flatten', flattenPanel({ api, editor, settings, reportError })),
   displayPanel({ settings }),
 );
+patternPane(document.getElementById('pattern-pane'), { editor, settings });
 statusBar(document.getElementById('status-bar'), { editor, viewer });
 installMessages(document.getElementById('viewport'), { editor });
 installDropZone(document.getElementById('drop-overlay'), { api });

@@ -4,10 +4,12 @@
 //   E(v', R) = sum_i sum_{j in N(i)} w_ij || e'_ij - R_i T_i e_ij ||^2
 //
 // Local step: R_i = argmax_{R in SO(3)} tr(R^T S_i), S_i = sum_j w_ij e'_ij (P_i e_ij)^T
-// with P_i the polar positive part of T_i, found by the iterative rotation
-// extraction of Müller et al. 2016 ("A robust method to extract the rotational
-// part of deformations"), warm-started from the previous rotation: no SVD,
-// no sign fix-up, robust for flat (rank-2) fans.
+// with P_i the polar positive part of T_i, found by iterative rotation
+// extraction warm-started from the previous rotation: Newton steps on SO(3)
+// (quadratic convergence, usually one or two steps), with the scaled-gradient
+// step of Müller et al. 2016 ("A robust method to extract the rotational part
+// of deformations") where Newton's Hessian is not definite. No SVD, no sign
+// fix-up, robust for flat (rank-2) fans.
 // Global step: L v' = b, b_i = sum_j (w_ij / 2)(R_i T_i + R_j T_j)(v_i - v_j),
 // solved with the shared prefactored LaplacianSolver.
 // Spokes-and-rims: every triangle's three edges count in each of its corners'

@@ -12,6 +12,10 @@
 // Positions, triangles and weights are also kept as float32 / uint32 copies,
 // laid out as the GPU wants them, so that a host can hand out views of them
 // without a copy (the WASM module's typed_memory_view).
+//
+// flatten() turns the current positions (or the selected part) into a garment
+// pattern (session_flatten.h); its Flattener, which holds the factorization,
+// is kept and reused until the positions or the patch change.
 #pragma once
 
 #include <cstddef>
@@ -26,10 +30,12 @@
 #include "anisoform/mesh_check.h"
 #include "anisoform/mesh_io.h"
 #include "anisoform/selection.h"
+#include "anisoform/session_flatten.h"
 
 namespace aniso {
 
 class TargetContext;
+struct SessionFlattenState;
 
 // What the session knows about its mesh as loaded.
 struct SessionMeshInfo {
@@ -125,7 +131,15 @@ class Session {
   Eigen::VectorXd distortion(DistortionKind kind, DistortionReference reference) const;
   // The current mesh as file bytes.
   std::string export_mesh(MeshFormat format) const;
-  // Factorizations done in this session, over all rest poses.
+  // Flattens the current positions: the whole mesh or the selected patch
+  // (session_flatten.h). Error(BadMesh) for a closed patch, Error(BadParameter)
+  // for an empty selection or bad amounts; the session is then unchanged.
+  SessionFlattenResult flatten(const SessionFlatten& request);
+  // The last flatten() as a pattern file, format "svg" or "dxf", scaled by
+  // millimetres per model unit. Error(BadParameter) "flatten first" when the
+  // mesh or positions changed since (or there was none).
+  std::string export_pattern(const std::string& format, double mm_per_unit) const;
+  // Factorizations done in this session, over all rest poses and flattenings.
   int factorizations() const;
 
  private:
@@ -137,6 +151,7 @@ class Session {
 
   std::unique_ptr<Deformer> deformer_;  // owns the rest pose
   std::unique_ptr<TargetContext> targets_;  // for direction_field(), built lazily per rest pose
+  std::unique_ptr<SessionFlattenState> flatten_;  // always set; dropped per positions change
   int retired_factorizations_ = 0;      // done by the Deformers of earlier rest poses
   Positions loaded_;                    // positions as loaded, for DistortionReference::Loaded
   Positions current_;

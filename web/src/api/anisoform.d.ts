@@ -64,6 +64,60 @@ export interface DeformResult {
   ms: number;
 }
 
+export type FlattenDirection =
+  | { type: 'global'; vector: Vec3 }
+  /** Sparse constraints at vertices, spread as a smooth line field; amounts (if every one has them) spread harmonically. */
+  | { type: 'constraints'; constraints: { vertex: number; direction: Vec3; su?: number; sv?: number }[] };
+
+export interface FlattenOptions {
+  /** Wanted stretch along the direction, and across it (0.8 = 20 % shrinkage). Default [1, 1]. */
+  compress?: number | [number] | [number, number];
+  /** Default: the longest side of the bounding box. */
+  direction?: FlattenDirection;
+  /** The garment-CAD baseline: flatten isometrically, then scale the pattern uniformly. */
+  baseline?: 'uniform';
+  /** 'mesh' (default; must be open) or 'selection' (vertices with weight > 0). */
+  patch?: 'mesh' | 'selection';
+  maxIterations?: number;
+  tolerance?: number;
+}
+
+export interface FlattenMetrics {
+  triangles: number;
+  vertices: number;
+  components: number;
+  boundaryLoops: number;
+  /** Folded-over triangles in the pattern. */
+  flipped: number;
+  /** Area-weighted mean and max over triangles of |achieved along / su - 1|. */
+  compressionErrorMean: number;
+  compressionErrorMax: number;
+  /** The same across the direction, against sv. */
+  crossErrorMean: number;
+  crossErrorMax: number;
+  areaDistortionMean: number;
+  iterations: number;
+  energy: number;
+  converged: boolean;
+  seconds: number;
+  filledDirections: number;
+  initialization: 'lscm' | 'tutte';
+  method: 'anisotropic' | 'uniform-baseline';
+}
+
+export interface FlattenResult {
+  /** u, v per mesh vertex (model units); NaN for vertices outside the patch. */
+  uv: Float32Array;
+  metrics: FlattenMetrics;
+  /** The patch's triangles, as mesh vertex indices. */
+  triangles: Uint32Array;
+  /** Per patch triangle: |achieved along / su - 1| and |achieved across / sv - 1|. */
+  compressionError: Float32Array;
+  crossError: Float32Array;
+  /** Per piece: the grainline (mean wanted direction) in the plane; pieces are turned so it runs along +u. */
+  grainlines: [number, number][];
+}
+
 export interface Hit {
   point: Vec3;
   normal: Vec3;
@@ -89,7 +143,7 @@ export interface ErrorEvent {
   message: string;
 }
 export interface ProgressEvent {
-  stage: 'init' | 'read' | 'parse' | 'factorize' | 'done';
+  stage: 'init' | 'read' | 'parse' | 'factorize' | 'flatten' | 'done';
   message: string;
   /** In [0, 1] when known. */
   fraction?: number;
@@ -115,6 +169,10 @@ export interface Anisoform {
   /** Back to the positions as loaded (undoable); false if nothing changed. */
   reset(): boolean;
   export(format: 'obj' | 'ply' | 'stl' | 'glb'): Promise<ArrayBuffer>;
+  /** A garment pattern of the mesh or its selection; the mesh and history are untouched. */
+  flatten(options?: FlattenOptions): Promise<FlattenResult>;
+  /** The last flattening as a pattern file in millimetres (SVG, or DXF R12); rejects if there is none. */
+  exportPattern(format: 'svg' | 'dxf', options?: { mmPerUnit?: number }): Promise<ArrayBuffer>;
   /** Returns a function that removes the listener. */
   on(event: 'change', callback: (event: ChangeEvent) => void): () => void;
   on(event: 'error', callback: (event: ErrorEvent) => void): () => void;

@@ -1,6 +1,6 @@
 // The public API object (issue 3 §3), exposed as window.anisoform. The side
 // panel drives the editor through this same object wherever it offers the
-// operation (load, select, undo, redo, reset, export); tests and embedders
+// operation (load, select, undo, redo, reset, export, flatten, exportPattern); tests and embedders
 // use nothing else. Declarations: anisoform.d.ts beside this file.
 const EVENTS = ['change', 'error', 'progress'];
 
@@ -42,6 +42,23 @@ export function createAnisoformApi({ editor, viewer, picker, ready }) {
     reset: () => editor.reset(),
 
     export: (format) => editor.export(format),
+
+    // A garment pattern of the mesh (or its selection) with the wanted
+    // compression built in; the mesh and its history are untouched.
+    async flatten(options = {}) {
+      document();
+      const result = await editor.flatten(options);
+      return {
+        uv: result.uv.slice(),
+        metrics: { ...result.metrics },
+        triangles: result.triangles.slice(),
+        compressionError: result.compressionError.slice(),
+        crossError: result.crossError.slice(),
+        grainlines: result.grainlines.map((g) => [...g]),
+      };
+    },
+
+    exportPattern: (format, options) => editor.exportPattern(format, options),
 
     on(event, callback) {
       if (!EVENTS.includes(event)) {

@@ -10,6 +10,8 @@
 //   'busy'       boolean: a committed edit is being solved
 //   'error'      {code, message}
 //   'notice'     {message}: what a load repaired or found (plain words)
+//   'pattern'    the last flattening (FlattenPayload plus its options), or null
+//                when the mesh, its positions or the flattened selection changed
 //   'change'     {reason}: anything committed changed (load, edit, selection, undo)
 import { PositionsCommand } from '../commands/positions-command.js';
 import { History } from '../commands/history.js';
@@ -28,6 +30,8 @@ import { toSolverOp, validateOp } from './solver-op.js';
 export class Editor extends EventEmitter {
   /** @type {MeshDocument|null} */
   document = null;
+  /** The last flattening of the committed mesh (see flatten()), or null. */
+  pattern = null;
   history = new History();
   #client;
   #view = null;
@@ -106,6 +110,7 @@ export class Editor extends EventEmitter {
 
   #adopt({ info, positions, triangles }, name) {
     this.#abandonGesture();
+    this.#dropPattern();
     this.document = new MeshDocument({ name, positions, triangles, info });
     this.#selectionSent = null;
     this.history.clear();
@@ -158,6 +163,7 @@ export class Editor extends EventEmitter {
 
   #applySelection(weights) {
     const document = this.#requireDocument();
+    if (this.pattern?.options.patch === 'selection') this.#dropPattern();
     document.setSelection(weights, countSelected(weights));
     this.emit('selection', { weights, count: document.selectionCount, live: false });
     this.emit('change', { reason: 'selection' });
@@ -301,6 +307,7 @@ export class Editor extends EventEmitter {
   }
 
   #applyPositions(positions) {
+    this.#dropPattern();
     this.document.positions = positions;
     this.emit('positions', { positions, live: false });
     this.emit('change', { reason: 'positions' });
@@ -314,6 +321,66 @@ export class Editor extends EventEmitter {
       this.#reportError(error, 'The solver could not restore the positions');
     });
     this.#applyPositions(positions);
+  }
+
+  // ---- flattening ----------------------------------------------------------
+
+  /**
+   * Flattens the committed mesh (or its selection) into a garment pattern;
+   * options as Session.flatten (wasm/CONTRACT.md). The mesh and its history
+   * are untouched; the result is kept as `pattern` until the mesh changes.
+   */
+  async flatten(options = {}) {
+    const document = this.#requireDocument();
+    if (this.#gesture || this.#committing) {
+      throw this.#reportError(Object.assign(new Error('an edit is in progress'), { code: 'bad-parameter' }), 'Flatten');
+    }
+    if (!options || typeof options !== 'object') {
+      throw this.#reportError(Object.assign(new Error('options must be an object'), { code: 'bad-parameter' }), 'Flatten');
+    }
+    if (options.patch === 'selection') {
+      if (document.selectionCount === 0) {
+        const error = new Error('nothing is selected: paint the patch to flatten, or flatten the whole mesh');
+        throw this.#reportError(Object.assign(error, { code: 'bad-parameter' }), 'Flatten');
+      }
+      this.#syncSelection();
+    }
+    this.#committing++;
+    this.emit('busy', true);
+    try {
+      const result = await this.#client.request(Request.flatten, { options });
+      // Undo, redo and edits wait while this runs (#committing); only a new
+      // mesh can have arrived meanwhile.
+      if (this.document !== document) return result;
+      this.pattern = { ...result, options: { patch: 'mesh', ...options } };
+      this.emit('pattern', this.pattern);
+      return result;
+    } catch (error) {
+      throw this.#reportError(error, 'Flatten failed');
+    } finally {
+      this.#committing--;
+      this.emit('busy', this.#committing > 0);
+      this.emit('progress', { stage: 'done', message: '' });
+    }
+  }
+
+  /** The last flattening as an SVG or DXF file (bytes). */
+  async exportPattern(format, options = {}) {
+    try {
+      if (!this.pattern) {
+        throw Object.assign(new Error('there is no pattern: flatten the mesh first'), { code: 'bad-parameter' });
+      }
+      const { bytes } = await this.#client.request(Request.exportPattern, { format, mmPerUnit: options.mmPerUnit ?? 1 });
+      return bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength);
+    } catch (error) {
+      throw this.#reportError(error, `Pattern export as ${String(format).toUpperCase()} failed`);
+    }
+  }
+
+  #dropPattern() {
+    if (!this.pattern) return;
+    this.pattern = null;
+    this.emit('pattern', null);
   }
 
   // ---- export --------------------------------------------------------------

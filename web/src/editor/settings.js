@@ -5,11 +5,14 @@ import { EventEmitter } from './event-emitter.js';
 
 export function defaultSettings() {
   return {
+    // 'deform' edits the mesh; 'flatten' makes a garment pattern of it (side by side with a 2D view).
+    mode: 'deform',
     tool: 'select',
     // Iterations cap a committed AnARAP/ARAP solve; previews run a few, warm-started.
     solver: { method: 'anarap', iterations: 50 },
     direction: { source: 'screen', axis: 'x', custom: [1, 0, 0], curvature: 'max' },
-    // Arrows placed on the surface: [{vertex, point, direction}] (direction source 'arrows').
+    // Arrows placed on the surface: [{vertex, point, direction, su?, sv?}] (direction source
+    // 'arrows'; su/sv: the arrow's own compression, flatten mode).
     arrows: [],
     // The last drag's screen direction, camera included, for "Apply" with the screen source.
     lastScreen: null,
@@ -20,6 +23,12 @@ export function defaultSettings() {
     rotate: { axis: 'n', degrees: 30 },
     twist: { axis: 'y', custom: [0, 1, 0], degreesPerUnit: 90 },
     display: { selection: true, glyphs: true, heatMap: 'off' },
+    // Flattening: the patch, the wanted stretch along / across the direction
+    // (0.8 = 20 % shrinkage), the garment-CAD baseline, the pattern files' scale.
+    flatten: {
+      patch: 'mesh', source: 'global', axis: 'auto', custom: [1, 0, 0],
+      along: 0.8, across: 1, baseline: false, mmPerUnit: 10, colorBy: 'compression',
+    },
   };
 }
 

@@ -2,7 +2,7 @@
 // the vertex under the pointer; the drag, projected into the surface's
 // tangent plane there, is its direction. The solver propagates the arrows to
 // a smooth line field (direction source 'arrows'). Placing an arrow selects
-// that source.
+// that source (the Flatten panel's in flatten mode).
 import { normalized, worldDragVector } from '../interaction/screen-drag.js';
 
 const DRAG_THRESHOLD_PX = 4;
@@ -47,7 +47,7 @@ export class ArrowTool {
     this.gesture = null;
     if (!gesture?.direction || gesture.direction.every((value) => value === 0)) return;
     this.settings.update('arrows', [...this.settings.values.arrows, this.#arrow(gesture)]);
-    this.settings.update('direction', { source: 'arrows' });
+    this.settings.update(this.settings.values.mode === 'flatten' ? 'flatten' : 'direction', { source: 'arrows' });
   }
 
   cancel() {

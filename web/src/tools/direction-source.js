@@ -1,6 +1,7 @@
 // The direction an edit uses, from the Direction panel's settings
-// (global axis, principal curvature, arrows, or the last screen drag), in the
-// public API's `direction` form.
+// (global axis, principal curvature, arrows, or the last screen drag), and the
+// one a flattening uses, from the Flatten panel's (global axis or arrows with
+// their own compression), in the public API's `direction` form.
 import { axisVector } from '../editor/settings.js';
 
 export class DirectionMissingError extends Error {
@@ -34,4 +35,31 @@ export function directionFromSettings(values) {
     default:
       throw new DirectionMissingError(`unknown direction source '${source}'`);
   }
+}
+
+/**
+ * The Flatten panel's direction: a global axis ('auto' = the longest side of
+ * the mesh's bounding box, as the CLI's default) or the arrows, each with its
+ * own compression where one was set (the others take the panel's amounts,
+ * since the core only spreads amounts when every constraint has them).
+ */
+export function flattenDirectionFromSettings(values, bounds) {
+  const { source, axis, custom, along, across } = values.flatten;
+  if (source === 'arrows') {
+    if (values.arrows.length === 0) {
+      throw new DirectionMissingError('Place at least one arrow on the surface with the Arrows tool first.');
+    }
+    const ownAmounts = values.arrows.some((arrow) => arrow.su !== undefined || arrow.sv !== undefined);
+    return {
+      type: 'constraints',
+      constraints: values.arrows.map(({ vertex, direction, su, sv }) =>
+        ownAmounts ? { vertex, direction, su: su ?? along, sv: sv ?? across } : { vertex, direction }),
+    };
+  }
+  if (axis === 'auto') {
+    const extent = bounds.max.map((value, k) => value - bounds.min[k]);
+    const longest = extent.indexOf(Math.max(...extent));
+    return { type: 'global', vector: [0, 1, 2].map((k) => (k === longest ? 1 : 0)) };
+  }
+  return { type: 'global', vector: [...axisVector(axis, custom)] };
 }

@@ -7,6 +7,9 @@ import { StretchTool } from './stretch-tool.js';
 import { ThickenTool } from './thicken-tool.js';
 import { TwistTool } from './twist-tool.js';
 
+// The tools flatten mode offers: painting the patch and placing directions.
+export const FLATTEN_MODE_TOOLS = ['select', 'arrows'];
+
 export function createTools(context) {
   const tools = [
     new SelectTool(context),

@@ -14,6 +14,7 @@ export function displayPanel({ settings }) {
         ['off', 'Off'],
         ['area', 'Area change'],
         ['stretch', 'Stretch'],
+        ['compression', 'Compression error (flatten)'],
       ],
     }),
   );

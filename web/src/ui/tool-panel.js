@@ -1,5 +1,6 @@
 // Tool buttons and the active tool's options: brush settings for Select,
 // numeric amounts with Apply for the transforms, the arrow list for Arrows.
+import { FLATTEN_MODE_TOOLS } from '../tools/tool-registry.js';
 import { h, section } from './dom.js';
 import { numberField, selectField, showWhen, vectorField } from './fields.js';
 
@@ -19,11 +20,16 @@ export function toolPanel({ settings, tools, reportError }) {
 
   const sync = () => {
     const active = settings.values.tool;
-    buttons.forEach((button, index) => button.setAttribute('aria-pressed', String([...tools.keys()][index] === active)));
+    const flattening = settings.values.mode === 'flatten';
+    buttons.forEach((button, index) => {
+      const id = [...tools.keys()][index];
+      button.setAttribute('aria-pressed', String(id === active));
+      button.hidden = flattening && !FLATTEN_MODE_TOOLS.includes(id);
+    });
     for (const [id, element] of options) element.hidden = id !== active;
     hint.textContent = tools.get(active)?.hint ?? '';
   };
-  settings.on('change', ({ section: name }) => name === 'tool' && sync());
+  settings.on('change', ({ section: name }) => (name === 'tool' || name === 'mode') && sync());
   sync();
   return section('Tool', h('div', { className: 'tool-grid' }, buttons), hint, optionsHost);
 }

@@ -1,8 +1,8 @@
 // Keeps the direction glyphs in step with the editor: the field of the
-// current direction source over the selection (asked from the worker's
+// current direction source (the Flatten panel's in flatten mode) over the selection (asked from the worker's
 // directionField), and the placed arrows. Glyphs hide during a live drag,
 // where they would float off the moving surface, and refresh after it.
-import { directionFromSettings } from '../tools/direction-source.js';
+import { directionFromSettings, flattenDirectionFromSettings } from '../tools/direction-source.js';
 import { DirectionGlyphs } from './direction-glyphs.js';
 
 const REFRESH_DELAY_MS = 60;
@@ -19,7 +19,7 @@ export class DirectionDisplay {
     this.arrowGlyphs = new DirectionGlyphs(viewer, { color: 0xffd54a, maxGlyphs: 512 });
 
     settings.on('change', ({ section }) => {
-      if (['direction', 'arrows', 'lastScreen', 'display'].includes(section)) this.schedule();
+      if (['direction', 'arrows', 'lastScreen', 'display', 'mode', 'flatten'].includes(section)) this.schedule();
     });
     editor.on('mesh', () => this.schedule());
     editor.on('positions', ({ live }) => !live && this.schedule());
@@ -48,7 +48,8 @@ export class DirectionDisplay {
     this.showArrows(values.arrows);
     let direction;
     try {
-      direction = directionFromSettings(values);
+      direction = values.mode === 'flatten' ? flattenDirectionFromSettings(values, document.bounds())
+        : directionFromSettings(values);
     } catch {
       this.fieldGlyphs.hide(); // no direction yet (no drag, no arrows): nothing to draw
       return;

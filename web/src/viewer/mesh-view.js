@@ -65,6 +65,12 @@ export class MeshView {
     this.viewer.requestRender();
   }
 
+  /** The value drawn at full heat-map colour. */
+  setHeatRange(range) {
+    this.material.uniforms.uHeatRange.value = range;
+    this.viewer.requestRender();
+  }
+
   setSelectionVisible(visible) {
     this.material.uniforms.uShowSelection.value = visible;
     this.viewer.requestRender();

@@ -1,7 +1,7 @@
 // The mesh's material: a ShaderMaterial built from the GLSL in ../../../shaders,
 // composed with #include like three.js's own chunks (the overlay and heat-map
 // chunks are registered in ShaderChunk under aniso_* names).
-import { Color, ShaderChunk, ShaderMaterial } from 'three';
+import { Color, DoubleSide, ShaderChunk, ShaderMaterial } from 'three';
 import distortionHeatmap from '../../../shaders/distortion_heatmap.glsl?raw';
 import selectionOverlay from '../../../shaders/selection_overlay.glsl?raw';
 import surfaceFragment from '../../../shaders/surface.frag.glsl?raw';
@@ -12,6 +12,9 @@ ShaderChunk.aniso_distortion_heatmap = distortionHeatmap;
 
 export function createSurfaceMaterial() {
   return new ShaderMaterial({
+    // Open meshes (garment panels, scans) show their inside; the fragment
+    // shader lights back faces as seen, and picking hits both sides.
+    side: DoubleSide,
     vertexShader: surfaceVertex,
     fragmentShader: surfaceFragment,
     uniforms: {

@@ -26,6 +26,10 @@ export const Request = Object.freeze({
   setPositions: 'setPositions',
   /** {direction} -> {field: Float32Array}: per-vertex unit directions for glyphs. */
   directionField: 'directionField',
+  /** {options} -> FlattenPayload: a garment pattern of the current positions. */
+  flatten: 'flatten',
+  /** {format: 'svg'|'dxf', mmPerUnit} -> {bytes: Uint8Array}: the last flattening as a pattern file. */
+  exportPattern: 'exportPattern',
 });
 
 export const PROGRESS = 'progress';
@@ -57,4 +61,17 @@ export const PROGRESS = 'progress';
  * @property {number} factorizations
  * @property {boolean} converged
  * @property {number} directionsFilled
+ */
+
+/**
+ * @typedef {object} FlattenPayload  (wasm/CONTRACT.md, Session.flatten)
+ * @property {Float32Array} uv                 u, v per mesh vertex; NaN outside the patch
+ * @property {Uint32Array} triangles           the patch's triangles (mesh vertex indices)
+ * @property {Float32Array} compressionError   per patch triangle |along/su - 1|
+ * @property {Float32Array} crossError         per patch triangle |across/sv - 1|
+ * @property {Float32Array} vertexError        per mesh vertex; NaN outside the patch
+ * @property {number[][]} grainlines           per piece, a unit 2D vector
+ * @property {Uint32Array[]} outlines          boundary loops (mesh vertex indices)
+ * @property {Int32Array} outlinePieces        per outline, its piece (grainline index)
+ * @property {object} metrics
  */

@@ -20,6 +20,8 @@ export class SessionHost {
       [Request.cancel]: () => this.cancel(),
       [Request.setPositions]: (payload) => this.setPositions(payload),
       [Request.directionField]: (payload) => this.directionField(payload),
+      [Request.flatten]: (payload) => this.flatten(payload),
+      [Request.exportPattern]: (payload) => this.exportPattern(payload),
     };
   }
 
@@ -93,6 +95,32 @@ export class SessionHost {
   directionField({ direction }) {
     const field = this.session.directionField(direction).slice();
     return { result: { field }, transfer: [field.buffer] };
+  }
+
+  flatten({ options }) {
+    this.reportProgress('flatten', 'Flattening the patch');
+    const result = this.session.flatten(options);
+    const arrays = [result.uv, result.triangles, result.compressionError, result.crossError, result.vertexError,
+      result.outlinePieces, ...result.outlines];
+    return {
+      result: {
+        uv: result.uv,
+        triangles: result.triangles,
+        compressionError: result.compressionError,
+        crossError: result.crossError,
+        vertexError: result.vertexError,
+        grainlines: result.grainlines.map((g) => [g[0], g[1]]),
+        outlines: result.outlines,
+        outlinePieces: result.outlinePieces,
+        metrics: { ...result.metrics },
+      },
+      transfer: [...new Set(arrays.map((array) => array.buffer))], // outlines may share one
+    };
+  }
+
+  exportPattern({ format, mmPerUnit }) {
+    const bytes = this.session.exportPattern(format, { mmPerUnit });
+    return { result: { bytes }, transfer: [bytes.buffer] };
   }
 }
 

@@ -1,0 +1,42 @@
+// Garment flattening inside a Session (session.h): the request as a host
+// gives it and the result laid out per INPUT vertex / patch triangle as
+// flat float32 / uint32 arrays, so that a host can colour the 3D mesh and draw
+// the 2D pattern without knowing the patch's own (compact) numbering.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "anisoform/flatten.h"
+
+namespace aniso {
+
+struct SessionFlatten {
+  // true: the patch is the vertices with selection weight > 0 (the faces
+  // whose three corners are selected); false: the whole mesh.
+  bool use_selection = false;
+  double su = 1.0;  // wanted stretch along the direction (unless constraints carry amounts)
+  double sv = 1.0;  // wanted stretch across it
+  FlattenDirections directions;  // constraints use input-mesh vertex indices
+  FlattenMethod method = FlattenMethod::Anisotropic;
+  int max_iterations = ArapFlattenSettings().max_iterations;
+  double tolerance = ArapFlattenSettings().tolerance;
+};
+
+struct SessionFlattenResult {
+  FlattenMetrics metrics;
+  std::vector<float> uv;                  // #V * 2; NaN for vertices outside the patch
+  std::vector<std::uint32_t> triangles;   // #T * 3 input-vertex indices of the patch triangles
+  std::vector<float> compression_error;   // #T: |along / su_t - 1|; NaN for a degenerate triangle
+  std::vector<float> cross_error;         // #T: |across / sv_t - 1|; NaN for a degenerate triangle
+  std::vector<float> vertex_error;        // #V: area-weighted mean compression error of the
+                                          // vertex's patch triangles; NaN outside the patch
+  std::vector<Eigen::Vector2d> grainlines;             // per component, unit, in uv
+  std::vector<std::vector<std::uint32_t>> outlines;    // boundary loops, input-vertex indices
+  std::vector<int> outline_pieces;                     // per outline: its component (grainline index)
+  int factorizations = 0;  // Session::factorizations() after the call
+};
+
+}  // namespace aniso

@@ -1,0 +1,143 @@
+// Flatten mode's side panel: which patch (the whole open mesh or the
+// selection), the wanted direction (global axis or arrows placed on the
+// surface, each arrow with its own compression if wanted), the wanted
+// stretch along / across it, the garment-CAD baseline for comparison, the
+// run button with the measured result, and SVG / DXF export of the pattern.
+import { downloadBytes } from '../io/download.js';
+import { flattenDirectionFromSettings } from '../tools/direction-source.js';
+import { formatPercent } from '../viewer/pattern-view.js';
+import { h, section } from './dom.js';
+import { checkboxField, numberField, selectField, showWhen, vectorField } from './fields.js';
+
+export function flattenPanel({ api, editor, settings, reportError }) {
+  const run = h('button', {
+    className: 'button button-primary',
+    'data-testid': 'flatten-run',
+    onclick: () => flattenFromSettings({ api, editor, settings, reportError }),
+  }, 'Flatten');
+  const metrics = h('div', { className: 'flatten-metrics', 'data-testid': 'flatten-metrics' });
+  editor.on('pattern', (pattern) => showMetrics(metrics, pattern));
+  editor.on('busy', (busy) => (run.disabled = busy));
+  showMetrics(metrics, null);
+
+  const exportButton = (format) => h('button', {
+    className: 'button',
+    'data-testid': `export-${format}`,
+    disabled: true,
+    onclick: async () => {
+      const bytes = await api.exportPattern(format, { mmPerUnit: settings.values.flatten.mmPerUnit }).catch(() => null);
+      if (!bytes) return; // the error banner says why
+      const baseName = (editor.document?.name ?? 'pattern').replace(/\.[^.]+$/, '');
+      downloadBytes(bytes, `${baseName}-pattern.${format}`, format === 'svg' ? 'image/svg+xml' : 'application/dxf');
+    },
+  }, format.toUpperCase());
+  const exports = [exportButton('svg'), exportButton('dxf')];
+  editor.on('pattern', (pattern) => exports.forEach((button) => (button.disabled = !pattern)));
+
+  return section(
+    'Flatten',
+    selectField(settings, 'flatten', {
+      key: 'patch', label: 'Patch', options: [['mesh', 'Whole mesh (open)'], ['selection', 'Selection']],
+    }),
+    selectField(settings, 'flatten', { key: 'source', label: 'Direction', options: [['global', 'Global axis'], ['arrows', 'Arrows']] }),
+    showWhen(settings, 'flatten',
+      selectField(settings, 'flatten', {
+        key: 'axis', label: 'Axis', options: [['auto', 'Longest side'], ['x', 'X'], ['y', 'Y'], ['z', 'Z'], ['custom', 'Custom']],
+      }),
+      (f) => f.source === 'global'),
+    showWhen(settings, 'flatten', vectorField(settings, 'flatten', { key: 'custom', label: 'Vector' }),
+      (f) => f.source === 'global' && f.axis === 'custom'),
+    numberField(settings, 'flatten', { key: 'along', label: 'Stretch along', min: 0.05, max: 5, step: 0.01 }),
+    numberField(settings, 'flatten', { key: 'across', label: 'Stretch across', min: 0.05, max: 5, step: 0.01 }),
+    showWhen(settings, 'flatten', arrowList(settings), (f) => f.source === 'arrows'),
+    checkboxField(settings, 'flatten', { key: 'baseline', label: 'Industry baseline (uniform 2D scale)' }),
+    h('p', { className: 'hint' }, 'Stretch 0.8 = the fabric is cut 20 % shorter along the direction.'),
+    h('div', { className: 'row' }, run),
+    metrics,
+    numberField(settings, 'flatten', { key: 'mmPerUnit', label: 'mm per unit', min: 1e-6, max: 1e6, step: 1 }),
+    h('div', { className: 'row' }, h('span', { className: 'hint' }, 'Export pattern'), ...exports),
+  );
+}
+
+/** Runs the flattening the panel describes; errors reach the banner through the editor. */
+export function flattenFromSettings({ api, editor, settings, reportError }) {
+  const values = settings.values;
+  const document = editor.document;
+  if (!document) return;
+  let direction;
+  try {
+    direction = flattenDirectionFromSettings(values, document.bounds());
+  } catch (error) {
+    reportError(error);
+    return;
+  }
+  const options = {
+    compress: [values.flatten.along, values.flatten.across],
+    direction,
+    patch: values.flatten.patch,
+  };
+  if (values.flatten.baseline) options.baseline = 'uniform';
+  api.flatten(options)
+    .then(() => settings.update('display', { heatMap: 'compression' }))
+    .catch(() => {}); // reported by the editor
+}
+
+// The placed arrows, each with an optional compression of its own (empty =
+// the panel's amounts), and a button to remove it.
+function arrowList(settings) {
+  const list = h('div', { className: 'arrow-list', 'data-testid': 'arrow-list' });
+  const amountInput = (index, key, label) => {
+    const arrow = settings.values.arrows[index];
+    const input = h('input', {
+      type: 'number', min: 0.05, max: 5, step: 0.01, placeholder: 'panel', value: arrow[key] ?? '',
+      'aria-label': `Arrow ${index + 1} ${label}`,
+    });
+    input.addEventListener('change', () => {
+      const arrows = settings.values.arrows.map((a) => ({ ...a }));
+      const value = Number(input.value);
+      if (input.value === '' || !(value > 0)) delete arrows[index][key];
+      else arrows[index][key] = value;
+      settings.update('arrows', arrows);
+    });
+    return input;
+  };
+  const sync = () => {
+    const arrows = settings.values.arrows;
+    list.replaceChildren(
+      arrows.length === 0
+        ? h('p', { className: 'hint' }, 'Drag on the surface with the Arrows tool to place directions.')
+        : h('p', { className: 'hint' }, 'Per arrow: stretch along, across (empty = the amounts below).'),
+      ...arrows.map((arrow, index) => h('div', { className: 'row arrow-row' },
+        h('span', {}, `#${index + 1} v${arrow.vertex}`),
+        amountInput(index, 'su', 'stretch along'),
+        amountInput(index, 'sv', 'stretch across'),
+        h('button', {
+          className: 'dismiss',
+          title: 'Remove this arrow',
+          onclick: () => settings.update('arrows', settings.values.arrows.filter((_, i) => i !== index)),
+        }, '×'),
+      )),
+    );
+  };
+  settings.on('change', ({ section: name }) => name === 'arrows' && sync());
+  sync();
+  return list;
+}
+
+function showMetrics(element, pattern) {
+  if (!pattern) {
+    element.replaceChildren(h('p', { className: 'hint' }, 'No pattern yet.'));
+    return;
+  }
+  const m = pattern.metrics;
+  const row = (label, value, testId) => h('div', { className: 'metric' }, h('span', {}, label), h('b', { 'data-testid': testId }, value));
+  element.replaceChildren(
+    row('Method', m.method === 'uniform-baseline' ? 'Baseline (uniform)' : 'Anisotropic ARAP', 'metric-method'),
+    row('Compression error', `${formatPercent(m.compressionErrorMean)} mean · ${formatPercent(m.compressionErrorMax)} max`, 'metric-compression'),
+    row('Cross error', `${formatPercent(m.crossErrorMean)} mean`, 'metric-cross'),
+    row('Area distortion', formatPercent(m.areaDistortionMean), 'metric-area'),
+    row('Flipped triangles', String(m.flipped), 'metric-flipped'),
+    row('Pieces · outlines', `${m.components} · ${m.boundaryLoops}`, 'metric-pieces'),
+    row('Iterations', `${m.iterations}${m.converged ? '' : ' (not converged)'} · ${(1000 * m.seconds).toFixed(0)} ms`, 'metric-iterations'),
+  );
+}
