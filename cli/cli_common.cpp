@@ -230,6 +230,14 @@ std::string read_text_file(const std::string& path, const std::string& option) {
   return text.str();
 }
 
+void weld_if_soup(Mesh& mesh, std::vector<std::string>& warnings) {
+  if (!is_triangle_soup(mesh)) return;
+  const int before = mesh.num_vertices();
+  mesh = weld_vertices(mesh);
+  warnings.push_back("the input is a triangle soup (no shared vertices): welded by exact position, " +
+                     std::to_string(before) + " -> " + std::to_string(mesh.num_vertices()) + " vertices");
+}
+
 ReadResult read_input_mesh(const std::string& path) {
   format_from_path(path);  // an unknown extension is a bad parameter, checked first
   std::error_code ignored;

@@ -122,6 +122,11 @@ std::string read_text_file(const std::string& path, const std::string& option);
 // the reader's code with the path in front of the message.
 ReadResult read_input_mesh(const std::string& path);
 
+// A soup has no shared vertices, so no edit or flattening could spread over
+// it: welding by exact position is the one repair the commands make on their
+// own, and they say so (a line appended to `warnings`).
+void weld_if_soup(Mesh& mesh, std::vector<std::string>& warnings);
+
 // Checks OUT before any work is done: a known extension and an existing
 // directory, else Error(BadParameter). Returns the format.
 MeshFormat check_output_path(const std::string& path);

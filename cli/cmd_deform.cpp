@@ -160,15 +160,7 @@ std::string one_line(std::string text) {
 PreparedMesh prepare_mesh(const std::string& path) {
   ReadResult read = read_input_mesh(path);
   PreparedMesh prepared{std::move(read.mesh), std::move(read.report), {}};
-  // A soup has no shared vertices, so no edit could spread over it: welding is
-  // the one repair deform makes on its own, and it says so.
-  if (is_triangle_soup(prepared.mesh)) {
-    const int before = prepared.mesh.num_vertices();
-    prepared.mesh = weld_vertices(prepared.mesh);
-    prepared.warnings.push_back("the input is a triangle soup (no shared vertices): welded by exact "
-                                "position, " + std::to_string(before) + " -> " +
-                                std::to_string(prepared.mesh.num_vertices()) + " vertices");
-  }
+  weld_if_soup(prepared.mesh, prepared.warnings);
   const MeshReport report = check_mesh(prepared.mesh);
   if (!report.solvable()) {
     fail(ErrorCode::BadMesh, path + ": cannot deform this mesh: " + one_line(report.blocking_summary()));

@@ -137,20 +137,14 @@ FlattenPlan plan_flatten(const FlattenArguments& args) {
   return plan;
 }
 
-struct PreparedMesh {
+struct FlattenInput {
   Mesh mesh;
   std::vector<std::string> warnings;
 };
 
-PreparedMesh prepare_mesh(const std::string& path) {
-  PreparedMesh prepared{read_input_mesh(path).mesh, {}};
-  if (is_triangle_soup(prepared.mesh)) {
-    const int before = prepared.mesh.num_vertices();
-    prepared.mesh = weld_vertices(prepared.mesh);
-    prepared.warnings.push_back("the input is a triangle soup (no shared vertices): welded by exact "
-                                "position, " + std::to_string(before) + " -> " +
-                                std::to_string(prepared.mesh.num_vertices()) + " vertices");
-  }
+FlattenInput prepare_flatten_input(const std::string& path) {
+  FlattenInput prepared{read_input_mesh(path).mesh, {}};
+  weld_if_soup(prepared.mesh, prepared.warnings);
   const MeshReport report = check_mesh(prepared.mesh);
   if (!report.solvable()) {
     fail(ErrorCode::BadMesh, path + ": cannot flatten this mesh: " + report.blocking_summary());
@@ -192,7 +186,7 @@ std::string pattern_note(const FlattenPlan& plan, const std::string& direction) 
 }
 
 nlohmann::json result_json(const FlattenArguments& args, const FlattenPlan& plan,
-                           const std::string& direction, const PreparedMesh& prepared,
+                           const std::string& direction, const FlattenInput& prepared,
                            const FlattenResult& result) {
   const FlattenMetrics& m = result.metrics;
   nlohmann::json grainlines = nlohmann::json::array();
@@ -228,7 +222,7 @@ nlohmann::json result_json(const FlattenArguments& args, const FlattenPlan& plan
 
 int run_flatten(const FlattenArguments& args) {
   const FlattenPlan plan = plan_flatten(args);
-  const PreparedMesh prepared = prepare_mesh(args.input);
+  const FlattenInput prepared = prepare_flatten_input(args.input);
   const std::vector<char> mask = selection_mask(prepared.mesh, plan.selection);
 
   const DirectionChoice direction =

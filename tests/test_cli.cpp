@@ -1,114 +1,28 @@
 // The `anisoform` command-line contract, tested on the real binary: exit
 // statuses, the JSON on stdout, messages on stderr, the output files, and that
 // no malformed input or bad option ends the process with a signal or a hang.
-#include <fcntl.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <atomic>
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
 #include "anisoform/mesh_io.h"
+#include "cli_runner.h"
 #include "test_support.h"
-
-extern char** environ;
 
 namespace {
 
 using nlohmann::json;
-
-struct CliRun {
-  int exit_status = -1;
-  bool signaled = false;
-  bool timed_out = false;
-  std::string out;
-  std::string err;
-};
-
-// Every file temp_path handed out, removed when the test process ends.
-class TempFiles {
- public:
-  ~TempFiles() {
-    std::error_code ignored;
-    for (const std::string& path : paths_) std::filesystem::remove(path, ignored);
-  }
-  void add(const std::string& path) { paths_.push_back(path); }
-
- private:
-  std::vector<std::string> paths_;
-};
-
-// A path in the test temp dir that no other test process uses (ctest may run
-// the test cases in parallel).
-std::string temp_path(const std::string& name) {
-  static TempFiles files;
-  static std::atomic<int> counter{0};
-  const std::string path = std::string(ANISO_TEST_TMP) + "/cli_" + std::to_string(getpid()) +
-                           "_" + std::to_string(counter++) + "_" + name;
-  files.add(path);
-  return path;
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  std::ostringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
-
-// Runs the CLI with stdout and stderr sent to files (no pipe can fill up and
-// block the child), stdin from /dev/null, and a deadline: a hang is a failure.
-CliRun run_cli(const std::vector<std::string>& args, int timeout_seconds = 60) {
-  const std::string out_path = temp_path("stdout.txt");
-  const std::string err_path = temp_path("stderr.txt");
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-
-  std::vector<std::string> command{ANISO_CLI_PATH};
-  command.insert(command.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (std::string& arg : command) argv.push_back(arg.data());
-  argv.push_back(nullptr);
-
-  CliRun run;
-  pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, ANISO_CLI_PATH, &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  REQUIRE(spawned == 0);
-
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(timeout_seconds);
-  int status = 0;
-  while (waitpid(pid, &status, WNOHANG) == 0) {
-    if (std::chrono::steady_clock::now() > deadline) {
-      kill(pid, SIGKILL);
-      waitpid(pid, &status, 0);
-      run.timed_out = true;
-      break;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  run.signaled = WIFSIGNALED(status);
-  if (WIFEXITED(status)) run.exit_status = WEXITSTATUS(status);
-  run.out = slurp(out_path);
-  run.err = slurp(err_path);
-  return run;
-}
+using aniso::test::CliRun;
+using aniso::test::run_cli;
+using aniso::test::slurp;
+using aniso::test::temp_path;
 
 std::string describe(const std::vector<std::string>& args, const CliRun& run) {
   std::string text = "anisoform";

@@ -19,7 +19,7 @@
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using aniso::test::kPi;
 
 // A torus described by its data: centre, axis (the direction of least
 // variance of the vertices) and the radii of the big circle (R) and the tube (r).

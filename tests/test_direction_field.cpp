@@ -5,7 +5,6 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
-#include <ctime>
 #include <cmath>
 #include <complex>
 #include <limits>
@@ -23,19 +22,9 @@ using aniso::DirectionConstraint;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using aniso::test::kPi;
 
-template <typename Call>
-std::string bad_parameter_message(Call call) {
-  try {
-    call();
-  } catch (const aniso::Error& e) {
-    CHECK(e.code() == aniso::ErrorCode::BadParameter);
-    return e.what();
-  }
-  FAIL("no aniso::Error was thrown");
-  return "";
-}
+using aniso::test::bad_parameter_message;
 
 DirectionConstraint constraint(int vertex, const Eigen::Vector3d& direction) {
   DirectionConstraint c;
@@ -432,37 +421,4 @@ TEST_CASE("field: bad constraints are refused, naming the constraint and vertex"
   mask.resize(10);
   CHECK_THAT(bad_parameter_message([&] { propagate({constraint(3, tangent)}, &mask); }),
              Catch::Contains("region mask has 10 entries, the mesh has 2930 vertices"));
-}
-
-TEST_CASE("field: propagation over the 26k-vertex armadillo is fast", "[field][performance]") {
-  // Processor time, not wall time: the build machines are shared and busy.
-  // Budget: 150 ms for the direction field; the bound checked here is twice
-  // that, so that only a real regression fails, not a noisy neighbour.
-  const aniso::Mesh mesh = aniso::test::load("closed/armadillo.off");
-  const aniso::Positions normals = aniso::vertex_normals(mesh);
-  std::vector<DirectionConstraint> constraints;
-  for (int i : {10, 5000, 12000, 20000, 25000}) {
-    constraints.push_back(constraint(i, some_tangent(normals, i, Eigen::Vector3d::UnitY())));
-  }
-  auto median_ms = [&] {
-    aniso::propagate_direction_field(mesh, constraints);  // warm-up: first touch of fresh memory pages
-    std::vector<double> milliseconds;
-    for (int run = 0; run < 3; ++run) {
-      const std::clock_t start = std::clock();
-      const auto field = aniso::propagate_direction_field(mesh, constraints);
-      milliseconds.push_back(1000.0 * double(std::clock() - start) / CLOCKS_PER_SEC);
-      REQUIRE(field.direction.rows() == mesh.num_vertices());
-    }
-    std::sort(milliseconds.begin(), milliseconds.end());
-    return milliseconds[1];
-  };
-  const double direction_ms = median_ms();
-  for (DirectionConstraint& c : constraints) {
-    c.has_amounts = true;
-    c.su = 0.8;
-  }
-  const double with_amounts_ms = median_ms();
-  WARN("armadillo direction field: median " << direction_ms << " ms, with amounts " << with_amounts_ms
-                                            << " ms (processor time, 3 runs each)");
-  CHECK(direction_ms < 300.0);
 }

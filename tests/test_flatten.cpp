@@ -22,13 +22,14 @@
 
 #include "anisoform/error.h"
 #include "anisoform/flatten.h"
+#include "cli_runner.h"
 #include "test_support.h"
 
 namespace {
 
 using namespace aniso;
 
-constexpr double kPi = 3.14159265358979323846;
+using aniso::test::kPi;
 
 // A (rows+1) x (cols+1) vertex grid over [0,1]^2 mapped by `surface`, two
 // triangles per cell, counter-clockwise in (s, t).
@@ -418,43 +419,11 @@ TEST_CASE("flatten: a direction constraint outside the patch is refused", "[flat
 
 namespace {
 
-struct CliResult {
-  int exit_status = -1;
-  std::string out;
-  std::string err;
-};
+using test::CliRun;
+using test::run_cli;
+using test::slurp;
 
-std::string temp_file(const std::string& name) {
-  return std::string(ANISO_TEST_TMP) + "/flatten_" + std::to_string(getpid()) + "_" + name;
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  std::ostringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
-
-std::string quoted(const std::string& text) { return "'" + text + "'"; }
-
-// Runs the binary through the shell (popen): stdout read here, stderr to a file.
-CliResult run_cli(const std::vector<std::string>& args) {
-  const std::string err_path = temp_file("stderr.txt");
-  std::string command = quoted(ANISO_CLI_PATH);
-  for (const std::string& arg : args) command += " " + quoted(arg);
-  command += " 2>" + quoted(err_path) + " </dev/null";
-  CliResult result;
-  FILE* pipe = popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  char buffer[4096];
-  std::size_t got = 0;
-  while ((got = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) result.out.append(buffer, got);
-  const int status = pclose(pipe);
-  result.exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.err = slurp(err_path);
-  std::remove(err_path.c_str());
-  return result;
-}
+std::string temp_file(const std::string& name) { return test::temp_path("flatten_" + name); }
 
 int count_of(const std::string& text, const std::string& part) {
   int count = 0;
@@ -473,7 +442,7 @@ TEST_CASE("flatten CLI: pattern files, JSON keys and exit statuses", "[flatten][
   SECTION("SVG, DXF and OBJ outputs") {
     for (const std::string extension : {".svg", ".dxf", ".obj"}) {
       const std::string out = temp_file("torso" + extension);
-      const CliResult run = run_cli({"flatten", torso, out, "--compress", "0.8", "--direction",
+      const CliRun run = run_cli({"flatten", torso, out, "--compress", "0.8", "--direction",
                                      "global:1,0,0", "--mm-per-unit", "1000"});
       INFO(extension << ": " << run.err);
       REQUIRE(run.exit_status == 0);
@@ -499,7 +468,7 @@ TEST_CASE("flatten CLI: pattern files, JSON keys and exit statuses", "[flatten][
     const std::string field = temp_file("band.txt");
     std::ofstream(field) << "# two arrows\n10 1 0 0 0.8 1\n200 1 0.3 0 0.8\n";
     const std::string out = temp_file("baseline.svg");
-    const CliResult run =
+    const CliRun run =
         run_cli({"flatten", torso, out, "--direction", "field:" + field, "--baseline", "uniform"});
     INFO(run.err);
     REQUIRE(run.exit_status == 0);
@@ -511,7 +480,7 @@ TEST_CASE("flatten CLI: pattern files, JSON keys and exit statuses", "[flatten][
   }
 
   SECTION("a closed mesh exits 3 with the reason") {
-    const CliResult run =
+    const CliRun run =
         run_cli({"flatten", test::mesh_path("closed/torus.obj"), temp_file("torus.svg")});
     CHECK(run.exit_status == 3);
     CHECK(run.err.find("the patch is closed") != std::string::npos);
@@ -530,7 +499,7 @@ TEST_CASE("flatten CLI: pattern files, JSON keys and exit statuses", "[flatten][
         {"flatten", torso, out, "--select", "box:1,1,1,2,2,2"},
     };
     for (const auto& args : bad) {
-      const CliResult run = run_cli(args);
+      const CliRun run = run_cli(args);
       std::string command;
       for (const std::string& arg : args) command += arg + " ";
       INFO(command << ": " << run.err);

@@ -17,7 +17,7 @@ namespace {
 
 using namespace aniso;
 
-constexpr double kPi = 3.14159265358979323846;
+using aniso::test::kPi;
 
 // A flat annulus (two boundary loops) in the plane z = 0, radii 1 and 2.
 Mesh annulus(double x_offset) {

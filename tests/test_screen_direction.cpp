@@ -13,7 +13,7 @@
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using aniso::test::kPi;
 
 // three.js Matrix4.makePerspective for a PerspectiveCamera (vertical fov in degrees).
 Eigen::Matrix4d perspective(double fov_degrees, double aspect, double near, double far) {
@@ -71,17 +71,7 @@ aniso::ScreenDrag drag_from_center(const Camera& camera, const Eigen::Matrix4d& 
   return drag;
 }
 
-template <typename Call>
-std::string bad_parameter_message(Call call) {
-  try {
-    call();
-  } catch (const aniso::Error& e) {
-    CHECK(e.code() == aniso::ErrorCode::BadParameter);
-    return e.what();
-  }
-  FAIL("no aniso::Error was thrown");
-  return "";
-}
+using aniso::test::bad_parameter_message;
 
 }  // namespace
 

@@ -15,18 +15,7 @@ using aniso::Region;
 
 namespace {
 
-// The message of the aniso::Error(BadParameter) that `call` throws ("" if none).
-template <typename Call>
-std::string bad_parameter_message(Call call) {
-  try {
-    call();
-  } catch (const aniso::Error& e) {
-    CHECK(e.code() == aniso::ErrorCode::BadParameter);
-    return e.what();
-  }
-  FAIL("no aniso::Error was thrown");
-  return "";
-}
+using aniso::test::bad_parameter_message;
 
 std::string write_temp_file(const std::string& name, const std::string& contents) {
   const std::string path = std::string(ANISO_TEST_TMP) + "/" + name;

@@ -1,4 +1,7 @@
-// aniso::test::load: the shared meshes, read through the real reader.
+// aniso::test::load (the shared meshes, read through the real reader) and slurp.
+#include <fstream>
+#include <sstream>
+
 #include <catch2/catch.hpp>
 
 #include "anisoform/mesh_io.h"
@@ -13,6 +16,13 @@ Mesh load(const std::string& relative) {
     FAIL("cannot load " << relative << ": " << error.what());
   }
   return {};
+}
+
+std::string slurp(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  std::ostringstream text;
+  text << file.rdbuf();
+  return text.str();
 }
 
 }  // namespace aniso::test

@@ -1,11 +1,17 @@
-// Shared helpers for the Catch2 suite: paths to the real meshes in ../shared.
+// Shared helpers for the Catch2 suite: paths to the real meshes in ../shared,
+// and what several test files need alike.
 #pragma once
 
 #include <string>
 
+#include <catch2/catch.hpp>
+
+#include "anisoform/error.h"
 #include "anisoform/mesh.h"
 
 namespace aniso::test {
+
+constexpr double kPi = 3.14159265358979323846;
 
 inline std::string mesh_path(const std::string& relative) {
   return std::string(ANISO_MESHES_DIR) + "/" + relative;
@@ -13,5 +19,22 @@ inline std::string mesh_path(const std::string& relative) {
 
 // Reads a mesh from ../shared/meshes; fails the test on error.
 Mesh load(const std::string& relative);
+
+// A whole file as bytes ("" if it cannot be read).
+std::string slurp(const std::string& path);
+
+// The message of the aniso::Error(BadParameter) that `call` throws; fails the
+// test if it throws nothing or another code.
+template <typename Call>
+std::string bad_parameter_message(Call call) {
+  try {
+    call();
+  } catch (const Error& e) {
+    CHECK(e.code() == ErrorCode::BadParameter);
+    return e.what();
+  }
+  FAIL("no aniso::Error was thrown");
+  return "";
+}
 
 }  // namespace aniso::test

@@ -46,7 +46,7 @@ namespace {
 // length is (nearly) parallel to the normal: its projection is noise.
 constexpr double kParallelFraction = 1e-3;
 
-[[noreturn]] void bad_parameter(const std::string& message) {
+[[noreturn]] void bad_field_parameter(const std::string& message) {
   fail(ErrorCode::BadParameter, message);
 }
 
@@ -81,21 +81,21 @@ std::vector<int> constraint_per_vertex(const std::vector<DirectionConstraint>& c
     const std::string name = "direction constraint " + std::to_string(k + 1) + " (vertex " +
                              std::to_string(c.vertex) + ")";
     if (c.vertex < 0 || c.vertex >= n) {
-      bad_parameter(name + ": vertex index out of range, the mesh has " + std::to_string(n) + " vertices");
+      bad_field_parameter(name + ": vertex index out of range, the mesh has " + std::to_string(n) + " vertices");
     }
-    if (!in_region[c.vertex]) bad_parameter(name + ": the vertex is outside the selected region");
+    if (!in_region[c.vertex]) bad_field_parameter(name + ": the vertex is outside the selected region");
     if (constraint_at[c.vertex] >= 0) {
-      bad_parameter(name + ": the vertex is already constrained by constraint " +
+      bad_field_parameter(name + ": the vertex is already constrained by constraint " +
                     std::to_string(constraint_at[c.vertex] + 1));
     }
-    if (!c.direction.allFinite()) bad_parameter(name + ": the direction is not finite");
+    if (!c.direction.allFinite()) bad_field_parameter(name + ": the direction is not finite");
     if (c.has_amounts && !(std::isfinite(c.su) && std::isfinite(c.sv))) {
-      bad_parameter(name + ": the amounts are not finite");
+      bad_field_parameter(name + ": the amounts are not finite");
     }
     const Eigen::Vector3d normal = normals.row(c.vertex).transpose();
     const Eigen::Vector3d tangential = c.direction - c.direction.dot(normal) * normal;
     if (!(tangential.norm() > kParallelFraction * c.direction.norm())) {
-      bad_parameter(name + ": the direction " + vector_text(c.direction) +
+      bad_field_parameter(name + ": the direction " + vector_text(c.direction) +
                     (c.direction.norm() > 0.0 ? " is (nearly) parallel to the surface normal " +
                                                     vector_text(normal) + " there"
                                               : " is zero"));
@@ -232,21 +232,21 @@ std::vector<DirectionConstraint> parse_direction_constraints(const std::string& 
     const std::vector<std::string> tokens = text::tokens_of_line(lines[line]);
     if (tokens.empty()) continue;
     if (tokens.size() < 4 || tokens.size() > 6) {
-      bad_parameter(where + "expected INDEX DX DY DZ [SU [SV]], got " + std::to_string(tokens.size()) +
+      bad_field_parameter(where + "expected INDEX DX DY DZ [SU [SV]], got " + std::to_string(tokens.size()) +
                     " values");
     }
     const auto index = text::parse_index(tokens[0]);
-    if (!index) bad_parameter(where + "INDEX must be a non-negative integer, got '" + tokens[0] + "'");
+    if (!index) bad_field_parameter(where + "INDEX must be a non-negative integer, got '" + tokens[0] + "'");
     double numbers[6] = {0.0, 0.0, 0.0, 0.0, 1.0, 1.0};
     for (std::size_t k = 1; k < tokens.size(); ++k) {
       const auto value = text::parse_finite(tokens[k]);
-      if (!value) bad_parameter(where + kFieldNames[k] + " is not a finite number: '" + tokens[k] + "'");
+      if (!value) bad_field_parameter(where + kFieldNames[k] + " is not a finite number: '" + tokens[k] + "'");
       numbers[k] = *value;
     }
     DirectionConstraint constraint;
     constraint.vertex = *index;
     constraint.direction = Eigen::Vector3d(numbers[1], numbers[2], numbers[3]);
-    if (constraint.direction.squaredNorm() == 0.0) bad_parameter(where + "the direction is zero");
+    if (constraint.direction.squaredNorm() == 0.0) bad_field_parameter(where + "the direction is zero");
     constraint.has_amounts = tokens.size() >= 5;
     constraint.su = numbers[4];
     constraint.sv = numbers[5];
@@ -260,7 +260,7 @@ DirectionField propagate_direction_field(const Mesh& mesh,
                                          const std::vector<char>* region_mask) {
   const int n = mesh.num_vertices();
   if (region_mask && static_cast<int>(region_mask->size()) != n) {
-    bad_parameter("region mask has " + std::to_string(region_mask->size()) + " entries, the mesh has " +
+    bad_field_parameter("region mask has " + std::to_string(region_mask->size()) + " entries, the mesh has " +
                   std::to_string(n) + " vertices");
   }
   std::vector<char> in_region(n, 1);

@@ -11,13 +11,13 @@
 
 namespace aniso {
 
-namespace {
-
-double signed_area(const Triangles& F, const Eigen::MatrixX2d& uv, int t) {
+double uv_signed_area(const Triangles& F, const Eigen::MatrixX2d& uv, int t) {
   const Eigen::Vector2d ab = (uv.row(F(t, 1)) - uv.row(F(t, 0))).transpose();
   const Eigen::Vector2d ac = (uv.row(F(t, 2)) - uv.row(F(t, 0))).transpose();
   return 0.5 * (ab.x() * ac.y() - ab.y() * ac.x());
 }
+
+namespace {
 
 // The map from the triangle's chart to the plane: J = D_uv D_chart^-1.
 Eigen::Matrix2d chart_to_plane(const Triangles& F, const TriangleCharts& charts,
@@ -35,7 +35,7 @@ Eigen::Matrix2d chart_to_plane(const Triangles& F, const TriangleCharts& charts,
 int count_folded(const Triangles& F, const TriangleCharts& charts, const Eigen::MatrixX2d& uv) {
   int folded = 0;
   for (int t = 0; t < F.rows(); ++t) {
-    if (charts.area[t] > 0.0 && !(signed_area(F, uv, t) > 0.0)) ++folded;
+    if (charts.area[t] > 0.0 && !(uv_signed_area(F, uv, t) > 0.0)) ++folded;
   }
   return folded;
 }

@@ -9,16 +9,6 @@
 
 namespace aniso {
 
-namespace {
-
-double signed_area(const Triangles& F, const Eigen::MatrixX2d& uv, int t) {
-  const Eigen::Vector2d a = uv.row(F(t, 0)), b = uv.row(F(t, 1)), c = uv.row(F(t, 2));
-  const Eigen::Vector2d ab = b - a, ac = c - a;
-  return 0.5 * (ab.x() * ac.y() - ab.y() * ac.x());
-}
-
-}  // namespace
-
 std::vector<Eigen::RowVector2d> component_centroids(const FlattenPatch& patch,
                                                     const Eigen::MatrixX2d& uv) {
   std::vector<Eigen::RowVector2d> centroid(patch.num_components, Eigen::RowVector2d::Zero());
@@ -39,7 +29,7 @@ void scale_to_area(const FlattenPatch& patch, const Eigen::VectorXd& triangle_ar
   for (int t = 0; t < F.rows(); ++t) {
     const int c = patch.component[F(t, 0)];
     wanted[c] += triangle_area[t];
-    achieved[c] += signed_area(F, uv, t);
+    achieved[c] += uv_signed_area(F, uv, t);
   }
   const std::vector<Eigen::RowVector2d> centroid = component_centroids(patch, uv);
   std::vector<Eigen::RowVector2d> scale(components);

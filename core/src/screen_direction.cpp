@@ -19,7 +19,7 @@
 namespace aniso {
 namespace {
 
-[[noreturn]] void bad_parameter(const std::string& message) {
+[[noreturn]] void bad_screen_drag(const std::string& message) {
   fail(ErrorCode::BadParameter, "screen drag: " + message);
 }
 
@@ -30,20 +30,20 @@ Eigen::Vector2d pixel_to_ndc(const Eigen::Vector2d& px, const Eigen::Vector4d& v
 
 Eigen::Vector3d unproject(const Eigen::Matrix4d& clip_to_world, const Eigen::Vector2d& ndc, double ndc_depth) {
   const Eigen::Vector4d world = clip_to_world * Eigen::Vector4d(ndc.x(), ndc.y(), ndc_depth, 1.0);
-  if (!(std::abs(world.w()) > 0.0)) bad_parameter("the drag cannot be unprojected (w = 0)");
+  if (!(std::abs(world.w()) > 0.0)) bad_screen_drag("the drag cannot be unprojected (w = 0)");
   return world.head<3>() / world.w();
 }
 
 void check_input(const ScreenDrag& drag) {
-  if (!drag.view.allFinite()) bad_parameter("the view matrix is not finite");
-  if (!drag.projection.allFinite()) bad_parameter("the projection matrix is not finite");
-  if (!drag.viewport.allFinite()) bad_parameter("the viewport is not finite");
-  if (!drag.from_px.allFinite() || !drag.to_px.allFinite()) bad_parameter("the pointer positions are not finite");
-  if (!drag.anchor.allFinite()) bad_parameter("the anchor point is not finite");
+  if (!drag.view.allFinite()) bad_screen_drag("the view matrix is not finite");
+  if (!drag.projection.allFinite()) bad_screen_drag("the projection matrix is not finite");
+  if (!drag.viewport.allFinite()) bad_screen_drag("the viewport is not finite");
+  if (!drag.from_px.allFinite() || !drag.to_px.allFinite()) bad_screen_drag("the pointer positions are not finite");
+  if (!drag.anchor.allFinite()) bad_screen_drag("the anchor point is not finite");
   if (!(drag.viewport[2] > 0.0 && drag.viewport[3] > 0.0)) {
     std::ostringstream message;
     message << "the viewport is empty (" << drag.viewport[2] << " x " << drag.viewport[3] << " pixels)";
-    bad_parameter(message.str());
+    bad_screen_drag(message.str());
   }
 }
 
@@ -52,14 +52,14 @@ void check_input(const ScreenDrag& drag) {
 Eigen::Vector3d screen_drag_to_world(const ScreenDrag& drag) {
   check_input(drag);
   const Eigen::FullPivLU<Eigen::Matrix4d> view_lu(drag.view);
-  if (!view_lu.isInvertible()) bad_parameter("the view matrix is singular");
+  if (!view_lu.isInvertible()) bad_screen_drag("the view matrix is singular");
   const Eigen::FullPivLU<Eigen::Matrix4d> projection_lu(drag.projection);
-  if (!projection_lu.isInvertible()) bad_parameter("the projection matrix is singular");
+  if (!projection_lu.isInvertible()) bad_screen_drag("the projection matrix is singular");
 
   const Eigen::Vector4d anchor_clip = drag.projection * drag.view *
                                       Eigen::Vector4d(drag.anchor.x(), drag.anchor.y(), drag.anchor.z(), 1.0);
   // w_clip is the distance in front of the camera (perspective) or 1 (orthographic).
-  if (!(anchor_clip.w() > 0.0)) bad_parameter("the anchor point is behind the camera");
+  if (!(anchor_clip.w() > 0.0)) bad_screen_drag("the anchor point is behind the camera");
   const double ndc_depth = anchor_clip.z() / anchor_clip.w();
 
   const Eigen::Matrix4d clip_to_world = view_lu.inverse() * projection_lu.inverse();

@@ -18,7 +18,7 @@
 namespace aniso {
 namespace {
 
-[[noreturn]] void bad_parameter(const std::string& message) {
+[[noreturn]] void bad_region_parameter(const std::string& message) {
   fail(ErrorCode::BadParameter, message);
 }
 
@@ -31,7 +31,7 @@ std::vector<double> parse_number_list(const std::string& list, std::size_t expec
   while (std::getline(stream, field, ',')) fields.push_back(field);
   if (!list.empty() && list.back() == ',') fields.emplace_back();
   if (fields.size() != expected) {
-    bad_parameter(kind + " needs " + std::to_string(expected) + " numbers, got " +
+    bad_region_parameter(kind + " needs " + std::to_string(expected) + " numbers, got " +
                   std::to_string(fields.size()) + " ('" + list + "')");
   }
   std::vector<double> numbers;
@@ -39,7 +39,7 @@ std::vector<double> parse_number_list(const std::string& list, std::size_t expec
     const std::vector<std::string> tokens = text::tokens_of_line(fields[k]);
     const auto value = tokens.size() == 1 ? text::parse_finite(tokens[0]) : std::nullopt;
     if (!value) {
-      bad_parameter(kind + " number " + std::to_string(k + 1) + " is not a finite number: '" +
+      bad_region_parameter(kind + " number " + std::to_string(k + 1) + " is not a finite number: '" +
                     fields[k] + "'");
     }
     numbers.push_back(*value);
@@ -49,7 +49,7 @@ std::vector<double> parse_number_list(const std::string& list, std::size_t expec
 
 Region parse_vertex_file(const std::string& path) {
   std::ifstream file(path, std::ios::binary);
-  if (!file) bad_parameter("cannot read selection file '" + path + "'");
+  if (!file) bad_region_parameter("cannot read selection file '" + path + "'");
   std::ostringstream contents;
   contents << file.rdbuf();
 
@@ -63,23 +63,23 @@ Region parse_vertex_file(const std::string& path) {
     const std::vector<std::string> tokens = text::tokens_of_line(lines[line]);
     if (tokens.empty()) continue;
     if (tokens.size() > 2) {
-      bad_parameter(where + "expected a vertex index and an optional weight, got " +
+      bad_region_parameter(where + "expected a vertex index and an optional weight, got " +
                     std::to_string(tokens.size()) + " values");
     }
     const auto index = text::parse_index(tokens[0]);
-    if (!index) bad_parameter(where + "vertex index must be a non-negative integer, got '" + tokens[0] + "'");
+    if (!index) bad_region_parameter(where + "vertex index must be a non-negative integer, got '" + tokens[0] + "'");
     double weight = 1.0;
     if (tokens.size() == 2) {
       const auto value = text::parse_finite(tokens[1]);
-      if (!value) bad_parameter(where + "weight is not a finite number: '" + tokens[1] + "'");
-      if (*value < 0.0 || *value > 1.0) bad_parameter(where + "weight " + tokens[1] + " is outside [0, 1]");
+      if (!value) bad_region_parameter(where + "weight is not a finite number: '" + tokens[1] + "'");
+      if (*value < 0.0 || *value > 1.0) bad_region_parameter(where + "weight " + tokens[1] + " is outside [0, 1]");
       weight = *value;
       any_weight = true;
     }
     region.vertices.push_back(*index);
     weights.push_back(weight);
   }
-  if (region.vertices.empty()) bad_parameter("selection file '" + path + "' lists no vertices");
+  if (region.vertices.empty()) bad_region_parameter("selection file '" + path + "' lists no vertices");
   if (any_weight) region.weights = std::move(weights);
   return region;
 }
@@ -89,7 +89,7 @@ bool starts_with(const std::string& text, const std::string& prefix) {
 }
 
 void check_finite(const Eigen::Vector3d& v, const std::string& what) {
-  if (!v.allFinite()) bad_parameter(what + " has a non-finite coordinate");
+  if (!v.allFinite()) bad_region_parameter(what + " has a non-finite coordinate");
 }
 
 Eigen::VectorXd box_weights(const Mesh& mesh, const Region& region) {
@@ -97,7 +97,7 @@ Eigen::VectorXd box_weights(const Mesh& mesh, const Region& region) {
   check_finite(region.max, "box maximum");
   for (int axis = 0; axis < 3; ++axis) {
     if (region.min[axis] > region.max[axis]) {
-      bad_parameter("box minimum exceeds its maximum along " + std::string(1, "xyz"[axis]) + " (" +
+      bad_region_parameter("box minimum exceeds its maximum along " + std::string(1, "xyz"[axis]) + " (" +
                     std::to_string(region.min[axis]) + " > " + std::to_string(region.max[axis]) + ")");
     }
   }
@@ -112,8 +112,8 @@ Eigen::VectorXd box_weights(const Mesh& mesh, const Region& region) {
 
 Eigen::VectorXd sphere_weights(const Mesh& mesh, const Region& region) {
   check_finite(region.center, "sphere centre");
-  if (!std::isfinite(region.radius)) bad_parameter("sphere radius is not finite");
-  if (region.radius < 0.0) bad_parameter("sphere radius is negative (" + std::to_string(region.radius) + ")");
+  if (!std::isfinite(region.radius)) bad_region_parameter("sphere radius is not finite");
+  if (region.radius < 0.0) bad_region_parameter("sphere radius is negative (" + std::to_string(region.radius) + ")");
   Eigen::VectorXd weights = Eigen::VectorXd::Zero(mesh.num_vertices());
   for (int i = 0; i < mesh.num_vertices(); ++i) {
     if ((mesh.V.row(i).transpose() - region.center).norm() <= region.radius) weights[i] = 1.0;
@@ -125,19 +125,19 @@ Eigen::VectorXd sphere_weights(const Mesh& mesh, const Region& region) {
 // keeps the larger weight, as two overlapping selections would.
 Eigen::VectorXd vertex_list_weights(const Mesh& mesh, const Region& region) {
   if (!region.weights.empty() && region.weights.size() != region.vertices.size()) {
-    bad_parameter("vertex selection has " + std::to_string(region.vertices.size()) + " vertices but " +
+    bad_region_parameter("vertex selection has " + std::to_string(region.vertices.size()) + " vertices but " +
                   std::to_string(region.weights.size()) + " weights");
   }
   Eigen::VectorXd weights = Eigen::VectorXd::Zero(mesh.num_vertices());
   for (std::size_t k = 0; k < region.vertices.size(); ++k) {
     const int vertex = region.vertices[k];
     if (vertex < 0 || vertex >= mesh.num_vertices()) {
-      bad_parameter("selected vertex " + std::to_string(vertex) + " is out of range (the mesh has " +
+      bad_region_parameter("selected vertex " + std::to_string(vertex) + " is out of range (the mesh has " +
                     std::to_string(mesh.num_vertices()) + " vertices)");
     }
     const double weight = region.weights.empty() ? 1.0 : region.weights[k];
     if (!(weight >= 0.0 && weight <= 1.0)) {
-      bad_parameter("selected vertex " + std::to_string(vertex) + " has weight " + std::to_string(weight) +
+      bad_region_parameter("selected vertex " + std::to_string(vertex) + " has weight " + std::to_string(weight) +
                     ", outside [0, 1]");
     }
     weights[vertex] = std::max(weights[vertex], weight);
@@ -161,7 +161,7 @@ struct DistanceResult {
 DistanceResult edge_path_distances(const Mesh& mesh, const Eigen::VectorXd& seed_weights) {
   const int n = mesh.num_vertices();
   if (seed_weights.size() != n) {
-    bad_parameter("seed weights have " + std::to_string(seed_weights.size()) + " entries, the mesh has " +
+    bad_region_parameter("seed weights have " + std::to_string(seed_weights.size()) + " entries, the mesh has " +
                   std::to_string(n) + " vertices");
   }
   DistanceResult result{Eigen::VectorXd::Constant(n, std::numeric_limits<double>::infinity()),
@@ -217,10 +217,10 @@ Region parse_region(const std::string& text) {
   }
   if (starts_with(text, "file:")) {
     const std::string path = text.substr(5);
-    if (path.empty()) bad_parameter("region 'file:' needs a path");
+    if (path.empty()) bad_region_parameter("region 'file:' needs a path");
     return parse_vertex_file(path);
   }
-  bad_parameter("unknown region '" + text +
+  bad_region_parameter("unknown region '" + text +
                 "': expected all, box:X0,Y0,Z0,X1,Y1,Z1, sphere:X,Y,Z,R or file:PATH");
 }
 
@@ -231,7 +231,7 @@ Eigen::VectorXd region_weights(const Mesh& mesh, const Region& region) {
     case Region::Kind::Sphere: return sphere_weights(mesh, region);
     case Region::Kind::Vertices: return vertex_list_weights(mesh, region);
   }
-  bad_parameter("unknown region kind");
+  bad_region_parameter("unknown region kind");
 }
 
 Eigen::VectorXd distance_from(const Mesh& mesh, const Eigen::VectorXd& seed_weights) {
@@ -245,7 +245,7 @@ Eigen::VectorXd distance_from(const Mesh& mesh, const Eigen::VectorXd& seed_weig
 // instead of lifting every listed vertex (at distance 0) to 1.
 Eigen::VectorXd apply_falloff(const Mesh& mesh, const Eigen::VectorXd& weights, double falloff) {
   if (!std::isfinite(falloff) || falloff < 0.0) {
-    bad_parameter("falloff must be a finite distance >= 0, got " + std::to_string(falloff));
+    bad_region_parameter("falloff must be a finite distance >= 0, got " + std::to_string(falloff));
   }
   if (falloff == 0.0) return weights;
   const DistanceResult seeds = edge_path_distances(mesh, weights);

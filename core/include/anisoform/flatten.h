@@ -214,6 +214,9 @@ struct TriangleStretch {
 TriangleStretch measure_stretch(const Triangles& F, const TriangleCharts& charts,
                                 const FlattenTargets& targets, const Eigen::MatrixX2d& uv);
 
+// Signed area of triangle t in uv (positive when counter-clockwise).
+double uv_signed_area(const Triangles& F, const Eigen::MatrixX2d& uv, int t);
+
 // Triangles (non-degenerate in 3D) whose signed area in uv is <= 0.
 int count_folded(const Triangles& F, const TriangleCharts& charts, const Eigen::MatrixX2d& uv);
 
