@@ -65,8 +65,13 @@ export async function armChange(page, reason) {
 
 /** Number of canvas pixels that differ clearly from the background colour. */
 export async function litPixelCount(page) {
-  const png = await page.getByTestId('viewport').screenshot();
-  return page.evaluate(async (base64) => {
+  return differingPixelCount(page, 'viewport', [0x1d, 0x21, 0x27]);
+}
+
+/** {lit, total}: pixels of the element `testId` that differ clearly from `background` (rgb). */
+export async function differingPixelCount(page, testId, background) {
+  const png = await page.getByTestId(testId).screenshot();
+  return page.evaluate(async ({ base64, background }) => {
     const image = new Image();
     image.src = `data:image/png;base64,${base64}`;
     await image.decode();
@@ -74,7 +79,6 @@ export async function litPixelCount(page) {
     const context = canvas.getContext('2d');
     context.drawImage(image, 0, 0);
     const { data } = context.getImageData(0, 0, image.width, image.height);
-    const background = [0x1d, 0x21, 0x27];
     let lit = 0;
     for (let i = 0; i < data.length; i += 4) {
       const difference =
@@ -82,7 +86,7 @@ export async function litPixelCount(page) {
       if (difference > 30) lit++;
     }
     return { lit, total: image.width * image.height };
-  }, png.toString('base64'));
+  }, { base64: png.toString('base64'), background });
 }
 
 /** Centre of the viewport canvas in page coordinates and canvas coordinates. */
