@@ -2,8 +2,6 @@
 
 #include <cmath>
 
-#include <Eigen/Cholesky>
-
 #include "anisoform/transforms.h"
 
 namespace aniso {
@@ -26,14 +24,24 @@ void fit_rotation(const Eigen::Matrix3d& S, Eigen::Quaterniond& q) {
     const Eigen::Matrix3d M = q.toRotationMatrix().transpose() * S;
     const Eigen::Vector3d g(M(2, 1) - M(1, 2), M(0, 2) - M(2, 0), M(1, 0) - M(0, 1));
     const double trace = M.trace();
-    Eigen::Matrix3d H = -0.5 * (M + M.transpose());
-    H.diagonal().array() += trace;
+    // H = tr(M) I - sym(M), symmetric: solved by its adjugate, with
+    // Sylvester's criterion (leading minors positive) for definiteness.
+    const double h00 = trace - M(0, 0), h11 = trace - M(1, 1), h22 = trace - M(2, 2);
+    const double h01 = -0.5 * (M(0, 1) + M(1, 0)), h02 = -0.5 * (M(0, 2) + M(2, 0)),
+                 h12 = -0.5 * (M(1, 2) + M(2, 1));
+    const double c00 = h11 * h22 - h12 * h12, c01 = h02 * h12 - h01 * h22, c02 = h01 * h12 - h02 * h11;
+    const double det = h00 * c00 + h01 * c01 + h02 * c02;
+    const double minor2 = h00 * h11 - h01 * h01;
+    const double tiny = 1e-12 * scale;
     Eigen::Vector3d d;
-    const Eigen::LLT<Eigen::Matrix3d> llt(H);
-    if (llt.info() == Eigen::Success && H.diagonal().minCoeff() > 1e-12 * scale) {
-      d = llt.solve(g);
+    if (h00 > tiny && minor2 > tiny * tiny && det > tiny * tiny * tiny) {
+      const double c11 = h00 * h22 - h02 * h02, c12 = h01 * h02 - h00 * h12;
+      d = Eigen::Vector3d(c00 * g.x() + c01 * g.y() + c02 * g.z(),  //
+                          c01 * g.x() + c11 * g.y() + c12 * g.z(),  //
+                          c02 * g.x() + c12 * g.y() + minor2 * g.z()) /
+          det;
     } else {
-      d = g / (std::abs(trace) + 1e-12 * scale);
+      d = g / (std::abs(trace) + tiny);
     }
     const double step = d.squaredNorm();
     if (!std::isfinite(step)) return;
@@ -43,7 +51,8 @@ void fit_rotation(const Eigen::Matrix3d& S, Eigen::Quaterniond& q) {
     // more than the rest of the step.
     const Eigen::Quaterniond delta(1.0, 0.5 * d.x(), 0.5 * d.y(), 0.5 * d.z());
     q = (q * delta).normalized();
-    if (step < 1e-16) break;
+    // Newton's error after this step is O(|d|^2): below 1e-12 rad.
+    if (step < 1e-12) break;
   }
 }
 
