@@ -169,26 +169,6 @@ PreparedMesh prepare_mesh(const std::string& path) {
   return prepared;
 }
 
-// The point of the selection lowest along the axis: the twist angle grows from
-// 0 there, so the selection's base stays put and its far end turns most.
-Eigen::Vector3d twist_origin(const Mesh& mesh, const Eigen::VectorXd& weights,
-                             const Eigen::Vector3d& axis) {
-  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-  double lowest = 0.0;
-  bool found = false;
-  for (int i = 0; i < mesh.num_vertices(); ++i) {
-    if (!(weights[i] > 0.0)) continue;
-    const Eigen::Vector3d p = mesh.V.row(i).transpose();
-    const double height = p.dot(axis);
-    if (!found || height < lowest) {
-      origin = p;
-      lowest = height;
-      found = true;
-    }
-  }
-  return origin;
-}
-
 DirectionSource direction_source(const DirectionChoice& choice,
                                  const std::vector<DirectionConstraint>& constraints) {
   DirectionSource source;
@@ -219,7 +199,7 @@ BuiltRequest build_request(const DeformPlan& plan, const Mesh& mesh,
   built.direction_description = direction.description;
   request.transform = plan.transform;
   if (request.transform.twist) {
-    request.transform.twist_origin = twist_origin(mesh, request.weights, request.transform.twist_axis);
+    request.transform.twist_origin = default_twist_origin(mesh.V, request.weights, request.transform.twist_axis);
   }
   if (plan.method == Method::Arap && !plan.transform.is_identity()) {
     warnings.push_back("--method arap is isotropic ARAP with handles: the local transform "

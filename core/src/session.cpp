@@ -38,25 +38,6 @@ void require_xyz_count(std::size_t count, const std::string& what) {
   }
 }
 
-// The selected vertex lowest along `axis`: the twist angle grows from 0 there,
-// so the selection's base stays put and its far end turns most (as the CLI).
-Eigen::Vector3d lowest_selected_point(const Positions& V, const Eigen::VectorXd& weights,
-                                      const Eigen::Vector3d& axis) {
-  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-  double lowest = 0.0;
-  bool found = false;
-  for (Eigen::Index i = 0; i < V.rows(); ++i) {
-    if (!(weights[i] > 0.0)) continue;
-    const Eigen::Vector3d p = V.row(i).transpose();
-    if (!found || p.dot(axis) < lowest) {
-      origin = p;
-      lowest = p.dot(axis);
-      found = true;
-    }
-  }
-  return origin;
-}
-
 int count_selected(const Eigen::VectorXd& weights) {
   return static_cast<int>((weights.array() > 0.0).count());
 }
@@ -238,7 +219,7 @@ SessionEditResult Session::deform(const SessionEdit& edit) {
   request.weights = weights_;
   if (request.transform.twist && !edit.twist_origin_given) {
     request.transform.twist_origin =
-        lowest_selected_point(deformer_->rest().V, weights_, request.transform.twist_axis);
+        default_twist_origin(deformer_->rest().V, weights_, request.transform.twist_axis);
   }
   if (edit.preview) request.max_iterations = std::min(request.max_iterations, kPreviewIterations);
   DeformResult result = deformer_->deform(request);

@@ -109,4 +109,21 @@ Eigen::Matrix3d polar_positive_part(const Eigen::Matrix3d& T) {
   return eig.eigenvectors() * root.asDiagonal() * eig.eigenvectors().transpose();
 }
 
+Eigen::Vector3d default_twist_origin(const Positions& V, const Eigen::VectorXd& weights,
+                                     const Eigen::Vector3d& axis) {
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  double lowest = 0.0;
+  bool found = false;
+  for (Eigen::Index i = 0; i < V.rows(); ++i) {
+    if (!(weights[i] > 0.0)) continue;
+    const Eigen::Vector3d p = V.row(i).transpose();
+    if (!found || p.dot(axis) < lowest) {
+      origin = p;
+      lowest = p.dot(axis);
+      found = true;
+    }
+  }
+  return origin;
+}
+
 }  // namespace aniso

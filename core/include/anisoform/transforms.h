@@ -19,6 +19,8 @@
 
 #include <Eigen/Core>
 
+#include "anisoform/mesh.h"
+
 namespace aniso {
 
 enum class RotateAxis { None, Normal, U, V };
@@ -60,6 +62,12 @@ Eigen::Matrix3d element_transform(const TransformSpec& spec, const Eigen::Vector
 
 // The twist's rotation Rot(a, s k (p - o).a) and the Jacobian of the twist map
 // at p (identity without a twist).
+// Where a twist starts when the user gives no origin: the selected vertex
+// (weight > 0) lowest along `axis`, so the selection's base stays put and its
+// far end turns most. The CLI and the session both use it.
+Eigen::Vector3d default_twist_origin(const Positions& V, const Eigen::VectorXd& weights,
+                                     const Eigen::Vector3d& axis);
+
 Eigen::Matrix3d twist_rotation(const TransformSpec& spec, double weight, const Eigen::Vector3d& position);
 Eigen::Matrix3d twist_jacobian(const TransformSpec& spec, double weight, const Eigen::Vector3d& position);
 
