@@ -1,7 +1,8 @@
 // The public API object (issue 3 §3), exposed as window.anisoform. The side
 // panel drives the editor through this same object wherever it offers the
-// operation (load, select, undo, redo, reset, export, flatten, exportPattern); tests and embedders
-// use nothing else. Declarations: anisoform.d.ts beside this file.
+// operation (load, select, undo, redo, reset, export, flatten, exportPattern);
+// tests and embedders use nothing else. Declarations: anisoform.d.ts beside
+// this file.
 const EVENTS = ['change', 'error', 'progress'];
 
 export function createAnisoformApi({ editor, viewer, picker, ready }) {

@@ -9,7 +9,7 @@ const MODES = [
   ['flatten', 'Flatten', 'Flatten an open patch into a garment pattern with directed shrinkage'],
 ];
 
-export function modeSwitch({ settings, app, onFlattenMode }) {
+export function modeSwitch({ settings, app }) {
   const tabs = MODES.map(([mode, label, title]) => h('button', {
     className: 'mode-tab',
     role: 'tab',
@@ -21,10 +21,7 @@ export function modeSwitch({ settings, app, onFlattenMode }) {
     const mode = settings.values.mode;
     tabs.forEach((tab, index) => tab.setAttribute('aria-selected', String(MODES[index][0] === mode)));
     app.classList.toggle('mode-flatten', mode === 'flatten');
-    if (mode === 'flatten') {
-      if (!FLATTEN_MODE_TOOLS.includes(settings.values.tool)) settings.update('tool', 'select');
-      onFlattenMode?.();
-    }
+    if (mode === 'flatten' && !FLATTEN_MODE_TOOLS.includes(settings.values.tool)) settings.update('tool', 'select');
   };
   settings.on('change', ({ section }) => section === 'mode' && sync());
   sync();
