@@ -1,5 +1,5 @@
-// Playwright end-to-end tests of the built site (web/dist served by
-// `vite preview`), in Debian's Chromium: no browser is downloaded.
+// Playwright end-to-end tests of the built site (web/dist served by Python's
+// http.server), in Debian's Chromium: no browser is downloaded.
 // Run: npm run build --prefix web && npx --prefix web playwright test -c e2e/playwright.config.mjs
 import { defineConfig } from '../web/node_modules/@playwright/test/index.mjs';
 
@@ -31,8 +31,10 @@ export default defineConfig({
     trace: 'off',
     screenshot: 'only-on-failure',
   },
+  // The built site from a plain static file server (no special headers): what
+  // `scripts/run.sh` serves, and what an embedder's server does.
   webServer: {
-    command: `node_modules/.bin/vite preview --host 127.0.0.1 --port ${port} --strictPort`,
+    command: `python3 -m http.server ${port} --bind 127.0.0.1 --directory dist`,
     cwd: '../web',
     url: `http://127.0.0.1:${port}/`,
     reuseExistingServer: !process.env.CI,
