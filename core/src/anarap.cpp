@@ -56,11 +56,15 @@ void fit_rotation(const Eigen::Matrix3d& S, Eigen::Quaterniond& q) {
   }
 }
 
-// Energy of one cell: sum w|e'|^2 - 2 tr(B^T A) + tr(B^T B C).
+// Energy of one cell: sum w|e'|^2 - 2 tr(B^T A) + tr(B^T B C), the last
+// term precomputed (target_energy_).
 inline double cell_energy(double edge_energy, const Eigen::Matrix3d& A, const Eigen::Matrix3d& B,
-                          const Eigen::Matrix3d& C) {
-  return edge_energy - 2.0 * (B.array() * A.array()).sum() +
-         ((B.transpose() * B).array() * C.array()).sum();
+                          double target_energy) {
+  return edge_energy - 2.0 * (B.array() * A.array()).sum() + target_energy;
+}
+
+double target_term(const Eigen::Matrix3d& T, const Eigen::Matrix3d& C) {
+  return ((T.transpose() * T).array() * C.array()).sum();
 }
 
 }  // namespace
@@ -108,6 +112,8 @@ ArapIterations::ArapIterations(const Mesh& rest, const CotanWeights& weights,
   T_.assign(n_, Eigen::Matrix3d::Identity());
   P_ = T_;
   B_ = T_;
+  target_energy_.resize(n_);
+  for (int i = 0; i < n_; ++i) target_energy_[i] = rest_covariance_[i].trace();
   rotation_.assign(n_, Eigen::Quaterniond::Identity());
 }
 
@@ -116,6 +122,7 @@ void ArapIterations::set_targets(const std::vector<Eigen::Matrix3d>& T) {
   symmetric_targets_ = true;
   for (int i = 0; i < n_; ++i) {
     P_[i] = polar_positive_part(T_[i]);
+    target_energy_[i] = target_term(T_[i], rest_covariance_[i]);
     if ((P_[i] - T_[i]).cwiseAbs().maxCoeff() > 1e-12 * (1.0 + T_[i].cwiseAbs().maxCoeff())) {
       symmetric_targets_ = false;
     }
@@ -180,7 +187,7 @@ double ArapIterations::local_step(const Positions& V) {
     // S = sum w e' (P e)^T = A P^T; P is symmetric.
     fit_rotation(A[i] * P_[i], rotation_[i]);
     B_[i].noalias() = rotation_[i].toRotationMatrix() * T_[i];
-    energy += cell_energy(edge_energy[i], A[i], B_[i], rest_covariance_[i]);
+    energy += cell_energy(edge_energy[i], A[i], B_[i], target_energy_[i]);
   }
   // Negative cotangent weights (obtuse triangles) can make this sum slightly
   // negative near the optimum: it is reported as it is.

@@ -65,6 +65,9 @@ class ArapIterations {
   Positions weighted_edge_sum_;         // g_i = sum_j w_ij e_ij
   std::vector<Eigen::Matrix3d> rest_covariance_;  // C_i = sum w e e^T (for the energy)
   std::vector<Eigen::Matrix3d> T_, P_, B_;        // targets, their polar parts, R_i T_i
+  // tr(B_i^T B_i C_i) = tr(T_i^T T_i C_i): R_i is orthonormal, so this part of
+  // the energy depends on the targets only and is computed once per target set.
+  Eigen::VectorXd target_energy_;
   std::vector<Eigen::Quaterniond> rotation_;
   // Scratch of the local step, kept to avoid reallocating every iteration.
   std::vector<Eigen::Matrix3d> covariance_;
