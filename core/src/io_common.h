@@ -107,6 +107,12 @@ inline void append_number(std::string& out, long long value) {
   out.append(buffer, result.ptr);
 }
 
+// Text rows of the ASCII writers: one "PREFIXx y z" line per vertex, and one
+// "PREFIX a b c" line per triangle with indices + index_base (OBJ: prefix
+// "v " / "f", base 1; OFF and ASCII PLY: prefix "" / "3", base 0).
+void append_position_rows(std::string& out, const Positions& V, const char* prefix);
+void append_triangle_rows(std::string& out, const Triangles& F, const char* prefix, long long index_base);
+
 // The text of a file as UTF-8: skips a UTF-8 byte order mark, and decodes
 // UTF-16 (little or big endian, recognised by its byte order mark) into
 // `storage`, adding a note to `report`. Throws for a malformed UTF-16 body.

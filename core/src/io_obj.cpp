@@ -177,18 +177,6 @@ class ObjParser {
   std::string first_invalid_message_;
 };
 
-void append_vertices(std::string& out, const Positions& V) {
-  for (Eigen::Index i = 0; i < V.rows(); ++i) {
-    out += "v ";
-    append_number(out, V(i, 0));
-    out += ' ';
-    append_number(out, V(i, 1));
-    out += ' ';
-    append_number(out, V(i, 2));
-    out += '\n';
-  }
-}
-
 }  // namespace
 
 ReadResult read_obj(const char* data, std::size_t size) {
@@ -202,15 +190,8 @@ ReadResult read_obj(const char* data, std::size_t size) {
 std::string write_obj(const Mesh& mesh) {
   std::string out = "# written by anisoform\n";
   out.reserve(static_cast<std::size_t>(mesh.V.rows()) * 40 + static_cast<std::size_t>(mesh.F.rows()) * 24);
-  append_vertices(out, mesh.V);
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-    out += 'f';
-    for (int k = 0; k < 3; ++k) {
-      out += ' ';
-      append_number(out, static_cast<long long>(mesh.F(f, k)) + 1);
-    }
-    out += '\n';
-  }
+  append_position_rows(out, mesh.V, "v ");
+  append_triangle_rows(out, mesh.F, "f", 1);
   return out;
 }
 
@@ -224,7 +205,7 @@ std::string write_obj_with_uv(const Mesh& mesh, const Eigen::MatrixX2d& uv) {
   }
   io::require_valid_indices(mesh);
   std::string out = "# written by anisoform: positions and their flattened uv\n";
-  io::append_vertices(out, mesh.V);
+  io::append_position_rows(out, mesh.V, "v ");
   for (Eigen::Index i = 0; i < uv.rows(); ++i) {
     out += "vt ";
     io::append_number(out, uv(i, 0));

@@ -403,22 +403,8 @@ std::string write_ply(const Mesh& mesh, bool binary) {
     return out;
   }
   append_header(out, mesh, "ascii", "double");
-  for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
-    append_number(out, mesh.V(i, 0));
-    out += ' ';
-    append_number(out, mesh.V(i, 1));
-    out += ' ';
-    append_number(out, mesh.V(i, 2));
-    out += '\n';
-  }
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-    out += '3';
-    for (int k = 0; k < 3; ++k) {
-      out += ' ';
-      append_number(out, static_cast<long long>(mesh.F(f, k)));
-    }
-    out += '\n';
-  }
+  append_position_rows(out, mesh.V, "");
+  append_triangle_rows(out, mesh.F, "3", 0);
   return out;
 }
 

@@ -214,6 +214,29 @@ void append_number(std::string& out, double value) {
 #endif
 }
 
+void append_position_rows(std::string& out, const Positions& V, const char* prefix) {
+  for (Eigen::Index i = 0; i < V.rows(); ++i) {
+    out += prefix;
+    append_number(out, V(i, 0));
+    out += ' ';
+    append_number(out, V(i, 1));
+    out += ' ';
+    append_number(out, V(i, 2));
+    out += '\n';
+  }
+}
+
+void append_triangle_rows(std::string& out, const Triangles& F, const char* prefix, long long index_base) {
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    out += prefix;
+    for (int k = 0; k < 3; ++k) {
+      out += ' ';
+      append_number(out, static_cast<long long>(F(f, k)) + index_base);
+    }
+    out += '\n';
+  }
+}
+
 namespace {
 
 void append_utf8(std::string& out, std::uint32_t code_point) {
