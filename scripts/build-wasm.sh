@@ -16,7 +16,7 @@ for tool in emcmake cmake node; do
 done
 
 # emcmake's default emulator passes a flag Node 20 rejects (TOOLCHAIN.md §1).
-emcmake cmake -S "$repo_root" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release \
+emcmake cmake -S "$repo_root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_CROSSCOMPILING_EMULATOR=/usr/bin/node
 cmake --build "$build_dir" -j2
 

@@ -6,7 +6,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 APT_PACKAGES=(
-  build-essential cmake pkg-config               # native toolchain
+  build-essential cmake ninja-build pkg-config   # native toolchain
+  clang libclang-rt-14-dev                       # sanitizer + libFuzzer build (clang 14, as emscripten's)
   libeigen3-dev                                  # the core's only dependency
   catch2 libcli11-dev nlohmann-json3-dev         # tests and the CLI
   libcgal-dev                                    # benchmark peer only (GPL, never linked into the library)

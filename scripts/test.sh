@@ -1,7 +1,16 @@
 #!/usr/bin/env bash
 # Runs every test: installs what is missing, builds natively and as WASM, runs
-# the Catch2 suite through ctest (plain and under ASan+UBSan), the Node tests of
-# the WASM module, and the Playwright end-to-end tests of the web app.
+# the Catch2 suite through ctest under ASan+UBSan, the Node tests of the WASM
+# module, the Playwright end-to-end tests of the web app, and a short libFuzzer
+# run over the mesh readers and solvers.
+#
+# One native build serves the Catch2 suite, the CLI the Node tests compare
+# against, and the fuzzer: clang with AddressSanitizer + UndefinedBehavior-
+# Sanitizer, the core at -O1 (the test and CLI files at -O0: they only set up
+# and compare). Every test therefore runs with the sanitizers' checks; the
+# optimised release configuration is what the WASM module ships (tested in
+# Node and Playwright) and what `bash scripts/bench.sh` measures.
+# Order: fail fast on the cheap stages; the fuzzer last.
 # Idempotent; build trees live in build-*/ (git-ignored).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -12,38 +21,36 @@ if [ ! -d "$ANISO_SHARED_DIR/meshes" ]; then
   echo "test: the shared meshes are missing: expected $ANISO_SHARED_DIR/meshes" >&2
   exit 1
 fi
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 
 stage() { printf '\n=== %s (%ss)\n' "$1" "$SECONDS"; }
 
 stage "set-up"
 bash scripts/setup.sh
 
-stage "native build"
-cmake -S . -B build-native -DCMAKE_BUILD_TYPE=Release -DANISO_SHARED_DIR="$ANISO_SHARED_DIR" >/dev/null
-cmake --build build-native -j"$JOBS"
-
-stage "native tests (ctest)"
-ctest --test-dir build-native -j"$JOBS" --output-on-failure --timeout 300
-
-stage "sanitizer build (ASan + UBSan)"
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
-  -DANISO_SANITIZE=ON -DANISO_BENCH=OFF -DANISO_SHARED_DIR="$ANISO_SHARED_DIR" >/dev/null
+stage "native build (clang, ASan + UBSan, libFuzzer targets)"
+CC=clang CXX=clang++ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug \
+  -DCMAKE_CXX_FLAGS_DEBUG="-O1 -gline-tables-only" -DANISO_SANITIZE=ON -DANISO_FUZZ=ON \
+  -DANISO_BENCH=OFF -DANISO_SHARED_DIR="$ANISO_SHARED_DIR" >/dev/null
 cmake --build build-asan -j"$JOBS"
 
-stage "sanitizer tests (ctest)"
-ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  ctest --test-dir build-asan -j"$JOBS" --output-on-failure --timeout 900
+stage "native tests (ctest)"
+ctest --test-dir build-asan -j"$JOBS" --output-on-failure --timeout 600
 
 stage "WASM build (emcmake)"
 bash scripts/build-wasm.sh
 
 stage "WASM tests (node --test)"
-ANISO_CLI="$ROOT/build-native/cli/anisoform" node --test wasm/test/
+ANISO_CLI="$ROOT/build-asan/cli/anisoform" node --test wasm/test/
 
 stage "web build"
-npm run build --prefix web
+npm run build:site --prefix web
 
 stage "end-to-end tests (Playwright, Debian chromium)"
 CI=${CI:-} npx --prefix web playwright test -c e2e/playwright.config.mjs
+
+stage "fuzzing (libFuzzer, short run; long: bash scripts/fuzz.sh --seconds 3600)"
+bash scripts/fuzz.sh
 
 stage "all tests passed"

@@ -1,0 +1,63 @@
+// libFuzzer target: the whole path a user's file takes through the core.
+//
+// Input: one format byte (low two bits: OBJ, OFF, PLY, STL) and the file's
+// bytes. What parses is checked; what is solvable and small is deformed
+// (AnDefGrad and a few AnARAP iterations) and, if it has a boundary,
+// flattened. aniso::Error is the expected way to refuse an input; anything
+// else escaping (std::bad_alloc from an unbounded read, a std::out_of_range,
+// a sanitizer report, a timeout) is a finding.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "anisoform/deformer.h"
+#include "anisoform/error.h"
+#include "anisoform/flatten.h"
+#include "anisoform/mesh_check.h"
+#include "anisoform/mesh_io.h"
+
+namespace {
+
+// Solving is what costs time per input; past this size the readers and the
+// check have been exercised and the solve adds nothing new but seconds.
+constexpr int kMaxSolvedVertices = 600;
+
+void deform_a_little(const aniso::Mesh& mesh) {
+  aniso::Deformer deformer(mesh);
+  aniso::DeformRequest request;
+  request.method = aniso::Method::AnDefGrad;
+  request.direction.vector = Eigen::Vector3d(0.3, 1.0, 0.2).normalized();
+  request.transform.su = 1.5;
+  request.transform.sn = 0.8;
+  deformer.deform(request);
+  request.method = aniso::Method::AnArap;
+  request.max_iterations = 2;
+  deformer.deform(request);
+}
+
+void flatten_a_little(const aniso::Mesh& mesh) {
+  aniso::FlattenOptions options;
+  options.su = 0.9;
+  options.solver.max_iterations = 5;
+  aniso::flatten(mesh, {}, options);
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  if (size < 1) return 0;
+  static const aniso::MeshFormat kFormats[] = {aniso::MeshFormat::Obj, aniso::MeshFormat::Off,
+                                               aniso::MeshFormat::Ply, aniso::MeshFormat::Stl};
+  const aniso::MeshFormat format = kFormats[data[0] & 3];
+  try {
+    aniso::ReadResult read =
+        aniso::read_mesh_from_memory(reinterpret_cast<const char*>(data + 1), size - 1, format);
+    const aniso::MeshReport report = aniso::check_mesh(read.mesh);
+    if (!report.solvable() || read.mesh.num_vertices() > kMaxSolvedVertices) return 0;
+    deform_a_little(read.mesh);
+    if (report.boundary_loops > 0) flatten_a_little(read.mesh);
+  } catch (const aniso::Error&) {
+    // A clear refusal: the behaviour we want for bad input.
+  }
+  return 0;
+}

@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Fuzzes the mesh readers, the mesh check and a small deform/flatten of what
+# parses (fuzz/fuzz_mesh.cpp) with libFuzzer under ASan+UBSan.
+#   bash scripts/fuzz.sh                 # the short run of the test command (fixed executions)
+#   bash scripts/fuzz.sh --seconds 3600  # a long run
+# Needs the sanitizer tree built with -DANISO_FUZZ=ON (scripts/test.sh does it).
+# Budgets per input: 2 s and 512 MB (-timeout, -rss_limit_mb, -malloc_limit_mb)
+# for inputs up to 100 KB. A finding is written to $BUILD/fuzz/findings/ and
+# the run fails: copy the file into fuzz/regressions/ (ctest replays it), fix,
+# and run again.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=${ANISO_FUZZ_BUILD_DIR:-build-asan}
+shared=${ANISO_SHARED_DIR:-../shared}
+limit=(-runs=8000)
+case "${1:-}" in
+  --seconds) limit=(-max_total_time="$2") ;;
+  --runs) limit=(-runs="$2") ;;
+  "") ;;
+  *) echo "usage: $0 [--seconds S | --runs N]" >&2; exit 2 ;;
+esac
+
+fuzzer="$build/fuzz/anisoform_fuzz_mesh"
+[ -x "$fuzzer" ] || { echo "fuzz: $fuzzer is missing (build $build with -DANISO_FUZZ=ON)" >&2; exit 1; }
+
+# Seeds: every real mesh up to 100 KB, behind the format byte the target reads
+# (0 OBJ, 1 OFF, 2 PLY, 3 STL), plus the regression inputs.
+seeds="$build/fuzz/seeds"
+corpus="$build/fuzz/corpus"
+findings="$build/fuzz/findings"
+mkdir -p "$seeds" "$corpus" "$findings"
+while IFS= read -r -d '' mesh; do
+  case "${mesh,,}" in
+    *.obj) byte='\x00' ;; *.off) byte='\x01' ;; *.ply) byte='\x02' ;; *.stl) byte='\x03' ;; *) continue ;;
+  esac
+  name=$(basename "$(dirname "$mesh")")_$(basename "$mesh")
+  { printf "$byte"; cat "$mesh"; } > "$seeds/$name"
+done < <(find "$shared/meshes" -type f -size -100k -print0)
+cp fuzz/regressions/* "$seeds/" 2>/dev/null || true
+
+# The fuzzer's own leak check covers what the run allocates; the seeds order
+# makes the fixed-count run reproducible apart from the mutations' random seed.
+ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=0 \
+UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  "$fuzzer" "${limit[@]}" -max_len=102401 -timeout=2 -rss_limit_mb=512 -malloc_limit_mb=512 \
+    -print_final_stats=1 -artifact_prefix="$findings/" "$corpus" "$seeds"
