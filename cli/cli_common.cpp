@@ -1,15 +1,10 @@
 #include "cli_common.h"
 
-#include <cerrno>
-#include <charconv>
+#include <climits>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <new>
-#include <sstream>
-#include <string_view>
 #include <system_error>
 
 namespace aniso::cli {
@@ -65,40 +60,30 @@ std::vector<std::string> split_commas(const std::string& text) {
   }
 }
 
-// from_chars takes a leading '-' but not a '+', which people write too.
-// "+-1" keeps its '+' and is refused.
-std::string_view without_plus_sign(const std::string& text) {
-  std::string_view digits = text;
-  if (digits.size() >= 2 && digits[0] == '+' && digits[1] != '-') digits.remove_prefix(1);
-  return digits;
-}
-
 }  // namespace
 
-double parse_number(const std::string& text, const std::string& option) {
-  // from_chars is locale-independent and never skips whitespace, so the
-  // whole-text rule is a plain end-pointer check.
-  const std::string_view digits = without_plus_sign(text);
-  double value = 0.0;
-  const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-  const bool whole_text = !digits.empty() && end == digits.data() + digits.size();
-  if (whole_text && error == std::errc::result_out_of_range) {
-    fail_value(option, "'" + text + "' is out of range");
+void refuse_empty_values(const CLI::App& command) {
+  for (const CLI::Option* option : command.get_options()) {
+    // Flags take no value, and positionals are paths checked where they are used.
+    if (option->get_positional() || option->get_expected_min() == 0) continue;
+    for (const std::string& value : option->results()) {
+      if (value.empty()) fail_value(option->get_name(), "needs a value, got an empty one");
+    }
   }
-  if (!whole_text || error != std::errc()) fail_value(option, "'" + text + "' is not a number");
-  if (!std::isfinite(value)) fail_value(option, "'" + text + "' is not a finite number");
+}
+
+double parse_number(const std::string& text, const std::string& option) {
+  double value = 0.0;
+  if (const char* problem = parse_strict_number(text, value)) fail_value(option, number_problem(text, problem));
   return value;
 }
 
 int parse_integer(const std::string& text, const std::string& option) {
-  const std::string_view digits = without_plus_sign(text);
-  int value = 0;
-  const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-  if (error == std::errc::result_out_of_range) fail_value(option, "'" + text + "' is out of range");
-  if (digits.empty() || error != std::errc() || end != digits.data() + digits.size()) {
-    fail_value(option, "'" + text + "' is not an integer");
-  }
-  return value;
+  long long value = 0;
+  const char* problem = parse_strict_integer(text, value);
+  if (!problem && (value < INT_MIN || value > INT_MAX)) problem = "is out of range";
+  if (problem) fail_value(option, number_problem(text, problem));
+  return static_cast<int>(value);
 }
 
 std::vector<double> parse_number_list(const std::string& text, const std::string& option,
@@ -218,16 +203,7 @@ std::vector<int> region_vertices(const Mesh& mesh, const Region& region,
 }
 
 std::string read_text_file(const std::string& path, const std::string& option) {
-  std::error_code ignored;
-  if (!fs::is_regular_file(path, ignored)) {
-    fail_value(option, "cannot open " + path + ": no such file");
-  }
-  std::ifstream file(path, std::ios::binary);
-  if (!file) fail_value(option, "cannot open " + path + ": " + std::strerror(errno));
-  std::ostringstream text;
-  text << file.rdbuf();
-  if (file.bad()) fail_value(option, "cannot read " + path);
-  return text.str();
+  return naming_option(option, [&] { return read_regular_file(path, ErrorCode::BadParameter); });
 }
 
 void weld_if_soup(Mesh& mesh, std::vector<std::string>& warnings) {
@@ -240,16 +216,8 @@ void weld_if_soup(Mesh& mesh, std::vector<std::string>& warnings) {
 
 ReadResult read_input_mesh(const std::string& path) {
   format_from_path(path);  // an unknown extension is a bad parameter, checked first
-  std::error_code ignored;
-  if (!fs::exists(path, ignored)) fail(ErrorCode::BadFile, "cannot open " + path + ": no such file");
-  if (fs::is_directory(path, ignored)) {
-    fail(ErrorCode::BadFile, "cannot open " + path + ": it is a directory");
-  }
-  if (!std::ifstream(path, std::ios::binary)) {
-    fail(ErrorCode::BadFile, "cannot open " + path + ": " + std::strerror(errno));
-  }
   try {
-    return read_mesh(path);
+    return read_mesh(path);  // a missing or non-regular file is refused before reading
   } catch (const Error& e) {
     const std::string message = e.what();
     if (message.find(path) != std::string::npos) throw;
@@ -259,23 +227,16 @@ ReadResult read_input_mesh(const std::string& path) {
 
 MeshFormat check_output_path(const std::string& path) {
   const MeshFormat format = format_from_path(path);
+  check_output_location(path);
+  return format;
+}
+
+void check_output_location(const std::string& path) {
   std::error_code ignored;
   if (fs::is_directory(path, ignored)) fail_value("OUT", "cannot write " + path + ": it is a directory");
   const fs::path directory = fs::path(path).parent_path();
   if (!directory.empty() && !fs::is_directory(directory, ignored)) {
     fail_value("OUT", "cannot write " + path + ": directory " + directory.string() + " does not exist");
-  }
-  return format;
-}
-
-void write_output_mesh(const std::string& path, const Mesh& mesh, const WriteOptions& options) {
-  try {
-    write_mesh(path, mesh, options);
-  } catch (const Error& e) {
-    if (e.code() == ErrorCode::BadParameter) throw;
-    fail_value("OUT", "cannot write " + path + ": " + e.what());
-  } catch (const std::system_error& e) {  // std::ios_base::failure is one
-    fail_value("OUT", "cannot write " + path + ": " + e.what());
   }
 }
 

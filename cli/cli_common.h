@@ -3,24 +3,28 @@
 // with the right error codes, and printing the one-line JSON result.
 //
 // Option values are taken from CLI11 as plain strings and parsed here, so that
-// every number on the command line goes through the same strict rules: the
-// whole text must be a finite number ("1.5x", "nan", "inf" are refused), and a
-// refusal is an Error(BadParameter) that names the option (exit status 2).
+// every number on the command line goes through the same strict rules, the
+// core's (strict_number.h): the whole text must be a finite decimal number
+// ("1.5x", "0x1p3", "nan", "inf", "" are refused), and a refusal is an
+// Error(BadParameter) that names the option (exit status 2).
 #pragma once
 
 #include <functional>
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
 #include "anisoform/deformer.h"
 #include "anisoform/error.h"
+#include "anisoform/file_io.h"
 #include "anisoform/mesh.h"
 #include "anisoform/mesh_check.h"
 #include "anisoform/mesh_io.h"
 #include "anisoform/selection.h"
+#include "anisoform/strict_number.h"
 #include "anisoform/transforms.h"
 
 namespace aniso::cli {
@@ -45,6 +49,10 @@ int exit_status_for(ErrorCode code);
 int run_reporting_errors(const std::string& command, const std::function<int()>& body);
 
 // ---- strict values -------------------------------------------------------
+
+// Every option given on the command line has a value: `--scale ""` is
+// refused naming the option (an empty value would read as "not given").
+void refuse_empty_values(const CLI::App& command);
 
 // The whole text as a finite number (a leading '+' is allowed).
 double parse_number(const std::string& text, const std::string& option);
@@ -113,13 +121,15 @@ std::vector<int> region_vertices(const Mesh& mesh, const Region& region,
 
 // ---- files ---------------------------------------------------------------
 
-// A whole text file; Error(BadParameter) "cannot open PATH ..." when it cannot
-// be read (files named by options are parameters).
+// A whole text file (read_regular_file); Error(BadParameter) "OPTION: cannot
+// open PATH ..." or "OPTION: PATH is a directory, not a regular file" when it
+// cannot be read (files named by options are parameters).
 std::string read_text_file(const std::string& path, const std::string& option);
 
-// Reads the input mesh: an unknown extension is Error(BadParameter); a missing
-// or unreadable file Error(BadFile) "cannot open PATH: ..."; parse errors keep
-// the reader's code with the path in front of the message.
+// Reads the input mesh: an unknown extension is Error(BadParameter); a missing,
+// unreadable or non-regular file Error(BadFile) ("cannot open PATH: ...",
+// "PATH is not a regular file (a FIFO)"); parse errors keep the reader's code
+// with the path in front of the message.
 ReadResult read_input_mesh(const std::string& path);
 
 // A soup has no shared vertices, so no edit or flattening could spread over
@@ -130,8 +140,11 @@ void weld_if_soup(Mesh& mesh, std::vector<std::string>& warnings);
 // Checks OUT before any work is done: a known extension and an existing
 // directory, else Error(BadParameter). Returns the format.
 MeshFormat check_output_path(const std::string& path);
-// Writes OUT; a failure to write is Error(BadParameter) (OUT is a parameter).
-void write_output_mesh(const std::string& path, const Mesh& mesh, const WriteOptions& options);
+// Checks OUT's location before any work is done: not a directory, in a
+// directory that exists; else Error(BadParameter) (exit 2). OUT itself is
+// written with write_file_atomically (write_mesh does too): a write that
+// fails later is Error(BadFile) (exit 3) and leaves an existing OUT as it was.
+void check_output_location(const std::string& path);
 
 // ---- JSON ----------------------------------------------------------------
 

@@ -51,7 +51,7 @@ struct DeformPlan {
   std::optional<Region> pins;
   std::optional<Region> handles;
   Eigen::Vector3d handle_offset = Eigen::Vector3d::Zero();
-  int max_iterations = DeformRequest().max_iterations;
+  std::optional<int> iterations;  // --iterations: the cap, and the steps of a rotation
   double tolerance = DeformRequest().tolerance;
   ArapElements elements = ArapElements::Spokes;
   WriteOptions write;
@@ -106,8 +106,8 @@ DeformPlan plan_deform(const DeformArguments& args) {
     plan.handle_offset = parse_vector3(args.move, "--move");
   }
   if (!args.iterations.empty()) {
-    plan.max_iterations = parse_integer(args.iterations, "--iterations");
-    if (plan.max_iterations < 1) {
+    plan.iterations = parse_integer(args.iterations, "--iterations");
+    if (*plan.iterations < 1) {
       fail(ErrorCode::BadParameter, "--iterations: must be at least 1, got " + args.iterations);
     }
   }
@@ -209,7 +209,13 @@ BuiltRequest build_request(const DeformPlan& plan, const Mesh& mesh,
   if (plan.handles) request.handles = region_vertices(mesh, *plan.handles, "--handle");
   request.handle_offset = plan.handle_offset;
   request.elements = plan.elements;
-  request.max_iterations = plan.max_iterations;
+  if (plan.iterations) {
+    // One count for both: AnARAP iterates to the tolerance (capped) unless T
+    // has a rotational part, which has no fixed point and runs exactly this
+    // many steps instead (DeformRequest::rotation_steps).
+    request.max_iterations = *plan.iterations;
+    request.rotation_steps = *plan.iterations;
+  }
   request.tolerance = plan.tolerance;
   return built;
 }
@@ -255,7 +261,7 @@ int run_deform(const DeformArguments& args) {
   Deformer deformer(prepared.mesh);
   const DeformResult result = deformer.deform(built.request);
 
-  write_output_mesh(args.output, Mesh{result.V, prepared.mesh.F}, plan.write);
+  write_mesh(args.output, Mesh{result.V, prepared.mesh.F}, plan.write);
   print_json(result_json(args, prepared, built, result));
   return kExitSuccess;
 }
@@ -274,7 +280,8 @@ constexpr const char* kDeformHelp =
 void add_deform_options(CLI::App& deform, DeformArguments& args) {
   deform.add_option("IN", args.input, "Input mesh (.obj .off .ply .stl)")->required();
   deform.add_option("OUT", args.output,
-                    "Output mesh; its extension sets the format (unknown or unwritable: exit 2)")
+                    "Output mesh; its extension sets the format (unknown, or no such directory: exit 2; "
+                    "a failed write: exit 3, an existing OUT left unchanged)")
       ->required();
   deform.add_option("--method", args.method, "anarap | andefgrad | arap | linear (default anarap)")
       ->type_name("NAME");
@@ -310,8 +317,8 @@ void add_deform_options(CLI::App& deform, DeformArguments& args) {
       ->type_name("REGION");
   deform.add_option("--move", args.move, "Offset of the --handle vertices")->type_name("DX,DY,DZ");
   deform.add_option("--iterations", args.iterations,
-                    "AnARAP/ARAP iteration cap, >= 1 (default 50); with a rotation or twist, "
-                    "the number of steps")
+                    "AnARAP/ARAP iteration cap, >= 1 (default 50); with a rotation, twist or "
+                    "shear (AnARAP), the number of steps (default 1)")
       ->type_name("N");
   deform.add_option("--tolerance", args.tolerance,
                     "Relative energy change that ends the iterations, >= 0 (default 1e-6)")
@@ -328,8 +335,13 @@ void register_deform(CLI::App& app, Action& action) {
   auto args = std::make_shared<DeformArguments>();
   CLI::App* deform = app.add_subcommand("deform", kDeformHelp);
   add_deform_options(*deform, *args);
-  deform->callback([args, &action] {
-    action = [args] { return run_reporting_errors("deform", [&] { return run_deform(*args); }); };
+  deform->callback([args, deform, &action] {
+    action = [args, deform] {
+      return run_reporting_errors("deform", [&] {
+        refuse_empty_values(*deform);
+        return run_deform(*args);
+      });
+    };
   });
 }
 

@@ -9,7 +9,6 @@
 // 2), and only then the solve and the output file.
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <optional>
 
@@ -71,15 +70,7 @@ PatternFormat check_pattern_output(const std::string& path) {
     fail(ErrorCode::BadParameter, "OUT: '" + path +
                                       "' has no pattern extension: use .obj (3D with vt), .svg or .dxf");
   }
-  std::error_code ignored;
-  if (std::filesystem::is_directory(path, ignored)) {
-    fail(ErrorCode::BadParameter, "OUT: cannot write " + path + ": it is a directory");
-  }
-  const std::filesystem::path directory = std::filesystem::path(path).parent_path();
-  if (!directory.empty() && !std::filesystem::is_directory(directory, ignored)) {
-    fail(ErrorCode::BadParameter,
-         "OUT: cannot write " + path + ": directory " + directory.string() + " does not exist");
-  }
+  check_output_location(path);
   return format;
 }
 
@@ -165,13 +156,6 @@ std::vector<char> selection_mask(const Mesh& mesh, const Region& region) {
   return mask;
 }
 
-void write_text(const std::string& path, const std::string& text) {
-  std::ofstream file(path, std::ios::binary);
-  if (!file || !(file << text) || !file.flush()) {
-    fail(ErrorCode::BadParameter, "OUT: cannot write " + path);
-  }
-}
-
 std::string short_number(double value) {
   char text[32];
   std::snprintf(text, sizeof text, "%g", value);
@@ -245,14 +229,14 @@ int run_flatten(const FlattenArguments& args) {
   pattern_options.note = pattern_note(plan, direction.description);
   switch (plan.format) {
     case PatternFormat::Obj:
-      write_text(args.output, write_obj_with_uv(flattened.patch.mesh, flattened.result.uv));
+      write_file_atomically(args.output, write_obj_with_uv(flattened.patch.mesh, flattened.result.uv));
       break;
     case PatternFormat::Svg:
-      write_text(args.output,
+      write_file_atomically(args.output,
                  write_pattern_svg(make_pattern(flattened.patch, flattened.result), pattern_options));
       break;
     case PatternFormat::Dxf:
-      write_text(args.output,
+      write_file_atomically(args.output,
                  write_pattern_dxf(make_pattern(flattened.patch, flattened.result), pattern_options));
       break;
   }
@@ -275,7 +259,8 @@ constexpr const char* kFlattenHelp =
 
 void add_flatten_options(CLI::App& command, FlattenArguments& args) {
   command.add_option("IN", args.input, "Input mesh (.obj .off .ply .stl)")->required();
-  command.add_option("OUT", args.output, "Pattern: .obj, .svg or .dxf (other: exit 2)")->required();
+  command.add_option("OUT", args.output, "Pattern: .obj, .svg or .dxf (other: exit 2; a failed write: exit 3, an "
+                     "existing OUT left unchanged)")->required();
   command.add_option("--select", args.select,
                      "Region to flatten (default all): all | box:X0,Y0,Z0,X1,Y1,Z1 | "
                      "sphere:X,Y,Z,R | file:PATH")
@@ -309,8 +294,13 @@ void register_flatten(CLI::App& app, Action& action) {
   auto args = std::make_shared<FlattenArguments>();
   CLI::App* command = app.add_subcommand("flatten", kFlattenHelp);
   add_flatten_options(*command, *args);
-  command->callback([args, &action] {
-    action = [args] { return run_reporting_errors("flatten", [&] { return run_flatten(*args); }); };
+  command->callback([args, command, &action] {
+    action = [args, command] {
+      return run_reporting_errors("flatten", [&] {
+        refuse_empty_values(*command);
+        return run_flatten(*args);
+      });
+    };
   });
 }
 

@@ -17,7 +17,8 @@ int parse_and_run(int argc, char** argv) {
   app.footer(
       "Results are one JSON object on stdout; messages go to stderr.\n"
       "Exit status: 0 success, 2 bad command line or parameter (including an\n"
-      "unwritable or unknown-format OUT), 3 bad or unreadable input mesh.");
+      "unknown-format OUT or one in a missing directory), 3 bad or unreadable input\n"
+      "mesh, or OUT could not be written (an existing OUT is then left unchanged).");
 
   aniso::cli::Action action;
   aniso::cli::register_info(app, action);

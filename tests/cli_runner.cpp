@@ -10,6 +10,7 @@
 #include <atomic>
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <thread>
 
 #include <catch2/catch.hpp>
@@ -48,9 +49,12 @@ std::string temp_path(const std::string& name) {
   return path;
 }
 
-// Runs the CLI with stdout and stderr sent to files (no pipe can fill up and
-// block the child), stdin from /dev/null, and a deadline: a hang is a failure.
-CliRun run_cli(const std::vector<std::string>& args, int timeout_seconds) {
+namespace {
+
+// Runs `command` (program first) with stdout and stderr sent to files (no pipe
+// can fill up and block the child), stdin from /dev/null, and a deadline: a
+// hang is a failure.
+CliRun run_program(std::vector<std::string> command, int timeout_seconds) {
   const std::string out_path = temp_path("stdout.txt");
   const std::string err_path = temp_path("stderr.txt");
   posix_spawn_file_actions_t actions;
@@ -59,15 +63,13 @@ CliRun run_cli(const std::vector<std::string>& args, int timeout_seconds) {
   posix_spawn_file_actions_addopen(&actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
 
-  std::vector<std::string> command{ANISO_CLI_PATH};
-  command.insert(command.end(), args.begin(), args.end());
   std::vector<char*> argv;
   for (std::string& arg : command) argv.push_back(arg.data());
   argv.push_back(nullptr);
 
   CliRun run;
   pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, ANISO_CLI_PATH, &actions, nullptr, argv.data(), environ);
+  const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   REQUIRE(spawned == 0);
 
@@ -87,6 +89,57 @@ CliRun run_cli(const std::vector<std::string>& args, int timeout_seconds) {
   run.out = slurp(out_path);
   run.err = slurp(err_path);
   return run;
+}
+
+}  // namespace
+
+CliRun run_cli(const std::vector<std::string>& args, int timeout_seconds) {
+  std::vector<std::string> command{ANISO_CLI_PATH};
+  command.insert(command.end(), args.begin(), args.end());
+  return run_program(std::move(command), timeout_seconds);
+}
+
+CliRun run_cli_after_shell(const std::string& setup, const std::vector<std::string>& args,
+                           int timeout_seconds) {
+  // The arguments reach the CLI as "$@": no quoting of paths in the script.
+  std::vector<std::string> command{"/bin/sh", "-c", setup + "; exec \"$0\" \"$@\"", ANISO_CLI_PATH};
+  command.insert(command.end(), args.begin(), args.end());
+  return run_program(std::move(command), timeout_seconds);
+}
+
+std::string describe(const std::vector<std::string>& args, const CliRun& run) {
+  std::string text = "anisoform";
+  for (const std::string& arg : args) text += " " + arg;
+  return text + "\n  exit " + std::to_string(run.exit_status) + (run.signaled ? " (signal)" : "") +
+         (run.timed_out ? " (timed out)" : "") + "\n  stdout: " + run.out + "\n  stderr: " + run.err;
+}
+
+nlohmann::json stdout_json(const CliRun& run) {
+  REQUIRE(!run.out.empty());
+  REQUIRE(run.out.back() == '\n');
+  REQUIRE(run.out.find('\n') == run.out.size() - 1);
+  const nlohmann::json result = nlohmann::json::parse(run.out);
+  REQUIRE(result.is_object());
+  return result;
+}
+
+CliRun run_expecting(const std::vector<std::string>& args, int expected_exit) {
+  const CliRun run = run_cli(args);
+  INFO(describe(args, run));
+  REQUIRE_FALSE(run.signaled);
+  REQUIRE_FALSE(run.timed_out);
+  REQUIRE(run.exit_status == expected_exit);
+  return run;
+}
+
+std::string write_temp_text(const std::string& name, const std::string& text) {
+  const std::string path = temp_path(name);
+  std::ofstream(path) << text;
+  return path;
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
 }
 
 }  // namespace aniso::test

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 namespace aniso::test {
 
 struct CliRun {
@@ -21,5 +23,24 @@ struct CliRun {
 std::string temp_path(const std::string& name);
 
 CliRun run_cli(const std::vector<std::string>& args, int timeout_seconds = 60);
+
+// Runs the CLI from /bin/sh after the shell commands `setup` (e.g. "trap ''
+// XFSZ; ulimit -f 8": limits and signal dispositions the CLI inherits).
+CliRun run_cli_after_shell(const std::string& setup, const std::vector<std::string>& args,
+                           int timeout_seconds = 60);
+
+// The command line and what it did, for INFO messages.
+std::string describe(const std::vector<std::string>& args, const CliRun& run);
+
+// Runs the CLI and requires that it exits with `expected_exit` (no signal, no hang).
+CliRun run_expecting(const std::vector<std::string>& args, int expected_exit);
+
+// Stdout must be exactly one JSON object on one line; returns it.
+nlohmann::json stdout_json(const CliRun& run);
+
+// Writes `text` to a new temp_path(name) and returns the path.
+std::string write_temp_text(const std::string& name, const std::string& text);
+
+bool contains(const std::string& text, const std::string& part);
 
 }  // namespace aniso::test

@@ -20,49 +20,18 @@ namespace {
 
 using nlohmann::json;
 using aniso::test::CliRun;
+using aniso::test::contains;
+using aniso::test::describe;
 using aniso::test::run_cli;
+using aniso::test::run_expecting;
 using aniso::test::slurp;
+using aniso::test::stdout_json;
 using aniso::test::temp_path;
-
-std::string describe(const std::vector<std::string>& args, const CliRun& run) {
-  std::string text = "anisoform";
-  for (const std::string& arg : args) text += " " + arg;
-  return text + "\n  exit " + std::to_string(run.exit_status) + (run.signaled ? " (signal)" : "") +
-         (run.timed_out ? " (timed out)" : "") + "\n  stdout: " + run.out + "\n  stderr: " + run.err;
-}
-
-// Stdout must be exactly one JSON object on one line.
-json stdout_json(const CliRun& run) {
-  REQUIRE(!run.out.empty());
-  REQUIRE(run.out.back() == '\n');
-  REQUIRE(run.out.find('\n') == run.out.size() - 1);
-  const json result = json::parse(run.out);
-  REQUIRE(result.is_object());
-  return result;
-}
-
-CliRun run_expecting(const std::vector<std::string>& args, int expected_exit) {
-  const CliRun run = run_cli(args);
-  INFO(describe(args, run));
-  REQUIRE_FALSE(run.signaled);
-  REQUIRE_FALSE(run.timed_out);
-  REQUIRE(run.exit_status == expected_exit);
-  return run;
-}
+using aniso::test::write_temp_text;
 
 json info_of(const std::string& path) { return stdout_json(run_expecting({"info", path}, 0)); }
 
 std::string mesh(const std::string& relative) { return aniso::test::mesh_path(relative); }
-
-std::string write_temp_file(const std::string& name, const std::string& text) {
-  const std::string path = temp_path(name);
-  std::ofstream(path) << text;
-  return path;
-}
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
 
 }  // namespace
 
@@ -345,7 +314,7 @@ TEST_CASE("cli: bad command lines and parameters exit with status 2", "[cli]") {
 }
 
 TEST_CASE("cli: an index out of range in a selection file is a bad parameter", "[cli]") {
-  const std::string selection = write_temp_file("selection.txt", "1\n5000\n");
+  const std::string selection = write_temp_text("selection.txt", "1\n5000\n");
   const CliRun run = run_expecting({"deform", mesh("formats/spot_lowres.obj"),
                                     temp_path("out.obj"), "--select", "file:" + selection},
                                    2);
@@ -363,7 +332,7 @@ TEST_CASE("cli: a missing input says cannot open and exits 3", "[cli]") {
 }
 
 TEST_CASE("cli: an input of unknown format exits 2", "[cli]") {
-  const std::string path = write_temp_file("mesh.xyz", "0 0 0\n");
+  const std::string path = write_temp_text("mesh.xyz", "0 0 0\n");
   const CliRun run = run_expecting({"info", path}, 2);
   CHECK(contains(run.err, "xyz"));
 }
@@ -469,8 +438,8 @@ TEST_CASE("cli: pinned vertices stay and arap handles move by the offset", "[cli
 
 TEST_CASE("cli: deform runs every method and direction source", "[cli]") {
   const std::string in = mesh("formats/spot_lowres.obj");
-  const std::string field = write_temp_file("field.txt", "# two arrows\n0 1 0 0\n400 0 1 0\n");
-  const std::string selection = write_temp_file("selection.txt", "0\n1 0.5\n2\n3 1\n400\n");
+  const std::string field = write_temp_text("field.txt", "# two arrows\n0 1 0 0\n400 0 1 0\n");
+  const std::string selection = write_temp_text("selection.txt", "0\n1 0.5\n2\n3 1\n400\n");
   const std::vector<std::vector<std::string>> edits{
       {"--method", "anarap", "--rotate", "n:20", "--iterations", "3"},
       {"--method", "anarap", "--elements", "spokes-rims", "--scale", "1.3"},

@@ -156,8 +156,12 @@ TEST_CASE("field: constraint parse errors name the file and line", "[field]") {
   CHECK_THAT(bad_parameter_message([&] { parse("1.5 1 0 0\n"); }),
              Catch::Contains("line 1: INDEX must be a non-negative integer, got '1.5'"));
   CHECK_THAT(bad_parameter_message([&] { parse("\n\n3 1 nan 0\n"); }),
-             Catch::Contains("line 3: DY is not a finite number: 'nan'"));
-  CHECK_THAT(bad_parameter_message([&] { parse("3 1 0 0 0.9x\n"); }), Catch::Contains("SU is not a finite number"));
+             Catch::Contains("line 3: DY: 'nan' is not a finite number"));
+  CHECK_THAT(bad_parameter_message([&] { parse("3 1 0 0 0.9x\n"); }), Catch::Contains("SU: '0.9x' is not a number"));
+  // strtod would read hex floats; the one number grammar (strict_number.h) does not.
+  CHECK_THAT(bad_parameter_message([&] { parse("3 1 0 0\n4 0x1p0 0 0\n"); }),
+             Catch::Contains("arrows.txt line 2: DX: '0x1p0' is a hexadecimal number"));
+  CHECK_THAT(bad_parameter_message([&] { parse("3 1 0 0 1e999\n"); }), Catch::Contains("SU: '1e999' is out of range"));
   CHECK_THAT(bad_parameter_message([&] { parse("3 0 0 0\n"); }), Catch::Contains("line 1: the direction is zero"));
 }
 

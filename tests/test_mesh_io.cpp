@@ -44,14 +44,7 @@ ReadResult read_text(const std::string& text, MeshFormat format) {
 // The message of the aniso::Error with `code` that `call` throws.
 template <class Call>
 std::string error_message(Call call, aniso::ErrorCode code = aniso::ErrorCode::BadFile) {
-  try {
-    call();
-  } catch (const aniso::Error& error) {
-    CHECK(error.code() == code);
-    return error.what();
-  }
-  FAIL("no aniso::Error was thrown");
-  return "";
+  return aniso::test::error_message_of(call, code);
 }
 
 std::string read_error(const std::string& relative) {
@@ -393,8 +386,9 @@ TEST_CASE("mesh_io: numbers are parsed strictly, with the unusual valid spelling
   CHECK(std::isinf(read.mesh.V(2, 2)));
   for (const char* bad : {"3.1+e2", "3.1-e2", "1,5", "0x10", "--1", "+-1", "1e", "e5", "."}) {
     INFO(bad);
+    const std::string reason = std::string(bad) == "0x10" ? "is a hexadecimal number" : "is not a number";
     CHECK_THAT(error_message([&] { read_text(std::string("v 0 0 ") + bad + "\n", MeshFormat::Obj); }),
-               Catch::Contains("is not a number (line 1)"));
+               Catch::Contains("'" + std::string(bad) + "' " + reason) && Catch::Contains("(line 1)"));
   }
 }
 
@@ -479,6 +473,58 @@ TEST_CASE("mesh_io: STL is binary when its size says so, even when the header st
                                           " vertex 0 1 0\n vertex 1 1 1\n", MeshFormat::Stl); }),
              Catch::Contains("more than 3 vertices"));
   CHECK_THAT(error_message([] { read_text("not an stl", MeshFormat::Stl); }), Catch::Contains("too short"));
+}
+
+namespace {
+
+// `bytes` with the first `from` replaced by `to` (which must be there).
+std::string with_replaced(std::string bytes, const std::string& from, const std::string& to) {
+  const std::size_t at = bytes.find(from);
+  REQUIRE(at != std::string::npos);
+  return bytes.replace(at, from.size(), to);
+}
+
+}  // namespace
+
+TEST_CASE("mesh_io: a header promising more elements than the bytes hold is refused up front", "[io]") {
+  // Real files whose header now promises a billion elements: the message names
+  // the count and the size, and nothing of that size is allocated (a vector
+  // of 1e9 vertices would need 24 GB: bad_alloc, not this Error, without the check).
+  SECTION("binary PLY") {
+    const std::string bytes = with_replaced(file_bytes("formats/spot_lowres_binary.ply"),
+                                            "element vertex 829", "element vertex 1000000000");
+    CHECK_THAT(error_message([&] { read_text(bytes, MeshFormat::Ply); }),
+               Catch::Contains("declares element counts vertex 1000000000, face 1654") &&
+                   Catch::Contains("need at least 12000001654 bytes") && Catch::Contains("truncated"));
+  }
+  SECTION("ASCII PLY") {
+    const std::string bytes = with_replaced(file_bytes("formats/spot_lowres_ascii.ply"),
+                                            "element face 1654", "element face 1000000000");
+    CHECK_THAT(error_message([&] { read_text(bytes, MeshFormat::Ply); }),
+               Catch::Contains("face 1000000000") && Catch::Contains("bytes follow it"));
+  }
+  SECTION("OFF") {
+    const std::string bytes =
+        with_replaced(file_bytes("formats/spot_lowres.off"), "829 1654", "1000000000 1654");
+    CHECK_THAT(error_message([&] { read_text(bytes, MeshFormat::Off); }),
+               Catch::Contains("declares 1000000000 vertices and 1654 faces") && Catch::Contains("bytes follow it"));
+  }
+  SECTION("binary STL") {
+    std::string bytes = file_bytes("formats/spot_lowres_binary.stl");
+    const unsigned char billion[4] = {0x00, 0xCA, 0x9A, 0x3B};  // 1e9, little endian
+    bytes.replace(80, 4, reinterpret_cast<const char*>(billion), 4);
+    CHECK_THAT(error_message([&] { read_text(bytes, MeshFormat::Stl); }),
+               Catch::Contains("declares 1000000000 triangles") &&
+                   Catch::Contains("but the file has " + std::to_string(bytes.size()) + " bytes"));
+  }
+  SECTION("a count beyond any size does not overflow the check") {
+    const std::string bytes = with_replaced(file_bytes("formats/spot_lowres_binary.ply"),
+                                            "element vertex 829", "element vertex 9223372036854775807");
+    CHECK_THAT(error_message([&] { read_text(bytes, MeshFormat::Ply); }), Catch::Contains("9223372036854775807"));
+  }
+  SECTION("a plainly truncated file is still reported where it ends") {
+    CHECK_THAT(read_error("malformed/truncated_binary.ply"), Catch::Contains("ends after 900 of 1654 faces"));
+  }
 }
 
 TEST_CASE("mesh_io: readers never crash or hang on truncated or corrupted bytes", "[io]") {

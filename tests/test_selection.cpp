@@ -76,7 +76,7 @@ TEST_CASE("selection: parse_region errors name the problem", "[selection]") {
   CHECK_THAT(bad_parameter_message([] { aniso::parse_region("box:1,2,3,4"); }),
              Catch::Contains("box needs 6 numbers, got 4"));
   CHECK_THAT(bad_parameter_message([] { aniso::parse_region("sphere:1,2,x,4"); }),
-             Catch::Contains("sphere number 3 is not a finite number"));
+             Catch::Contains("sphere number 3: 'x' is not a number"));
   CHECK_THAT(bad_parameter_message([] { aniso::parse_region("sphere:1,2,3,nan"); }),
              Catch::Contains("sphere number 4"));
   CHECK_THAT(bad_parameter_message([] { aniso::parse_region("box:0,0,0,1,1,1,"); }),
@@ -84,7 +84,7 @@ TEST_CASE("selection: parse_region errors name the problem", "[selection]") {
   CHECK_THAT(bad_parameter_message([] { aniso::parse_region("cube:1"); }),
              Catch::Contains("unknown region 'cube:1'"));
   CHECK_THAT(bad_parameter_message([] { aniso::parse_region("file:/nonexistent/sel.txt"); }),
-             Catch::Contains("cannot read selection file '/nonexistent/sel.txt'"));
+             Catch::Contains("cannot open /nonexistent/sel.txt: no such file"));
 
   const std::string bad_index = write_temp_file("selection_bad_index.txt", "1\n2\n-3\n");
   CHECK_THAT(bad_parameter_message([&] { aniso::parse_region("file:" + bad_index); }),
@@ -95,6 +95,13 @@ TEST_CASE("selection: parse_region errors name the problem", "[selection]") {
   const std::string extra = write_temp_file("selection_extra.txt", "1 0.5 7\n");
   CHECK_THAT(bad_parameter_message([&] { aniso::parse_region("file:" + extra); }),
              Catch::Contains("line 1: expected a vertex index and an optional weight, got 3 values"));
+  const std::string hex_weight = write_temp_file("selection_hex_weight.txt", "1 0.5\n2 0x1p-1\n");
+  CHECK_THAT(bad_parameter_message([&] { aniso::parse_region("file:" + hex_weight); }),
+             Catch::Contains("line 2: weight: '0x1p-1' is a hexadecimal number"));
+  CHECK_THAT(bad_parameter_message([] { aniso::parse_region("sphere:0,0,0,0x1p0"); }),
+             Catch::Contains("sphere number 4: '0x1p0' is a hexadecimal number"));
+  CHECK_THAT(bad_parameter_message([] { aniso::parse_region(std::string("file:") + ANISO_TEST_TMP); }),
+             Catch::Contains(std::string(ANISO_TEST_TMP) + " is a directory, not a regular file"));
   const std::string empty = write_temp_file("selection_empty.txt", "# nothing\n\n");
   CHECK_THAT(bad_parameter_message([&] { aniso::parse_region("file:" + empty); }),
              Catch::Contains("lists no vertices"));

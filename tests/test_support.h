@@ -23,18 +23,24 @@ Mesh load(const std::string& relative);
 // A whole file as bytes ("" if it cannot be read).
 std::string slurp(const std::string& path);
 
-// The message of the aniso::Error(BadParameter) that `call` throws; fails the
-// test if it throws nothing or another code.
+// The message of the aniso::Error that `call` throws; fails the test if it
+// throws nothing or an error with another code.
 template <typename Call>
-std::string bad_parameter_message(Call call) {
+std::string error_message_of(Call call, ErrorCode code) {
   try {
     call();
   } catch (const Error& e) {
-    CHECK(e.code() == ErrorCode::BadParameter);
+    CHECK(e.code() == code);
     return e.what();
   }
   FAIL("no aniso::Error was thrown");
   return "";
+}
+
+// The message of the aniso::Error(BadParameter) that `call` throws.
+template <typename Call>
+std::string bad_parameter_message(Call call) {
+  return error_message_of(call, ErrorCode::BadParameter);
 }
 
 }  // namespace aniso::test

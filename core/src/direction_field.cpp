@@ -239,9 +239,8 @@ std::vector<DirectionConstraint> parse_direction_constraints(const std::string& 
     if (!index) bad_field_parameter(where + "INDEX must be a non-negative integer, got '" + tokens[0] + "'");
     double numbers[6] = {0.0, 0.0, 0.0, 0.0, 1.0, 1.0};
     for (std::size_t k = 1; k < tokens.size(); ++k) {
-      const auto value = text::parse_finite(tokens[k]);
-      if (!value) bad_field_parameter(where + kFieldNames[k] + " is not a finite number: '" + tokens[k] + "'");
-      numbers[k] = *value;
+      const std::string problem = text::number_field_problem(kFieldNames[k], tokens[k], numbers[k]);
+      if (!problem.empty()) bad_field_parameter(where + problem);
     }
     DirectionConstraint constraint;
     constraint.vertex = *index;

@@ -2,11 +2,12 @@
 //
 // Text parsing works on std::string_view lines of an in-memory buffer: no
 // allocation per line or token, so a 200k-vertex file parses in milliseconds.
-// Numbers are parsed strictly: a token must be a whole number, nothing more
-// ("3.1+e2" is rejected, not read as 3.1).
+// Numbers are parsed strictly (strict_number.h): a token must be a whole
+// decimal number, nothing more ("3.1+e2" is rejected, not read as 3.1).
 #pragma once
 
 #include <charconv>
+#include <climits>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -16,6 +17,7 @@
 
 #include "anisoform/error.h"
 #include "anisoform/mesh_io.h"
+#include "anisoform/strict_number.h"
 
 namespace aniso::io {
 
@@ -83,20 +85,28 @@ inline std::string_view next_token(std::string_view& rest) {
   return token;
 }
 
-// Strict decimal number: [+-]digits[.digits][e[+-]digits], ".5", "2.", and
-// nan/inf (non-finite values are kept; check_mesh reports them).
-bool parse_double(std::string_view token, double& value);
+// A number in a text mesh file: the strict grammar of strict_number.h, with
+// nan/inf kept (check_mesh reports them per vertex). nullptr or the reason.
+inline const char* parse_coordinate(std::string_view token, double& value) {
+  return parse_strict_number(token, value, NonFiniteText::Keep);
+}
 
-// Strict integer: [+-]digits, within the range of long long.
+// An integer in a text mesh file (strict_number.h); callers check the range.
 inline bool parse_integer(std::string_view token, long long& value) {
-  if (!token.empty() && token[0] == '+') {
-    token.remove_prefix(1);
-    if (!token.empty() && token[0] == '-') return false;  // "+-5"
-  }
-  if (token.empty()) return false;
-  const char* end = token.data() + token.size();
-  const auto result = std::from_chars(token.data(), end, value);
-  return result.ec == std::errc() && result.ptr == end;
+  return parse_strict_integer(token, value) == nullptr;
+}
+
+// Refuses a header whose declared items (`declared`, in words: "829
+// vertices and 1654 faces") take at least `needed` bytes when only `bytes`
+// follow it, naming the counts and the size: no reader allocates or loops by
+// a count the file cannot back.
+void require_declared_bytes(long long needed, const std::string& declared, std::size_t bytes);
+
+// The least bytes `items` text items (lines, tokens) take: one character each
+// and a separator between them. Saturates instead of overflowing.
+inline long long text_bytes_for(long long items) {
+  if (items <= 0) return 0;
+  return items > LLONG_MAX / 2 ? LLONG_MAX : 2 * items - 1;
 }
 
 // Appends the shortest text that reads back to exactly `value`.

@@ -67,14 +67,18 @@ class ObjParser {
     for (double& value : xyz) {
       const std::string_view token = next_token(rest);
       if (token.empty()) fail_file("a vertex has fewer than 3 coordinates" + at_line(line_));
-      if (!parse_double(token, value)) fail_file(quoted(token) + " is not a number" + at_line(line_));
+      if (const char* problem = parse_coordinate(token, value)) {
+        fail_file(number_problem(token, problem) + at_line(line_));
+      }
     }
     // Optional w, or r g b [a] vertex colours: checked to be numbers, then unused.
     int extra = 0;
     for (std::string_view token = next_token(rest); !token.empty(); token = next_token(rest)) {
       double unused;
       if (token[0] == '#') break;
-      if (!parse_double(token, unused)) fail_file(quoted(token) + " is not a number" + at_line(line_));
+      if (const char* problem = parse_coordinate(token, unused)) {
+        fail_file(number_problem(token, problem) + at_line(line_));
+      }
       if (++extra > 4) fail_file("a vertex has more than 7 values" + at_line(line_));
     }
     polygons_.add_vertex(xyz[0], xyz[1], xyz[2]);

@@ -25,6 +25,7 @@ class OffLines {
     return false;
   }
   int line_number() const { return lines_.line_number(); }
+  std::size_t bytes_left() const { return lines_.rest().size(); }
 
  private:
   LineReader lines_;
@@ -81,8 +82,15 @@ ReadResult read_off(const char* data, std::size_t size) {
   const long long num_vertices = parse_count(next_token(rest), "vertex", counts_line);
   const long long num_faces = parse_count(next_token(rest), "face", counts_line);
 
+  // The counts come from the file: refuse those its bytes cannot hold before
+  // anything is allocated or looped over. Each vertex and face is a line of
+  // at least one character and a newline (a truncated file that passes this
+  // is reported where it ends, which says more).
+  require_declared_bytes(text_bytes_for(num_vertices + num_faces),
+                         std::to_string(num_vertices) + " vertices and " + std::to_string(num_faces) + " faces",
+                         lines.bytes_left());
   PolygonMesh polygons;
-  // Counts come from the file: reserve no more than the bytes could hold.
+  // Reserve no more than the bytes could hold: a vertex line takes 6 at least.
   polygons.xyz.reserve(3 * static_cast<std::size_t>(std::min<long long>(num_vertices, size / 6)));
   polygons.offsets.reserve(static_cast<std::size_t>(std::min<long long>(num_faces, size / 6)) + 1);
 
@@ -95,8 +103,8 @@ ReadResult read_off(const char* data, std::size_t size) {
         fail_file("vertex " + std::to_string(v + 1) + " has fewer than 3 coordinates" +
                   at_line(lines.line_number()));
       }
-      if (!parse_double(token, value)) {
-        fail_file(quoted(token) + " is not a number" + at_line(lines.line_number()));
+      if (const char* problem = parse_coordinate(token, value)) {
+        fail_file(number_problem(token, problem) + at_line(lines.line_number()));
       }
     }
     polygons.add_vertex(xyz[0], xyz[1], xyz[2]);

@@ -174,7 +174,7 @@ class AsciiValues {
   bool read(PlyType, double& value) {
     const std::string_view token = next();
     if (token.empty()) return false;
-    if (!parse_double(token, value)) fail_file(quoted(token) + " is not a number" + where());
+    if (const char* problem = parse_coordinate(token, value)) fail_file(number_problem(token, problem) + where());
     return true;
   }
   bool read_integer(PlyType, long long& value) {
@@ -373,12 +373,41 @@ void append_header(std::string& out, const Mesh& mesh, const char* format, const
   out += "\nproperty list uchar int vertex_indices\nend_header\n";
 }
 
+long long saturating_add(long long a, long long b) { return a > LLONG_MAX - b ? LLONG_MAX : a + b; }
+long long saturating_multiply(long long a, long long b) {
+  return b != 0 && a > LLONG_MAX / b ? LLONG_MAX : a * b;
+}
+
+// The element counts are the header's promise: refuse those the body cannot
+// hold before any is read. Binary: an item takes its scalar properties' sizes
+// and each list's count (a list may be empty). ASCII: an item is at least one
+// token per property.
+void check_counts_against_body(const PlyHeader& header, std::size_t body_bytes) {
+  long long needed = 0;
+  long long text_tokens = 0;
+  std::string declared = "element counts";
+  for (const PlyElement& element : header.elements) {
+    long long item_bytes = 0;
+    for (const PlyProperty& property : element.properties) {
+      item_bytes += static_cast<long long>(size_of(property.is_list ? property.count_type : property.type));
+    }
+    needed = saturating_add(needed, saturating_multiply(element.count, item_bytes));
+    text_tokens = saturating_add(
+        text_tokens, saturating_multiply(element.count, static_cast<long long>(element.properties.size())));
+    declared += (&element == &header.elements.front() ? " " : ", ") + element.name + " " +
+                std::to_string(element.count);
+  }
+  if (header.encoding == PlyEncoding::Ascii) needed = text_bytes_for(text_tokens);
+  require_declared_bytes(needed, declared, body_bytes);
+}
+
 }  // namespace
 
 ReadResult read_ply(const char* data, std::size_t size) {
   const PlyHeader header = parse_header(data, size);
   const char* body = data + header.body_offset;
   const std::size_t body_bytes = size - header.body_offset;
+  check_counts_against_body(header, body_bytes);
   if (header.encoding == PlyEncoding::Ascii) {
     AsciiValues values(std::string_view(body, body_bytes));
     return read_body(values, header, body_bytes);

@@ -126,8 +126,8 @@ class AsciiStlParser {
     const std::string_view token = tokens_.next();
     double value = 0;
     if (token.empty()) unexpected(token, "a number");
-    if (!parse_double(token, value)) {
-      fail_file(quoted(token) + " is not a number" + at_line(tokens_.line()));
+    if (const char* problem = parse_coordinate(token, value)) {
+      fail_file(number_problem(token, problem) + at_line(tokens_.line()));
     }
     return value;
   }

@@ -5,11 +5,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
-#include <cstdlib>
-#include <fstream>
 #include <vector>
 
 #include "anisoform/error.h"
+#include "anisoform/file_io.h"
 #include "anisoform/mesh_check.h"
 #include "io_common.h"
 
@@ -25,24 +24,6 @@ std::string lower_extension(const std::string& path) {
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
-}
-
-std::string read_whole_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) io::fail_file("cannot open '" + path + "' for reading");
-  // The size is only a hint: read until the end, so that whatever tellg says
-  // (for a directory, a pipe) nothing is assumed about it.
-  in.seekg(0, std::ios::end);
-  const std::streamoff size_hint = in.tellg();
-  in.seekg(0, std::ios::beg);
-  std::string data;
-  if (size_hint > 0 && size_hint < (std::streamoff{1} << 31)) data.reserve(static_cast<std::size_t>(size_hint));
-  std::vector<char> chunk(1 << 16);
-  while (in.read(chunk.data(), static_cast<std::streamsize>(chunk.size())) || in.gcount() > 0) {
-    data.append(chunk.data(), static_cast<std::size_t>(in.gcount()));
-  }
-  if (in.bad()) io::fail_file("cannot read '" + path + "'");
-  return data;
 }
 
 }  // namespace
@@ -90,7 +71,7 @@ ReadResult read_mesh_from_memory(const char* data, std::size_t size, MeshFormat 
 
 ReadResult read_mesh(const std::string& path) {
   const MeshFormat format = format_from_path(path);
-  const std::string data = read_whole_file(path);
+  const std::string data = read_regular_file(path);
   try {
     return read_mesh_from_memory(data.data(), data.size(), format);
   } catch (const Error& error) {
@@ -111,12 +92,7 @@ std::string write_mesh_to_memory(const Mesh& mesh, MeshFormat format, const Writ
 }
 
 void write_mesh(const std::string& path, const Mesh& mesh, const WriteOptions& options) {
-  const std::string data = write_mesh_to_memory(mesh, format_from_path(path), options);
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) io::fail_file("cannot open '" + path + "' for writing");
-  out.write(data.data(), static_cast<std::streamsize>(data.size()));
-  out.close();
-  if (!out) io::fail_file("cannot write '" + path + "' (disk full?)");
+  write_file_atomically(path, write_mesh_to_memory(mesh, format_from_path(path), options));
 }
 
 // ------------------------------------------------------------------------
@@ -133,73 +109,6 @@ std::string quoted(std::string_view token) {
   }
   if (token.size() > kMaxShown) out += "...";
   return out + "'";
-}
-
-namespace {
-
-bool equals_ignoring_case(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    if (std::tolower(static_cast<unsigned char>(a[i])) != b[i]) return false;
-  }
-  return true;
-}
-
-// The grammar std::from_chars accepts, for toolchains without a floating-point
-// from_chars (Emscripten's libc++): strtod alone would also take hex floats,
-// leading blanks and "infinity"-like words we want to reject.
-bool is_decimal_number(std::string_view token) {
-  std::size_t i = 0;
-  if (i < token.size() && token[i] == '-') ++i;
-  const std::string_view word = token.substr(i);
-  if (equals_ignoring_case(word, "nan") || equals_ignoring_case(word, "inf") ||
-      equals_ignoring_case(word, "infinity")) {
-    return true;
-  }
-  auto is_digit = [&](std::size_t k) { return k < token.size() && token[k] >= '0' && token[k] <= '9'; };
-  std::size_t digits = 0;
-  while (is_digit(i)) ++i, ++digits;
-  if (i < token.size() && token[i] == '.') {
-    ++i;
-    while (is_digit(i)) ++i, ++digits;
-  }
-  if (digits == 0) return false;
-  if (i < token.size() && (token[i] == 'e' || token[i] == 'E')) {
-    ++i;
-    if (i < token.size() && (token[i] == '+' || token[i] == '-')) ++i;
-    if (!is_digit(i)) return false;
-    while (is_digit(i)) ++i;
-  }
-  return i == token.size();
-}
-
-bool parse_with_strtod(std::string_view token, double& value) {
-  if (!is_decimal_number(token)) return false;
-  const std::string copy(token);  // strtod needs a terminating NUL
-  char* end = nullptr;
-  value = std::strtod(copy.c_str(), &end);
-  return end == copy.c_str() + copy.size();
-}
-
-}  // namespace
-
-bool parse_double(std::string_view token, double& value) {
-  if (!token.empty() && token[0] == '+') {  // "+1" is a number; from_chars refuses the '+'
-    token.remove_prefix(1);
-    if (!token.empty() && token[0] == '-') return false;
-  }
-  if (token.empty()) return false;
-#if defined(__cpp_lib_to_chars)
-  const char* end = token.data() + token.size();
-  const auto result = std::from_chars(token.data(), end, value);
-  if (result.ec == std::errc::result_out_of_range && result.ptr == end) {
-    // 1e999 or 1e-999: well formed; let strtod give inf or a denormal/zero.
-    return parse_with_strtod(token, value);
-  }
-  return result.ec == std::errc() && result.ptr == end;
-#else
-  return parse_with_strtod(token, value);
-#endif
 }
 
 void append_number(std::string& out, double value) {
@@ -317,6 +226,13 @@ void require_valid_indices(const Mesh& mesh) {
                                    std::to_string(mesh.V.rows()) + " vertices");
     }
   }
+}
+
+void require_declared_bytes(long long needed, const std::string& declared, std::size_t bytes) {
+  if (needed <= static_cast<long long>(bytes)) return;
+  fail_file("the header declares " + declared + ", which need at least " + std::to_string(needed) +
+            " bytes, but only " + std::to_string(bytes) + " bytes follow it: the file is truncated or its "
+            "header is wrong");
 }
 
 void note_skipped(ReadReport& report, int count, const std::string& what) {

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <functional>
 #include <limits>
 #include <queue>
@@ -12,6 +11,8 @@
 #include <utility>
 
 #include "anisoform/error.h"
+#include "anisoform/file_io.h"
+#include "anisoform/strict_number.h"
 #include "anisoform/topology.h"
 #include "selection_text.h"
 
@@ -37,27 +38,25 @@ std::vector<double> parse_number_list(const std::string& list, std::size_t expec
   std::vector<double> numbers;
   for (std::size_t k = 0; k < fields.size(); ++k) {
     const std::vector<std::string> tokens = text::tokens_of_line(fields[k]);
-    const auto value = tokens.size() == 1 ? text::parse_finite(tokens[0]) : std::nullopt;
-    if (!value) {
-      bad_region_parameter(kind + " number " + std::to_string(k + 1) + " is not a finite number: '" +
-                    fields[k] + "'");
-    }
-    numbers.push_back(*value);
+    double value = 0.0;
+    const std::string name = kind + " number " + std::to_string(k + 1);
+    const char* not_one_token = tokens.empty() ? "is empty" : "is not a number";
+    const std::string problem = tokens.size() == 1 ? text::number_field_problem(name, tokens[0], value)
+                                                   : name + ": " + number_problem(fields[k], not_one_token);
+    if (!problem.empty()) bad_region_parameter(problem);
+    numbers.push_back(value);
   }
   return numbers;
 }
 
 Region parse_vertex_file(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) bad_region_parameter("cannot read selection file '" + path + "'");
-  std::ostringstream contents;
-  contents << file.rdbuf();
+  const std::string contents = read_regular_file(path, ErrorCode::BadParameter);
 
   Region region;
   region.kind = Region::Kind::Vertices;
   bool any_weight = false;
   std::vector<double> weights;
-  const std::vector<std::string> lines = text::lines_of(contents.str());
+  const std::vector<std::string> lines = text::lines_of(contents);
   for (std::size_t line = 0; line < lines.size(); ++line) {
     const std::string where = "file " + path + " line " + std::to_string(line + 1) + ": ";
     const std::vector<std::string> tokens = text::tokens_of_line(lines[line]);
@@ -70,10 +69,9 @@ Region parse_vertex_file(const std::string& path) {
     if (!index) bad_region_parameter(where + "vertex index must be a non-negative integer, got '" + tokens[0] + "'");
     double weight = 1.0;
     if (tokens.size() == 2) {
-      const auto value = text::parse_finite(tokens[1]);
-      if (!value) bad_region_parameter(where + "weight is not a finite number: '" + tokens[1] + "'");
-      if (*value < 0.0 || *value > 1.0) bad_region_parameter(where + "weight " + tokens[1] + " is outside [0, 1]");
-      weight = *value;
+      const std::string problem = text::number_field_problem("weight", tokens[1], weight);
+      if (!problem.empty()) bad_region_parameter(where + problem);
+      if (weight < 0.0 || weight > 1.0) bad_region_parameter(where + "weight " + tokens[1] + " is outside [0, 1]");
       any_weight = true;
     }
     region.vertices.push_back(*index);

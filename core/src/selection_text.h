@@ -1,17 +1,16 @@
 // Strict parsing of the small text inputs users write by hand: selection files
 // ("file:PATH") and direction-constraint files. Private to the core; shared by
 // selection.cpp and direction_field.cpp so both accept exactly the same numbers
-// and comments.
+// (the strict grammar of strict_number.h, as everywhere) and comments.
 #pragma once
 
-#include <cerrno>
 #include <climits>
-#include <cmath>
-#include <cstdlib>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "anisoform/strict_number.h"
 
 namespace aniso::text {
 
@@ -37,28 +36,19 @@ inline std::vector<std::string> lines_of(const std::string& text) {
   return lines;
 }
 
-// A finite decimal number that is the whole token; nullopt otherwise
-// ("1e3" and "-0.5" are numbers, "1.2.3", "nan", "inf" and "" are not).
-inline std::optional<double> parse_finite(const std::string& token) {
-  if (token.empty()) return std::nullopt;
-  const char* begin = token.c_str();
-  char* end = nullptr;
-  errno = 0;
-  const double value = std::strtod(begin, &end);
-  if (end != begin + token.size() || errno == ERANGE || !std::isfinite(value)) return std::nullopt;
-  return value;
+// A vertex index: a whole-token integer (strict_number.h) that is >= 0 and
+// fits an int; nullopt otherwise ("12" is one, "-1", "1.0" and "1e2" are not).
+inline std::optional<int> parse_index(const std::string& token) {
+  long long value = 0;
+  if (parse_strict_integer(token, value) != nullptr || value < 0 || value > INT_MAX) return std::nullopt;
+  return static_cast<int>(value);
 }
 
-// A non-negative integer that is the whole token and fits an int; nullopt
-// otherwise ("12" is one, "-1", "1.0" and "1e2" are not).
-inline std::optional<int> parse_index(const std::string& token) {
-  if (token.empty() || token[0] == '-' || token[0] == '+') return std::nullopt;
-  const char* begin = token.c_str();
-  char* end = nullptr;
-  errno = 0;
-  const long value = std::strtol(begin, &end, 10);
-  if (end != begin + token.size() || errno == ERANGE || value > INT_MAX) return std::nullopt;
-  return static_cast<int>(value);
+// "NAME: 'TOKEN' REASON" when the token is not a finite decimal number
+// (strict_number.h), empty when it is one (then stored in `value`).
+inline std::string number_field_problem(const std::string& name, const std::string& token, double& value) {
+  const char* problem = parse_strict_number(token, value);
+  return problem ? name + ": " + number_problem(token, problem) : std::string();
 }
 
 }  // namespace aniso::text

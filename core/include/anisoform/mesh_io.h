@@ -39,6 +39,9 @@ struct ReadResult {
 // Reads from a file / from bytes in memory. Errors: Error(BadFile) with a
 // message naming the file's problem, e.g.
 //   "face 21 references vertex 840, but the file has 829 vertices (line 871)".
+// Only regular files are read (read_regular_file: not a FIFO or /dev/zero),
+// and a header never makes the reader allocate more than the bytes could
+// hold: counts it declares beyond the file's (or buffer's) size are refused.
 ReadResult read_mesh(const std::string& path);
 ReadResult read_mesh_from_memory(const char* data, std::size_t size, MeshFormat format);
 
@@ -46,7 +49,9 @@ struct WriteOptions {
   bool binary = true;  // PLY and STL: binary (little endian) or ASCII
 };
 
-// Writes to a file (format from the extension) / to bytes.
+// Writes to a file (format from the extension; atomically, see
+// write_file_atomically: a failed write leaves an existing file unchanged) /
+// to bytes.
 void write_mesh(const std::string& path, const Mesh& mesh, const WriteOptions& options = {});
 std::string write_mesh_to_memory(const Mesh& mesh, MeshFormat format,
                                  const WriteOptions& options = {});

@@ -1,0 +1,221 @@
+// The CLI against hostile files and values (issue "Reliability"): a failed
+// write never damages OUT (not even when OUT is IN), inputs that are not
+// regular files or whose headers promise more than their bytes are refused at
+// once, and every option value goes through the one strict number grammar.
+#include <sys/stat.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include "anisoform/file_io.h"
+#include "anisoform/mesh_io.h"
+#include "cli_runner.h"
+#include "test_support.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using aniso::test::CliRun;
+using aniso::test::contains;
+using aniso::test::describe;
+using aniso::test::mesh_path;
+using aniso::test::run_expecting;
+using aniso::test::slurp;
+using aniso::test::stdout_json;
+using aniso::test::temp_path;
+
+// A directory of its own (so that a temporary file left behind would show),
+// removed with its content at the end of the test.
+class CliScratch {
+ public:
+  explicit CliScratch(const std::string& name) : path_(temp_path(name)) { fs::create_directories(path_); }
+  ~CliScratch() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  std::string file(const std::string& name) const { return path_ + "/" + name; }
+  std::string copy_of_mesh(const std::string& relative, const std::string& name) const {
+    aniso::write_file_atomically(file(name), slurp(mesh_path(relative)));
+    return file(name);
+  }
+  std::size_t entry_count() const {
+    return static_cast<std::size_t>(std::distance(fs::directory_iterator(path_), fs::directory_iterator()));
+  }
+
+ private:
+  std::string path_;
+};
+
+// SIGXFSZ ignored, so that writing past the limit fails with EFBIG instead of
+// killing the process; `blocks` in the shell's ulimit units (512 or 1024 bytes).
+const std::string kFileSizeLimit = "trap '' XFSZ; ulimit -f ";
+
+CliRun run_under_file_size_limit(int blocks, const std::vector<std::string>& args) {
+  const CliRun run = aniso::test::run_cli_after_shell(kFileSizeLimit + std::to_string(blocks), args);
+  INFO(describe(args, run));
+  // Not signaled: the ignored SIGXFSZ was inherited through exec.
+  REQUIRE_FALSE(run.signaled);
+  REQUIRE_FALSE(run.timed_out);
+  return run;
+}
+
+// The largest coordinate difference between two meshes' vertices.
+double max_position_difference(const std::string& a, const std::string& b) {
+  const aniso::Mesh first = aniso::read_mesh(a).mesh;
+  const aniso::Mesh second = aniso::read_mesh(b).mesh;
+  REQUIRE(first.V.rows() == second.V.rows());
+  return (first.V - second.V).cwiseAbs().maxCoeff();
+}
+
+}  // namespace
+
+TEST_CASE("cli robustness: a write cut short by a file-size limit leaves OUT as it was", "[cli][robustness]") {
+  CliScratch dir("write_limit");
+  const std::string out = dir.copy_of_mesh("formats/spot_lowres.off", "out.off");
+  const std::string before = slurp(out);
+  const CliRun run = run_under_file_size_limit(
+      8, {"deform", mesh_path("formats/spot_lowres.obj"), out, "--method", "andefgrad", "--scale", "1.3"});
+  CHECK(run.exit_status == 3);
+  CHECK(contains(run.err, "could not write " + out + ": File too large"));
+  CHECK(run.out.empty());
+  CHECK(slurp(out) == before);      // byte for byte
+  CHECK(dir.entry_count() == 1);    // no temporary file left
+
+  SECTION("flatten's patterns too") {
+    const std::string svg = dir.file("pattern.svg");
+    aniso::write_file_atomically(svg, "<svg>an older pattern</svg>\n");
+    const CliRun flat = run_under_file_size_limit(1, {"flatten", mesh_path("open/plane.off"), svg});
+    CHECK(flat.exit_status == 3);
+    CHECK(contains(flat.err, "could not write " + svg));
+    CHECK(slurp(svg) == "<svg>an older pattern</svg>\n");
+    CHECK(dir.entry_count() == 2);
+  }
+}
+
+TEST_CASE("cli robustness: OUT may be IN, and a failed write keeps IN intact", "[cli][robustness]") {
+  CliScratch dir("in_place");
+  const std::vector<std::string> edit{"--method", "andefgrad", "--scale", "1.4"};
+  const std::string in = dir.copy_of_mesh("formats/spot_lowres.off", "spot.off");
+  const std::string original = slurp(in);
+
+  std::vector<std::string> failing{"deform", in, in};
+  failing.insert(failing.end(), edit.begin(), edit.end());
+  const CliRun failed = run_under_file_size_limit(8, failing);
+  CHECK(failed.exit_status == 3);
+  CHECK(contains(failed.err, "could not write " + in));
+  CHECK(slurp(in) == original);
+
+  std::vector<std::string> separate{"deform", in, dir.file("separate.off")};
+  separate.insert(separate.end(), edit.begin(), edit.end());
+  run_expecting(separate, 0);
+  std::vector<std::string> in_place{"deform", in, in};
+  in_place.insert(in_place.end(), edit.begin(), edit.end());
+  run_expecting(in_place, 0);
+  CHECK(slurp(in) == slurp(dir.file("separate.off")));  // the whole input was read before writing
+  CHECK(slurp(in) != original);
+  CHECK(dir.entry_count() == 2);
+}
+
+TEST_CASE("cli robustness: inputs that are not regular files are refused at once", "[cli][robustness]") {
+  CliScratch dir("not_regular");
+  for (const std::string name : {"zero.obj", "zero.stl", "zero.ply"}) {
+    fs::create_symlink("/dev/zero", dir.file(name));  // endless bytes: read until memory ran out
+    const CliRun run = aniso::test::run_cli({"info", dir.file(name)}, 20);
+    INFO(describe({"info", dir.file(name)}, run));
+    CHECK_FALSE(run.timed_out);
+    CHECK(run.exit_status == 3);
+    CHECK(contains(run.err, dir.file(name) + " is not a regular file (a character device)"));
+  }
+  REQUIRE(::mkfifo(dir.file("pipe.off").c_str(), 0600) == 0);  // no writer: a read blocked forever
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"info", dir.file("pipe.off")},
+        std::vector<std::string>{"deform", dir.file("pipe.off"), dir.file("out.off")}}) {
+    const CliRun run = aniso::test::run_cli(args, 20);
+    INFO(describe(args, run));
+    CHECK_FALSE(run.timed_out);
+    CHECK(run.exit_status == 3);
+    CHECK(contains(run.err, dir.file("pipe.off") + " is not a regular file (a FIFO)"));
+  }
+}
+
+TEST_CASE("cli robustness: a header promising more than the file holds names the count and the size",
+          "[cli][robustness]") {
+  CliScratch dir("promises");
+  std::string bytes = slurp(mesh_path("formats/spot_lowres_binary.ply"));
+  const std::string declared = "element vertex 829";
+  bytes.replace(bytes.find(declared), declared.size(), "element vertex 1000000000");
+  const std::string ply = dir.file("billion.ply");
+  aniso::write_file_atomically(ply, bytes);
+  const CliRun run = run_expecting({"info", ply}, 3);
+  CHECK(contains(run.err, "vertex 1000000000"));
+  CHECK(contains(run.err, "at least 12000001654 bytes"));
+  CHECK(contains(run.err, "bytes follow it"));
+}
+
+TEST_CASE("cli robustness: empty, hexadecimal and directory values are refused naming the option",
+          "[cli][robustness]") {
+  CliScratch dir("values");
+  const std::string in = mesh_path("formats/spot_lowres.obj");
+  const std::string out = dir.file("out.obj");
+  const std::string hex_field = dir.file("field.txt");
+  aniso::write_file_atomically(hex_field, "0 1 0 0\n400 0x1p0 0 0\n");
+  fs::create_directory(dir.file("selection"));
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
+      {{"deform", in, out, "--scale", ""}, "--scale: needs a value, got an empty one"},
+      {{"deform", in, out, "--iterations", ""}, "--iterations: needs a value, got an empty one"},
+      {{"deform", in, out, "--rotate", ""}, "--rotate: needs a value, got an empty one"},
+      {{"flatten", in, dir.file("p.svg"), "--compress", ""}, "--compress: needs a value, got an empty one"},
+      {{"deform", in, out, "--scale", "0x1p1"}, "--scale: '0x1p1' is a hexadecimal number"},
+      {{"deform", in, out, "--iterations", "0x10"}, "--iterations: '0x10' is not an integer"},
+      {{"deform", in, out, "--direction", "field:" + hex_field},
+       "--direction: " + hex_field + " line 2: DX: '0x1p0' is a hexadecimal number"},
+      {{"deform", in, out, "--select", "file:" + dir.file("selection")},
+       "--select: " + dir.file("selection") + " is a directory, not a regular file"},
+      {{"deform", in, out, "--select", "sphere:0,0,0,0x1p0"}, "sphere number 4: '0x1p0' is a hexadecimal number"},
+  };
+  for (const auto& [args, message] : cases) {
+    const CliRun run = run_expecting(args, 2);
+    INFO(describe(args, run));
+    CHECK(contains(run.err, message));
+    CHECK(run.out.empty());
+  }
+  CHECK_FALSE(fs::exists(out));
+}
+
+TEST_CASE("cli robustness: --iterations sets the steps of a rotation and twist, and caps a scale",
+          "[cli][robustness]") {
+  CliScratch dir("iterations");
+  const std::string in = mesh_path("formats/spot_lowres.obj");
+  const auto deform_with = [&](const std::vector<std::string>& edit, const std::string& iterations) {
+    const std::string out = dir.file("out_" + std::to_string(dir.entry_count()) + ".obj");
+    std::vector<std::string> args{"deform", in, out, "--iterations", iterations};
+    args.insert(args.end(), edit.begin(), edit.end());
+    const nlohmann::json result = stdout_json(run_expecting(args, 0));
+    return std::make_pair(out, result);
+  };
+  const double size = aniso::bounding_box(aniso::read_mesh(in).mesh.V).diagonal();
+  for (const std::vector<std::string>& edit :
+       {std::vector<std::string>{"--rotate", "n:20", "--select", "sphere:0,0.5,0.8,0.3"},
+        std::vector<std::string>{"--twist", "0,0,1:45"}}) {
+    INFO(edit[0]);
+    const auto one = deform_with(edit, "1");
+    const auto three = deform_with(edit, "3");
+    CHECK(one.second["iterations"] == 1);
+    CHECK(three.second["iterations"] == 3);  // exactly the steps asked for
+    CHECK(max_position_difference(one.first, three.first) > 1e-4 * size);  // were identical
+  }
+  const std::vector<std::string> scale{"--scale", "1.5,0.8"};
+  const auto capped = deform_with(scale, "1");
+  const auto longer = deform_with(scale, "5");
+  CHECK(max_position_difference(capped.first, longer.first) > 1e-4 * size);
+  // Converged: a larger cap changes nothing.
+  const auto converged = deform_with(scale, "300");
+  const auto more = deform_with(scale, "600");
+  CHECK(converged.second["converged"] == true);
+  CHECK(converged.second["iterations"] < 300);
+  CHECK(max_position_difference(converged.first, more.first) == 0.0);
+}
