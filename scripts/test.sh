@@ -6,8 +6,8 @@
 #
 # One native build serves the Catch2 suite, the CLI the Node tests compare
 # against, and the fuzzer: clang with AddressSanitizer + UndefinedBehavior-
-# Sanitizer, the core at -O1 (the test and CLI files at -O0: they only set up
-# and compare). Every test therefore runs with the sanitizers' checks; the
+# Sanitizer at -O1 with line tables only. Every test therefore runs with the
+# sanitizers' checks; the
 # optimised release configuration is what the WASM module ships (tested in
 # Node and Playwright) and what `bash scripts/bench.sh` measures.
 # Order: fail fast on the cheap stages; the fuzzer last.
