@@ -25,4 +25,15 @@ std::string slurp(const std::string& path) {
   return text.str();
 }
 
+CliRun run_cli_expecting(const std::vector<std::string>& args, int expected_exit) {
+  const CliRun run = run_cli(args, 60);
+  std::string command = "anisoform";
+  for (const std::string& arg : args) command += " " + arg;
+  INFO(command << "\n  exit " << run.exit_status << "\n  stdout: " << run.out << "\n  stderr: " << run.err);
+  REQUIRE_FALSE(run.timed_out);
+  REQUIRE_FALSE(run.signaled);
+  REQUIRE(run.exit_status == expected_exit);
+  return run;
+}
+
 }  // namespace aniso::test

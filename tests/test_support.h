@@ -3,11 +3,13 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <catch2/catch.hpp>
 
 #include "anisoform/error.h"
 #include "anisoform/mesh.h"
+#include "cli_runner.h"
 
 namespace aniso::test {
 
@@ -19,6 +21,10 @@ inline std::string mesh_path(const std::string& relative) {
 
 // Reads a mesh from ../shared/meshes; fails the test on error.
 Mesh load(const std::string& relative);
+
+// Runs the CLI (60 s deadline) and requires a normal exit with
+// `expected_exit`; on failure the command, stdout and stderr are shown.
+CliRun run_cli_expecting(const std::vector<std::string>& args, int expected_exit);
 
 // A whole file as bytes ("" if it cannot be read).
 std::string slurp(const std::string& path);

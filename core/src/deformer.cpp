@@ -108,10 +108,24 @@ struct Deformer::Workspace {
   Positions last_V;
 };
 
+namespace {
+
+// The power of two nearest below the mesh's bounding-box diagonal (1 for a
+// mesh without extent): dividing by it is exact in floating point, so the
+// unit-size copy is the mesh itself in other units, and scaling back is exact.
+double unit_scale(double diagonal) {
+  return diagonal > 0.0 && std::isfinite(diagonal) ? std::ldexp(1.0, std::ilogb(diagonal)) : 1.0;
+}
+
+}  // namespace
+
 Deformer::Deformer(Mesh rest) : rest_(std::move(rest)) {
-  require_solvable(rest_);
-  weights_ = cotangent_weights(rest_);
-  laplacian_ = cotangent_laplacian(rest_, weights_);
+  require_solvable(rest_);  // also bounds the coordinates (limits.h), so the diagonal is finite
+  diagonal_ = bounding_box(rest_.V).diagonal();
+  scale_ = unit_scale(diagonal_);
+  unit_ = Mesh{rest_.V / scale_, rest_.F};
+  weights_ = cotangent_weights(unit_);
+  laplacian_ = cotangent_laplacian(unit_, weights_);
 }
 
 Deformer::~Deformer() = default;
@@ -130,8 +144,34 @@ const LaplacianSolver& Deformer::solver_for(std::vector<int> pins, double* preco
 
 DeformResult Deformer::deform(const DeformRequest& request) {
   const auto start = Clock::now();
-  const int n = rest_.num_vertices();
-  validate_request(request, n);
+  validate_request(request, rest_.num_vertices());
+  validate_twist(request.transform, diagonal_);
+  // Solve on the unit-size copy (limits.h: results independent of the units,
+  // no overflow in squared areas), then scale lengths and energies back.
+  DeformRequest unit_request = request;
+  unit_request.transform.twist_origin /= scale_;
+  unit_request.transform.twist_degrees_per_unit *= scale_;
+  unit_request.handle_offset /= scale_;
+  DeformResult result = deform_unit(unit_request);
+  result.V *= scale_;
+  result.energy *= scale_ * scale_;
+  for (double& energy : result.energy_history) energy *= scale_ * scale_;
+  // The last guard: no non-finite number leaves the deformer.
+  for (int i = 0; i < result.V.rows(); ++i) {
+    if (!result.V.row(i).allFinite()) {
+      fail(ErrorCode::Numerical, "the solve produced a non-finite position at vertex " + std::to_string(i));
+    }
+  }
+  for (const double energy : result.energy_history) {
+    if (!std::isfinite(energy)) fail(ErrorCode::Numerical, "the solve produced a non-finite energy");
+  }
+  if (!std::isfinite(result.energy)) fail(ErrorCode::Numerical, "the solve produced a non-finite energy");
+  result.solve_ms = ms_since(start) - result.precompute_ms;
+  return result;
+}
+
+DeformResult Deformer::deform_unit(const DeformRequest& request) {
+  const int n = unit_.num_vertices();
   const Eigen::VectorXd w = checked_weights(request, n);
 
   DeformResult result;
@@ -140,7 +180,7 @@ DeformResult Deformer::deform(const DeformRequest& request) {
   double precompute_ms = 0.0;
   if (!workspace_) {
     const auto t0 = Clock::now();
-    workspace_ = std::make_unique<Workspace>(rest_);
+    workspace_ = std::make_unique<Workspace>(unit_);
     precompute_ms += ms_since(t0);
   }
   Workspace& ws = *workspace_;
@@ -151,26 +191,26 @@ DeformResult Deformer::deform(const DeformRequest& request) {
     TransformSpec local = request.transform;
     local.twist = false;
     const ElementTargets targets = vertex_targets(ws.targets, request.direction, local, w);
-    const Eigen::Vector3d center = linear_center(rest_, w);
-    result.V = rest_.V;
+    const Eigen::Vector3d center = linear_center(unit_, w);
+    result.V = unit_.V;
     for (int i = 0; i < n; ++i) {
-      const Eigen::Vector3d p = rest_.V.row(i).transpose();
+      const Eigen::Vector3d p = unit_.V.row(i).transpose();
       const Eigen::Vector3d q = center + targets.T[i] * (p - center);
       const Eigen::Vector3d o = request.transform.twist_origin;
       result.V.row(i) = (o + twist_rotation(request.transform, w[i], p) * (q - o)).transpose();
     }
-    for (int p : request.pins) result.V.row(p) = rest_.V.row(p);
+    for (int p : request.pins) result.V.row(p) = unit_.V.row(p);
     result.directions_filled = targets.filled;
   } else if (request.method == Method::AnDefGrad) {
-    const Gauge gauge = make_gauge(rest_, request.pins);
+    const Gauge gauge = make_gauge(unit_, request.pins);
     const LaplacianSolver& solver = solver_for(gauge.pins, &precompute_ms);
     const ElementTargets targets = triangle_targets(ws.targets, request.direction, request.transform, w);
     Positions b;
-    gradient_rhs(rest_, weights_, targets.T, b);
-    result.V = rest_.V;
+    gradient_rhs(unit_, weights_, targets.T, b);
+    result.V = unit_.V;
     solver.solve(b, result.V);
-    realign(rest_, gauge, w, Alignment::Translation, result.V);
-    result.energy = gradient_energy(rest_, weights_, targets.T, result.V);
+    realign(unit_, gauge, w, Alignment::Translation, result.V);
+    result.energy = gradient_energy(unit_, weights_, targets.T, result.V);
     result.iterations = 1;
     result.directions_filled = targets.filled;
   } else {
@@ -183,12 +223,12 @@ DeformResult Deformer::deform(const DeformRequest& request) {
       affected.setZero();
       for (int h : request.handles) affected[h] = 1.0;
     }
-    const Gauge gauge = make_gauge(rest_, user_pins);
+    const Gauge gauge = make_gauge(unit_, user_pins);
     const LaplacianSolver& solver = solver_for(gauge.pins, &precompute_ms);
     auto& iterations = ws.arap[request.elements];
     if (!iterations) {
       const auto t0 = Clock::now();
-      iterations = std::make_unique<ArapIterations>(rest_, weights_, laplacian_, request.elements);
+      iterations = std::make_unique<ArapIterations>(unit_, weights_, laplacian_, request.elements);
       precompute_ms += ms_since(t0);
     }
     bool rotational = false;
@@ -205,30 +245,24 @@ DeformResult Deformer::deform(const DeformRequest& request) {
     for (int p : gauge.pins) key += "," + std::to_string(p);
     // A rotation is applied incrementally, so it always starts from the rest pose.
     const bool warm = request.warm_start && !rotational && key == ws.last_key && ws.last_V.rows() == n;
-    result.V = warm ? ws.last_V : rest_.V;
+    result.V = warm ? ws.last_V : unit_.V;
     if (!warm) iterations->reset_rotations();
     if (isotropic) {
-      for (int h : request.handles) result.V.row(h) = rest_.V.row(h) + request.handle_offset.transpose();
+      for (int h : request.handles) result.V.row(h) = unit_.V.row(h) + request.handle_offset.transpose();
     }
-    for (int p : request.pins) result.V.row(p) = rest_.V.row(p);
+    for (int p : request.pins) result.V.row(p) = unit_.V.row(p);
     const int steps = rotational ? request.rotation_steps : request.max_iterations;
     result.iterations = iterations->run(solver, result.V, steps, rotational ? -1.0 : request.tolerance,
                                         result.energy_history);
     result.energy = result.energy_history.empty() ? 0.0 : result.energy_history.back();
     result.converged = rotational || result.iterations < steps;
-    realign(rest_, gauge, affected, Alignment::Rigid, result.V);
+    realign(unit_, gauge, affected, Alignment::Rigid, result.V);
     ws.last_key = key;
     ws.last_V = result.V;
   }
 
-  for (int i = 0; i < n; ++i) {
-    if (!result.V.row(i).allFinite()) {
-      fail(ErrorCode::Numerical, "the solve produced a non-finite position at vertex " + std::to_string(i));
-    }
-  }
   result.factorizations = factorizations_;
   result.precompute_ms = precompute_ms;
-  result.solve_ms = ms_since(start) - precompute_ms;
   return result;
 }
 

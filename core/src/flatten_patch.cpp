@@ -8,6 +8,7 @@
 
 #include "anisoform/error.h"
 #include "anisoform/flatten.h"
+#include "anisoform/mesh_check.h"
 #include "anisoform/topology.h"
 
 namespace aniso {
@@ -50,9 +51,9 @@ void compact_selected_faces(const Mesh& mesh, const std::vector<char>& vertex_ma
   patch.mesh.V.resize(static_cast<int>(patch.input_vertex.size()), 3);
   for (std::size_t i = 0; i < patch.input_vertex.size(); ++i) {
     const int input_vertex = patch.input_vertex[i];
-    if (!mesh.V.row(input_vertex).allFinite()) {
-      fail(ErrorCode::BadMesh, "vertex " + std::to_string(input_vertex) +
-                                   " has a non-finite coordinate: cannot flatten");
+    const std::string problem = coordinate_problem(mesh.V.row(input_vertex));
+    if (!problem.empty()) {
+      fail(ErrorCode::BadMesh, "vertex " + std::to_string(input_vertex) + " " + problem + ": cannot flatten");
     }
     patch.mesh.V.row(static_cast<int>(i)) = mesh.V.row(input_vertex);
   }

@@ -6,6 +6,7 @@
 #include "anisoform/error.h"
 #include "anisoform/flatten.h"
 #include "anisoform/frames.h"
+#include "anisoform/transforms.h"
 
 namespace aniso {
 
@@ -62,8 +63,8 @@ void directions_into_charts(const FlattenPatch& patch, const TriangleCharts& cha
 }  // namespace
 
 FlattenTargets with_uniform_amounts(const FlattenTargets& targets, double su, double sv) {
-  require_positive_amount(su, "the stretch along the direction (su)");
-  require_positive_amount(sv, "the stretch across the direction (sv)");
+  validate_scale(su, "the stretch along the direction su");
+  validate_scale(sv, "the stretch across the direction sv");
   FlattenTargets uniform = targets;
   uniform.su.setConstant(targets.direction.rows(), su);
   uniform.sv.setConstant(targets.direction.rows(), sv);
@@ -73,8 +74,8 @@ FlattenTargets with_uniform_amounts(const FlattenTargets& targets, double su, do
 FlattenTargets flatten_targets(const Mesh& input, const FlattenPatch& patch,
                                const TriangleCharts& charts, const FlattenDirections& directions,
                                double su, double sv) {
-  require_positive_amount(su, "the stretch along the direction (su)");
-  require_positive_amount(sv, "the stretch across the direction (sv)");
+  validate_scale(su, "the stretch along the direction su");
+  validate_scale(sv, "the stretch across the direction sv");
   const int m = patch.mesh.num_triangles();
   FlattenTargets targets;
   targets.su.setConstant(m, su);

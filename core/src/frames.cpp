@@ -162,36 +162,53 @@ Frames build_frames(const Positions& normals, const Positions& directions,
 
 void triangle_adjacency(const Triangles& F, int num_vertices, std::vector<int>& offsets,
                         std::vector<int>& neighbors) {
-  // Faces around each vertex, then faces sharing two vertices with t.
+  // Every side between two distinct vertices, grouped by its edge: O(m log m)
+  // whatever the topology. (A scan of each vertex's faces would be quadratic
+  // in a vertex's valence, and a face repeated k times has valence k.)
+  struct Side {
+    int lo, hi, face;
+  };
   const int m = static_cast<int>(F.rows());
-  std::vector<int> vf_offsets(num_vertices + 1, 0);
-  for (int t = 0; t < m; ++t)
-    for (int k = 0; k < 3; ++k) ++vf_offsets[F(t, k) + 1];
-  for (int i = 0; i < num_vertices; ++i) vf_offsets[i + 1] += vf_offsets[i];
-  std::vector<int> vf(vf_offsets.back());
-  std::vector<int> cursor(vf_offsets.begin(), vf_offsets.end() - 1);
-  for (int t = 0; t < m; ++t)
-    for (int k = 0; k < 3; ++k) vf[cursor[F(t, k)]++] = t;
-
-  offsets.assign(m + 1, 0);
-  neighbors.clear();
-  neighbors.reserve(static_cast<std::size_t>(m) * 3);
+  std::vector<Side> sides;
+  sides.reserve(static_cast<std::size_t>(m) * 3);
   for (int t = 0; t < m; ++t) {
     for (int k = 0; k < 3; ++k) {
-      const int a = F(t, (k + 1) % 3);
-      const int b = F(t, (k + 2) % 3);
-      for (int q = vf_offsets[a]; q < vf_offsets[a + 1]; ++q) {
-        const int s = vf[q];
-        if (s == t) continue;
-        if (F(s, 0) == b || F(s, 1) == b || F(s, 2) == b) {
-          if (std::find(neighbors.begin() + offsets[t], neighbors.end(), s) == neighbors.end()) {
-            neighbors.push_back(s);
-          }
-        }
-      }
+      const int a = F(t, k), b = F(t, (k + 1) % 3);
+      if (a == b || a < 0 || b < 0 || a >= num_vertices || b >= num_vertices) continue;
+      sides.push_back({std::min(a, b), std::max(a, b), t});
     }
-    offsets[t + 1] = static_cast<int>(neighbors.size());
   }
+  std::sort(sides.begin(), sides.end(), [](const Side& x, const Side& y) {
+    return x.lo != y.lo ? x.lo < y.lo : x.hi != y.hi ? x.hi < y.hi : x.face < y.face;
+  });
+  // Links (face, neighbour). An edge of two faces links them; an edge of k > 2
+  // faces (non-manifold, or one face repeated) links each to the next around
+  // a ring in index order: connected like the k-clique, but O(k) links.
+  std::vector<std::pair<int, int>> links;
+  links.reserve(sides.size() * 2);
+  for (std::size_t begin = 0; begin < sides.size();) {
+    std::size_t end = begin + 1;
+    while (end < sides.size() && sides[end].lo == sides[begin].lo && sides[end].hi == sides[begin].hi) ++end;
+    const std::size_t k = end - begin;
+    for (std::size_t i = 0; k >= 2 && i < (k == 2 ? 1 : k); ++i) {
+      const int s = sides[begin + i].face;
+      const int t = sides[begin + (i + 1) % k].face;
+      if (s == t) continue;  // a face with a repeated corner uses its edge twice
+      links.emplace_back(s, t);
+      links.emplace_back(t, s);
+    }
+    begin = end;
+  }
+  std::sort(links.begin(), links.end());
+  links.erase(std::unique(links.begin(), links.end()), links.end());
+  offsets.assign(static_cast<std::size_t>(m) + 1, 0);
+  neighbors.clear();
+  neighbors.reserve(links.size());
+  for (const auto& [face, other] : links) {
+    ++offsets[face + 1];
+    neighbors.push_back(other);
+  }
+  for (int t = 0; t < m; ++t) offsets[t + 1] += offsets[t];
 }
 
 }  // namespace aniso

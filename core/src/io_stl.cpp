@@ -5,6 +5,8 @@
 // keeps every triangle, including those welding leaves with a repeated corner
 // (check_mesh reports them).
 #include <cmath>
+#include <cstdio>
+#include <limits>
 
 #include <Eigen/Geometry>
 
@@ -206,6 +208,23 @@ Eigen::Vector3d unit_normal(const Eigen::Vector3d& a, const Eigen::Vector3d& b, 
   return length > 0 && std::isfinite(length) ? Eigen::Vector3d(n / length) : Eigen::Vector3d::Zero();
 }
 
+// Binary STL stores 32-bit floats: a larger coordinate would be written as
+// inf. (ASCII STL and the other formats write doubles.)
+void require_float_range(const Mesh& mesh) {
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Index v = mesh.F(f, k);
+      const double largest = mesh.V.row(v).cwiseAbs().maxCoeff();
+      if (largest <= std::numeric_limits<float>::max()) continue;
+      char text[32];
+      std::snprintf(text, sizeof text, "%g", largest);
+      fail(ErrorCode::BadMesh, "vertex " + std::to_string(v) + " has a coordinate of magnitude " + text +
+                                   ", beyond the 32-bit floats of binary STL (at most 3.4e38); "
+                                   "write ASCII STL, OBJ, OFF or PLY instead");
+    }
+  }
+}
+
 }  // namespace
 
 ReadResult read_stl(const char* data, std::size_t size) {
@@ -227,6 +246,7 @@ ReadResult read_stl(const char* data, std::size_t size) {
 
 std::string write_stl(const Mesh& mesh, bool binary) {
   std::string out;
+  if (binary) require_float_range(mesh);
   if (binary) {
     // The header must not start with "solid": some readers take that for ASCII.
     std::string header = "binary STL written by anisoform";

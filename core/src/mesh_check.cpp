@@ -15,6 +15,7 @@
 #include <Eigen/Geometry>
 
 #include "anisoform/error.h"
+#include "anisoform/limits.h"
 #include "anisoform/topology.h"
 
 namespace aniso {
@@ -72,6 +73,7 @@ class ProblemList {
 
 bool is_blocking(ProblemKind kind) {
   return kind == ProblemKind::EmptyMesh || kind == ProblemKind::NonFiniteCoordinate ||
+         kind == ProblemKind::CoordinateOutOfRange ||
          kind == ProblemKind::IndexOutOfRange;
 }
 
@@ -81,11 +83,10 @@ void find_blocking_problems(const Mesh& mesh, ProblemList& problems) {
   if (num_vertices == 0) problems.add(ProblemKind::EmptyMesh, -1, "the mesh has no vertices");
   if (mesh.num_triangles() == 0) problems.add(ProblemKind::EmptyMesh, -1, "the mesh has no triangles");
   for (int v = 0; v < num_vertices; ++v) {
-    if (is_finite_vertex(mesh.V, v)) continue;
-    problems.add(ProblemKind::NonFiniteCoordinate, v,
-                 "vertex " + std::to_string(v) + " has a non-finite coordinate (" +
-                     number_text(mesh.V(v, 0)) + ", " + number_text(mesh.V(v, 1)) + ", " +
-                     number_text(mesh.V(v, 2)) + ")");
+    const std::string problem = coordinate_problem(mesh.V.row(v));
+    if (problem.empty()) continue;
+    problems.add(is_finite_vertex(mesh.V, v) ? ProblemKind::CoordinateOutOfRange : ProblemKind::NonFiniteCoordinate,
+                 v, "vertex " + std::to_string(v) + " " + problem);
   }
   for (int f = 0; f < mesh.num_triangles(); ++f) {
     if (face_in_range(mesh.F, f, num_vertices)) continue;
@@ -374,10 +375,20 @@ void check_orientation(const Mesh& mesh, const std::vector<EdgeUse>& uses, MeshR
 
 // ---------------------------------------------------------------- public
 
+std::string coordinate_problem(const Eigen::RowVector3d& p) {
+  const std::string position =
+      "(" + number_text(p[0]) + ", " + number_text(p[1]) + ", " + number_text(p[2]) + ")";
+  if (!p.allFinite()) return "has a non-finite coordinate " + position;
+  if (p.cwiseAbs().maxCoeff() <= limits::kMaxCoordinate) return "";
+  return "has a coordinate out of range " + position + ": coordinates must be within +-" +
+         number_text(limits::kMaxCoordinate) + " (rescale the mesh)";
+}
+
 const char* problem_kind_name(ProblemKind kind) {
   switch (kind) {
     case ProblemKind::EmptyMesh: return "empty-mesh";
     case ProblemKind::NonFiniteCoordinate: return "non-finite-coordinate";
+    case ProblemKind::CoordinateOutOfRange: return "coordinate-out-of-range";
     case ProblemKind::IndexOutOfRange: return "index-out-of-range";
     case ProblemKind::RepeatedCorner: return "repeated-corner";
     case ProblemKind::ZeroAreaTriangle: return "zero-area-triangle";

@@ -1,12 +1,14 @@
 #include "anisoform/transforms.h"
 
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include "anisoform/error.h"
+#include "anisoform/limits.h"
 
 namespace aniso {
 namespace {
@@ -17,6 +19,20 @@ void require_finite(double value, const char* name) {
   if (!std::isfinite(value)) {
     fail(ErrorCode::BadParameter, std::string(name) + " must be a finite number");
   }
+}
+
+std::string range_number_text(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+// "scale su = 1e+300 is out of range (0.01 .. 100)".
+void require_in_range(double value, double lowest, double highest, const char* name) {
+  require_finite(value, name);
+  if (value >= lowest && value <= highest) return;
+  fail(ErrorCode::BadParameter, std::string(name) + " = " + range_number_text(value) + " is out of range (" +
+                                    range_number_text(lowest) + " .. " + range_number_text(highest) + ")");
 }
 
 }  // namespace
@@ -30,22 +46,37 @@ bool TransformSpec::is_identity() const {
   return su == 1.0 && sv == 1.0 && sn == 1.0 && !has_rotation();
 }
 
+void validate_scale(double value, const char* name) {
+  require_finite(value, name);
+  if (value <= 0.0) fail(ErrorCode::BadParameter, std::string(name) + " must be positive, got " + range_number_text(value));
+  require_in_range(value, limits::kMinScale, limits::kMaxScale, name);
+}
+
 void validate(const TransformSpec& spec) {
-  require_finite(spec.su, "scale along (su)");
-  require_finite(spec.sv, "scale across (sv)");
-  require_finite(spec.sn, "thickness scale (sn)");
-  require_finite(spec.shear, "shear");
-  require_finite(spec.rotate_degrees, "rotation angle");
-  require_finite(spec.twist_degrees_per_unit, "twist rate");
-  if (spec.su <= 0.0) fail(ErrorCode::BadParameter, "scale along (su) must be positive, got " + std::to_string(spec.su));
-  if (spec.sv <= 0.0) fail(ErrorCode::BadParameter, "scale across (sv) must be positive, got " + std::to_string(spec.sv));
-  if (spec.sn <= 0.0) fail(ErrorCode::BadParameter, "thickness scale (sn) must be positive, got " + std::to_string(spec.sn));
+  validate_scale(spec.su, "scale su");
+  validate_scale(spec.sv, "scale sv");
+  validate_scale(spec.sn, "thickness scale sn");
+  require_in_range(spec.shear, -limits::kMaxShear, limits::kMaxShear, "shear");
+  require_in_range(spec.rotate_degrees, -limits::kMaxRotateDegrees, limits::kMaxRotateDegrees,
+                   "rotation angle (degrees)");
+  require_finite(spec.twist_degrees_per_unit, "twist rate");  // its range depends on the mesh (validate_twist)
   if (spec.twist) {
     if (!spec.twist_axis.allFinite() || spec.twist_axis.norm() < 1e-12) {
       fail(ErrorCode::BadParameter, "twist axis must be a non-zero finite vector");
     }
     if (!spec.twist_origin.allFinite()) fail(ErrorCode::BadParameter, "twist origin must be finite");
   }
+}
+
+void validate_twist(const TransformSpec& spec, double mesh_diagonal) {
+  if (!spec.twist) return;
+  const double total = std::abs(spec.twist_degrees_per_unit) * mesh_diagonal;
+  if (total <= limits::kMaxTwistDegrees) return;
+  fail(ErrorCode::BadParameter,
+       "twist rate = " + range_number_text(spec.twist_degrees_per_unit) + " degrees per unit turns the mesh by " +
+           range_number_text(total) + " degrees over its bounding-box diagonal of " +
+           range_number_text(mesh_diagonal) + "; at most " + range_number_text(limits::kMaxTwistDegrees) +
+           " degrees are allowed");
 }
 
 Eigen::Matrix3d element_transform(const TransformSpec& spec, const Eigen::Vector3d& cu,

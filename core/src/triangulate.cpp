@@ -11,7 +11,14 @@
 // Ear clipping can find no ear on self-intersecting or non-planar input. Then
 // collinear (flat) ears are accepted, and failing that, the remaining corners
 // are fanned: the result always has #corners-2 triangles, in the polygon's
-// winding, and the work is bounded whatever the input.
+// winding.
+//
+// Ear clipping is O(n^2) at worst (n corners, many of them reflex). The work
+// (corner visits and point-in-triangle tests) is therefore capped at
+// kWorkPerCorner * n * log2(n): ordinary polygons (convex, or a few reflex
+// corners) finish well within it, and a pathological one (thousands of reflex
+// corners) gets the rest of its corners fanned: O(n log n) whatever the input,
+// at the price of overlapping triangles only on such polygons.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -26,9 +33,14 @@ namespace aniso {
 
 namespace {
 
-// Point-in-triangle tests allowed per polygon before the rest is fanned:
-// bounds the time on adversarial polygons with many reflex corners.
-constexpr long long kWorkBudget = 20'000'000;
+// Work allowed per corner and per doubling of the corner count before the
+// rest of a polygon is fanned (see the top of the file).
+constexpr long long kWorkPerCorner = 64;
+
+long long ear_clipping_budget(std::size_t corners) {
+  const double n = static_cast<double>(corners);
+  return static_cast<long long>(kWorkPerCorner * n * std::max(1.0, std::log2(n)));
+}
 
 struct Point2 {
   double x, y;
@@ -44,7 +56,7 @@ bool same_position(const Point2& a, const Point2& b) { return a.x == b.x && a.y 
 class EarClipper {
  public:
   EarClipper(std::vector<Point2> points, const std::vector<int>& polygon)
-      : points_(std::move(points)), polygon_(polygon) {
+      : points_(std::move(points)), polygon_(polygon), budget_(ear_clipping_budget(polygon.size())) {
     const int n = static_cast<int>(points_.size());
     prev_.resize(n);
     next_.resize(n);
@@ -65,7 +77,8 @@ class EarClipper {
     int corner = 0;
     int misses = 0;
     bool accept_flat = false;
-    while (remaining > 3 && work_ < kWorkBudget) {
+    while (remaining > 3 && work_ < budget_) {
+      ++work_;
       if (is_ear(corner, accept_flat)) {
         const int after = next_[corner];
         clip(corner);
@@ -142,6 +155,7 @@ class EarClipper {
   std::vector<int> reflex_list_;  // every corner that was ever reflex; check reflex_ too
   std::vector<std::array<int, 3>> triangles_;
   double flat_tolerance_ = 0;
+  long long budget_;
   long long work_ = 0;
 };
 

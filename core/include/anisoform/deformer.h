@@ -98,13 +98,19 @@ class Deformer {
 
   const Mesh& rest() const { return rest_; }
   int factorizations() const { return factorizations_; }
-  const CotanWeights& weights() const { return weights_; }
+  const CotanWeights& weights() const { return weights_; }  // of the unit-size copy (scale-free)
 
  private:
   struct Workspace;
   const LaplacianSolver& solver_for(std::vector<int> pins, double* precompute_ms);
+  DeformResult deform_unit(const DeformRequest& request);  // on unit_, in its units
 
   Mesh rest_;
+  // rest_ divided by scale_, a power of two near its bounding-box diagonal:
+  // every solve runs on this unit-size copy (limits.h kMaxCoordinate).
+  Mesh unit_;
+  double scale_ = 1.0;
+  double diagonal_ = 0.0;
   CotanWeights weights_;
   Eigen::SparseMatrix<double> laplacian_;
   std::map<std::vector<int>, std::unique_ptr<LaplacianSolver>> solvers_;

@@ -37,7 +37,11 @@ Frames build_frames(const Positions& normals, const Positions& directions,
                     const std::vector<int>& neighbors,
                     double degenerate_fraction = 1e-3);
 
-// Triangle-to-triangle adjacency through shared edges, CSR as above.
+// Triangle-to-triangle adjacency through shared edges, CSR as above, each
+// face's neighbours once, in index order. Two faces on a manifold edge are
+// neighbours; on an edge of k > 2 faces each face is linked to the next one
+// around (in index order), which connects them like all pairs would but keeps
+// the size linear. O(#F log #F) for any topology.
 void triangle_adjacency(const Triangles& F, int num_vertices,
                         std::vector<int>& offsets, std::vector<int>& neighbors);
 

@@ -15,6 +15,7 @@ namespace aniso {
 enum class ProblemKind {
   EmptyMesh,                // no vertices or no triangles
   NonFiniteCoordinate,      // element = vertex
+  CoordinateOutOfRange,     // element = vertex: |coordinate| > limits.h kMaxCoordinate
   IndexOutOfRange,          // element = face (only for meshes built in memory)
   RepeatedCorner,           // element = face: a face uses one vertex twice
   ZeroAreaTriangle,         // element = face
@@ -50,8 +51,8 @@ struct MeshReport {
   BoundingBox bbox;               // over finite vertices
   std::vector<Problem> problems;  // every problem, in element order per kind
 
-  // No problem that makes solving impossible: not empty, all coordinates finite,
-  // all indices in range. (Zero-area triangles, non-manifold elements and flipped
+  // No problem that makes solving impossible: not empty, all coordinates finite
+  // and within limits.h kMaxCoordinate, all indices in range. (Zero-area triangles, non-manifold elements and flipped
   // faces are solved through, with the clamped weights of laplacian.h.)
   bool solvable() const;
   // The blocking problems in plain words, one line each (at most `max_lines`
@@ -60,6 +61,11 @@ struct MeshReport {
 };
 
 MeshReport check_mesh(const Mesh& mesh);
+
+// Why a vertex at p cannot be solved on, to follow "vertex 5 ": "has a
+// non-finite coordinate (...)" or "has a coordinate out of range (...): ..."
+// (limits.h kMaxCoordinate); empty when it can.
+std::string coordinate_problem(const Eigen::RowVector3d& p);
 
 // Throws Error(BadMesh) with blocking_summary() unless the mesh is solvable.
 void require_solvable(const Mesh& mesh);

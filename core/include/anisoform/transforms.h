@@ -43,9 +43,18 @@ struct TransformSpec {
   bool is_identity() const;
 };
 
-// Throws Error(BadParameter) naming the field for non-finite values or
-// non-positive scales.
+// Throws Error(BadParameter) naming the field for non-finite values,
+// non-positive scales and amounts outside the ranges of limits.h.
 void validate(const TransformSpec& spec);
+
+// A scale or stretch factor (deform su, sv, sn; flatten su, sv): finite,
+// positive and within limits.h [kMinScale, kMaxScale]; Error(BadParameter)
+// naming `name` otherwise.
+void validate_scale(double value, const char* name);
+
+// The twist's range depends on the mesh's size (limits.h kMaxTwistDegrees):
+// Error(BadParameter) when |rate| * mesh_diagonal exceeds it.
+void validate_twist(const TransformSpec& spec, double mesh_diagonal);
 
 // Per-element amounts overriding su / sv (from a direction field with amounts).
 struct Amounts {

@@ -1,0 +1,43 @@
+// The valid ranges of user-given amounts and of mesh coordinates: the one
+// place these numbers live. Core validation (transforms.cpp validate, the
+// deformer's request check, the flatten targets, the mesh check) enforces them;
+// out of range is Error(BadParameter) naming the field, or Error(BadMesh)
+// naming the vertex. See ROBUSTNESS-core.md for the reasoning in full.
+//
+// Why these bounds: every amount here becomes a factor of the per-element
+// target matrices T. Factors in [1/100, 100] keep T's condition number below
+// 1e4, so the solves stay accurate to ~1e-12 and the deformed positions stay
+// within 100 times the mesh's extent; beyond that the "deformation" is a
+// typing mistake (1e300 overflowed to inf and printed null).
+#pragma once
+
+namespace aniso {
+namespace limits {
+
+// Scales along, across and along the normal (deform su, sv, sn) and the
+// wanted stretches of flattening (su, sv): within [kMinScale, kMaxScale].
+constexpr double kMinScale = 0.01;
+constexpr double kMaxScale = 100.0;
+
+// Shear h (the off-diagonal of the local map): |h| <= kMaxShear, so the
+// sheared map's factors stay within the scale range.
+constexpr double kMaxShear = 100.0;
+
+// Rotation angle in degrees: |angle| <= kMaxRotateDegrees (ten turns). An
+// angle of 1e16 degrees has no digit left below one turn.
+constexpr double kMaxRotateDegrees = 3600.0;
+
+// Twist: the rate is in degrees per unit of mesh length, so its sensible range
+// depends on the mesh. The bound is on the whole twist across the mesh:
+// |rate| * bounding-box diagonal <= kMaxTwistDegrees (one hundred turns).
+constexpr double kMaxTwistDegrees = 36000.0;
+
+// Mesh coordinates: |x| <= kMaxCoordinate. The square of any coordinate
+// difference (up to 2e150) and sums of three such squares stay finite, so edge
+// lengths, bounding boxes and the normalisation to unit size (deformer.cpp)
+// are exact enough; the solvers then work in that unit frame, so within this
+// range the result does not depend on the mesh's units.
+constexpr double kMaxCoordinate = 1e150;
+
+}  // namespace limits
+}  // namespace aniso

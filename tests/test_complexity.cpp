@@ -1,0 +1,140 @@
+// Inputs that once made a stage superlinear (issue "Reliability"): Spot with
+// one face repeated 8,000 times (adjacency was cubic: 208 s in `deform`), and
+// an OFF with one polygon of 5,000 corners. The assertions are structural
+// (sizes linear in #F, #corners - 2 triangles) and on results; the [complexity]
+// tests get a ctest TIMEOUT (tests/CMakeLists.txt), so a return of the old
+// behaviour fails instead of hanging. Today each takes well under 2 s.
+#include <cmath>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include "anisoform/frames.h"
+#include "anisoform/mesh_check.h"
+#include "anisoform/mesh_io.h"
+#include "cli_runner.h"
+#include "test_support.h"
+
+namespace {
+
+using aniso::Mesh;
+using aniso::test::CliRun;
+using aniso::test::run_cli;
+using aniso::test::temp_path;
+
+constexpr int kRepeats = 8000;
+
+// Face 0 of the mesh appended `copies` times.
+Mesh with_repeated_face(Mesh mesh, int copies) {
+  const int m = mesh.num_triangles();
+  mesh.F.conservativeResize(m + copies, 3);
+  for (int i = 0; i < copies; ++i) mesh.F.row(m + i) = mesh.F.row(0);
+  return mesh;
+}
+
+std::string written_repeated_face_mesh(const std::string& relative, const std::string& name) {
+  const std::string path = temp_path(name);
+  aniso::write_mesh(path, with_repeated_face(aniso::test::load(relative), kRepeats));
+  return path;
+}
+
+// OFF: one polygon of `corners` corners. Zig-zag: every other corner reflex,
+// the worst case for ear clipping.
+std::string written_star_polygon(int corners) {
+  std::string text = "OFF\n" + std::to_string(corners) + " 1 0\n";
+  for (int i = 0; i < corners; ++i) {
+    const double radius = i % 2 == 0 ? 1.0 : 0.5;
+    const double angle = 2.0 * aniso::test::kPi * i / corners;
+    text += std::to_string(radius * std::cos(angle)) + " " + std::to_string(radius * std::sin(angle)) + " 0\n";
+  }
+  text += std::to_string(corners);
+  for (int i = 0; i < corners; ++i) text += " " + std::to_string(i);
+  const std::string path = temp_path("star_polygon_" + std::to_string(corners) + ".off");
+  std::ofstream(path) << text << "\n";
+  return path;
+}
+
+// OFF of 10 KB: three vertices, one polygon of `corners` corners cycling
+// through them (every triangle of it repeats one face).
+std::string written_cycling_polygon(int corners) {
+  std::string text = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n" + std::to_string(corners);
+  for (int i = 0; i < corners; ++i) text += " " + std::to_string(i % 3);
+  const std::string path = temp_path("cycling_polygon_" + std::to_string(corners) + ".off");
+  std::ofstream(path) << text << "\n";
+  return path;
+}
+
+
+}  // namespace
+
+TEST_CASE("complexity: triangle adjacency stays linear in size with a face repeated 8000 times",
+          "[complexity]") {
+  const Mesh spot = aniso::test::load("closed/spot_triangulated.obj");
+  const Mesh mesh = with_repeated_face(spot, kRepeats);
+  std::vector<int> offsets, neighbors;
+  aniso::triangle_adjacency(mesh.F, mesh.num_vertices(), offsets, neighbors);
+  // All pairs of the 8001 faces on face 0's edges would be 64 million links.
+  CHECK(neighbors.size() <= 6u * static_cast<std::size_t>(mesh.num_triangles()));
+  // The copies are still connected to each other and to the rest of Spot:
+  // face 0's neighbours include its manifold neighbours' successor on the ring.
+  std::vector<char> reached(static_cast<std::size_t>(mesh.num_triangles()), 0);
+  std::vector<int> queue{0};
+  reached[0] = 1;
+  for (std::size_t i = 0; i < queue.size(); ++i) {
+    for (int k = offsets[queue[i]]; k < offsets[queue[i] + 1]; ++k) {
+      if (!reached[neighbors[k]]) {
+        reached[neighbors[k]] = 1;
+        queue.push_back(neighbors[k]);
+      }
+    }
+  }
+  CHECK(queue.size() == static_cast<std::size_t>(mesh.num_triangles()));
+  // On a manifold mesh every face has exactly its three edge neighbours.
+  aniso::triangle_adjacency(spot.F, spot.num_vertices(), offsets, neighbors);
+  CHECK(neighbors.size() == 3u * static_cast<std::size_t>(spot.num_triangles()));
+}
+
+TEST_CASE("complexity: the mesh check names the 8000 repeated faces", "[complexity]") {
+  const Mesh mesh = with_repeated_face(aniso::test::load("closed/spot_triangulated.obj"), kRepeats);
+  const aniso::MeshReport report = aniso::check_mesh(mesh);
+  CHECK(report.duplicate_faces == kRepeats);
+  CHECK(report.non_manifold_edges == 3);
+  CHECK(report.solvable());
+}
+
+TEST_CASE("complexity: deform of Spot with a face repeated 8000 times finishes", "[complexity]") {
+  const std::string in = written_repeated_face_mesh("closed/spot_triangulated.obj", "spot_repeated_face.obj");
+  const std::string out = temp_path("spot_repeated_face_out.obj");
+  const CliRun run = aniso::test::run_cli_expecting({"deform", in, out}, 0);
+  const nlohmann::json result = nlohmann::json::parse(run.out);
+  CHECK(result["energy"].is_number());
+  CHECK(result["max_displacement"].is_number());
+  // The duplicates are solved through and reported, counted.
+  CHECK(result["warnings"].dump().find("8000 duplicate face") != std::string::npos);
+}
+
+TEST_CASE("complexity: flatten of a patch with a face repeated 8000 times finishes", "[complexity]") {
+  const std::string in = written_repeated_face_mesh("open/spothead.obj", "spothead_repeated_face.obj");
+  const std::string out = temp_path("spothead_repeated_face_pattern.obj");
+  const CliRun run = aniso::test::run_cli_expecting({"flatten", in, out}, 0);
+  const nlohmann::json result = nlohmann::json::parse(run.out);
+  CHECK(result["energy"].is_number());
+  CHECK(run.out.find("null") == std::string::npos);
+}
+
+TEST_CASE("complexity: a polygon of 5000 corners triangulates into 4998 triangles", "[complexity]") {
+  for (const std::string& path : {written_star_polygon(5000), written_cycling_polygon(5000)}) {
+    INFO(path);
+    const aniso::ReadResult read = aniso::read_mesh(path);
+    CHECK(read.mesh.num_triangles() == 4998);
+    const CliRun run = aniso::test::run_cli_expecting({"info", path}, 0);
+    CHECK(nlohmann::json::parse(run.out)["triangles"] == 4998);
+  }
+  // Both deform: the star, and the 4998 copies of one triangle (over a minute
+  // before the adjacency was linear).
+  aniso::test::run_cli_expecting({"deform", written_star_polygon(5000), temp_path("star_polygon_out.obj")}, 0);
+  aniso::test::run_cli_expecting({"deform", written_cycling_polygon(5000), temp_path("cycling_polygon_out.obj")}, 0);
+}

@@ -1,0 +1,131 @@
+// The valid ranges of limits.h: amounts and coordinates outside them are
+// refused by name (CLI exit 2 for parameters, 3 for the mesh), nothing
+// non-finite is printed, and within them the result does not depend on the
+// mesh's units (the deformer solves on a unit-size copy).
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include "anisoform/deformer.h"
+#include "anisoform/error.h"
+#include "anisoform/limits.h"
+#include "anisoform/mesh_check.h"
+#include "anisoform/mesh_io.h"
+#include "cli_runner.h"
+#include "test_support.h"
+
+namespace {
+
+using aniso::test::CliRun;
+using aniso::test::run_cli;
+using aniso::test::temp_path;
+
+CliRun run_limits_case(const std::vector<std::string>& args, int expected_exit) {
+  const CliRun run = aniso::test::run_cli_expecting(args, expected_exit);
+  // No null, NaN or inf ever reaches stdout.
+  CHECK(run.out.find("null") == std::string::npos);
+  CHECK(run.out.find("nan") == std::string::npos);
+  CHECK(run.out.find("inf") == std::string::npos);
+  return run;
+}
+
+std::string spot_scaled_by(double factor, const std::string& name) {
+  aniso::Mesh mesh = aniso::test::load("closed/spot_triangulated.obj");
+  mesh.V *= factor;
+  const std::string path = temp_path(name);
+  aniso::write_mesh(path, mesh);
+  return path;
+}
+
+}  // namespace
+
+TEST_CASE("limits: huge amounts on the command line are refused by name with exit 2", "[limits]") {
+  const std::string in = aniso::test::mesh_path("closed/spot_triangulated.obj");
+  const std::string out = temp_path("limits_out.obj");
+  struct Case {
+    std::vector<std::string> args;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {{"deform", in, out, "--scale", "1e300"}, "scale su = 1e+300 is out of range (0.01 .. 100)"},
+      {{"deform", in, out, "--scale", "1.797e308"}, "scale su = 1.797e+308 is out of range"},
+      {{"deform", in, out, "--shear", "1e300"}, "shear = 1e+300 is out of range (-100 .. 100)"},
+      {{"deform", in, out, "--twist", "0,1,0:1e300"}, "twist rate = 1e+300"},
+      {{"deform", in, out, "--rotate", "n:1e300"}, "rotation angle (degrees) = 1e+300 is out of range"},
+      {{"flatten", aniso::test::mesh_path("open/spothead.obj"), temp_path("limits_pattern.obj"), "--compress",
+        "1e300"},
+       "su = 1e+300 is out of range (0.01 .. 100)"},
+  };
+  for (const Case& c : cases) {
+    const CliRun run = run_limits_case(c.args, 2);
+    CHECK_THAT(run.err, Catch::Contains(c.message));
+  }
+}
+
+TEST_CASE("limits: coordinates beyond 1e150 are refused naming the vertex, exit 3", "[limits]") {
+  const CliRun run = run_limits_case({"deform", spot_scaled_by(1e200, "spot_1e200.obj"), temp_path("o.obj")}, 3);
+  CHECK_THAT(run.err, Catch::Contains("vertex 0 has a coordinate out of range"));
+  aniso::Mesh mesh = aniso::test::load("closed/spot_triangulated.obj");
+  mesh.V(7, 1) = 1e200;
+  const aniso::MeshReport report = aniso::check_mesh(mesh);
+  CHECK_FALSE(report.solvable());
+  CHECK_THAT(report.blocking_summary(), Catch::Contains("vertex 7 has a coordinate out of range"));
+  CHECK_THROWS_AS(aniso::Deformer(mesh), aniso::Error);
+  mesh.V(7, 1) = aniso::limits::kMaxCoordinate;  // the bound itself is valid
+  CHECK(aniso::check_mesh(mesh).solvable());
+}
+
+TEST_CASE("limits: binary STL refuses a coordinate beyond float range", "[limits]") {
+  aniso::Mesh mesh = aniso::test::load("closed/spot_triangulated.obj");
+  mesh.V(0, 0) = 1e39;
+  try {
+    aniso::write_mesh_to_memory(mesh, aniso::MeshFormat::Stl);
+    FAIL("a coordinate of 1e39 was written to binary STL");
+  } catch (const aniso::Error& e) {
+    CHECK_THAT(e.what(), Catch::Contains("vertex 0") && Catch::Contains("binary STL"));
+  }
+  // The CLI: deform of that mesh into .stl fails instead of writing inf.
+  const std::string in = temp_path("spot_1e39.obj");
+  aniso::write_mesh(in, mesh);
+  const CliRun run = run_cli({"deform", in, temp_path("spot_1e39_out.stl")}, 60);
+  CHECK(run.exit_status != 0);
+  CHECK_THAT(run.err, Catch::Contains("binary STL"));
+}
+
+TEST_CASE("limits: spot scaled by 1e78 deforms like spot, scaled", "[limits]") {
+  const aniso::Mesh spot = aniso::test::load("closed/spot_triangulated.obj");
+  aniso::DeformRequest request;
+  request.transform.su = 1.4;
+  request.transform.sv = 0.8;
+  request.direction.vector = Eigen::Vector3d(0, 0, 1);
+  for (const double factor : {1e78, 1e120, 1e-78}) {
+    INFO("factor " << factor);
+    aniso::Deformer plain(spot);
+    aniso::Deformer scaled(aniso::Mesh{spot.V * factor, spot.F});
+    const aniso::DeformResult expected = plain.deform(request);
+    const aniso::DeformResult result = scaled.deform(request);
+    const double diagonal = aniso::bounding_box(spot.V).diagonal();
+    CHECK((result.V / factor - expected.V).cwiseAbs().maxCoeff() <= 1e-9 * diagonal);
+    CHECK(result.energy / (factor * factor) == Approx(expected.energy).epsilon(1e-9).margin(1e-12));
+  }
+  // And through the CLI: no null in the JSON.
+  run_limits_case({"deform", spot_scaled_by(1e78, "spot_1e78.obj"), temp_path("spot_1e78_out.obj"), "--scale", "1.3"},
+                  0);
+}
+
+TEST_CASE("limits: a twist's range is relative to the mesh size", "[limits]") {
+  const aniso::Mesh spot = aniso::test::load("closed/spot_triangulated.obj");
+  aniso::DeformRequest request;
+  request.method = aniso::Method::AnDefGrad;
+  request.transform.twist = true;
+  request.transform.twist_axis = Eigen::Vector3d(0, 1, 0);
+  request.transform.twist_degrees_per_unit = 1e6;
+  aniso::Deformer deformer(spot);
+  const std::string message = aniso::test::bad_parameter_message([&] { deformer.deform(request); });
+  CHECK_THAT(message, Catch::Contains("twist rate = 1e+06") && Catch::Contains("36000"));
+  // The same rate on spot a thousand times smaller is 1000 turns... / 1000.
+  aniso::Deformer small(aniso::Mesh{spot.V * 1e-3, spot.F});
+  CHECK(small.deform(request).V.allFinite());
+}
