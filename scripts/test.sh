@@ -7,9 +7,9 @@
 # One native build serves the Catch2 suite, the CLI the Node tests compare
 # against, and the fuzzer: clang with AddressSanitizer + UndefinedBehavior-
 # Sanitizer at -O1 with line tables only. Every test therefore runs with the
-# sanitizers' checks; the
-# optimised release configuration is what the WASM module ships (tested in
-# Node and Playwright) and what `bash scripts/bench.sh` measures.
+# sanitizers' checks; the optimised release configuration is what the WASM
+# module ships (tested in Node and Playwright) and what the benchmark builds
+# (bench/README.md).
 # Order: fail fast on the cheap stages; the fuzzer last.
 # Idempotent; build trees live in build-*/ (git-ignored).
 set -euo pipefail
