@@ -7,6 +7,7 @@
 
 #include "anisoform/anarap.h"
 #include "anisoform/andefgrad.h"
+#include "anisoform/distortion.h"
 #include "anisoform/element_targets.h"
 #include "anisoform/error.h"
 #include "anisoform/gauge.h"
@@ -226,6 +227,7 @@ DeformResult Deformer::deform(const DeformRequest& request) {
       fail(ErrorCode::Numerical, "the solve produced a non-finite position at vertex " + std::to_string(i));
     }
   }
+  result.inverted = count_inverted(rest_, result.V);
   result.factorizations = factorizations_;
   result.precompute_ms = precompute_ms;
   result.solve_ms = ms_since(start) - precompute_ms;

@@ -71,6 +71,7 @@ struct SessionEditResult {
   std::vector<double> energy_history;  // after each iteration (AnARAP / ARAP)
   bool converged = true;
   int directions_filled = 0;
+  int inverted = 0;        // triangles folded over (count_inverted)
   int factorizations = 0;  // total in the session so far
   double precompute_ms = 0.0;
   double solve_ms = 0.0;
