@@ -25,6 +25,8 @@ test('an extreme twist warns that triangles folded over; undo clears it', async 
   await openApp(page);
   await page.getByTestId('tool-twist').click();
   const warning = page.getByTestId('warning');
+  // Apply needs a direction source that has a direction without a drag.
+  await page.locator('#direction-source').selectOption('global');
   // The default amount (90°/unit) folds nothing.
   let committed = await armChange(page, 'positions');
   await page.getByTestId('apply-twist').click();
