@@ -242,6 +242,7 @@ Json result_json(const DeformArguments& args, const PreparedMesh& prepared,
       {"energy", result.energy},
       {"energy_history", result.energy_history},
       {"directions_filled", result.directions_filled},
+      {"inverted", result.inverted},
       {"factorizations", result.factorizations},
       {"precompute_ms", result.precompute_ms},
       {"solve_ms", result.solve_ms},
@@ -270,7 +271,7 @@ constexpr const char* kDeformHelp =
     "Deform IN with one anisotropic edit and write OUT (format from its extension: .obj .off "
     ".ply .stl). Prints one JSON object: method, vertices, triangles, selected, direction, "
     "pins, handles, iterations, converged, energy, energy_history, directions_filled, "
-    "factorizations, precompute_ms, solve_ms, max_displacement, warnings, read.\n"
+    "inverted (triangles folded over), factorizations, precompute_ms, solve_ms, max_displacement, warnings, read.\n"
     "REGION forms (--select, --pin, --handle): all | box:X0,Y0,Z0,X1,Y1,Z1 | sphere:X,Y,Z,R | "
     "file:PATH (one vertex index per line, optionally followed by a weight in [0,1]).\n"
     "Mesh repairs: a triangle soup (no shared vertices) is welded by exact position; "
@@ -308,8 +309,8 @@ void add_deform_options(CLI::App& deform, DeformArguments& args) {
                     "direction (v)")
       ->type_name("n|u|v:DEGREES");
   deform.add_option("--twist", args.twist,
-                    "Twist about the axis X,Y,Z; the angle grows from 0 at the selection's lowest "
-                    "point along the axis")
+                    "Twist about the axis X,Y,Z through the selection's weighted centroid; the "
+                    "angle grows from 0 at the selection's lowest point along the axis")
       ->type_name("X,Y,Z:DEGREES_PER_UNIT");
   deform.add_option("--pin", args.pin, "Vertices held at their rest positions")
       ->type_name("REGION");

@@ -128,6 +128,7 @@ val edit_result_to_js(const SessionEditResult& r) {
   out.set("energyHistory", copy_to_js(r.energy_history.data(), r.energy_history.size()));
   out.set("converged", r.converged);
   out.set("directionsFilled", r.directions_filled);
+  out.set("inverted", r.inverted);
   out.set("factorizations", r.factorizations);
   out.set("precomputeMs", r.precompute_ms);
   out.set("solveMs", r.solve_ms);

@@ -7,6 +7,7 @@
 
 #include "anisoform/anarap.h"
 #include "anisoform/andefgrad.h"
+#include "anisoform/distortion.h"
 #include "anisoform/element_targets.h"
 #include "anisoform/error.h"
 #include "anisoform/gauge.h"
@@ -166,6 +167,7 @@ DeformResult Deformer::deform(const DeformRequest& request) {
     if (!std::isfinite(energy)) fail(ErrorCode::Numerical, "the solve produced a non-finite energy");
   }
   if (!std::isfinite(result.energy)) fail(ErrorCode::Numerical, "the solve produced a non-finite energy");
+  result.inverted = count_inverted(rest_, result.V);
   result.solve_ms = ms_since(start) - result.precompute_ms;
   return result;
 }

@@ -231,6 +231,7 @@ SessionEditResult Session::deform(const SessionEdit& edit) {
   summary.energy_history = std::move(result.energy_history);
   summary.converged = result.converged;
   summary.directions_filled = result.directions_filled;
+  summary.inverted = result.inverted;
   summary.precompute_ms = result.precompute_ms;
   summary.solve_ms = result.solve_ms;
   set_current(std::move(result.V));

@@ -142,19 +142,22 @@ Eigen::Matrix3d polar_positive_part(const Eigen::Matrix3d& T) {
 
 Eigen::Vector3d default_twist_origin(const Positions& V, const Eigen::VectorXd& weights,
                                      const Eigen::Vector3d& axis) {
-  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  const Eigen::Vector3d a = axis.normalized();
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  double total = 0.0;
   double lowest = 0.0;
-  bool found = false;
   for (Eigen::Index i = 0; i < V.rows(); ++i) {
     if (!(weights[i] > 0.0)) continue;
     const Eigen::Vector3d p = V.row(i).transpose();
-    if (!found || p.dot(axis) < lowest) {
-      origin = p;
-      lowest = p.dot(axis);
-      found = true;
-    }
+    if (total == 0.0 || p.dot(a) < lowest) lowest = p.dot(a);
+    centroid += weights[i] * p;
+    total += weights[i];
   }
-  return origin;
+  if (!(total > 0.0)) return Eigen::Vector3d::Zero();
+  centroid /= total;
+  // Slide along the axis line (which stays through the centroid) down to the
+  // lowest selected height, where the angle is 0.
+  return centroid + (lowest - centroid.dot(a)) * a;
 }
 
 }  // namespace aniso

@@ -100,7 +100,10 @@ export interface Transform {
   thickness?: number;
   shear?: number;
   rotate?: { axis: 'n' | 'u' | 'v'; degrees: number };
-  /** Twist about `axis`; the angle is 0 at `origin` (default: the selection's lowest point along the axis). */
+  /**
+   * Twist about the axis line through `origin` along `axis`; the angle is 0 at `origin`
+   * (default: on the line through the selection's weighted centroid, at its lowest point along the axis).
+   */
   twist?: { axis: Vec3 | Numbers; degreesPerUnit: number; origin?: Vec3 | Numbers };
 }
 
@@ -142,6 +145,8 @@ export interface DeformResult {
   converged: boolean;
   /** Elements whose direction was parallel to the normal, filled from neighbours. */
   directionsFilled: number;
+  /** Triangles folded over: normal more than 90° from the rest normal once the local rotation is taken out. */
+  inverted: number;
   /** Factorizations so far in this session. */
   factorizations: number;
   precomputeMs: number;

@@ -1,7 +1,8 @@
 // The solver properties of METHOD §9 through the WASM session, on real meshes:
 // the identity leaves the mesh alone, a global stretch of a plane is exactly
-// diag(su, 1, 1), AnARAP's energy decreases, and only a new rest pose (or pin
-// set) refactors.
+// diag(su, 1, 1), AnARAP's energy decreases, only a new rest pose (or pin
+// set) refactors, the twist origin defaults to the selection's centroid line,
+// and results count the triangles an edit folded over.
 import assert from 'node:assert/strict';
 import { before, test } from 'node:test';
 
@@ -155,4 +156,37 @@ test('an AnARAP twist runs exactly rotationSteps steps, in preview too', () => w
   const twist = { method: 'anarap', transform: { twist: { axis: [0, 1, 0], degreesPerUnit: 30 } } };
   assert.equal(session.deform(twist).iterations, 1);
   assert.equal(session.deform({ ...twist, rotationSteps: 3, preview: true }).iterations, 3);
+}));
+
+// The twist origin: the default is the selection's centroid line (at its lowest
+// point along the axis); an explicit origin is used as given.
+test('twist: the default origin is the centroid line at the lowest point; an explicit origin is used', () =>
+  withSession('closed/spool.off', (session) => {
+    const rest = session.positions().slice();
+    const n = rest.length / 3;
+    const diagonal = boundingBox(rest).diagonal;
+    session.select({ all: true });
+    // The spool turns about x; all weights 1, so the centroid is the vertex mean.
+    const origin = [Infinity, 0, 0];
+    for (let i = 0; i < n; i++) {
+      origin[0] = Math.min(origin[0], rest[3 * i]);
+      origin[1] += rest[3 * i + 1] / n;
+      origin[2] += rest[3 * i + 2] / n;
+    }
+    const twist = (extra) => ({ method: 'andefgrad', transform: { twist: { axis: [1, 0, 0], degreesPerUnit: 90, ...extra } } });
+    session.deform(twist({}));
+    const byDefault = session.positions().slice();
+    session.deform(twist({ origin }));
+    assert.ok(maxVertexDistance(session.positions(), byDefault) <= 1e-5 * diagonal);
+    session.deform(twist({ origin: [origin[0], 0.5, 0] }));
+    assert.ok(maxVertexDistance(session.positions(), byDefault) > 0.05 * diagonal, 'an origin on the rim moves the part');
+  }));
+
+// Every result says how many triangles the edit folded over.
+test('deform results count folded-over triangles', () => withSession('closed/spool.off', (session) => {
+  session.select({ all: true });
+  const stretched = session.deform({ method: 'andefgrad', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: 1.5 } });
+  assert.equal(stretched.inverted, 0);
+  const extreme = session.deform({ method: 'andefgrad', transform: { twist: { axis: [1, 0, 0], degreesPerUnit: 36000 } } });
+  assert.ok(Number.isInteger(extreme.inverted) && extreme.inverted > 0, `inverted ${extreme.inverted}`);
 }));

@@ -82,6 +82,7 @@ struct DeformResult {
   std::vector<double> energy_history;   // after each iteration (AnARAP / ARAP)
   bool converged = true;
   int directions_filled = 0;            // degenerate projections filled (METHOD §3)
+  int inverted = 0;                     // triangles folded over (count_inverted)
   int factorizations = 0;               // total so far in this session
   double precompute_ms = 0.0;           // factorization etc. done for this call
   double solve_ms = 0.0;

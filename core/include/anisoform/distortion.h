@@ -1,5 +1,6 @@
 // Per-vertex distortion of a deformed mesh against its rest pose, for the
-// browser's heat map: how much each part of the surface grew or stretched.
+// browser's heat map: how much each part of the surface grew or stretched;
+// and the count of triangles a deformation folded over.
 #pragma once
 
 #include "anisoform/mesh.h"
@@ -20,5 +21,13 @@ enum class DistortionKind {
 // left gets 1. Throws Error(BadParameter) if the vertex counts differ.
 Eigen::VectorXd vertex_distortion(const Mesh& rest, const Positions& deformed,
                                   DistortionKind kind);
+
+// Triangles folded over by a deformation: the deformed normal is more than
+// 90 deg from the rest normal carried along by the local rigid rotation (the
+// mean of the corners' best-fit one-ring rotations). Without taking that
+// rotation out, a part merely turned far (a 180 deg twist, a rotated arm)
+// would count as folded everywhere. Zero-area rest triangles are skipped.
+// Throws Error(BadParameter) if the vertex counts differ.
+int count_inverted(const Mesh& rest, const Positions& deformed);
 
 }  // namespace aniso

@@ -53,8 +53,8 @@ enum class SelectionMode { Replace, Add, Subtract };
 struct SessionEdit {
   DeformRequest request;
   // A twist turns about `request.transform.twist_origin` when this is set;
-  // otherwise about the selection's lowest point along the twist axis (as the
-  // CLI does), so the selection's base stays put.
+  // otherwise about default_twist_origin (as the CLI does): the axis line
+  // through the selection's weighted centroid, angle 0 at its lowest point.
   bool twist_origin_given = false;
   // Live preview: at most kPreviewIterations iterations, warm-started from the
   // previous preview. Rotational edits (rotate, twist, shear) are not capped:
@@ -71,6 +71,7 @@ struct SessionEditResult {
   std::vector<double> energy_history;  // after each iteration (AnARAP / ARAP)
   bool converged = true;
   int directions_filled = 0;
+  int inverted = 0;        // triangles folded over (count_inverted)
   int factorizations = 0;  // total in the session so far
   double precompute_ms = 0.0;
   double solve_ms = 0.0;

@@ -69,14 +69,18 @@ Eigen::Matrix3d element_transform(const TransformSpec& spec, const Eigen::Vector
                                   double weight, const Eigen::Vector3d& position,
                                   const Amounts& amounts);
 
-// The twist's rotation Rot(a, s k (p - o).a) and the Jacobian of the twist map
-// at p (identity without a twist).
-// Where a twist starts when the user gives no origin: the selected vertex
-// (weight > 0) lowest along `axis`, so the selection's base stays put and its
-// far end turns most. The CLI and the session both use it.
+// Where a twist starts when the user gives no origin: the axis line passes
+// through the selection's weighted centroid (weights = selection weights), so
+// a part turns about its own middle instead of about a line on its surface
+// (with the lowest selected vertex as origin the spool's far rim swung ~0.24
+// units sideways); the angle is 0 at the lowest selected height along `axis`,
+// so the selection's base stays put and its far end turns most. The CLI and
+// the session both use it. Zero when nothing is selected.
 Eigen::Vector3d default_twist_origin(const Positions& V, const Eigen::VectorXd& weights,
                                      const Eigen::Vector3d& axis);
 
+// The twist's rotation Rot(a, s k (p - o).a) and the Jacobian of the twist map
+// at p (identity without a twist).
 Eigen::Matrix3d twist_rotation(const TransformSpec& spec, double weight, const Eigen::Vector3d& position);
 Eigen::Matrix3d twist_jacobian(const TransformSpec& spec, double weight, const Eigen::Vector3d& position);
 

@@ -42,7 +42,11 @@ export interface Transform {
   scale?: [number, number];
   shear?: number;
   rotate?: { axis: 'n' | 'u' | 'v'; degrees: number };
-  twist?: { axis: Vec3; degreesPerUnit: number };
+  /**
+   * Twist about the axis line through `origin`; the angle is 0 at `origin` and grows along `axis`.
+   * Default origin: on the line through the selection's weighted centroid, at its lowest point along the axis.
+   */
+  twist?: { axis: Vec3; degreesPerUnit: number; origin?: Vec3 };
 }
 
 export interface DeformOp {
@@ -62,6 +66,8 @@ export interface DeformResult {
   energy: number;
   /** Solver time in milliseconds. */
   ms: number;
+  /** Triangles folded over by the edit (the page warns when above 0). */
+  inverted: number;
 }
 
 export type FlattenDirection =

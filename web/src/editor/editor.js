@@ -10,6 +10,7 @@
 //   'busy'       boolean: a committed edit is being solved
 //   'error'      {code, message}
 //   'notice'     {message}: what a load repaired or found (plain words)
+//   'warning'    {message}: a committed edit folded triangles over
 //   'pattern'    the last flattening (FlattenPayload plus its options), or null
 //                when the mesh, its positions or the flattened selection changed
 //   'change'     {reason}: anything committed changed (load, edit, selection, undo)
@@ -207,7 +208,8 @@ export class Editor extends EventEmitter {
       this.#applyPositions(positions);
       this.history.push(new PositionsCommand(label, before, positions, (p) => this.#restorePositions(p)));
       this.emit('stats', { ...stats, live: false });
-      return { iterations: stats.iterations, energy: stats.energy, ms: stats.ms };
+      if (stats.inverted > 0) this.emit('warning', { message: foldOverWarning(stats.inverted) });
+      return { iterations: stats.iterations, energy: stats.energy, ms: stats.ms, inverted: stats.inverted };
     } catch (error) {
       throw this.#reportError(error, `${label} failed`);
     } finally {
@@ -411,6 +413,10 @@ export class Editor extends EventEmitter {
     this.emit('error', { code, message });
     return Object.assign(new Error(message), { code, cause: error });
   }
+}
+
+function foldOverWarning(count) {
+  return `${count} triangle${count === 1 ? '' : 's'} folded over: reduce the amount or the falloff.`;
 }
 
 const TRANSFORM_NAMES = { scale: 'Stretch', shear: 'Shear', rotate: 'Rotate', twist: 'Twist' };

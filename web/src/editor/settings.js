@@ -21,7 +21,9 @@ export function defaultSettings() {
     thicken: { factor: 1.3 },
     shear: { amount: 0.5 },
     rotate: { axis: 'n', degrees: 30 },
-    twist: { axis: 'y', custom: [0, 1, 0], degreesPerUnit: 90 },
+    // Origin 'centroid': the core's default (the axis line through the selection's
+    // weighted centroid); 'point': the axis line through `point` (typed, or a click on the mesh).
+    twist: { axis: 'y', custom: [0, 1, 0], degreesPerUnit: 90, origin: 'centroid', point: [0, 0, 0] },
     display: { selection: true, glyphs: true, heatMap: 'off' },
     // Flattening: the patch, the wanted stretch along / across the direction
     // (0.8 = 20 % shrinkage), the garment-CAD baseline, the pattern files' scale.

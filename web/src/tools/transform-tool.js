@@ -61,6 +61,7 @@ export class TransformTool {
     const gesture = this.gesture;
     this.gesture = null;
     if (!gesture) return;
+    if (!gesture.op) this.click?.(gesture.anchor);
     if (gesture.op?.direction?.type === 'screen') this.settings.update('lastScreen', gesture.op.direction);
     this.editor.commitGesture(gesture.op ? describeEdit(gesture.op) : '').catch(() => {
       // The editor has already shown the error; the mesh stays as committed.
@@ -110,5 +111,6 @@ export class TransformTool {
 
   // Subclasses: transformForDrag(amount, invert) writes the amount back to
   // the settings and returns the transform; transformFromSettings() returns
-  // the transform of the numeric fields; `fields` describes those fields.
+  // the transform of the numeric fields; `fields` describes those fields;
+  // click(point), if present, gets the surface point of a press without a drag.
 }

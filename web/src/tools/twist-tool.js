@@ -1,6 +1,8 @@
-// Twist: rotation about a global axis by an angle that grows along it
+// Twist: rotation about an axis line by an angle that grows along it
 // (degrees per model unit; paper Fig. 6). Drag: a full selection length
 // dragged gives 180° over the selection; Shift+drag twists the other way.
+// The axis line runs through the selection's weighted centroid (the core's
+// default) or through a point: typed, or clicked on the mesh.
 import { axisVector } from '../editor/settings.js';
 import { extentAlong } from '../interaction/screen-drag.js';
 import { round } from './stretch-tool.js';
@@ -9,7 +11,7 @@ import { TransformTool } from './transform-tool.js';
 export class TwistTool extends TransformTool {
   id = 'twist';
   label = 'Twist';
-  hint = 'Drag on the mesh: twist about the axis, more the farther along it (Shift: the other way).';
+  hint = 'Drag on the mesh: twist about the axis, more the farther along it (Shift: the other way). Click: the axis passes there.';
   fields = [
     {
       key: 'axis',
@@ -22,6 +24,15 @@ export class TwistTool extends TransformTool {
       ],
     },
     { key: 'custom', label: 'Custom axis', vector: true, showWhen: (values) => values.axis === 'custom' },
+    {
+      key: 'origin',
+      label: 'Origin',
+      options: [
+        ['centroid', 'Centroid of selection'],
+        ['point', 'Point (click the mesh)'],
+      ],
+    },
+    { key: 'point', label: 'Origin point', vector: true, point: true, showWhen: (values) => values.origin === 'point' },
     { key: 'degreesPerUnit', label: '° per unit', min: -36000, max: 36000, step: 1 },
   ];
 
@@ -32,15 +43,25 @@ export class TwistTool extends TransformTool {
     return vector.map((value) => value / length);
   }
 
+  // Without an origin the core takes the selection's centroid line.
+  #twist(degreesPerUnit) {
+    const { origin, point } = this.settings.values.twist;
+    return { axis: this.#axis(), degreesPerUnit, ...(origin === 'point' && { origin: [...point] }) };
+  }
+
+  click(point) {
+    this.settings.update('twist', { origin: 'point', point: [...point] });
+  }
+
   transformForDrag(amount, invert) {
     const axis = this.#axis();
     const length = Math.max(extentAlong(this.editor.document, axis), 1e-9);
     const degreesPerUnit = round(((invert ? -1 : 1) * amount * 180) / length, 1);
     this.settings.update('twist', { degreesPerUnit });
-    return { twist: { axis, degreesPerUnit } };
+    return { twist: this.#twist(degreesPerUnit) };
   }
 
   transformFromSettings() {
-    return { twist: { axis: this.#axis(), degreesPerUnit: this.settings.values.twist.degreesPerUnit } };
+    return { twist: this.#twist(this.settings.values.twist.degreesPerUnit) };
   }
 }

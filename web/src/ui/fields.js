@@ -40,7 +40,8 @@ export function checkboxField(settings, sectionName, { key, label }) {
   return h('label', { className: 'field field-checkbox', for: input.id }, input, h('span', {}, label));
 }
 
-export function vectorField(settings, sectionName, { key, label }) {
+/** xyz fields; a direction (the default) must be non-zero, a point (`point: true`) need not. */
+export function vectorField(settings, sectionName, { key, label, point = false }) {
   const inputs = [0, 1, 2].map((axis) =>
     h('input', { type: 'number', step: 0.1, 'aria-label': `${label} ${'xyz'[axis]}` }),
   );
@@ -51,7 +52,9 @@ export function vectorField(settings, sectionName, { key, label }) {
   for (const input of inputs) {
     input.addEventListener('change', () => {
       const vector = inputs.map((field) => Number(field.value));
-      if (vector.every(Number.isFinite) && Math.hypot(...vector) > 0) settings.update(sectionName, { [key]: vector });
+      if (vector.every(Number.isFinite) && (point || Math.hypot(...vector) > 0)) {
+        settings.update(sectionName, { [key]: vector });
+      }
       sync();
     });
   }

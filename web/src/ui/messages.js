@@ -1,9 +1,12 @@
-// The error and notice banners over the viewport. Errors say in plain words
-// what went wrong (a load error also says the current mesh was kept);
-// notices say what a load repaired or found. Both can be dismissed.
+// The error, notice and warning banners over the viewport. Errors say in
+// plain words what went wrong (a load error also says the current mesh was
+// kept); notices say what a load repaired or found; warnings say that the
+// last edit folded triangles over, until the positions change again. All can
+// be dismissed.
 export function installMessages(root, { editor }) {
   const error = root.querySelector('[data-testid=error]');
   const notice = root.querySelector('[data-testid=notice]');
+  const warning = root.querySelector('[data-testid=warning]');
   const show = (element, text) => {
     element.replaceChildren(
       Object.assign(document.createElement('span'), { textContent: text }),
@@ -22,10 +25,14 @@ export function installMessages(root, { editor }) {
     show(error, message.startsWith('Could not load') ? sentence + kept : sentence);
   });
   editor.on('notice', ({ message }) => show(notice, message));
+  // An edit's warning comes after its 'change'; undo, redo and the next edit clear it.
+  editor.on('change', ({ reason }) => reason === 'positions' && (warning.hidden = true));
+  editor.on('warning', ({ message }) => show(warning, message));
   // A successful load clears old messages; a new load's notice comes after.
   editor.on('mesh', () => {
     error.hidden = true;
     notice.hidden = true;
+    warning.hidden = true;
   });
   return { showError: (text) => show(error, text) };
 }

@@ -61,6 +61,7 @@ export const PROGRESS = 'progress';
  * @property {number} factorizations
  * @property {boolean} converged
  * @property {number} directionsFilled
+ * @property {number} inverted      triangles folded over
  */
 
 /**

@@ -133,5 +133,6 @@ function plainStats(stats) {
     factorizations: stats.factorizations,
     converged: stats.converged,
     directionsFilled: stats.directionsFilled,
+    inverted: stats.inverted,
   };
 }
