@@ -2,7 +2,7 @@
 // place these numbers live. Core validation (transforms.cpp validate, the
 // deformer's request check, the flatten targets, the mesh check) enforces them;
 // out of range is Error(BadParameter) naming the field, or Error(BadMesh)
-// naming the vertex. See ROBUSTNESS-core.md for the reasoning in full.
+// naming the vertex. See docs/ROBUSTNESS.md for the reasoning in full.
 //
 // Why these bounds: every amount here becomes a factor of the per-element
 // target matrices T. Factors in [1/100, 100] keep T's condition number below
