@@ -262,7 +262,7 @@ TEST_CASE("flatten: the fold guard keeps hard anisotropic targets fold-free", "[
   }
 }
 
-TEST_CASE("flatten: the torso panel with a curving compression band beats the uniform baseline",
+TEST_CASE("flatten (fig. 11): the torso panel's curving compression band is met within a bound and beats the uniform baseline",
           "[flatten]") {
   const Mesh torso = test::load("open/human_woman_torso_front_patch.obj");
   // An under-bust band: 20 % shrinkage along a horizontal-ish line that sags
@@ -293,6 +293,9 @@ TEST_CASE("flatten: the torso panel with a curving compression band beats the un
   CHECK(baseline.metrics.flipped == 0);
   CHECK(ours.metrics.compression_error_mean < baseline.metrics.compression_error_mean);
   CHECK(ours.metrics.compression_error_max < baseline.metrics.compression_error_max);
+  // Stated bounds on ours (measured 0.0354 mean, 0.141 max; baseline 0.067, 0.255).
+  CHECK(ours.metrics.compression_error_mean < 0.045);
+  CHECK(ours.metrics.compression_error_max < 0.18);
 }
 
 TEST_CASE("flatten: the energy decreases monotonically over the iterations", "[flatten]") {
