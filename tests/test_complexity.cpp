@@ -119,7 +119,9 @@ TEST_CASE("complexity: deform of Spot with a face repeated 8000 times finishes",
 TEST_CASE("complexity: flatten of a patch with a face repeated 8000 times finishes", "[complexity]") {
   const std::string in = written_repeated_face_mesh("open/spothead.obj", "spothead_repeated_face.obj");
   const std::string out = temp_path("spothead_repeated_face_pattern.obj");
-  const CliRun run = aniso::test::run_cli_expecting({"flatten", in, out}, 0);
+  // A capped solve: what was superlinear is the set-up (adjacency, patch,
+  // charts), not the iterations, which the sanitizer build runs 50x slower.
+  const CliRun run = aniso::test::run_cli_expecting({"flatten", in, out, "--iterations", "20"}, 0);
   const nlohmann::json result = nlohmann::json::parse(run.out);
   CHECK(result["energy"].is_number());
   CHECK(run.out.find("null") == std::string::npos);
