@@ -10,6 +10,7 @@
 
 #include "anisoform/error.h"
 #include "anisoform/screen_direction.h"
+#include "test_support.h"
 
 namespace {
 

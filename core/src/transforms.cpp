@@ -30,16 +30,18 @@ bool TransformSpec::is_identity() const {
   return su == 1.0 && sv == 1.0 && sn == 1.0 && !has_rotation();
 }
 
+void validate_scale_amount(double value, const std::string& what) {
+  require_finite(value, what.c_str());
+  if (value <= 0.0) fail(ErrorCode::BadParameter, what + " must be positive, got " + std::to_string(value));
+}
+
 void validate(const TransformSpec& spec) {
-  require_finite(spec.su, "scale along (su)");
-  require_finite(spec.sv, "scale across (sv)");
-  require_finite(spec.sn, "thickness scale (sn)");
+  validate_scale_amount(spec.su, "scale along (su)");
+  validate_scale_amount(spec.sv, "scale across (sv)");
+  validate_scale_amount(spec.sn, "thickness scale (sn)");
   require_finite(spec.shear, "shear");
   require_finite(spec.rotate_degrees, "rotation angle");
   require_finite(spec.twist_degrees_per_unit, "twist rate");
-  if (spec.su <= 0.0) fail(ErrorCode::BadParameter, "scale along (su) must be positive, got " + std::to_string(spec.su));
-  if (spec.sv <= 0.0) fail(ErrorCode::BadParameter, "scale across (sv) must be positive, got " + std::to_string(spec.sv));
-  if (spec.sn <= 0.0) fail(ErrorCode::BadParameter, "thickness scale (sn) must be positive, got " + std::to_string(spec.sn));
   if (spec.twist) {
     if (!spec.twist_axis.allFinite() || spec.twist_axis.norm() < 1e-12) {
       fail(ErrorCode::BadParameter, "twist axis must be a non-zero finite vector");

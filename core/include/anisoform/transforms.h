@@ -17,6 +17,8 @@
 // soft borders.
 #pragma once
 
+#include <string>
+
 #include <Eigen/Core>
 
 #include "anisoform/mesh.h"
@@ -46,6 +48,12 @@ struct TransformSpec {
 // Throws Error(BadParameter) naming the field for non-finite values or
 // non-positive scales.
 void validate(const TransformSpec& spec);
+
+// The one rule for a scale amount, wherever it comes from: su, sv and sn of a
+// TransformSpec, the su / sv a direction constraint carries (CLI field files,
+// WASM constraints) and the stretches of a flattening. Throws
+// Error(BadParameter) "<what> must be ..., got <value>" unless it is allowed.
+void validate_scale_amount(double value, const std::string& what);
 
 // Per-element amounts overriding su / sv (from a direction field with amounts).
 struct Amounts {
