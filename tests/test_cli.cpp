@@ -321,6 +321,26 @@ TEST_CASE("cli: an index out of range in a selection file is a bad parameter", "
   CHECK(contains(run.err, "5000"));
 }
 
+TEST_CASE("cli: field-file amounts SU/SV <= 0 are refused like --scale -1, naming the line", "[cli]") {
+  // Vertex 400's line carries the bad amount; the first line is fine.
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"0 1 0 0 1.2 1\n400 0 1 0 0\n", "field.txt line 2: SU must be positive, got 0"},
+      {"0 1 0 0\n400 0 1 0 1 -1\n", "field.txt line 2: SV must be positive, got -1"},
+  };
+  for (const auto& [text, message] : cases) {
+    const std::string field = write_temp_file("field.txt", text);
+    for (const std::string& command : {"deform", "flatten"}) {
+      const std::string out = temp_path(command == std::string("deform") ? "out.obj" : "out.svg");
+      const CliRun run = run_expecting(
+          {command, mesh("formats/spot_lowres.obj"), out, "--direction", "field:" + field}, 2);
+      INFO(command << ": " << run.err);
+      CHECK(contains(run.err, message));
+    }
+  }
+  CHECK(contains(run_expecting({"deform", mesh("formats/spot_lowres.obj"), temp_path("out.obj"), "--scale", "-1"}, 2).err,
+                 "must be positive, got -1"));
+}
+
 TEST_CASE("cli: a missing input says cannot open and exits 3", "[cli]") {
   for (const std::string& command : {"info", "deform"}) {
     std::vector<std::string> args{command, "/nonexistent/mesh.obj"};

@@ -163,6 +163,10 @@ TEST_CASE("field: constraint parse errors name the file and line", "[field]") {
              Catch::Contains("arrows.txt line 2: DX: '0x1p0' is a hexadecimal number"));
   CHECK_THAT(bad_parameter_message([&] { parse("3 1 0 0 1e999\n"); }), Catch::Contains("SU: '1e999' is out of range"));
   CHECK_THAT(bad_parameter_message([&] { parse("3 0 0 0\n"); }), Catch::Contains("line 1: the direction is zero"));
+  CHECK_THAT(bad_parameter_message([&] { parse("3 1 0 0 1\n4 1 0 0 0\n"); }),
+             Catch::Contains("arrows.txt line 2: SU must be positive, got 0"));
+  CHECK_THAT(bad_parameter_message([&] { parse("3 1 0 0 1 -1\n"); }),
+             Catch::Contains("arrows.txt line 1: SV must be positive, got -1"));
 }
 
 TEST_CASE("field: two equal constraints on a flat square give that direction everywhere", "[field]") {
@@ -293,8 +297,10 @@ TEST_CASE("field: flipping a constraint's sign gives the same line field", "[fie
 // Amounts given on the whole boundary from a linear function; returns the
 // largest deviation from that function over the mesh.
 double linear_amounts_error(const FlatSquare& square) {
-  auto su_of = [&](int i) { return 1.0 + 0.5 * square.mesh.V(i, 0) - 0.25 * square.mesh.V(i, 2); };
-  auto sv_of = [&](int i) { return 2.0 - square.mesh.V(i, 2) + 0.1 * square.mesh.V(i, 0); };
+  // Lifted so that both stay positive, as amounts must (validate_scale).
+  const double lift = 1.0 + 2.0 * square.mesh.V.cwiseAbs().maxCoeff();
+  auto su_of = [&](int i) { return lift + 0.5 * square.mesh.V(i, 0) - 0.25 * square.mesh.V(i, 2); };
+  auto sv_of = [&](int i) { return lift - square.mesh.V(i, 2) + 0.1 * square.mesh.V(i, 0); };
   std::vector<DirectionConstraint> constraints;
   for (int i = 0; i < square.mesh.num_vertices(); ++i) {
     if (square.on_boundary(i)) {
@@ -416,7 +422,14 @@ TEST_CASE("field: bad constraints are refused, naming the constraint and vertex"
   CHECK_THAT(bad_parameter_message([&] {
                propagate({constraint_with_amounts(3, tangent, std::numeric_limits<double>::infinity(), 1)});
              }),
-             Catch::Contains("(vertex 3): the amounts are not finite"));
+             Catch::Contains("direction constraint 1 (vertex 3): su must be a finite number"));
+  // Amounts follow the rule of the global scale (validate_scale): > 0.
+  CHECK_THAT(bad_parameter_message([&] { propagate({constraint_with_amounts(3, tangent, 0, 1)}); }),
+             Catch::Contains("direction constraint 1 (vertex 3): su must be positive, got 0"));
+  CHECK_THAT(bad_parameter_message([&] {
+               propagate({constraint(5, tangent), constraint_with_amounts(3, tangent, 1, -1)});
+             }),
+             Catch::Contains("direction constraint 2 (vertex 3): sv must be positive, got -1"));
   CHECK_THAT(bad_parameter_message([&] { propagate({constraint(3, tangent), constraint(3, tangent)}); }),
              Catch::Contains("direction constraint 2 (vertex 3): the vertex is already constrained by constraint 1"));
   std::vector<char> mask(mesh.num_vertices(), 0);

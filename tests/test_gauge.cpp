@@ -82,6 +82,24 @@ TEST_CASE("deformer: bad requests are refused with the problem named, and the se
   request.handles = {3};
   CHECK_THROWS_WITH(deformer.deform(request), Catch::Contains("arap"));
   request.handles.clear();
+  // Direction sources are checked before any work (validate_direction_source).
+  request.direction.kind = DirectionSource::Kind::CurvatureMax;
+  request.direction.curvature_smoothing = 1000000000;
+  CHECK_THROWS_WITH(deformer.deform(request), Catch::Contains("from 0 to 1000, got 1000000000"));
+  request.direction.kind = DirectionSource::Kind::Constraints;
+  DirectionConstraint arrow;
+  arrow.vertex = 7;
+  arrow.has_amounts = true;
+  for (const double su : {0.0, -1.0}) {
+    arrow.su = su;
+    request.direction.constraints = {arrow};
+    CHECK_THROWS_WITH(deformer.deform(request), Catch::Contains("direction constraint 1 (vertex 7): su must be positive"));
+  }
+  arrow.su = 1.0;
+  arrow.vertex = 649;
+  request.direction.constraints = {arrow};
+  CHECK_THROWS_WITH(deformer.deform(request), Catch::Contains("(vertex 649): vertex index out of range"));
+  request.direction.kind = DirectionSource::Kind::Global;
   CHECK_NOTHROW(deformer.deform(request));
   // A mesh that cannot be solved is refused at construction.
   Mesh bad = mesh;

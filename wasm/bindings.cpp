@@ -6,9 +6,9 @@
 // bindings.
 //
 // Errors: every bound call runs inside guarded(), which catches any C++
-// exception and RETURNS a JS Error carrying `code` (aniso::error_code_name, or
-// "internal") and the C++ message; the JS layer throws it as an
-// AnisoformError. Throwing a JS exception from inside the module instead
+// exception and RETURNS a JS Error carrying `code` (aniso::error_code_name,
+// "out-of-memory" for std::bad_alloc and std::length_error, or "internal") and the C++ message;
+// the JS layer throws it as an AnisoformError. Throwing a JS exception from inside the module instead
 // (TOOLCHAIN.md §1 option (a)) skips the epilogues of the frames it unwinds:
 // measured, every error then leaks 32 bytes of the 5 MB shadow stack and one
 // emval handle, so a long session would end in a stack overflow.
@@ -17,14 +17,18 @@
 // (typed_memory_view, no copy). Any later call may grow the memory and detach
 // them, so the JS layer fetches them afresh every time. Everything else
 // (flatten results and pattern files included) is returned as a JS-owned copy.
+#include <malloc.h>
+
 #include <cstdint>
 #include <new>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <vector>
 
 #include <Eigen/SparseCholesky>
 #include <emscripten/bind.h>
+#include <emscripten/heap.h>
 #include <emscripten/val.h>
 
 #include "anisoform/error.h"
@@ -37,6 +41,15 @@ using emscripten::val;
 
 namespace aniso::wasm {
 namespace {
+
+// ANISO_WASM_MAXIMUM_MEMORY_GB is the -sMAXIMUM_MEMORY of the link
+// (wasm/CMakeLists.txt), so the message names the limit actually in force.
+#define ANISO_STRINGIFY2(x) #x
+#define ANISO_STRINGIFY(x) ANISO_STRINGIFY2(x)
+constexpr const char* kOutOfMemoryMessage =
+    "out of memory: this needs more than the " ANISO_STRINGIFY(ANISO_WASM_MAXIMUM_MEMORY_GB)
+    " GB of memory the module may use in the browser; nothing was changed "
+    "(try a smaller mesh, or the native CLI)";
 
 val error_value(const char* code, const char* message) {
   val error = val::global("Error").new_(std::string(message));
@@ -56,8 +69,15 @@ val guarded(Body&& body) {
     }
   } catch (const Error& error) {
     return error_value(error_code_name(error.code()), error.what());
+  } catch (const std::length_error&) {
+    // A container longer than 32-bit WASM can address: the same limit.
+    return error_value("out-of-memory", kOutOfMemoryMessage);
   } catch (const std::bad_alloc&) {
-    return error_value("internal", "out of memory");
+    // Unwinding has freed what the call allocated, and the Session methods
+    // change nothing until their work is done (session.h), so the session
+    // stays as it was. The WASM memory itself never shrinks: it stays as
+    // large as it grew, to be reused by the next calls.
+    return error_value("out-of-memory", kOutOfMemoryMessage);
   } catch (const std::exception& error) {
     return error_value("internal", error.what());
   } catch (...) {
@@ -203,7 +223,8 @@ val load_mesh(Session& s, const val& bytes, const std::string& name) {
 
 val set_mesh(Session& s, const val& positions, const val& triangles, bool weld) {
   return guarded([&] {
-    return info_to_js(s.set_mesh(double_vector(positions), uint32_vector(triangles), weld));
+    return info_to_js(
+        s.set_mesh(double_vector(positions), checked_indices<std::uint32_t>(triangles, "setMesh: triangles"), weld));
   });
 }
 
@@ -296,6 +317,19 @@ val factorizations(Session& s) {
   return guarded([&] { return s.factorizations(); });
 }
 
+// ---- Memory ----------------------------------------------------------------
+
+// {inUse: bytes malloc'd now, heap: bytes of WASM memory (it only grows),
+//  limit: the most it may grow to}: what a host shows, and what the tests
+// check after an out-of-memory failure (everything the call took is freed).
+val memory_use() {
+  val out = val::object();
+  out.set("inUse", static_cast<double>(mallinfo().uordblks));
+  out.set("heap", static_cast<double>(emscripten_get_heap_size()));
+  out.set("limit", static_cast<double>(emscripten_get_heap_max()));
+  return out;
+}
+
 // ---- Procedural meshes -----------------------------------------------------
 
 // {positions: Float64Array, triangles: Uint32Array} of aniso::capped_cylinder,
@@ -327,8 +361,8 @@ class LaplacianFloor {
       const int n = rest.num_vertices();
       const Eigen::SparseMatrix<double> L = cotangent_laplacian(rest, cotangent_weights(rest));
       std::vector<int> free_of(static_cast<std::size_t>(n), 0);
-      for (int p : emscripten::convertJSArrayToNumberVector<int>(pins)) {
-        if (p < 0 || p >= n) fail(ErrorCode::BadParameter, "pin " + std::to_string(p) + " is out of range");
+      for (int p : checked_indices<int>(pins, "LaplacianFloor: pins")) {
+        if (p >= n) fail(ErrorCode::BadParameter, "pin " + std::to_string(p) + " is out of range");
         free_of[static_cast<std::size_t>(p)] = -1;
       }
       int free_count = 0;
@@ -394,6 +428,7 @@ EMSCRIPTEN_BINDINGS(anisoform) {
       .function("exportPattern", &export_pattern)
       .function("factorizations", &factorizations);
   emscripten::function("cappedCylinder", &capped_cylinder_js);
+  emscripten::function("memoryUse", &memory_use);
   emscripten::class_<LaplacianFloor>("LaplacianFloor")
       .constructor<>()
       .function("factor", &LaplacianFloor::factor)

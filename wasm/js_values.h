@@ -37,10 +37,17 @@ SelectionMode selection_mode_from_js(const std::string& mode);
 DistortionKind distortion_kind_from_js(const std::string& kind);
 DistortionReference distortion_reference_from_js(const std::string& reference);
 
+// Indices (vertices, pins, handles, triangle corners) from a JS array or
+// typed array, each checked to be an integer Number in [0, max of Index]
+// BEFORE it is narrowed: 2**32 + 1 or 1e10 would otherwise wrap to another
+// vertex. Error(BadParameter) "<name> element K must be ..., got <the value as
+// JS prints it>". Whether an index exists in the mesh is the core's check.
+template <typename Index>
+std::vector<Index> checked_indices(const emscripten::val& array, const std::string& name);
+
 // One bulk copy of a JS typed array (or array of numbers) into a vector.
 std::vector<float> float_vector(const emscripten::val& array);
 std::vector<double> double_vector(const emscripten::val& array);
-std::vector<std::uint32_t> uint32_vector(const emscripten::val& array);
 std::vector<std::uint8_t> byte_vector(const emscripten::val& array);
 
 }  // namespace aniso::wasm

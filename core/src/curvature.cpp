@@ -209,11 +209,15 @@ PrincipalCurvature principal_curvature(const Mesh& mesh) {
 // Each vertex's line enters the averaging with weight k_max - k_min, its
 // confidence: near-umbilic vertices, whose raw direction is noise, carry
 // almost none and take the direction of their neighbours.
-Positions curvature_direction_field(const Mesh& mesh, CurvatureDirection which, int smoothing_steps) {
-  if (smoothing_steps < 0) {
-    fail(ErrorCode::BadParameter,
-         "curvature smoothing steps must be >= 0, got " + std::to_string(smoothing_steps));
+void validate_curvature_smoothing(int steps) {
+  if (steps < 0 || steps > kMaxCurvatureSmoothing) {
+    fail(ErrorCode::BadParameter, "curvature smoothing steps must be an integer from 0 to " +
+                                      std::to_string(kMaxCurvatureSmoothing) + ", got " + std::to_string(steps));
   }
+}
+
+Positions curvature_direction_field(const Mesh& mesh, CurvatureDirection which, int smoothing_steps) {
+  validate_curvature_smoothing(smoothing_steps);
   const Positions normals = vertex_normals(mesh);
   const std::vector<field::TangentBasis> bases = vertex_bases(normals);
   const PrincipalCurvature curvature = principal_curvature_in(mesh, normals, bases);

@@ -8,6 +8,7 @@
 #include "anisoform/anarap.h"
 #include "anisoform/andefgrad.h"
 #include "anisoform/distortion.h"
+#include "anisoform/curvature.h"
 #include "anisoform/element_targets.h"
 #include "anisoform/error.h"
 #include "anisoform/gauge.h"
@@ -32,6 +33,33 @@ const char* method_name(Method method) {
     case Method::Linear: return "linear";
   }
   return "unknown";
+}
+
+void validate_direction_source(const DirectionSource& source, int n) {
+  switch (source.kind) {
+    case DirectionSource::Kind::CurvatureMin:
+    case DirectionSource::Kind::CurvatureMax:
+      validate_curvature_smoothing(source.curvature_smoothing);
+      return;
+    case DirectionSource::Kind::Constraints:
+      if (source.constraints.empty()) fail(ErrorCode::BadParameter, "a direction field needs at least one constraint");
+      validate_direction_constraints(source.constraints, n);
+      return;
+    case DirectionSource::Kind::Global:
+    case DirectionSource::Kind::Screen:
+      return;  // checked as one vector, after a screen drag's unprojection (element_targets.cpp)
+    case DirectionSource::Kind::Dense:
+      if (source.dense.rows() != n) {
+        fail(ErrorCode::BadParameter, "a dense direction field needs one direction per vertex (" +
+                                          std::to_string(n) + "), got " + std::to_string(source.dense.rows()));
+      }
+      for (int i = 0; i < n; ++i) {
+        if (!source.dense.row(i).allFinite()) {
+          fail(ErrorCode::BadParameter, "the direction of vertex " + std::to_string(i) + " is not finite");
+        }
+      }
+      return;
+  }
 }
 
 namespace {
@@ -69,6 +97,7 @@ Eigen::VectorXd checked_weights(const DeformRequest& request, int n) {
 
 void validate_request(const DeformRequest& request, int n) {
   validate(request.transform);
+  if (request.method != Method::Arap) validate_direction_source(request.direction, n);
   check_indices(request.pins, n, "pinned");
   check_indices(request.handles, n, "handle");
   if (!request.handles.empty() && request.method != Method::Arap) {

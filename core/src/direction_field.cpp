@@ -35,6 +35,7 @@
 #include "anisoform/frames.h"
 #include "anisoform/laplacian.h"
 #include "anisoform/topology.h"
+#include "anisoform/transforms.h"
 #include "direction_field_dirichlet.h"
 #include "direction_field_transport.h"
 #include "selection_text.h"
@@ -70,35 +71,31 @@ class RegionParts {
   std::vector<int> parent_;
 };
 
+std::string constraint_name(const std::vector<DirectionConstraint>& constraints, std::size_t k) {
+  return "direction constraint " + std::to_string(k + 1) + " (vertex " +
+         std::to_string(constraints[k].vertex) + ")";
+}
+
 // One constraint per vertex; -1 where there is none. Checks every constraint
-// against the mesh, naming it and its vertex.
+// against the mesh and the region, naming it and its vertex.
 std::vector<int> constraint_per_vertex(const std::vector<DirectionConstraint>& constraints,
                                        const std::vector<char>& in_region, const Positions& normals) {
   const int n = static_cast<int>(in_region.size());
+  validate_direction_constraints(constraints, n);
   std::vector<int> constraint_at(n, -1);
   for (std::size_t k = 0; k < constraints.size(); ++k) {
     const DirectionConstraint& c = constraints[k];
-    const std::string name = "direction constraint " + std::to_string(k + 1) + " (vertex " +
-                             std::to_string(c.vertex) + ")";
-    if (c.vertex < 0 || c.vertex >= n) {
-      bad_field_parameter(name + ": vertex index out of range, the mesh has " + std::to_string(n) + " vertices");
-    }
+    const std::string name = constraint_name(constraints, k);
     if (!in_region[c.vertex]) bad_field_parameter(name + ": the vertex is outside the selected region");
     if (constraint_at[c.vertex] >= 0) {
       bad_field_parameter(name + ": the vertex is already constrained by constraint " +
                     std::to_string(constraint_at[c.vertex] + 1));
     }
-    if (!c.direction.allFinite()) bad_field_parameter(name + ": the direction is not finite");
-    if (c.has_amounts && !(std::isfinite(c.su) && std::isfinite(c.sv))) {
-      bad_field_parameter(name + ": the amounts are not finite");
-    }
     const Eigen::Vector3d normal = normals.row(c.vertex).transpose();
     const Eigen::Vector3d tangential = c.direction - c.direction.dot(normal) * normal;
     if (!(tangential.norm() > kParallelFraction * c.direction.norm())) {
       bad_field_parameter(name + ": the direction " + vector_text(c.direction) +
-                    (c.direction.norm() > 0.0 ? " is (nearly) parallel to the surface normal " +
-                                                    vector_text(normal) + " there"
-                                              : " is zero"));
+                          " is (nearly) parallel to the surface normal " + vector_text(normal) + " there");
     }
     constraint_at[c.vertex] = static_cast<int>(k);
   }
@@ -222,6 +219,22 @@ field::ValueMatrix<double> interpolated_amounts(const std::vector<DirectionConst
 
 }  // namespace
 
+void validate_direction_constraints(const std::vector<DirectionConstraint>& constraints, int n) {
+  for (std::size_t k = 0; k < constraints.size(); ++k) {
+    const DirectionConstraint& c = constraints[k];
+    const std::string name = constraint_name(constraints, k);
+    if (c.vertex < 0 || c.vertex >= n) {
+      bad_field_parameter(name + ": vertex index out of range, the mesh has " + std::to_string(n) + " vertices");
+    }
+    if (!c.direction.allFinite()) bad_field_parameter(name + ": the direction is not finite");
+    if (c.direction.squaredNorm() == 0.0) bad_field_parameter(name + ": the direction is zero");
+    if (c.has_amounts) {
+      validate_scale(c.su, name + ": su");
+      validate_scale(c.sv, name + ": sv");
+    }
+  }
+}
+
 std::vector<DirectionConstraint> parse_direction_constraints(const std::string& text,
                                                              const std::string& source) {
   std::vector<DirectionConstraint> constraints;
@@ -249,6 +262,11 @@ std::vector<DirectionConstraint> parse_direction_constraints(const std::string& 
     constraint.has_amounts = tokens.size() >= 5;
     constraint.su = numbers[4];
     constraint.sv = numbers[5];
+    // Checked here too, so that a file's mistake is named by its line.
+    if (constraint.has_amounts) {
+      validate_scale(constraint.su, where + "SU");
+      validate_scale(constraint.sv, where + "SV");
+    }
     constraints.push_back(constraint);
   }
   return constraints;

@@ -70,9 +70,6 @@ void TargetContext::vertex_directions(const DirectionSource& source, Positions& 
       return;
     }
     case DirectionSource::Kind::Constraints: {
-      if (source.constraints.empty()) {
-        fail(ErrorCode::BadParameter, "a direction field needs at least one constraint");
-      }
       const DirectionField field = propagate_direction_field(rest_, source.constraints);
       directions = field.direction;
       bool any_amounts = false;
@@ -84,16 +81,6 @@ void TargetContext::vertex_directions(const DirectionSource& source, Positions& 
       return;
     }
     case DirectionSource::Kind::Dense: {
-      if (source.dense.rows() != n) {
-        fail(ErrorCode::BadParameter, "a dense direction field needs one direction per vertex (" +
-                                          std::to_string(n) + "), got " +
-                                          std::to_string(source.dense.rows()));
-      }
-      for (int i = 0; i < n; ++i) {
-        if (!source.dense.row(i).allFinite()) {
-          fail(ErrorCode::BadParameter, "the direction of vertex " + std::to_string(i) + " is not finite");
-        }
-      }
       directions = source.dense;
       return;
     }

@@ -12,12 +12,6 @@ namespace aniso {
 
 namespace {
 
-void require_positive_amount(double amount, const std::string& what) {
-  if (!(std::isfinite(amount) && amount > 0.0)) {
-    fail(ErrorCode::BadParameter, what + " must be a positive number, got " + std::to_string(amount));
-  }
-}
-
 // Line-field mean of the corners' directions in the triangle's plane, as a 3D
 // vector: doubled angles are averaged so that d and -d agree (a line field),
 // each corner weighted by its squared projected length. When the corners
@@ -95,17 +89,9 @@ FlattenTargets flatten_targets(const Mesh& input, const FlattenPatch& patch,
     fail(ErrorCode::BadParameter, "the direction field has no constraint");
   }
   bool any_amounts = false;
-  for (std::size_t k = 0; k < directions.constraints.size(); ++k) {
-    const DirectionConstraint& c = directions.constraints[k];
-    if (!c.has_amounts) continue;
-    any_amounts = true;
-    const std::string name = "direction constraint " + std::to_string(k + 1) + " (vertex " +
-                             std::to_string(c.vertex) + "): ";
-    require_positive_amount(c.su, name + "su");
-    require_positive_amount(c.sv, name + "sv");
-  }
-  // The field lives on the patch only: constraints outside it are refused by
-  // the propagation, naming the input vertex.
+  for (const DirectionConstraint& c : directions.constraints) any_amounts = any_amounts || c.has_amounts;
+  // The field lives on the patch only: constraints outside it (and bad
+  // amounts) are refused by the propagation, naming the input vertex.
   std::vector<char> in_patch(input.num_vertices(), 0);
   for (int input_vertex : patch.input_vertex) in_patch[input_vertex] = 1;
   const DirectionField field = propagate_direction_field(input, directions.constraints, &in_patch);

@@ -139,43 +139,57 @@ const SessionMeshInfo& Session::adopt_mesh(Mesh mesh, std::vector<std::string> n
     fail(ErrorCode::BadMesh, "cannot edit this mesh: " + info.report.blocking_summary());
   }
   auto deformer = std::make_unique<Deformer>(std::move(mesh));
+  // Everything the new mesh needs is allocated before the session changes, so
+  // that running out of memory (std::bad_alloc) leaves it as it was, too.
+  Positions loaded = deformer->rest().V;
+  const Triangles& F = deformer->rest().F;
+  std::vector<std::uint32_t> triangles_u32(static_cast<std::size_t>(F.size()));
+  for (Eigen::Index t = 0; t < F.rows(); ++t)
+    for (int k = 0; k < 3; ++k)
+      triangles_u32[static_cast<std::size_t>(3 * t + k)] = static_cast<std::uint32_t>(F(t, k));
+  CurrentPositions current = current_positions(loaded);
+  Eigen::VectorXd weights = Eigen::VectorXd::Zero(deformer->rest().num_vertices());
+  std::vector<float> weights_f32(static_cast<std::size_t>(weights.size()), 0.0f);
 
-  // Nothing below throws (short of running out of memory): the session changes
-  // only once the new mesh is known to be usable.
+  // Nothing below throws or allocates: moves only.
   targets_.reset();
   if (deformer_) retired_factorizations_ += deformer_->factorizations();
   deformer_ = std::move(deformer);
   info_ = std::move(info);
-  loaded_ = deformer_->rest().V;
-  const Triangles& F = deformer_->rest().F;
-  triangles_u32_.resize(static_cast<std::size_t>(F.size()));
-  for (Eigen::Index t = 0; t < F.rows(); ++t)
-    for (int k = 0; k < 3; ++k)
-      triangles_u32_[static_cast<std::size_t>(3 * t + k)] = static_cast<std::uint32_t>(F(t, k));
-  set_current(loaded_);
-  set_weights(Eigen::VectorXd::Zero(deformer_->rest().num_vertices()));
+  loaded_ = std::move(loaded);
+  triangles_u32_ = std::move(triangles_u32);
+  set_current(std::move(current));
+  weights_ = std::move(weights);
+  weights_f32_ = std::move(weights_f32);
   return info_;
 }
 
-void Session::set_current(Positions V) {
+Session::CurrentPositions Session::current_positions(Positions V) {
+  std::vector<float> f32 = to_float32(V);
+  return {std::move(V), std::move(f32)};
+}
+
+void Session::set_current(CurrentPositions current) noexcept {
   // Every change of the positions passes here: a flattening of the old ones
   // can be neither reused nor exported.
   flatten_->positions_changed();
-  current_ = std::move(V);
-  positions_f32_ = to_float32(current_);
+  current_ = std::move(current.V);
+  positions_f32_ = std::move(current.f32);
 }
 
 void Session::set_weights(Eigen::VectorXd weights) {
+  std::vector<float> f32(weights.data(), weights.data() + weights.size());
   weights_ = std::move(weights);
-  weights_f32_.assign(weights_.data(), weights_.data() + weights_.size());
+  weights_f32_ = std::move(f32);
 }
 
 void Session::replace_rest(Positions V) {
   auto deformer = std::make_unique<Deformer>(Mesh{V, deformer_->rest().F});
+  CurrentPositions current = current_positions(std::move(V));
   targets_.reset();  // it refers to the old rest mesh
   retired_factorizations_ += deformer_->factorizations();
   deformer_ = std::move(deformer);
-  set_current(std::move(V));
+  set_current(std::move(current));
 }
 
 int Session::select(const Region& region, double falloff, SelectionMode mode) {
@@ -234,7 +248,7 @@ SessionEditResult Session::deform(const SessionEdit& edit) {
   summary.inverted = result.inverted;
   summary.precompute_ms = result.precompute_ms;
   summary.solve_ms = result.solve_ms;
-  set_current(std::move(result.V));
+  set_current(current_positions(std::move(result.V)));
   summary.factorizations = factorizations();
   summary.total_ms = milliseconds_since(start);
   return summary;
@@ -247,7 +261,7 @@ void Session::commit() {
 
 void Session::cancel() {
   require_mesh();
-  set_current(deformer_->rest().V);
+  set_current(current_positions(deformer_->rest().V));
 }
 
 void Session::set_positions(const std::vector<double>& positions) {
@@ -263,6 +277,7 @@ void Session::set_positions(const std::vector<double>& positions) {
 
 Positions Session::direction_field(const DirectionSource& source) {
   require_mesh();
+  validate_direction_source(source, deformer_->rest().num_vertices());
   if (!targets_) targets_ = std::make_unique<TargetContext>(deformer_->rest());
   Positions directions;
   Eigen::VectorXd su, sv;

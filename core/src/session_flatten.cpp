@@ -132,14 +132,15 @@ SessionFlattenResult Session::flatten(const SessionFlatten& request) {
   SessionFlattenResult out =
       reindex(flattener.patch(), flattener.charts(), result, deformer_->rest().num_vertices());
 
-  // Nothing below throws (short of running out of memory).
+  std::string note = pattern_note(request);
+  // Nothing below throws or allocates: moves only.
   if (built) {
     if (state.flattener) state.retired_factorizations += state.flattener->factorizations();
     state.flattener = std::move(built);
     state.mask = std::move(mask);
   }
   state.last = std::move(result);
-  state.note = pattern_note(request);
+  state.note = std::move(note);
   out.factorizations = factorizations();
   return out;
 }

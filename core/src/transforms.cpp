@@ -46,10 +46,10 @@ bool TransformSpec::is_identity() const {
   return su == 1.0 && sv == 1.0 && sn == 1.0 && !has_rotation();
 }
 
-void validate_scale(double value, const char* name) {
-  require_finite(value, name);
-  if (value <= 0.0) fail(ErrorCode::BadParameter, std::string(name) + " must be positive, got " + range_number_text(value));
-  require_in_range(value, limits::kMinScale, limits::kMaxScale, name);
+void validate_scale(double value, const std::string& name) {
+  require_finite(value, name.c_str());
+  if (value <= 0.0) fail(ErrorCode::BadParameter, name + " must be positive, got " + range_number_text(value));
+  require_in_range(value, limits::kMinScale, limits::kMaxScale, name.c_str());
 }
 
 void validate(const TransformSpec& spec) {

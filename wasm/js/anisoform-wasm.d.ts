@@ -1,7 +1,7 @@
 // Type declarations of the Anisoform WASM JS layer (anisoform-wasm.mjs).
 // Hand-written; keep them in step with the .mjs and wasm/CONTRACT.md.
 
-export type ErrorCode = 'bad-parameter' | 'bad-mesh' | 'bad-file' | 'numerical' | 'internal';
+export type ErrorCode = 'bad-parameter' | 'bad-mesh' | 'bad-file' | 'numerical' | 'out-of-memory' | 'internal';
 
 /** Every failure of the module: a code and a message that names the problem. */
 export class AnisoformError extends Error {
@@ -288,6 +288,11 @@ export interface AnisoformWasm {
    * of near-equilateral triangles with about `approxVertices` (>= 16) vertices. For setMesh.
    */
   cappedCylinder(approxVertices: number, radius?: number, height?: number): { positions: Float64Array; triangles: Uint32Array };
+  /**
+   * Bytes malloc'd now (inUse), of WASM memory (heap: it only grows, never shrinks) and the most
+   * it may grow to (limit, 2 GB); beyond it a call fails with code 'out-of-memory'.
+   */
+  memoryUse(): { inUse: number; heap: number; limit: number };
 }
 
 export interface CreateOptions {

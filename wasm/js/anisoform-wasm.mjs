@@ -12,7 +12,7 @@
 // and copy (.slice()) what you keep.
 import createAnisoformModule from './anisoform.mjs';
 
-const ERROR_CODES = new Set(['bad-parameter', 'bad-mesh', 'bad-file', 'numerical', 'internal']);
+const ERROR_CODES = new Set(['bad-parameter', 'bad-mesh', 'bad-file', 'numerical', 'out-of-memory', 'internal']);
 
 export class AnisoformError extends Error {
   constructor(code, message, options) {
@@ -129,13 +129,12 @@ function oneOf(value, choices, name) {
   return value;
 }
 
+// Each index is checked by the module before it is narrowed (js_values.h checked_indices).
 function indexList(value, name) {
   if (value === undefined) return [];
   const isArrayLike = Array.isArray(value) || (ArrayBuffer.isView(value) && !(value instanceof DataView));
   if (!isArrayLike) throw badParameter(`${name} must be an array of vertex indices`);
-  const indices = Array.from(value);
-  indices.forEach((x, i) => integerAtLeast(x, 0, `${name}[${i}]`));
-  return indices;
+  return value;
 }
 
 // Positions may come as float32 (GPU buffers) or float64 (exact, e.g. from
@@ -393,12 +392,6 @@ function normalizeFlatten(options, defaultDirection) {
     requireObject(options.direction, `${name}.direction`);
     oneOf(options.direction.type, ['global', 'constraints'], `${name}.direction.type`);
     direction = normalizeDirection(options.direction, `${name}.direction`);
-    direction.constraints?.forEach((c, i) => {
-      if (c.hasAmounts) {
-        positive(c.su, `${name}.direction.constraints[${i}].su`);
-        positive(c.sv, `${name}.direction.constraints[${i}].sv`);
-      }
-    });
   }
   const method = options.baseline === undefined ? 'anisotropic'
     : (oneOf(options.baseline, ['uniform'], `${name}.baseline`), 'uniform-baseline');
@@ -473,7 +466,7 @@ export async function createAnisoformWasm(options = {}) {
     setMesh(positions, triangles, options = {}) {
       const { weld = false } = requireObject(options, 'setMesh options');
       const xyz = positionArray(positions, 'setMesh: positions');
-      const indices = typedArray(triangles, Uint32Array, 'setMesh: triangles');
+      const indices = indexList(triangles, 'setMesh: triangles');
       if (typeof weld !== 'boolean') throw badParameter('setMesh: options.weld must be true or false');
       return guarded(() => this.#session.setMesh(xyz, indices, weld));
     }
@@ -571,7 +564,7 @@ export async function createAnisoformWasm(options = {}) {
     #raw;
 
     constructor(session, pins) {
-      const indices = Int32Array.from(indexList(pins, 'LaplacianFloor: pins'));
+      const indices = indexList(pins, 'LaplacianFloor: pins');
       this.#raw = guarded(() => new module.LaplacianFloor());
       try {
         guarded(() => this.#raw.factor(rawSessions.get(session), indices));
@@ -603,5 +596,8 @@ export async function createAnisoformWasm(options = {}) {
     return guarded(() => module.cappedCylinder(approxVertices, radius, height));
   }
 
-  return { Session, LaplacianFloor, cappedCylinder };
+  // {inUse, heap, limit} in bytes: malloc'd now, the WASM memory (it never shrinks), its maximum.
+  const memoryUse = () => guarded(() => module.memoryUse());
+
+  return { Session, LaplacianFloor, cappedCylinder, memoryUse };
 }

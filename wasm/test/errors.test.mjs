@@ -1,6 +1,10 @@
 // Errors reach JS as AnisoformError with a code and a message naming the
 // field or element at fault, and the module keeps working after any number
-// of them.
+// of them. What the module refuses at the JS boundary (ROBUSTNESS-wasm.md):
+// indices that are not integers in range (checked before C++ narrows them, so
+// 2**32 + 1 cannot wrap to vertex 1), direction amounts outside the rule of
+// the global scale, unbounded curvature smoothing; and running out of memory,
+// reported as 'out-of-memory' with everything the failed call took freed.
 import assert from 'node:assert/strict';
 import { before, test } from 'node:test';
 
@@ -69,4 +73,111 @@ test('the module keeps working, without leaking, after many errors', () => {
   } finally {
     session.delete();
   }
+});
+
+// plane.off: 841 vertices in y = 0, so y is its normal and x a tangent.
+function withPlane(body) {
+  const session = sessionWith(wasm, 'open/plane.off');
+  try {
+    body(session);
+  } finally {
+    session.delete();
+  }
+}
+
+test('direction constraint amounts su/sv <= 0 are refused like a global scale <= 0', () => {
+  withPlane((session) => {
+    const arrows = (amounts) => ({ type: 'constraints', constraints: [{ vertex: 0, direction: [1, 0, 0], ...amounts }] });
+    for (const [amounts, message] of [
+      [{ su: 0 }, /direction constraint 1 \(vertex 0\): su must be positive, got 0/],
+      [{ su: -1 }, /direction constraint 1 \(vertex 0\): su must be positive, got -1/],
+      [{ su: 1.2, sv: 0 }, /direction constraint 1 \(vertex 0\): sv must be positive, got 0/],
+    ]) {
+      expectError(() => session.deform({ method: 'andefgrad', direction: arrows(amounts) }), 'bad-parameter', message);
+      expectError(() => session.directionField(arrows(amounts)), 'bad-parameter', message);
+      expectError(() => session.flatten({ direction: arrows(amounts) }), 'bad-parameter', message);
+    }
+    expectError(() => session.deform({ transform: { scale: -1 } }), 'bad-parameter', /scale su must be positive, got -1/);
+  });
+});
+
+test('vertex indices are refused unless integers in range, naming the value as given', () => {
+  withPlane((session) => {
+    const selected = session.select({ vertices: [3, 4] });
+    const refused = [
+      [2 ** 32 + 1, /must be an integer from 0 to 2147483647, got 4294967297/],
+      [1e10, /got 10000000000/],
+      [2 ** 31, /got 2147483648/],
+      [1.5, /got 1\.5/],
+      [-1, /got -1/],
+      [NaN, /got NaN/],
+    ];
+    for (const [index, message] of refused) {
+      expectError(() => session.select({ vertices: [0, index] }), 'bad-parameter', /'vertices' element 1 /);
+      expectError(() => session.select({ vertices: [index] }), 'bad-parameter', message);
+      expectError(() => session.select({ vertices: Float64Array.of(index) }), 'bad-parameter', message);
+      expectError(() => session.deform({ pins: [index] }), 'bad-parameter', message);
+      expectError(() => session.deform({ method: 'arap', handles: [index] }), 'bad-parameter', message);
+    }
+    // Non-numbers are not converted (a bulk copy would read null as vertex 0).
+    expectError(() => session.select({ vertices: [null] }), 'bad-parameter', /must be a number, got a value of type object/);
+    expectError(() => session.select({ vertices: ['3'] }), 'bad-parameter', /must be a number, got '3'/);
+    // A constraint's vertex goes through the same narrowing.
+    expectError(() => session.deform({ direction: { type: 'constraints', constraints: [{ vertex: 2 ** 32 + 1, direction: [1, 0, 0] }] } }),
+      'bad-parameter', /'vertex' must be an integer from -2147483648 to 2147483647, got 4294967297/);
+    // In range for a 32-bit index but not a vertex of this mesh: the core's check.
+    expectError(() => session.select({ vertices: [841] }), 'bad-parameter', /selected vertex 841 is out of range \(the mesh has 841 vertices\)/);
+    // Nothing was selected by any of these.
+    assert.equal(session.select({ vertices: [] }, { mode: 'add' }), selected);
+    assert.deepEqual(Array.from(session.selection()).flatMap((w, i) => (w > 0 ? [i] : [])), [3, 4]);
+  });
+});
+
+test('setMesh triangle corners are checked before they become uint32', () => {
+  const session = new wasm.Session();
+  try {
+    const positions = [0, 0, 0, 1, 0, 0, 0, 1, 0];
+    expectError(() => session.setMesh(positions, [0, 1, 2 ** 32 + 2]), 'bad-parameter', /setMesh: triangles element 2 must be an integer from 0 to 4294967295, got 4294967298/);
+    expectError(() => session.setMesh(positions, [0, 1, -1]), 'bad-parameter', /got -1/);
+    assert.equal(session.setMesh(positions, Uint32Array.of(0, 1, 2)).triangles, 1);
+  } finally {
+    session.delete();
+  }
+});
+
+test('curvature smoothing is bounded to 0..1000 steps', () => {
+  withPlane((session) => {
+    const curvature = (smoothing) => ({ type: 'curvature', which: 'min', smoothing });
+    // 1e9 steps once ran for 12+ minutes inside one call.
+    expectError(() => session.deform({ method: 'andefgrad', direction: curvature(1e9) }), 'bad-parameter', /smoothing steps must be an integer from 0 to 1000, got 1000000000/);
+    expectError(() => session.directionField(curvature(1001)), 'bad-parameter', /from 0 to 1000, got 1001/);
+    assert.equal(session.directionField(curvature(1000)).length, 3 * 841);
+  });
+});
+
+test('out of memory is its own code, names the limit, and leaves the session and the heap as they were', () => {
+  withPlane((session) => {
+    const before = wasm.memoryUse();
+    assert.equal(before.limit, 2 ** 31);
+    // Files as large as the module's whole memory: their copy into the module
+    // fails (malloc returns null; beyond 2**31 - 1 bytes std::vector refuses).
+    for (const size of [2 ** 31 - 4096, 2 ** 31 + 16]) {
+      const huge = new Uint8Array(size);
+      for (let attempt = 0; attempt < 2; ++attempt) {
+        expectError(() => session.loadMesh(huge, 'huge.off'), 'out-of-memory', /out of memory: .*more than the 2 GB of memory the module may use/);
+      }
+    }
+    const after = wasm.memoryUse();
+    assert.equal(after.inUse, before.inUse);
+    assert.equal(after.heap, before.heap);
+    // Failing half-way: ~30M vertices fill the memory up to its limit (about
+    // 4 s) before one allocation fails; unwinding frees every byte taken.
+    expectError(() => wasm.cappedCylinder(30_000_000), 'out-of-memory', /2 GB/);
+    const afterCylinder = wasm.memoryUse();
+    assert.ok(afterCylinder.heap > 2 ** 30, `the memory grew to ${afterCylinder.heap} bytes first`);
+    assert.equal(afterCylinder.inUse, before.inUse);
+    assert.equal(session.info().vertices, 841);
+    assert.equal(session.select({ all: true }), 841);
+    session.deform({ method: 'andefgrad', direction: { type: 'global', vector: [1, 0, 0] }, transform: { scale: 1.2 } });
+  });
 });

@@ -175,7 +175,7 @@ test('bad options name the field', () => withSession('open/plane.off', (session)
   expectError(() => session.flatten({ compres: 0.8 }), 'bad-parameter', /unknown field 'compres'/);
   expectError(() => session.flatten({ direction: { type: 'curvature', which: 'min' } }), 'bad-parameter', /options\.direction\.type must be one of global, constraints/);
   expectError(() => session.flatten({ direction: { type: 'global', vector: [0, 0, 0] } }), 'bad-parameter', /options\.direction\.vector must not be the zero vector/);
-  expectError(() => session.flatten({ direction: { type: 'constraints', constraints: [{ vertex: 0, direction: [1, 0, 0], su: -1 }] } }), 'bad-parameter', /options\.direction\.constraints\[0\]\.su must be > 0/);
+  expectError(() => session.flatten({ direction: { type: 'constraints', constraints: [{ vertex: 0, direction: [1, 0, 0], su: -1 }] } }), 'bad-parameter', /direction constraint 1 \(vertex 0\): su must be positive, got -1/);
   expectError(() => session.flatten({ baseline: 'cad' }), 'bad-parameter', /options\.baseline must be one of uniform/);
   expectError(() => session.flatten({ patch: 'faces' }), 'bad-parameter', /options\.patch must be one of mesh, selection/);
   expectError(() => session.flatten({ maxIterations: 0 }), 'bad-parameter', /options\.maxIterations must be an integer >= 1/);

@@ -55,6 +55,14 @@ struct DirectionSource {
   int curvature_smoothing = 10;
 };
 
+// Checks a direction source against a mesh of n vertices before any work is
+// done with it: the curvature smoothing in range (curvature.h), at least one
+// constraint and each one valid (validate_direction_constraints), one finite
+// direction per vertex for a dense field. Error(BadParameter) naming what is
+// wrong. Deformer::deform and Session::direction_field call it; a global or
+// screen direction is checked where it becomes one vector.
+void validate_direction_source(const DirectionSource& source, int n);
+
 struct DeformRequest {
   Method method = Method::AnArap;
   Eigen::VectorXd weights;  // #V selection weights in [0, 1]; empty = all 1

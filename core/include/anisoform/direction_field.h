@@ -35,6 +35,14 @@ struct DirectionField {
 std::vector<DirectionConstraint> parse_direction_constraints(const std::string& text,
                                                              const std::string& source);
 
+// The checks every consumer of constraints makes before using them
+// (propagate_direction_field, validate_direction_source in deformer.h): each
+// vertex in [0, n), each direction finite and non-zero, and the amounts, when
+// given, allowed by validate_scale (transforms.h), the rule of the
+// global scale. Error(BadParameter) naming the constraint (1-based) and its
+// vertex.
+void validate_direction_constraints(const std::vector<DirectionConstraint>& constraints, int n);
+
 // Propagates the constraints over the mesh (or over the vertices with
 // region_mask[i] != 0). A constraint whose direction is (nearly) parallel to
 // the normal is refused with Error(BadParameter) naming the vertex; an index

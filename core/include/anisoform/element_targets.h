@@ -20,6 +20,7 @@ class TargetContext {
   // Unit wanted direction per vertex (#V by 3), before projection; may be
   // zero where the source gives none (filled later as degenerate). Amounts
   // per vertex when the source carries them (constraint amounts), else empty.
+  // `source` must have passed validate_direction_source (deformer.h).
   void vertex_directions(const DirectionSource& source, Positions& directions,
                          Eigen::VectorXd& su, Eigen::VectorXd& sv);
 

@@ -147,7 +147,15 @@ class Session {
   void require_mesh() const;
   const SessionMeshInfo& adopt_mesh(Mesh mesh, std::vector<std::string> notes);
   void replace_rest(Positions V);
-  void set_current(Positions V);
+  // New current positions with their float32 copy, allocated before anything
+  // changes (a failed allocation leaves the session as it was); set_current
+  // then only moves them in.
+  struct CurrentPositions {
+    Positions V;
+    std::vector<float> f32;
+  };
+  static CurrentPositions current_positions(Positions V);
+  void set_current(CurrentPositions current) noexcept;
   void set_weights(Eigen::VectorXd weights);
 
   std::unique_ptr<Deformer> deformer_;  // owns the rest pose

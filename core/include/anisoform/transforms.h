@@ -17,6 +17,8 @@
 // soft borders.
 #pragma once
 
+#include <string>
+
 #include <Eigen/Core>
 
 #include "anisoform/mesh.h"
@@ -47,10 +49,12 @@ struct TransformSpec {
 // non-positive scales and amounts outside the ranges of limits.h.
 void validate(const TransformSpec& spec);
 
-// A scale or stretch factor (deform su, sv, sn; flatten su, sv): finite,
-// positive and within limits.h [kMinScale, kMaxScale]; Error(BadParameter)
-// naming `name` otherwise.
-void validate_scale(double value, const char* name);
+// The one rule for a scale amount, wherever it comes from: su, sv and sn of a
+// TransformSpec, the su / sv a direction constraint carries (CLI field files,
+// WASM constraints) and the stretches of a flattening: finite, positive and
+// within limits.h [kMinScale, kMaxScale]; Error(BadParameter) naming `name`
+// otherwise.
+void validate_scale(double value, const std::string& name);
 
 // The twist's range depends on the mesh's size (limits.h kMaxTwistDegrees):
 // Error(BadParameter) when |rate| * mesh_diagonal exceeds it.
