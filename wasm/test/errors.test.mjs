@@ -1,6 +1,6 @@
 // Errors reach JS as AnisoformError with a code and a message naming the
 // field or element at fault, and the module keeps working after any number
-// of them. What the module refuses at the JS boundary (ROBUSTNESS-wasm.md):
+// of them. What the module refuses at the JS boundary (docs/ROBUSTNESS.md):
 // indices that are not integers in range (checked before C++ narrows them, so
 // 2**32 + 1 cannot wrap to vertex 1), direction amounts outside the rule of
 // the global scale, unbounded curvature smoothing; and running out of memory,
