@@ -328,7 +328,7 @@ TEST_CASE("cli: field-file amounts SU/SV <= 0 are refused like --scale -1, namin
       {"0 1 0 0\n400 0 1 0 1 -1\n", "field.txt line 2: SV must be positive, got -1"},
   };
   for (const auto& [text, message] : cases) {
-    const std::string field = write_temp_file("field.txt", text);
+    const std::string field = write_temp_text("field.txt", text);
     for (const std::string& command : {"deform", "flatten"}) {
       const std::string out = temp_path(command == std::string("deform") ? "out.obj" : "out.svg");
       const CliRun run = run_expecting(
