@@ -148,22 +148,13 @@ void warn_about_solvable_problems(const MeshReport& report, std::vector<std::str
   warn_count(report.unreferenced_vertices, "unreferenced vertex(es): left where they are");
 }
 
-// The summary lists one problem per line; stderr gets one line per error.
-std::string one_line(std::string text) {
-  while (!text.empty() && text.back() == '\n') text.pop_back();
-  for (std::size_t at = text.find('\n'); at != std::string::npos; at = text.find('\n', at)) {
-    text.replace(at, 1, "; ");
-  }
-  return text;
-}
-
 PreparedMesh prepare_mesh(const std::string& path) {
   ReadResult read = read_input_mesh(path);
   PreparedMesh prepared{std::move(read.mesh), std::move(read.report), {}};
   weld_if_soup(prepared.mesh, prepared.warnings);
   const MeshReport report = check_mesh(prepared.mesh);
   if (!report.solvable()) {
-    fail(ErrorCode::BadMesh, path + ": cannot deform this mesh: " + one_line(report.blocking_summary()));
+    fail(ErrorCode::BadMesh, path + ": cannot deform this mesh: " + report.blocking_summary());
   }
   warn_about_solvable_problems(report, prepared.warnings);
   return prepared;

@@ -233,13 +233,13 @@ TEST_CASE("check_mesh: hand-made defects are each named with their element", "[c
     const std::string summary = bad_report.blocking_summary();
     CHECK_THAT(summary, Catch::Contains("vertex 4") && Catch::Contains("face 1 (0, 3, 17)"));
     CHECK_THAT(summary, !Catch::Contains("duplicate") && !Catch::Contains("same vertices"));
-    CHECK(bad_report.blocking_summary(1) == message_of(bad_report, ProblemKind::NonFiniteCoordinate) + "\n... and 1 more");
+    CHECK(bad_report.blocking_summary(1) == message_of(bad_report, ProblemKind::NonFiniteCoordinate) + "; ... and 1 more");
     CHECK_THROWS_AS(aniso::require_solvable(bad), aniso::Error);
   }
   SECTION("an empty mesh is named and blocks") {
     const MeshReport empty = aniso::check_mesh(Mesh{});
     CHECK(elements_of(empty, ProblemKind::EmptyMesh).size() == 2);
-    CHECK_THAT(empty.blocking_summary(), Catch::Contains("no vertices") && Catch::Contains("no triangles"));
+    CHECK(empty.blocking_summary() == "the mesh has no vertices; the mesh has no triangles");
   }
   CHECK(std::string(aniso::problem_kind_name(ProblemKind::NonManifoldEdge)) == "non-manifold-edge");
 }

@@ -13,6 +13,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -177,9 +178,13 @@ TEST_CASE("mesh_io: the concave 66-gon's triangles cover exactly its area and fa
 }
 
 TEST_CASE("mesh_io: malformed files fail with a message naming the problem", "[io]") {
-  for (const char* file : {"malformed/empty.obj", "malformed/empty.off", "malformed/empty.ply", "malformed/empty.stl"}) {
+  const std::pair<const char*, const char*> empties[] = {{"malformed/empty.obj", "not an OBJ mesh"},
+                                                         {"malformed/empty.off", "not an OFF mesh"},
+                                                         {"malformed/empty.ply", "not a PLY mesh"},
+                                                         {"malformed/empty.stl", "not an STL mesh"}};
+  for (const auto& [file, what] : empties) {
     INFO(file);
-    CHECK_THAT(read_error(file), Catch::Contains("file is empty"));
+    CHECK_THAT(read_error(file), Catch::Contains("file is empty (0 bytes): " + std::string(what)));
   }
   const std::string obj_index = read_error("malformed/bad_index_out_of_range.obj");
   CHECK_THAT(obj_index, Catch::Contains("face 21 references vertex 840, but the file has 829 vertices (line 852)"));

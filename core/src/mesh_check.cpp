@@ -416,9 +416,9 @@ std::string MeshReport::blocking_summary(int max_lines) const {
       ++more;
       continue;
     }
-    summary += (shown++ == 0 ? "" : "\n") + problem.message;
+    summary += (shown++ == 0 ? "" : "; ") + problem.message;
   }
-  if (more > 0) summary += "\n... and " + std::to_string(more) + " more";
+  if (more > 0) summary += "; ... and " + std::to_string(more) + " more";
   return summary;
 }
 
@@ -461,7 +461,7 @@ void require_solvable(const Mesh& mesh) {
   find_blocking_problems(mesh, problems);
   MeshReport report;
   report.problems = problems.in_order();
-  if (!report.solvable()) fail(ErrorCode::BadMesh, "the mesh cannot be solved on:\n" + report.blocking_summary());
+  if (!report.solvable()) fail(ErrorCode::BadMesh, "the mesh cannot be solved on: " + report.blocking_summary());
 }
 
 // ---------------------------------------------------------------- repairs

@@ -26,6 +26,11 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
+// "an OBJ", "a PLY": the article as the format's name is read aloud.
+const char* mesh_format_article(MeshFormat format) {
+  return format == MeshFormat::Ply ? "a " : "an ";
+}
+
 }  // namespace
 
 MeshFormat format_from_path(const std::string& path) {
@@ -58,8 +63,8 @@ const char* format_name(MeshFormat format) {
 }
 
 ReadResult read_mesh_from_memory(const char* data, std::size_t size, MeshFormat format) {
-  if (size == 0) io::fail_file(std::string("file is empty (0 bytes): not a ") +
-                               format_name(format) + " mesh");
+  if (size == 0) io::fail_file(std::string("file is empty (0 bytes): not ") +
+                               mesh_format_article(format) + format_name(format) + " mesh");
   switch (format) {
     case MeshFormat::Obj: return io::read_obj(data, size);
     case MeshFormat::Off: return io::read_off(data, size);

@@ -62,7 +62,8 @@ settings.on('change', ({ section }) => {
   if (section === 'display') meshView.setSelectionVisible(settings.values.display.selection);
 });
 
-const reportError = (error) => editor.emit('error', { code: error.code ?? 'internal', message: error.message });
+// Errors the editor has reported already are not shown twice.
+const reportError = (error, context) => editor.report(error, context);
 const brushCursor = new BrushCursor(viewer);
 const directionDisplay = new DirectionDisplay({ editor, settings, viewer, meshView });
 new HeatmapDisplay({ editor, settings, meshView });
@@ -76,6 +77,12 @@ const tools = createTools({
   arrowPreview: (arrows) => directionDisplay.showArrows(arrows),
 });
 const gestures = new PointerGestures(viewer, picker, () => tools.get(settings.values.tool) ?? null);
+// Arrows, the last screen drag and a stroke in progress belong to the mesh
+// they were made on; a load drops them before the new mesh is shown.
+editor.bindToMesh(() => {
+  gestures.cancel();
+  settings.resetMeshBound();
+});
 let previousTool = settings.values.tool;
 settings.on('change', ({ section }) => {
   if (section !== 'tool') return;
@@ -98,7 +105,7 @@ const ready = (async () => {
   });
   performance.mark('anisoform:interactive');
 })();
-ready.catch((error) => reportError(error));
+ready.catch((error) => reportError(error, 'The page could not start'));
 
 const api = createAnisoformApi({ editor, viewer, picker, ready });
 window.anisoform = api;
@@ -107,7 +114,7 @@ const panel = document.getElementById('side-panel');
 const inMode = (mode, element) => showWhen(settings, 'mode', element, (current) => current === mode);
 panel.append(
   modeSwitch({ settings, app: document.getElementById('app') }),
-  filePanel({ api, editor }),
+  filePanel({ api, editor, reportError }),
   historyButtons({ api, editor }),
   toolPanel({ settings, tools, reportError }),
   selectionPanel({ api, editor }),
@@ -119,7 +126,7 @@ panel.append(
 patternPane(document.getElementById('pattern-pane'), { editor, settings });
 statusBar(document.getElementById('status-bar'), { editor, viewer });
 installMessages(document.getElementById('viewport'), { editor });
-installDropZone(document.getElementById('drop-overlay'), { api });
+installDropZone(document.getElementById('drop-overlay'), { api, reportError });
 installKeyboardShortcuts({
   undo: () => api.undo(),
   redo: () => api.redo(),

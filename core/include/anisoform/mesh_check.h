@@ -55,8 +55,9 @@ struct MeshReport {
   // and within limits.h kMaxCoordinate, all indices in range. (Zero-area triangles, non-manifold elements and flipped
   // faces are solved through, with the clamped weights of laplacian.h.)
   bool solvable() const;
-  // The blocking problems in plain words, one line each (at most `max_lines`
-  // lines, then "... and N more").
+  // The blocking problems in plain words on one line, joined by "; " (at
+  // most `max_lines` of them, then "... and N more"): it goes into error
+  // messages, which the CLI prints and the browser shows as one line each.
   std::string blocking_summary(int max_lines = 5) const;
 };
 

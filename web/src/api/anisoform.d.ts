@@ -144,6 +144,11 @@ export interface CameraState {
 export interface ChangeEvent {
   reason: 'load' | 'positions' | 'selection';
 }
+/**
+ * Every refusal and failure, once: a rejected load, deform, flatten or export
+ * (its promise rejects with the same message), and what the page's own
+ * buttons could not do. The message says what to do about it.
+ */
 export interface ErrorEvent {
   code: 'bad-parameter' | 'bad-mesh' | 'bad-file' | 'numerical' | 'internal';
   message: string;

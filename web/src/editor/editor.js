@@ -8,8 +8,11 @@
 //   'stats'      {ms, iterations, live, factorizations}
 //   'progress'   {stage, message, fraction?}; stage 'done' ends it
 //   'busy'       boolean: a committed edit is being solved
-//   'error'      {code, message}
-//   'notice'     {message}: what a load repaired or found (plain words)
+//   'error'      {code, message}: every refusal and failure, in plain words
+//                that say what to do (report() is the one way in)
+//   'loading'    {name}: a load started; old messages no longer apply
+//   'notice'     {message, details}: what a load repaired or found (plain
+//                words; details: the full list, one sentence each)
 //   'warning'    {message}: a committed edit folded triangles over
 //   'pattern'    the last flattening (FlattenPayload plus its options), or null
 //                when the mesh, its positions or the flattened selection changed
@@ -40,6 +43,8 @@ export class Editor extends EventEmitter {
   #gesture = null;
   #committing = 0;
   #gestureCount = 0;
+  #meshBound = [];
+  #reported = new WeakSet();
 
   constructor(client) {
     super();
@@ -67,6 +72,16 @@ export class Editor extends EventEmitter {
 
   // ---- loading -------------------------------------------------------------
 
+  /**
+   * Registers state that belongs to the loaded mesh outside the editor (the
+   * arrows, the last screen drag, a tool's stroke): `reset` runs at every
+   * load, before the new mesh is announced, so nothing of the old mesh ever
+   * meets the new one.
+   */
+  bindToMesh(reset) {
+    this.#meshBound.push(reset);
+  }
+
   /** Loads a File, Blob or ArrayBuffer; on failure the current mesh stays. */
   async load(source, name) {
     try {
@@ -74,6 +89,7 @@ export class Editor extends EventEmitter {
         name = source?.name ?? '';
         if (!name) throw Object.assign(new Error('load() needs a file name with its extension, e.g. "part.stl"'), { code: 'bad-parameter' });
       }
+      this.emit('loading', { name });
       const reader = readerFor(name);
       const bytes = await this.#bytesOf(source, name);
       this.emit('progress', { stage: 'parse', message: `Reading ${name}` });
@@ -93,7 +109,7 @@ export class Editor extends EventEmitter {
       return { vertices: payload.info.vertices, triangles: payload.info.triangles };
     } catch (error) {
       this.emit('progress', { stage: 'done', message: '' });
-      throw this.#reportError(error, `Could not load ${name || 'the file'}`);
+      throw this.#reportError(loadError(error, name, this.document), `Could not load ${name || 'the file'}`);
     }
   }
 
@@ -109,15 +125,20 @@ export class Editor extends EventEmitter {
     throw Object.assign(new Error('load() takes a File, Blob or ArrayBuffer'), { code: 'bad-parameter' });
   }
 
+  // The one place where a new mesh replaces the old one: everything tied to
+  // the old mesh's vertices (the live edit, the pattern and its heat map, the
+  // selection, the history, the arrows and whatever else bindToMesh named)
+  // is dropped before the new mesh is announced.
   #adopt({ info, positions, triangles }, name) {
     this.#abandonGesture();
     this.#dropPattern();
+    for (const reset of this.#meshBound) reset();
     this.document = new MeshDocument({ name, positions, triangles, info });
     this.#selectionSent = null;
     this.history.clear();
     this.emit('mesh', this.document);
     const notice = describeProblems(info);
-    if (notice) this.emit('notice', { message: notice });
+    if (notice) this.emit('notice', notice);
     this.emit('change', { reason: 'load' });
     this.#prepareSolver();
   }
@@ -188,12 +209,19 @@ export class Editor extends EventEmitter {
 
   // ---- deformation ---------------------------------------------------------
 
-  /** One committed, undoable edit. */
-  async deform(op, label = describeEdit(op)) {
-    const document = this.#requireDocument();
-    validateOp(op);
-    if (this.#gesture) throw Object.assign(new Error('an interactive edit is in progress'), { code: 'bad-parameter' });
-    const solverOp = toSolverOp(op, document, this.#view);
+  /** One committed, undoable edit; a refusal is reported like a failure. */
+  async deform(op, label) {
+    let solverOp;
+    let document;
+    try {
+      document = this.#requireDocument();
+      validateOp(op);
+      label ??= describeEdit(op);
+      if (this.#gesture) throw Object.assign(new Error('an interactive edit is in progress: finish the drag first'), { code: 'bad-parameter' });
+      solverOp = toSolverOp(op, document, this.#view);
+    } catch (error) {
+      throw this.report(error, `${label ?? 'The edit'} was not applied`);
+    }
     return this.#commit(document, solverOp, label);
   }
 
@@ -253,7 +281,9 @@ export class Editor extends EventEmitter {
     this.#client.dropQueuedPreview();
     this.emit('gesture', false);
     if (!gesture.lastOp) {
-      await this.#client.request(Request.cancel);
+      await this.#client.request(Request.cancel).catch((error) => {
+        throw this.#reportError(error, 'Cancel failed');
+      });
       return null;
     }
     const { preview, ...finalOp } = gesture.lastOp;
@@ -388,9 +418,9 @@ export class Editor extends EventEmitter {
   // ---- export --------------------------------------------------------------
 
   async export(format) {
-    const document = this.#requireDocument();
-    const baseName = document.name.replace(/\.[^.]+$/, '') || 'anisoform';
     try {
+      const document = this.#requireDocument();
+      const baseName = document.name.replace(/\.[^.]+$/, '') || 'anisoform';
       return await exportMesh(format, document.positions, document.triangles, baseName);
     } catch (error) {
       throw this.#reportError(error, `Export as ${format} failed`);
@@ -404,15 +434,40 @@ export class Editor extends EventEmitter {
     return this.document;
   }
 
+  /**
+   * The one way an error reaches the user: emits 'error' (the banner and the
+   * API's event) once per error, whoever catches it, and returns the Error
+   * to throw on. `context` says what was refused ("Stretch was not applied").
+   */
+  report(error, context) {
+    return this.#reportError(error, context);
+  }
+
   // Emits the error in plain words and returns an Error to throw, with the
   // code of the layer that raised it (core codes pass through unchanged).
   #reportError(error, context) {
+    if (this.#reported.has(error)) return error;
     const code = error?.code ?? 'internal';
     const detail = error?.message ?? String(error);
-    const message = `${context}: ${detail}`;
+    const message = context ? `${context}: ${detail}` : detail;
     this.emit('error', { code, message });
-    return Object.assign(new Error(message), { code, cause: error });
+    const reported = Object.assign(new Error(message), { code, cause: error });
+    this.#reported.add(reported);
+    return reported;
   }
+}
+
+// A load error in plain words: the core already names the file ("x.obj:
+// ..."), and the context says it again, so the detail drops it; it also says
+// that the mesh on screen stays.
+function loadError(error, name, current) {
+  let detail = error?.message ?? String(error);
+  for (const prefix of [`${name}: `, `'${name}': `]) {
+    if (name && detail.startsWith(prefix)) detail = detail.slice(prefix.length);
+  }
+  detail = detail.replace(/\.?\s*$/, '.');
+  if (current) detail += ` The current mesh (${current.name}) is unchanged.`;
+  return Object.assign(new Error(detail), { code: error?.code ?? 'internal' });
 }
 
 function foldOverWarning(count) {

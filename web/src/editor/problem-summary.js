@@ -1,34 +1,64 @@
 // Turns the mesh check's report (MeshInfo.problems and .notes) into a short
 // notice in plain words: what the reader repaired, and what was found but can
-// be edited through. Problems that block editing never get here: the worker
+// be edited through, one sentence each, with a kind's count and first few
+// elements instead of the full list; the full list goes into `details`
+// (shown on demand). Problems that block editing never get here: the worker
 // refuses such meshes with an error and the current mesh stays.
-// Keys are core/mesh_check's problem_kind_name spellings.
+// Keys are core/mesh_check's problem_kind_name spellings; the element is the
+// problem's face or vertex index (mesh_check's Problem::element).
 const KIND_WORDS = {
-  'zero-area-triangle': ['zero-area triangle', 'zero-area triangles'],
-  'repeated-corner': ['triangle using a vertex twice', 'triangles using a vertex twice'],
-  'duplicate-face': ['duplicate triangle', 'duplicate triangles'],
-  'non-manifold-edge': ['non-manifold edge', 'non-manifold edges'],
-  'non-manifold-vertex': ['non-manifold vertex', 'non-manifold vertices'],
-  'inconsistent-orientation': ['flipped triangle', 'flipped triangles'],
-  'unreferenced-vertex': ['unused vertex', 'unused vertices'],
+  'zero-area-triangle': ['zero-area triangle', 'zero-area triangles', 'face'],
+  'repeated-corner': ['triangle using a vertex twice', 'triangles using a vertex twice', 'face'],
+  'duplicate-face': ['duplicate triangle', 'duplicate triangles', 'face'],
+  // The element of an edge problem is one of the faces at that edge.
+  'non-manifold-edge': ['non-manifold edge', 'non-manifold edges', 'at face'],
+  'non-manifold-vertex': ['non-manifold vertex', 'non-manifold vertices', 'vertex'],
+  'inconsistent-orientation': ['flipped triangle', 'flipped triangles', 'face'],
+  'unreferenced-vertex': ['unused vertex', 'unused vertices', 'vertex'],
 };
+const PLURAL = { face: 'faces', 'at face': 'at faces', vertex: 'vertices' };
+// Elements named in the summary sentence, and problem sentences in the details.
+const FIRST_ELEMENTS = 3;
+const MAX_DETAILS = 200;
 
+/** {message, details} for a load's report, or null when there is nothing to say. */
 export function describeProblems(info) {
-  const lines = [...(info.notes ?? [])];
+  const lines = (info.notes ?? []).map(sentence);
   const byKind = new Map();
   for (const problem of info.problems ?? []) {
-    const kind = problem.kind;
-    if (!byKind.has(kind)) byKind.set(kind, []);
-    byKind.get(kind).push(problem);
+    if (!byKind.has(problem.kind)) byKind.set(problem.kind, []);
+    byKind.get(problem.kind).push(problem);
   }
   for (const [kind, problems] of byKind) {
-    const [one, many] = KIND_WORDS[kind] ?? [kind, kind];
-    const first = problems[0].message ? ` (first: ${problems[0].message})` : '';
-    lines.push(`${problems.length} ${problems.length === 1 ? one : many}${first}.`);
+    const [one, many, noun] = KIND_WORDS[kind] ?? [kind, kind, 'element'];
+    lines.push(`${problems.length} ${problems.length === 1 ? one : many}${elementList(problems, noun)}.`);
   }
   if (info.components > 1) lines.push(`${info.components} separate parts: each keeps its own place.`);
   if (info.boundaryLoops > 0) {
     lines.push(`Open surface: ${info.boundaryLoops} boundary loop${info.boundaryLoops === 1 ? '' : 's'}.`);
   }
-  return lines.join(' ');
+  if (lines.length === 0) return null;
+  return { message: lines.join(' '), details: problemDetails(info.problems ?? []) };
+}
+
+// " (face 3)", " (faces 3, 17)", " (first: faces 3, 17, 40 …)", " (first at faces 3, 17, 40 …)".
+function elementList(problems, noun) {
+  const elements = problems.map((problem) => problem.element).filter((element) => element >= 0);
+  if (elements.length === 0) return '';
+  const shown = elements.slice(0, FIRST_ELEMENTS).join(', ');
+  const name = elements.length === 1 ? noun : (PLURAL[noun] ?? `${noun}s`);
+  if (elements.length <= FIRST_ELEMENTS) return ` (${name} ${shown})`;
+  return ` (first${name.startsWith('at ') ? ' ' : ': '}${name} ${shown} …)`;
+}
+
+function problemDetails(problems) {
+  const details = problems.slice(0, MAX_DETAILS).map((problem) => sentence(problem.message));
+  if (problems.length > MAX_DETAILS) details.push(`… and ${problems.length - MAX_DETAILS} more.`);
+  return details;
+}
+
+// The core's notes and messages are lower-case clauses; a notice is sentences.
+function sentence(text) {
+  const trimmed = String(text).trim();
+  return `${trimmed.charAt(0).toUpperCase()}${trimmed.slice(1)}`.replace(/\.?$/, '.');
 }

@@ -49,6 +49,22 @@ export class Settings extends EventEmitter {
       : partial;
     this.emit('change', { section });
   }
+
+  /**
+   * Puts back what only meant something on the mesh it was made on: the
+   * arrows (vertex indices), the last screen drag (its anchor point), a twist
+   * origin point and the heat map of the flattening. The editor runs this at
+   * every load (Editor.bindToMesh); typed amounts and choices stay.
+   */
+  resetMeshBound() {
+    const defaults = defaultSettings();
+    if (this.values.arrows.length > 0) this.update('arrows', defaults.arrows);
+    if (this.values.lastScreen !== null) this.update('lastScreen', defaults.lastScreen);
+    if (this.values.twist.origin === 'point') {
+      this.update('twist', { origin: defaults.twist.origin, point: defaults.twist.point });
+    }
+    if (this.values.display.heatMap === 'compression') this.update('display', { heatMap: defaults.display.heatMap });
+  }
 }
 
 const AXES = { x: [1, 0, 0], y: [0, 1, 0], z: [0, 0, 1] };

@@ -18,7 +18,7 @@ export async function importGltf(bytes, name) {
   try {
     gltf = await new GLTFLoader().parseAsync(bytes, '');
   } catch (error) {
-    throw new GltfImportError(`${name} is not a readable glTF file: ${error?.message ?? error}`);
+    throw new GltfImportError(`${name}: not a readable glTF file: ${error?.message ?? error}`);
   }
   gltf.scene.updateMatrixWorld(true);
 
@@ -29,7 +29,7 @@ export async function importGltf(bytes, name) {
     if (object.isMesh && !object.isSkinnedMesh && object.geometry.getAttribute('position')) parts.push(object);
     else if (object.isLine || object.isPoints || object.isSkinnedMesh) skipped++;
   });
-  if (parts.length === 0) throw new GltfImportError(`${name} contains no triangle mesh.`);
+  if (parts.length === 0) throw new GltfImportError(`${name}: the glTF scene contains no triangle mesh.`);
 
   let vertexTotal = 0;
   let indexTotal = 0;

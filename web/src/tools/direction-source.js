@@ -12,6 +12,8 @@ export class DirectionMissingError extends Error {
   }
 }
 
+const NO_ARROWS = 'no arrows are placed: drag on the surface with the Arrows tool first, or choose another direction source';
+
 export function directionFromSettings(values) {
   const { source, axis, custom, curvature } = values.direction;
   switch (source) {
@@ -21,7 +23,7 @@ export function directionFromSettings(values) {
       return { type: 'curvature', which: curvature };
     case 'arrows':
       if (values.arrows.length === 0) {
-        throw new DirectionMissingError('Place at least one arrow on the surface with the Arrows tool first.');
+        throw new DirectionMissingError(NO_ARROWS);
       }
       return {
         type: 'constraints',
@@ -29,7 +31,9 @@ export function directionFromSettings(values) {
       };
     case 'screen':
       if (!values.lastScreen) {
-        throw new DirectionMissingError('Drag on the mesh with a transform tool to set the screen direction first.');
+        throw new DirectionMissingError(
+          'no screen direction yet: drag on the mesh with a transform tool (the drag sets it), or choose another direction source',
+        );
       }
       return values.lastScreen;
     default:
@@ -47,7 +51,7 @@ export function flattenDirectionFromSettings(values, bounds) {
   const { source, axis, custom, along, across } = values.flatten;
   if (source === 'arrows') {
     if (values.arrows.length === 0) {
-      throw new DirectionMissingError('Place at least one arrow on the surface with the Arrows tool first.');
+      throw new DirectionMissingError(NO_ARROWS);
     }
     const ownAmounts = values.arrows.some((arrow) => arrow.su !== undefined || arrow.sv !== undefined);
     return {

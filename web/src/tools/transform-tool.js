@@ -63,9 +63,8 @@ export class TransformTool {
     if (!gesture) return;
     if (!gesture.op) this.click?.(gesture.anchor);
     if (gesture.op?.direction?.type === 'screen') this.settings.update('lastScreen', gesture.op.direction);
-    this.editor.commitGesture(gesture.op ? describeEdit(gesture.op) : '').catch(() => {
-      // The editor has already shown the error; the mesh stays as committed.
-    });
+    // On failure the mesh stays as committed; the editor has shown its own errors.
+    this.editor.commitGesture(gesture.op ? describeEdit(gesture.op) : '').catch(this.reportError);
   }
 
   cancel() {
@@ -96,7 +95,7 @@ export class TransformTool {
   async apply() {
     const values = this.settings.values;
     if (values.solver.method === 'arap') {
-      throw Object.assign(new Error('ARAP with handles has no amount to apply: drag the selection on the mesh.'), {
+      throw Object.assign(new Error('ARAP with handles has no amount to apply: drag the selection on the mesh, or choose another method'), {
         code: 'bad-parameter',
       });
     }

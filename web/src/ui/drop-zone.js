@@ -1,6 +1,6 @@
 // Drag-and-drop upload anywhere on the page: an overlay while a file hovers,
 // the first dropped file is loaded.
-export function installDropZone(overlay, { api }) {
+export function installDropZone(overlay, { api, reportError }) {
   let depth = 0; // dragenter/dragleave fire for every child element
   const hasFiles = (event) => [...(event.dataTransfer?.types ?? [])].includes('Files');
   window.addEventListener('dragenter', (event) => {
@@ -21,6 +21,6 @@ export function installDropZone(overlay, { api }) {
     depth = 0;
     overlay.hidden = true;
     const file = event.dataTransfer.files[0];
-    if (file) api.load(file, file.name).catch(() => {}); // the error banner shows why
+    if (file) api.load(file, file.name).catch(reportError); // the editor has shown it already
   });
 }

@@ -4,7 +4,7 @@ import { downloadBytes } from '../io/download.js';
 import { ACCEPT_ATTRIBUTE, EXPORT_FORMATS } from '../io/mesh-formats.js';
 import { h, section } from './dom.js';
 
-export function filePanel({ api, editor }) {
+export function filePanel({ api, editor, reportError }) {
   const input = h('input', {
     type: 'file',
     id: 'file-input',
@@ -14,7 +14,7 @@ export function filePanel({ api, editor }) {
     onchange: () => {
       const file = input.files?.[0];
       input.value = ''; // choosing the same file again still loads it
-      if (file) api.load(file, file.name).catch(() => {}); // the error banner shows why
+      if (file) api.load(file, file.name).catch(reportError); // the editor has shown it already
     },
   });
   const format = h(
@@ -26,7 +26,10 @@ export function filePanel({ api, editor }) {
     className: 'button',
     'data-testid': 'export',
     onclick: async () => {
-      const bytes = await api.export(format.value).catch(() => null);
+      const bytes = await api.export(format.value).catch((error) => {
+        reportError(error);
+        return null;
+      });
       if (!bytes) return;
       const baseName = (editor.document?.name ?? 'anisoform').replace(/\.[^.]+$/, '');
       downloadBytes(bytes, `${baseName}-edited.${format.value}`);

@@ -25,8 +25,11 @@ export function flattenPanel({ api, editor, settings, reportError }) {
     'data-testid': `export-${format}`,
     disabled: true,
     onclick: async () => {
-      const bytes = await api.exportPattern(format, { mmPerUnit: settings.values.flatten.mmPerUnit }).catch(() => null);
-      if (!bytes) return; // the error banner says why
+      const bytes = await api.exportPattern(format, { mmPerUnit: settings.values.flatten.mmPerUnit }).catch((error) => {
+        reportError(error);
+        return null;
+      });
+      if (!bytes) return;
       const baseName = (editor.document?.name ?? 'pattern').replace(/\.[^.]+$/, '');
       downloadBytes(bytes, `${baseName}-pattern.${format}`, format === 'svg' ? 'image/svg+xml' : 'application/dxf');
     },
@@ -59,7 +62,7 @@ export function flattenPanel({ api, editor, settings, reportError }) {
   );
 }
 
-/** Runs the flattening the panel describes; errors reach the banner through the editor. */
+/** Runs the flattening the panel describes; refusals and errors reach the banner. */
 export function flattenFromSettings({ api, editor, settings, reportError }) {
   const values = settings.values;
   const document = editor.document;
@@ -68,7 +71,7 @@ export function flattenFromSettings({ api, editor, settings, reportError }) {
   try {
     direction = flattenDirectionFromSettings(values, document.bounds());
   } catch (error) {
-    reportError(error);
+    reportError(error, 'Flatten was not run');
     return;
   }
   const options = {
@@ -79,7 +82,7 @@ export function flattenFromSettings({ api, editor, settings, reportError }) {
   if (values.flatten.baseline) options.baseline = 'uniform';
   api.flatten(options)
     .then(() => settings.update('display', { heatMap: 'compression' }))
-    .catch(() => {}); // reported by the editor
+    .catch(reportError); // the editor has shown its own errors already
 }
 
 // The placed arrows, each with an optional compression of its own (empty =

@@ -1,15 +1,17 @@
 // The error, notice and warning banners over the viewport. Errors say in
-// plain words what went wrong (a load error also says the current mesh was
-// kept); notices say what a load repaired or found; warnings say that the
-// last edit folded triangles over, until the positions change again. All can
-// be dismissed.
+// plain words what went wrong and what to do (a load error also says the
+// current mesh was kept); notices say what a load repaired or found, with the
+// full list on demand; warnings say that the last edit folded triangles over,
+// until the positions change again. All can be dismissed.
 export function installMessages(root, { editor }) {
   const error = root.querySelector('[data-testid=error]');
   const notice = root.querySelector('[data-testid=notice]');
   const warning = root.querySelector('[data-testid=warning]');
-  const show = (element, text) => {
+  const show = (element, text, details = []) => {
+    const body = Object.assign(document.createElement('span'), { textContent: text });
+    if (details.length > 0) body.append(detailsList(details));
     element.replaceChildren(
-      Object.assign(document.createElement('span'), { textContent: text }),
+      body,
       Object.assign(document.createElement('button'), {
         className: 'dismiss',
         textContent: '×',
@@ -19,20 +21,29 @@ export function installMessages(root, { editor }) {
     );
     element.hidden = false;
   };
-  editor.on('error', ({ message }) => {
-    const kept = editor.document ? ` The current mesh (${editor.document.name}) is unchanged.` : '';
-    const sentence = message.replace(/\.?\s*$/, '.');
-    show(error, message.startsWith('Could not load') ? sentence + kept : sentence);
-  });
-  editor.on('notice', ({ message }) => show(notice, message));
-  // An edit's warning comes after its 'change'; undo, redo and the next edit clear it.
-  editor.on('change', ({ reason }) => reason === 'positions' && (warning.hidden = true));
-  editor.on('warning', ({ message }) => show(warning, message));
-  // A successful load clears old messages; a new load's notice comes after.
-  editor.on('mesh', () => {
+  const hideAll = () => {
     error.hidden = true;
     notice.hidden = true;
     warning.hidden = true;
-  });
+  };
+  editor.on('error', ({ message }) => show(error, message.replace(/\.?\s*$/, '.')));
+  editor.on('notice', ({ message, details }) => show(notice, message, details));
+  // An edit's warning comes after its 'change'; undo, redo and the next edit clear it.
+  editor.on('change', ({ reason }) => reason === 'positions' && (warning.hidden = true));
+  editor.on('warning', ({ message }) => show(warning, message));
+  // A new load makes the old messages moot, whether it succeeds (its notice
+  // comes after) or fails (its error comes after).
+  editor.on('loading', hideAll);
+  editor.on('mesh', hideAll);
   return { showError: (text) => show(error, text) };
+}
+
+function detailsList(lines) {
+  const details = document.createElement('details');
+  details.dataset.testid = 'notice-details';
+  details.append(
+    Object.assign(document.createElement('summary'), { textContent: 'Details' }),
+    ...lines.map((line) => Object.assign(document.createElement('p'), { textContent: line })),
+  );
+  return details;
 }

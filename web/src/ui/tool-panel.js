@@ -57,16 +57,14 @@ function toolOptions(tool, settings, reportError) {
     else element = numberField(settings, tool.id, field);
     return field.showWhen ? showWhen(settings, tool.id, element, field.showWhen) : element;
   });
+  // A refusal (no direction yet, a method without amounts) says what to do;
+  // a solver failure is reported by the editor, and not twice.
   const apply = h('button', {
     className: 'button button-primary',
     'data-testid': `apply-${tool.id}`,
-    onclick: () => {
-      try {
-        tool.apply().catch(() => {}); // the editor reports solver errors
-      } catch (error) {
-        reportError(error);
-      }
-    },
+    onclick: () => Promise.resolve()
+      .then(() => tool.apply())
+      .catch((error) => reportError(error, `${tool.label} was not applied`)),
   }, 'Apply');
   return h('div', {}, fields, h('div', { className: 'row' }, apply));
 }

@@ -2,10 +2,12 @@
 // current direction source (the Flatten panel's in flatten mode) over the selection (asked from the worker's
 // directionField), and the placed arrows. Glyphs hide during a live drag,
 // where they would float off the moving surface, and refresh after it.
-import { directionFromSettings, flattenDirectionFromSettings } from '../tools/direction-source.js';
+import { DirectionMissingError, directionFromSettings, flattenDirectionFromSettings } from '../tools/direction-source.js';
 import { DirectionGlyphs } from './direction-glyphs.js';
 
 const REFRESH_DELAY_MS = 60;
+// Error codes (aniso::error_code_name) of a direction the core declines to build.
+const SOLVER_REFUSALS = ['bad-parameter', 'bad-mesh', 'numerical'];
 
 export class DirectionDisplay {
   #timer = null;
@@ -50,8 +52,9 @@ export class DirectionDisplay {
     try {
       direction = values.mode === 'flatten' ? flattenDirectionFromSettings(values, document.bounds())
         : directionFromSettings(values);
-    } catch {
+    } catch (error) {
       this.fieldGlyphs.hide(); // no direction yet (no drag, no arrows): nothing to draw
+      if (!(error instanceof DirectionMissingError)) this.editor.report(error, 'The direction glyphs could not be drawn');
       return;
     }
     const request = ++this.#request;
@@ -65,10 +68,12 @@ export class DirectionDisplay {
         weights: document.selectionCount > 0 ? document.selection : null,
         length: document.bounds().diagonal * 0.03,
       });
-    } catch {
+    } catch (error) {
       // A direction the solver cannot build here (e.g. curvature on a flat
-      // patch) fails the edit too, which reports it; the glyphs just stay hidden.
+      // patch) fails the edit too, which reports it; the glyphs just stay
+      // hidden. Anything else is a fault the user must hear of.
       this.fieldGlyphs.hide();
+      if (!SOLVER_REFUSALS.includes(error?.code)) this.editor.report(error, 'The direction glyphs could not be drawn');
     }
   }
 

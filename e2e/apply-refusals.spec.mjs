@@ -1,0 +1,90 @@
+// Apply in the tool panel never fails silently: when an edit cannot run (no
+// screen drag yet for the 'Screen drag' direction, no arrows for 'Arrows',
+// 'ARAP with handles', which has no amount), the error banner and the API's
+// 'error' event say why and what to do, and the mesh and history stay.
+import { expect, openApp, test } from './support.mjs';
+
+async function recordErrors(page) {
+  await page.evaluate(() => {
+    window.__errors = [];
+    window.anisoform.on('error', (event) => window.__errors.push(event));
+  });
+}
+
+async function applyStretch(page, along) {
+  await page.getByTestId('tool-stretch').click();
+  const field = page.getByLabel('Along ×');
+  await field.click();
+  await field.fill(String(along));
+  await field.press('Tab');
+  await page.getByTestId('apply-stretch').click();
+}
+
+async function expectRefusal(page, { before, words }) {
+  const banner = page.getByTestId('error');
+  await expect(banner).toBeVisible();
+  for (const word of words) await expect(banner).toContainText(word);
+  const errors = await page.evaluate(() => window.__errors);
+  expect(errors).toHaveLength(1);
+  expect(errors[0].code).toBe('bad-parameter');
+  for (const word of words) expect(errors[0].message).toContain(word);
+  expect(await page.evaluate(() => Array.from(window.anisoform.positions()))).toEqual(before);
+  expect(await page.evaluate(() => window.anisoform.undo())).toBe(false);
+}
+
+test('Apply on a fresh page (screen direction, no drag yet) says to drag first', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  await recordErrors(page);
+  const before = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  await applyStretch(page, 2);
+  await expectRefusal(page, { before, words: ['Stretch was not applied', 'drag on the mesh', 'direction source'] });
+  expect(pageErrors).toEqual([]);
+});
+
+test('Apply with the Arrows source and no arrows says to place arrows', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  await recordErrors(page);
+  const before = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  await page.locator('#direction-source').selectOption('arrows');
+  await applyStretch(page, 2);
+  await expectRefusal(page, { before, words: ['Stretch was not applied', 'Arrows tool'] });
+  expect(pageErrors).toEqual([]);
+});
+
+test('Apply with ARAP with handles says to drag the selection instead', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  await recordErrors(page);
+  const before = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  await page.locator('#direction-source').selectOption('global');
+  await page.locator('#solver-method').selectOption('arap');
+  await applyStretch(page, 2);
+  await expectRefusal(page, { before, words: ['Stretch was not applied', 'ARAP with handles', 'drag the selection'] });
+  expect(pageErrors).toEqual([]);
+});
+
+test('a refused API edit reaches the banner and the error event once', async ({ page }) => {
+  await openApp(page);
+  await recordErrors(page);
+  const rejection = await page.evaluate(() =>
+    window.anisoform.deform({ method: 'anarap', direction: { type: 'sideways' }, transform: { scale: [2, 1] } })
+      .then(() => null, (error) => ({ code: error.code, message: error.message })));
+  expect(rejection.code).toBe('bad-parameter');
+  const errors = await page.evaluate(() => window.__errors);
+  expect(errors).toEqual([rejection]);
+  await expect(page.getByTestId('error')).toContainText('direction.type must be one of');
+});
+
+test('an edit the solver refuses is reported once', async ({ page }) => {
+  await openApp(page);
+  await recordErrors(page);
+  // The core refuses a constraint at a vertex the mesh does not have.
+  const rejection = await page.evaluate(() =>
+    window.anisoform.deform({
+      method: 'anarap',
+      direction: { type: 'constraints', constraints: [{ vertex: 10_000_000, direction: [1, 0, 0] }] },
+      transform: { scale: [2, 1] },
+    }).then(() => null, (error) => error.message));
+  expect(rejection).toContain('failed');
+  await expect(page.getByTestId('error')).toBeVisible();
+  expect(await page.evaluate(() => window.__errors.map((event) => event.message))).toEqual([rejection]);
+});
