@@ -12,7 +12,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${ANISO_FUZZ_BUILD_DIR:-build-asan}
 shared=${ANISO_SHARED_DIR:-../shared}
-limit=(-runs=8000)
+limit=(-runs=5000)
 case "${1:-}" in
   --seconds) limit=(-max_total_time="$2") ;;
   --runs) limit=(-runs="$2") ;;
