@@ -13,6 +13,7 @@ import { displayPanel } from './ui/display-panel.js';
 import { installDropZone } from './ui/drop-zone.js';
 import { filePanel } from './ui/file-panel.js';
 import { flattenPanel } from './ui/flatten-panel.js';
+import { frameButton } from './ui/frame-button.js';
 import { showWhen } from './ui/fields.js';
 import { historyButtons } from './ui/history-panel.js';
 import { installMessages } from './ui/messages.js';
@@ -45,13 +46,14 @@ const settings = new Settings();
 const viewer = new Viewer(document.getElementById('viewport'));
 const meshView = new MeshView(viewer);
 const picker = new Picker(viewer, meshView);
+viewer.setBoundsSource(() => editor.document?.bounds() ?? null);
 editor.attachView({ cameraState: () => viewer.cameraState(), pick: (x, y) => picker.pick(x, y) });
 
 editor.on('mesh', (mesh) => {
   meshView.setMesh(mesh.positions, mesh.triangles);
   editor.emit('progress', { stage: 'parse', message: 'Building the picking structure' });
   picker.rebuild();
-  viewer.frame(mesh.bounds());
+  viewer.frame({ defaultDirection: true });
 });
 editor.on('positions', ({ positions }) => {
   meshView.showPositions(positions);
@@ -131,4 +133,6 @@ installKeyboardShortcuts({
   undo: () => api.undo(),
   redo: () => api.redo(),
   cancel: () => gestures.cancel() || editor.cancelGesture(),
+  frame: () => api.frame(),
 });
+frameButton(document.getElementById('viewport'), { api });

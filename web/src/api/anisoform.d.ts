@@ -191,6 +191,8 @@ export interface Anisoform {
   /** The surface under a canvas pixel, or null. */
   pick(pixel: Pixel): Hit | null;
   camera(): CameraState;
+  /** Fits the camera to the whole mesh (bounding sphere), keeping the view direction. */
+  frame(): void;
 }
 
 declare global {

@@ -1,6 +1,7 @@
 // The public API object (issue 3 §3), exposed as window.anisoform. The side
 // panel drives the editor through this same object wherever it offers the
-// operation (load, select, undo, redo, reset, export, flatten, exportPattern);
+// operation (load, select, undo, redo, reset, export, flatten, exportPattern,
+// frame);
 // tests and embedders use nothing else. Declarations: anisoform.d.ts beside
 // this file.
 const EVENTS = ['change', 'error', 'progress'];
@@ -75,6 +76,9 @@ export function createAnisoformApi({ editor, viewer, picker, ready }) {
       document();
       return picker.pick(x, y);
     },
+
+    // Fits the camera to the whole mesh, keeping the view direction (the Frame button, F, Home).
+    frame: () => viewer.frame(),
 
     camera() {
       return {

@@ -1,14 +1,22 @@
 // Keyboard shortcuts: Ctrl/Cmd+Z undo, Ctrl/Cmd+Shift+Z (or Ctrl+Y) redo,
-// Esc cancels a live edit. Ignored while typing in a numeric field, where
-// Ctrl+Z belongs to the field.
-export function installKeyboardShortcuts({ undo, redo, cancel }) {
+// Esc cancels a live edit, F or Home frames the whole mesh. Ignored while
+// typing in a field, where those keys belong to the field.
+export function installKeyboardShortcuts({ undo, redo, cancel, frame }) {
   window.addEventListener('keydown', (event) => {
-    const typing = event.target instanceof HTMLInputElement || event.target instanceof HTMLSelectElement;
+    const typing = event.target instanceof HTMLInputElement || event.target instanceof HTMLSelectElement
+      || event.target instanceof HTMLTextAreaElement || event.target?.isContentEditable;
     if (event.key === 'Escape') {
       if (cancel()) event.preventDefault();
       return;
     }
-    if (typing || !(event.ctrlKey || event.metaKey)) return;
+    if (typing) return;
+    const modified = event.ctrlKey || event.metaKey || event.altKey;
+    if (!modified && (event.key === 'Home' || event.key.toLowerCase() === 'f')) {
+      event.preventDefault();
+      frame();
+      return;
+    }
+    if (!(event.ctrlKey || event.metaKey)) return;
     const key = event.key.toLowerCase();
     if (key === 'z' && !event.shiftKey) {
       event.preventDefault();

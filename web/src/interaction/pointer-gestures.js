@@ -2,7 +2,8 @@
 // active tool when a left-button press lands on the mesh (or the tool wants
 // presses off the mesh too), otherwise the orbit controls. It listens in the
 // capture phase, so it runs before OrbitControls and can keep it out of a
-// tool's drag. Pointer capture keeps the drag alive outside the canvas.
+// tool's drag. Pointer capture keeps the drag alive outside the canvas. A
+// double-click on the mesh moves the orbit target there.
 export class PointerGestures {
   #active = null;
 
@@ -21,6 +22,12 @@ export class PointerGestures {
     canvas.addEventListener('pointerup', (event) => this.#up(event));
     canvas.addEventListener('pointercancel', () => this.cancel());
     canvas.addEventListener('pointerleave', () => this.activeTool()?.hover?.(null));
+    // Double-click on the mesh: orbit around the clicked point from the same distance.
+    canvas.addEventListener('dblclick', (event) => {
+      const { x, y } = this.#position(event);
+      const hit = this.picker.pick(x, y);
+      if (hit) viewer.focusOn(hit.point);
+    });
   }
 
   get active() {

@@ -8,9 +8,15 @@ import { EventEmitter } from '../editor/event-emitter.js';
 // A three-quarter view from the front right, slightly above.
 const DEFAULT_VIEW_DIRECTION = new Vector3(0.8, 0.35, -1).normalize();
 
+const SPHERE_MARGIN = 1.1;
+
 export class Viewer extends EventEmitter {
   #needsRender = true;
   #frameTimes = [];
+  /** () => {center, diagonal} of the shown mesh, or null before one is loaded. */
+  #boundsSource = () => null;
+  /** Target and distance the last fit left, to tell whether the user zoomed or panned since. */
+  #lastFit = null;
 
   constructor(container) {
     super();
@@ -62,18 +68,61 @@ export class Viewer extends EventEmitter {
     this.canvas.style.height = '100%';
     this.camera.aspect = width / height;
     this.camera.updateProjectionMatrix();
+    // A new viewport size (the Deform/Flatten switch halves or restores it, or
+    // the window changes) re-fits the mesh, but only while the camera still
+    // has the last fit's target and distance: orbiting alone keeps both (the
+    // fit is a bounding sphere, the same from every side), so an orbited view
+    // is re-fitted with its direction kept, while a view the user zoomed,
+    // panned or focused into is theirs and stays as they left it.
+    if (this.#lastFit && this.#stillFitted()) this.frame();
     this.requestRender();
   }
 
-  /** Points the camera at bounds {center, diagonal} from the default direction. */
-  frame({ center, diagonal }) {
-    const radius = Math.max(diagonal / 2, 1e-6);
-    const distance = radius / Math.sin((this.camera.fov * Math.PI) / 360) * 1.1;
-    this.controls.target.fromArray(center);
-    this.camera.position.copy(this.controls.target).addScaledVector(DEFAULT_VIEW_DIRECTION, distance);
+  /** Where frame() finds the mesh bounds {center, diagonal}. */
+  setBoundsSource(source) {
+    this.#boundsSource = source;
+  }
+
+  #stillFitted() {
+    const { target, distance } = this.#lastFit;
+    const tolerance = distance * 1e-6;
+    return this.controls.target.distanceTo(target) <= tolerance
+      && Math.abs(this.camera.position.distanceTo(this.controls.target) - distance) <= tolerance;
+  }
+
+  /**
+   * Fits the camera to the whole mesh: its bounding sphere fills the narrower
+   * of the two fields of view (so the canvas aspect counts), looking along the
+   * current view direction, or the default one with {defaultDirection: true}
+   * (a new mesh). The one fit of the page: load, Frame button, F / Home keys,
+   * anisoform.frame() and the re-fit on resize.
+   */
+  frame({ defaultDirection = false } = {}) {
+    const bounds = this.#boundsSource();
+    if (!bounds) return;
+    const radius = Math.max(bounds.diagonal / 2, 1e-6);
+    const halfVertical = (this.camera.fov * Math.PI) / 360;
+    const halfHorizontal = Math.atan(Math.tan(halfVertical) * this.camera.aspect);
+    const distance = (radius / Math.sin(Math.min(halfVertical, halfHorizontal))) * SPHERE_MARGIN;
+    const direction = defaultDirection
+      ? DEFAULT_VIEW_DIRECTION.clone()
+      : this.camera.position.clone().sub(this.controls.target).normalize();
+    if (direction.lengthSq() === 0) direction.copy(DEFAULT_VIEW_DIRECTION);
+    this.controls.target.fromArray(bounds.center);
+    this.camera.position.copy(this.controls.target).addScaledVector(direction, distance);
     this.camera.near = distance / 100;
     this.camera.far = distance * 100;
     this.camera.updateProjectionMatrix();
+    this.controls.update();
+    this.#lastFit = { target: this.controls.target.clone(), distance };
+    this.requestRender();
+  }
+
+  /** Moves the orbit target to `point` (xyz), keeping the view direction and distance. */
+  focusOn(point) {
+    const offset = this.camera.position.clone().sub(this.controls.target);
+    this.controls.target.fromArray(point);
+    this.camera.position.copy(this.controls.target).add(offset);
     this.controls.update();
     this.requestRender();
   }
