@@ -91,9 +91,7 @@ FlattenPlan plan_flatten(const FlattenArguments& args) {
     }
     plan.su = amounts[0];
     plan.sv = amounts.size() > 1 ? amounts[1] : 1.0;
-    if (!(plan.su > 0.0 && plan.sv > 0.0)) {
-      fail(ErrorCode::BadParameter, "--compress: stretches must be > 0, got '" + args.compress + "'");
-    }
+    // Their range is the core's rule (validate_scale, limits.h), checked by flatten().
   }
   if (!args.direction.empty()) {
     plan.direction = parse_direction(args.direction);

@@ -3,12 +3,12 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <string>
 
 #include "anisoform/error.h"
 #include "anisoform/selection.h"
+#include "cli_runner.h"
 #include "test_support.h"
 
 using aniso::Region;
@@ -16,12 +16,7 @@ using aniso::Region;
 namespace {
 
 using aniso::test::bad_parameter_message;
-
-std::string write_temp_file(const std::string& name, const std::string& contents) {
-  const std::string path = std::string(ANISO_TEST_TMP) + "/" + name;
-  std::ofstream(path, std::ios::binary) << contents;
-  return path;
-}
+using aniso::test::write_temp_text;
 
 // A strip of unit squares along x, two triangles each: vertices (k, 0, 0) and
 // (k, 1, 0) for k = 0..cells. Edge paths along the bottom row are straight.
@@ -60,13 +55,13 @@ TEST_CASE("selection: parse_region reads every CLI form", "[selection]") {
   CHECK(sphere.center == Eigen::Vector3d(0.5, 0, -1));
   CHECK(sphere.radius == 2.0);
 
-  const std::string plain = write_temp_file("selection_plain.txt", "# picked\n3\n\n7\r\n  11  \n");
+  const std::string plain = write_temp_text("selection_plain.txt", "# picked\n3\n\n7\r\n  11  \n");
   const Region listed = aniso::parse_region("file:" + plain);
   CHECK(listed.kind == Region::Kind::Vertices);
   CHECK(listed.vertices == std::vector<int>{3, 7, 11});
   CHECK(listed.weights.empty());
 
-  const std::string weighted = write_temp_file("selection_weighted.txt", "3 0.25\n7\n11 1 # full\n");
+  const std::string weighted = write_temp_text("selection_weighted.txt", "3 0.25\n7\n11 1 # full\n");
   const Region soft = aniso::parse_region("file:" + weighted);
   CHECK(soft.vertices == std::vector<int>{3, 7, 11});
   CHECK(soft.weights == std::vector<double>{0.25, 1.0, 1.0});
@@ -86,23 +81,23 @@ TEST_CASE("selection: parse_region errors name the problem", "[selection]") {
   CHECK_THAT(bad_parameter_message([] { aniso::parse_region("file:/nonexistent/sel.txt"); }),
              Catch::Contains("cannot open /nonexistent/sel.txt: no such file"));
 
-  const std::string bad_index = write_temp_file("selection_bad_index.txt", "1\n2\n-3\n");
+  const std::string bad_index = write_temp_text("selection_bad_index.txt", "1\n2\n-3\n");
   CHECK_THAT(bad_parameter_message([&] { aniso::parse_region("file:" + bad_index); }),
              Catch::Contains(bad_index + " line 3: vertex index must be a non-negative integer, got '-3'"));
-  const std::string bad_weight = write_temp_file("selection_bad_weight.txt", "1 0.5\n2 1.5\n");
+  const std::string bad_weight = write_temp_text("selection_bad_weight.txt", "1 0.5\n2 1.5\n");
   CHECK_THAT(bad_parameter_message([&] { aniso::parse_region("file:" + bad_weight); }),
              Catch::Contains("line 2: weight 1.5 is outside [0, 1]"));
-  const std::string extra = write_temp_file("selection_extra.txt", "1 0.5 7\n");
+  const std::string extra = write_temp_text("selection_extra.txt", "1 0.5 7\n");
   CHECK_THAT(bad_parameter_message([&] { aniso::parse_region("file:" + extra); }),
              Catch::Contains("line 1: expected a vertex index and an optional weight, got 3 values"));
-  const std::string hex_weight = write_temp_file("selection_hex_weight.txt", "1 0.5\n2 0x1p-1\n");
+  const std::string hex_weight = write_temp_text("selection_hex_weight.txt", "1 0.5\n2 0x1p-1\n");
   CHECK_THAT(bad_parameter_message([&] { aniso::parse_region("file:" + hex_weight); }),
              Catch::Contains("line 2: weight: '0x1p-1' is a hexadecimal number"));
   CHECK_THAT(bad_parameter_message([] { aniso::parse_region("sphere:0,0,0,0x1p0"); }),
              Catch::Contains("sphere number 4: '0x1p0' is a hexadecimal number"));
   CHECK_THAT(bad_parameter_message([] { aniso::parse_region(std::string("file:") + ANISO_TEST_TMP); }),
              Catch::Contains(std::string(ANISO_TEST_TMP) + " is a directory, not a regular file"));
-  const std::string empty = write_temp_file("selection_empty.txt", "# nothing\n\n");
+  const std::string empty = write_temp_text("selection_empty.txt", "# nothing\n\n");
   CHECK_THAT(bad_parameter_message([&] { aniso::parse_region("file:" + empty); }),
              Catch::Contains("lists no vertices"));
 }
