@@ -15,11 +15,14 @@ export class SessionHost {
       [Request.loadFile]: (payload) => this.loadFile(payload),
       [Request.setMesh]: (payload) => this.setMesh(payload),
       [Request.prepare]: () => this.prepare(),
+      [Request.select]: (payload) => this.select(payload),
       [Request.setSelection]: (payload) => this.setSelection(payload),
       [Request.deform]: (payload) => this.deform(payload),
+      [Request.distortion]: (payload) => this.distortion(payload),
       [Request.cancel]: () => this.cancel(),
       [Request.setPositions]: (payload) => this.setPositions(payload),
       [Request.directionField]: (payload) => this.directionField(payload),
+      [Request.exportMesh]: (payload) => this.exportMesh(payload),
       [Request.flatten]: (payload) => this.flatten(payload),
       [Request.exportPattern]: (payload) => this.exportPattern(payload),
     };
@@ -70,15 +73,32 @@ export class SessionHost {
     return { result: { ms: performance.now() - started }, transfer: [] };
   }
 
+  select({ region, options }) {
+    const count = this.session.select(region, options);
+    const weights = this.session.selection().slice();
+    return { result: { count, weights }, transfer: [weights.buffer] };
+  }
+
   setSelection({ weights }) {
     return { result: { count: this.session.setSelection(weights) }, transfer: [] };
   }
 
-  deform({ op, commit }) {
+  deform({ op, commit, distortion }) {
     const stats = this.session.deform(op);
     if (commit) this.session.commit();
     const positions = this.session.positions().slice();
-    return { result: { positions, stats: plainStats(stats) }, transfer: [positions.buffer] };
+    const result = { positions, stats: plainStats(stats) };
+    const transfer = [positions.buffer];
+    if (distortion) {
+      result.distortion = this.session.distortion(distortion, 'loaded');
+      transfer.push(result.distortion.buffer);
+    }
+    return { result, transfer };
+  }
+
+  distortion({ distortion }) {
+    const values = this.session.distortion(distortion, 'loaded');
+    return { result: { values }, transfer: [values.buffer] };
   }
 
   cancel() {
@@ -95,6 +115,11 @@ export class SessionHost {
   directionField({ direction }) {
     const field = this.session.directionField(direction).slice();
     return { result: { field }, transfer: [field.buffer] };
+  }
+
+  exportMesh({ format }) {
+    const bytes = this.session.exportMesh(format);
+    return { result: { bytes }, transfer: [bytes.buffer] };
   }
 
   flatten({ options }) {
