@@ -24,13 +24,12 @@
 //   'change'     {reason}: anything committed changed (load, edit, selection, undo)
 import { History } from '../commands/history.js';
 import { PositionsCommand } from '../commands/positions-command.js';
-import { exportGlb } from '../io/export-mesh.js';
-import { CORE_EXPORT_FORMATS, EXPORT_FORMATS } from '../io/mesh-formats.js';
 import { EventEmitter } from '../shared/event-emitter.js';
 import { Request } from '../worker/protocol.js';
 import { describeEdit, foldOverWarning, reporter } from './edit-wording.js';
 import { GestureController } from './gesture-controller.js';
 import { MeshDocument } from './mesh-document.js';
+import { exportMeshFile } from './mesh-export.js';
 import { fileNameOf, loadError, readMesh } from './mesh-loader.js';
 import { PatternState } from './pattern-state.js';
 import { describeProblems } from './problem-summary.js';
@@ -302,26 +301,13 @@ export class Editor extends EventEmitter {
 
   // ---- export --------------------------------------------------------------
 
-  /**
-   * The committed mesh as file bytes: OBJ, PLY (binary) and STL (binary) by
-   * the core's writers in the worker, GLB by three.js.
-   */
+  /** The committed mesh as file bytes (mesh-export.js). */
   async export(format) {
     try {
       const document = this.requireDocument();
-      if (!EXPORT_FORMATS.includes(format)) {
-        throw Object.assign(new Error(`export format must be one of ${EXPORT_FORMATS.join(', ')}, got '${format}'`), {
-          code: 'bad-parameter',
-        });
-      }
       // The worker holds the live preview during a drag, not the committed mesh.
       if (this.gestureActive) throw Object.assign(new Error('an interactive edit is in progress: finish the drag first'), { code: 'bad-parameter' });
-      if (!CORE_EXPORT_FORMATS.includes(format)) {
-        const baseName = document.name.replace(/\.[^.]+$/, '') || 'anisoform';
-        return await exportGlb(document.positions, document.triangles, baseName);
-      }
-      const { bytes } = await this.#client.request(Request.exportMesh, { format });
-      return bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength);
+      return await exportMeshFile(this.#client, document, format);
     } catch (error) {
       throw this.report(error, `Export as ${format} failed`);
     }

@@ -55,7 +55,7 @@ export class SessionHost {
 
   // Factorizes the Laplacian now (a one-iteration identity edit of the whole
   // mesh, then cancel), so the first drag does not pay for it. The page's
-  // selection is sent again before the next edit.
+  // selection is sent again before the next edit or select.
   prepare() {
     this.reportProgress('factorize', 'Preparing the solver');
     const started = performance.now();
@@ -69,7 +69,9 @@ export class SessionHost {
       preview: true,
     });
     this.session.cancel();
-    this.session.setSelection(new Float32Array(vertexCount));
+    // Clears the selection through select(), which also builds the mesh's
+    // adjacency now rather than in the first select with a falloff.
+    this.session.select({ vertices: [] });
     return { result: { ms: performance.now() - started }, transfer: [] };
   }
 
