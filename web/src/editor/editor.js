@@ -1,8 +1,10 @@
 // The editor: the page's model of an editing session, between the UI/API and
 // the solver worker. It owns the mesh document and the history, and hands the
 // rest to its parts: loading (mesh-loader.js), the selection
-// (selection-state.js), the live drag (gesture-controller.js) and the
-// garment pattern (pattern-state.js). It announces changes as events:
+// (selection-state.js), the live drag (gesture-controller.js), committed
+// edits and their undo (edit-commits.js), the garment pattern
+// (pattern-state.js) and export (mesh-export.js). It announces changes as
+// events:
 //   'mesh'       a new mesh was loaded (payload: MeshDocument)
 //   'positions'  {positions, live, distortion?}: committed positions, or a
 //                live preview; distortion: the heat map's values (heatMapKind)
@@ -23,10 +25,10 @@
 //                when the mesh, its positions or the flattened selection changed
 //   'change'     {reason}: anything committed changed (load, edit, selection, undo)
 import { History } from '../commands/history.js';
-import { PositionsCommand } from '../commands/positions-command.js';
 import { EventEmitter } from '../shared/event-emitter.js';
 import { Request } from '../worker/protocol.js';
-import { describeEdit, foldOverWarning, reporter } from './edit-wording.js';
+import { EditCommits } from './edit-commits.js';
+import { describeEdit, reporter } from './edit-wording.js';
 import { GestureController } from './gesture-controller.js';
 import { MeshDocument } from './mesh-document.js';
 import { exportMeshFile } from './mesh-export.js';
@@ -50,12 +52,14 @@ export class Editor extends EventEmitter {
   #report = reporter((event, payload) => this.emit(event, payload));
   #gestures;
   #patterns;
+  #commits;
 
   constructor(client) {
     super();
     this.#client = client;
     this.#gestures = new GestureController({ editor: this, client });
     this.#patterns = new PatternState({ editor: this, client });
+    this.#commits = new EditCommits({ editor: this, client, dropPattern: () => this.#patterns.drop() });
     this.selectionState = new SelectionState({ editor: this, client, beforeChange: () => this.#patterns.selectionChanged() });
     client.on('progress', (progress) => this.emit('progress', progress));
     this.history.on('change', (state) => this.emit('history', state));
@@ -185,28 +189,9 @@ export class Editor extends EventEmitter {
     return this.commitEdit(document, solverOp, label);
   }
 
-  /** Solves `solverOp` fully and commits it as one undoable step. */
-  async commitEdit(document, solverOp, label) {
-    this.selectionState.syncForEdit();
-    const done = this.beginBusy();
-    try {
-      const before = document.positions;
-      const { positions, stats, distortion } = await this.#client.request(Request.deform, {
-        op: solverOp,
-        commit: true,
-        distortion: this.heatMapKind,
-      });
-      if (this.document !== document) return stats; // a new mesh arrived meanwhile
-      this.#applyPositions(positions, distortion);
-      this.history.push(new PositionsCommand(label, before, positions, (p) => this.#restorePositions(p)));
-      this.emit('stats', { ...stats, live: false });
-      if (stats.inverted > 0) this.emit('warning', { message: foldOverWarning(stats.inverted) });
-      return { iterations: stats.iterations, energy: stats.energy, ms: stats.ms, inverted: stats.inverted };
-    } catch (error) {
-      throw this.report(error, `${label} failed`);
-    } finally {
-      done();
-    }
+  /** Solves `solverOp` fully and commits it as one undoable step (edit-commits.js). */
+  commitEdit(document, solverOp, label) {
+    return this.#commits.commit(document, solverOp, label);
   }
 
   /** Starts a live edit (a drag). Returns false while another edit runs. */
@@ -262,31 +247,7 @@ export class Editor extends EventEmitter {
 
   /** Back to the positions as loaded (undoable). */
   reset() {
-    const document = this.requireDocument();
-    if (this.gestureActive || this.busy || document.positions === document.loadedPositions) return false;
-    const before = document.positions;
-    this.#restorePositions(document.loadedPositions);
-    this.history.push(
-      new PositionsCommand('Reset to loaded mesh', before, document.loadedPositions, (p) => this.#restorePositions(p)),
-    );
-    return true;
-  }
-
-  #applyPositions(positions, distortion) {
-    this.#patterns.drop();
-    this.document.positions = positions;
-    this.emit('positions', { positions, live: false, distortion });
-    this.emit('change', { reason: 'positions' });
-  }
-
-  // Undo, redo and reset: the worker's rest mesh follows (a copy is sent,
-  // because the history keeps the original).
-  #restorePositions(positions) {
-    const copy = positions.slice();
-    this.#client.request(Request.setPositions, { positions: copy }, [copy.buffer]).catch((error) => {
-      this.report(error, 'The solver could not restore the positions');
-    });
-    this.#applyPositions(positions);
+    return this.#commits.reset();
   }
 
   // ---- flattening (pattern-state.js) ---------------------------------------
