@@ -50,10 +50,12 @@ const REPORT_BODY_LIMIT = 64 * 1024;
 export function serveStatic({ root, port, host = '127.0.0.1', log = (line) => process.stderr.write(`${line}\n`) }) {
   const rootDir = path.resolve(root);
   const reports = [];
-  const policy = `${CONTENT_SECURITY_POLICY}; report-uri ${CSP_REPORT_PATH}`;
 
   const server = createServer((request, response) => {
-    response.setHeader('Content-Security-Policy', policy);
+    // An absolute report URL: a blob: worker inherits the page's policy, and
+    // a relative one would resolve against its blob: URL.
+    const reportUri = request.headers.host ? `http://${request.headers.host}${CSP_REPORT_PATH}` : CSP_REPORT_PATH;
+    response.setHeader('Content-Security-Policy', `${CONTENT_SECURITY_POLICY}; report-uri ${reportUri}`);
     response.setHeader('X-Content-Type-Options', 'nosniff');
     const url = new URL(request.url, 'http://localhost');
 
