@@ -79,7 +79,13 @@ export function serveStatic({ root, port, host = '127.0.0.1', log = (line) => pr
       return;
     }
 
-    let file = path.join(rootDir, decodeURIComponent(url.pathname));
+    let file;
+    try {
+      file = path.join(rootDir, decodeURIComponent(url.pathname));
+    } catch {
+      response.writeHead(400).end();
+      return;
+    }
     if (file !== rootDir && !file.startsWith(rootDir + path.sep)) {
       response.writeHead(403).end();
       return;
@@ -146,6 +152,9 @@ function parseArguments(argv) {
     else throw new Error(`unknown argument '${arg}'`);
   }
   if (options.root === null) throw new Error('the folder to serve is missing');
+  if (!statOrNull(options.root)?.isDirectory()) {
+    throw new Error(`${options.root} is not a folder (build the site first: npm run build --prefix web)`);
+  }
   if (!Number.isInteger(options.port) || options.port < 0 || options.port > 65535) {
     throw new Error(`--port needs a port number, got '${argv[argv.indexOf('--port') + 1]}'`);
   }
