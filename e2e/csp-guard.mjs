@@ -67,7 +67,7 @@ async function guardContext(context, record) {
   });
   context.on('response', (response) => {
     const url = response.url();
-    if (leavesOrigin(url) || new URL(url).pathname === CSP_REPORT_PATH) return;
+    if (!url.startsWith(`${origin}/`) || new URL(url).pathname === CSP_REPORT_PATH) return;
     record.pending.push(
       response.headerValue('content-security-policy').then(
         (policy) => {
