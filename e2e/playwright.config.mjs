@@ -1,9 +1,9 @@
-// Playwright end-to-end tests of the built site (web/dist served by Python's
-// http.server), in Debian's Chromium: no browser is downloaded.
+// Playwright end-to-end tests of the built site (web/dist served with the
+// strict Content-Security-Policy by scripts/serve-static.mjs), in Debian's
+// Chromium: no browser is downloaded.
 // Run: npm run build --prefix web && npx --prefix web playwright test -c e2e/playwright.config.mjs
 import { defineConfig } from '../web/node_modules/@playwright/test/index.mjs';
-
-const port = Number(process.env.ANISO_E2E_PORT ?? 4173);
+import { origin, port } from './server.mjs';
 
 export default defineConfig({
   testDir: '.',
@@ -17,7 +17,7 @@ export default defineConfig({
   reporter: 'list',
   outputDir: '../web/test-results',
   use: {
-    baseURL: `http://127.0.0.1:${port}/`,
+    baseURL: `${origin}/`,
     viewport: { width: 900, height: 600 },
     launchOptions: {
       executablePath: process.env.ANISO_CHROMIUM ?? '/usr/bin/chromium',
@@ -31,12 +31,14 @@ export default defineConfig({
     trace: 'off',
     screenshot: 'only-on-failure',
   },
-  // The built site from a plain static file server (no special headers): what
-  // `scripts/run.sh` serves, and what an embedder's server does.
+  // The built site from the server `scripts/run.sh` uses, with the same
+  // Content-Security-Policy header: support.mjs fails a test on any violation
+  // (page events and the server's report endpoint, which also hears the
+  // worker) and on any request leaving this origin.
   webServer: {
-    command: `python3 -m http.server ${port} --bind 127.0.0.1 --directory dist`,
+    command: `node ../scripts/serve-static.mjs dist --port ${port}`,
     cwd: '../web',
-    url: `http://127.0.0.1:${port}/`,
+    url: `${origin}/`,
     reuseExistingServer: !process.env.CI,
     timeout: 30_000,
   },
