@@ -58,7 +58,7 @@ function toAnisoformError(error) {
 // Runs a raw binding call. The bindings RETURN a failure as an Error with a
 // code (throwing it from inside the module would leak module memory, see
 // bindings.cpp); anything thrown is a failure of the module itself.
-function guarded(call) {
+export function callModule(call) {
   let result;
   try {
     result = call();
@@ -418,25 +418,32 @@ function toBytes(bytes) {
 // options: {wasmBinary?: ArrayBuffer|Uint8Array, locateFile?: (path, prefix) => string}
 // (Node: pass wasmBinary, TOOLCHAIN.md §6; browsers and bundlers need neither.)
 export async function createAnisoformWasm(options = {}) {
+  return (await instantiateAnisoform(createAnisoformModule, options)).api;
+}
+
+// The API over a module built from wasm/bindings.cpp by `factory` (this
+// module's, or the benchmarks' build, anisoform-bench-wasm.mjs): {api, module,
+// rawSession(session) -> its embind object}.
+export async function instantiateAnisoform(factory, options = {}) {
   const { wasmBinary, locateFile } = requireObject(options, 'options');
   const moduleOptions = {};
   if (wasmBinary !== undefined) moduleOptions.wasmBinary = wasmBinary;
   if (locateFile !== undefined) moduleOptions.locateFile = locateFile;
   let module;
   try {
-    module = await createAnisoformModule(moduleOptions);
+    module = await factory(moduleOptions);
   } catch (error) {
     throw new AnisoformError('internal', `cannot load the WASM module: ${error?.message ?? error}`, { cause: error });
   }
 
-  // Session wrapper -> its embind object, for LaplacianFloor (not public).
+  // Session wrapper -> its embind object, for the benchmarks' LaplacianFloor.
   const rawSessions = new WeakMap();
 
   class Session {
     #raw;
 
     constructor() {
-      this.#raw = guarded(() => new module.Session());
+      this.#raw = callModule(() => new module.Session());
       rawSessions.set(this, this.#raw);
     }
 
@@ -460,7 +467,7 @@ export async function createAnisoformWasm(options = {}) {
     loadMesh(bytes, name) {
       if (typeof name !== 'string') throw badParameter('loadMesh: name must be a string (its extension gives the format)');
       const data = toBytes(bytes);
-      return guarded(() => this.#session.loadMesh(data, name));
+      return callModule(() => this.#session.loadMesh(data, name));
     }
 
     setMesh(positions, triangles, options = {}) {
@@ -468,19 +475,19 @@ export async function createAnisoformWasm(options = {}) {
       const xyz = positionArray(positions, 'setMesh: positions');
       const indices = indexList(triangles, 'setMesh: triangles');
       if (typeof weld !== 'boolean') throw badParameter('setMesh: options.weld must be true or false');
-      return guarded(() => this.#session.setMesh(xyz, indices, weld));
+      return callModule(() => this.#session.setMesh(xyz, indices, weld));
     }
 
     info() {
-      return guarded(() => this.#session.info());
+      return callModule(() => this.#session.info());
     }
 
     positions() {
-      return guarded(() => this.#session.positions());
+      return callModule(() => this.#session.positions());
     }
 
     triangles() {
-      return guarded(() => this.#session.triangles());
+      return callModule(() => this.#session.triangles());
     }
 
     select(region, options = {}) {
@@ -489,57 +496,57 @@ export async function createAnisoformWasm(options = {}) {
       const normalized = normalizeRegion(region);
       const falloff = options.falloff === undefined ? 0 : finiteNumber(options.falloff, 'select: options.falloff');
       const mode = oneOf(options.mode ?? 'replace', ['replace', 'add', 'subtract'], 'select: options.mode');
-      return guarded(() => this.#session.select(normalized, falloff, mode));
+      return callModule(() => this.#session.select(normalized, falloff, mode));
     }
 
     setSelection(weights) {
       const values = typedArray(weights, Float32Array, 'setSelection: weights');
-      return guarded(() => this.#session.setSelection(values));
+      return callModule(() => this.#session.setSelection(values));
     }
 
     selection() {
-      return guarded(() => this.#session.selection());
+      return callModule(() => this.#session.selection());
     }
 
     deform(op) {
       const request = normalizeOp(op, () => longestAxisDirection(this.info()));
-      return guarded(() => this.#session.deform(request));
+      return callModule(() => this.#session.deform(request));
     }
 
     commit() {
-      guarded(() => this.#session.commit());
+      callModule(() => this.#session.commit());
     }
 
     cancel() {
-      guarded(() => this.#session.cancel());
+      callModule(() => this.#session.cancel());
     }
 
     setPositions(positions) {
       const xyz = positionArray(positions, 'setPositions: positions');
-      guarded(() => this.#session.setPositions(xyz));
+      callModule(() => this.#session.setPositions(xyz));
     }
 
     directionField(direction) {
       const normalized = normalizeDirection(direction, 'direction');
-      return guarded(() => this.#session.directionField(normalized));
+      return callModule(() => this.#session.directionField(normalized));
     }
 
     distortion(kind, reference = 'rest') {
       oneOf(kind, ['area', 'stretch'], 'distortion: kind');
       oneOf(reference, ['rest', 'loaded'], 'distortion: reference');
-      return guarded(() => this.#session.distortion(kind, reference));
+      return callModule(() => this.#session.distortion(kind, reference));
     }
 
     exportMesh(format) {
       oneOf(format, ['obj', 'off', 'ply', 'stl'], 'exportMesh: format');
-      return guarded(() => this.#session.exportMesh(format));
+      return callModule(() => this.#session.exportMesh(format));
     }
 
     // A garment pattern of the current positions (the whole mesh or the
     // selected patch); see CONTRACT.md for the options and the result.
     flatten(options = {}) {
       const request = normalizeFlatten(options, () => longestAxisOfPositions(this.positions()));
-      return guarded(() => this.#session.flatten(request));
+      return callModule(() => this.#session.flatten(request));
     }
 
     // The last flatten() as SVG or DXF text bytes, in millimetres.
@@ -549,55 +556,16 @@ export async function createAnisoformWasm(options = {}) {
       rejectUnknownKeys(options, ['mmPerUnit'], 'exportPattern options');
       const mmPerUnit = options.mmPerUnit === undefined ? 1 : finiteNumber(options.mmPerUnit, 'exportPattern: options.mmPerUnit');
       if (!(mmPerUnit > 0)) throw badParameter(`exportPattern: options.mmPerUnit must be > 0, got ${mmPerUnit}`);
-      return guarded(() => this.#session.exportPattern(format, mmPerUnit));
+      return callModule(() => this.#session.exportPattern(format, mmPerUnit));
     }
 
     factorizations() {
-      return guarded(() => this.#session.factorizations());
+      return callModule(() => this.#session.factorizations());
     }
-  }
-
-  // Bench only: the cotangent Laplacian of `session`'s rest mesh factored with
-  // `pins` held (constructing it is the precompute) and solve() = one 3-column
-  // solve. Must be delete()d.
-  class LaplacianFloor {
-    #raw;
-
-    constructor(session, pins) {
-      const indices = indexList(pins, 'LaplacianFloor: pins');
-      this.#raw = guarded(() => new module.LaplacianFloor());
-      try {
-        guarded(() => this.#raw.factor(rawSessions.get(session), indices));
-      } catch (error) {
-        this.delete();
-        throw error;
-      }
-    }
-
-    solve() {
-      guarded(() => this.#raw.solve());
-    }
-
-    delete() {
-      if (this.#raw !== null) {
-        this.#raw.delete();
-        this.#raw = null;
-      }
-    }
-  }
-
-  // The benchmarks' procedural mesh (aniso::capped_cylinder): a closed capped
-  // cylinder around z of near-equilateral triangles, about `approxVertices`
-  // vertices. Returns {positions: Float64Array, triangles: Uint32Array} for setMesh.
-  function cappedCylinder(approxVertices, radius = 1, height = 4) {
-    integerAtLeast(approxVertices, 1, 'cappedCylinder: approxVertices');
-    finiteNumber(radius, 'cappedCylinder: radius');
-    finiteNumber(height, 'cappedCylinder: height');
-    return guarded(() => module.cappedCylinder(approxVertices, radius, height));
   }
 
   // {inUse, heap, limit} in bytes: malloc'd now, the WASM memory (it never shrinks), its maximum.
-  const memoryUse = () => guarded(() => module.memoryUse());
+  const memoryUse = () => callModule(() => module.memoryUse());
 
-  return { Session, LaplacianFloor, cappedCylinder, memoryUse };
+  return { api: { Session, memoryUse }, module, rawSession: (session) => rawSessions.get(session) };
 }
