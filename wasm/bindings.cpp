@@ -1,17 +1,11 @@
-// The embind block of the WASM module: aniso::Session for the browser, the
-// procedural cylinder of the benchmarks, and a bench-only Laplacian
-// factor/solve path. Thin on purpose: JS values in and
-// out, nothing more. Defaults, checks of the user's input and the public API
-// live in js/anisoform-wasm.mjs, which every host uses instead of these raw
-// bindings.
+// The embind block of the WASM module: aniso::Session for the browser.
 //
-// Errors: every bound call runs inside guarded(), which catches any C++
-// exception and RETURNS a JS Error carrying `code` (aniso::error_code_name,
-// "out-of-memory" for std::bad_alloc and std::length_error, or "internal") and the C++ message;
-// the JS layer throws it as an AnisoformError. Throwing a JS exception from inside the module instead
-// (TOOLCHAIN.md §1 option (a)) skips the epilogues of the frames it unwinds:
-// measured, every error then leaks 32 bytes of the 5 MB shadow stack and one
-// emval handle, so a long session would end in a stack overflow.
+// Thin on purpose. Requests arrive as the JSON text of the public objects
+// (op, region, direction, options) and are parsed by the core's one schema
+// (core/include/anisoform/op.h), with its defaults and its checks; results
+// leave as the core's JSON (to_json in op.h), parsed into JS objects here, or
+// as typed arrays. js/anisoform-wasm.mjs only converts arguments and maps
+// errors. Every call runs inside guarded() (guarded.h).
 //
 // Arrays out: positions, triangles and selection are views on the WASM heap
 // (typed_memory_view, no copy). Any later call may grow the memory and detach
@@ -20,10 +14,7 @@
 #include <malloc.h>
 
 #include <cstdint>
-#include <new>
-#include <stdexcept>
 #include <string>
-#include <type_traits>
 #include <vector>
 
 #include <emscripten/bind.h>
@@ -31,6 +22,7 @@
 #include <emscripten/val.h>
 
 #include "anisoform/error.h"
+#include "anisoform/op.h"
 #include "anisoform/session.h"
 #include "guarded.h"
 #include "js_values.h"
@@ -40,92 +32,21 @@ using emscripten::val;
 namespace aniso::wasm {
 namespace {
 
-// ---- JS values out -------------------------------------------------------
+// The JS layer always sends valid JSON; a caller of the raw module may not.
+Json parse_request(const std::string& text, const char* what) {
+  Json json = Json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (json.is_discarded()) fail(ErrorCode::BadParameter, std::string(what) + " is not valid JSON");
+  return json;
+}
+
+val to_js(const Json& json) {
+  return val::global("JSON").call<val>("parse", json.dump());
+}
 
 val positions_copy(const Positions& V) {
   std::vector<float> xyz(static_cast<std::size_t>(V.size()));
   for (std::size_t i = 0; i < xyz.size(); ++i) xyz[i] = static_cast<float>(V.data()[i]);
   return copy_to_js(xyz.data(), xyz.size());
-}
-
-val vector3_to_js(const Eigen::Vector3d& v) {
-  val out = val::array();
-  for (int k = 0; k < 3; ++k) out.call<void>("push", v[k]);
-  return out;
-}
-
-val strings_to_js(const std::vector<std::string>& strings) {
-  val out = val::array();
-  for (const std::string& s : strings) out.call<void>("push", s);
-  return out;
-}
-
-val info_to_js(const SessionMeshInfo& info) {
-  const MeshReport& r = info.report;
-  val out = val::object();
-  out.set("vertices", r.vertices);
-  out.set("triangles", r.triangles);
-  out.set("components", r.components);
-  out.set("boundaryLoops", r.boundary_loops);
-  out.set("edgeManifold", r.edge_manifold);
-  out.set("vertexManifold", r.vertex_manifold);
-  out.set("consistentlyOriented", r.consistently_oriented);
-  out.set("degenerateTriangles", r.degenerate_triangles);
-  out.set("duplicateFaces", r.duplicate_faces);
-  out.set("unreferencedVertices", r.unreferenced_vertices);
-  val box = val::object();
-  box.set("min", vector3_to_js(r.bbox.min));
-  box.set("max", vector3_to_js(r.bbox.max));
-  out.set("bbox", box);
-  val problems = val::array();
-  for (const Problem& p : r.problems) {
-    val problem = val::object();
-    problem.set("kind", std::string(problem_kind_name(p.kind)));
-    problem.set("element", p.element);
-    problem.set("message", p.message);
-    problems.call<void>("push", problem);
-  }
-  out.set("problems", problems);
-  out.set("notes", strings_to_js(info.notes));
-  return out;
-}
-
-val edit_result_to_js(const SessionEditResult& r) {
-  val out = val::object();
-  out.set("selected", r.selected);
-  out.set("iterations", r.iterations);
-  out.set("energy", r.energy);
-  out.set("energyHistory", copy_to_js(r.energy_history.data(), r.energy_history.size()));
-  out.set("converged", r.converged);
-  out.set("directionsFilled", r.directions_filled);
-  out.set("inverted", r.inverted);
-  out.set("factorizations", r.factorizations);
-  out.set("precomputeMs", r.precompute_ms);
-  out.set("solveMs", r.solve_ms);
-  out.set("ms", r.total_ms);
-  return out;
-}
-
-val metrics_to_js(const FlattenMetrics& m) {
-  val out = val::object();
-  out.set("triangles", m.triangles);
-  out.set("vertices", m.vertices);
-  out.set("components", m.components);
-  out.set("boundaryLoops", m.boundary_loops);
-  out.set("flipped", m.flipped);
-  out.set("compressionErrorMean", m.compression_error_mean);
-  out.set("compressionErrorMax", m.compression_error_max);
-  out.set("crossErrorMean", m.cross_error_mean);
-  out.set("crossErrorMax", m.cross_error_max);
-  out.set("areaDistortionMean", m.area_distortion_mean);
-  out.set("iterations", m.iterations);
-  out.set("energy", m.energy);
-  out.set("converged", m.converged);
-  out.set("seconds", m.seconds);
-  out.set("filledDirections", m.filled_directions);
-  out.set("initialization", m.initialization);
-  out.set("method", m.method);
-  return out;
 }
 
 val flatten_result_to_js(const SessionFlattenResult& r) {
@@ -135,31 +56,22 @@ val flatten_result_to_js(const SessionFlattenResult& r) {
   out.set("compressionError", copy_to_js(r.compression_error.data(), r.compression_error.size()));
   out.set("crossError", copy_to_js(r.cross_error.data(), r.cross_error.size()));
   out.set("vertexError", copy_to_js(r.vertex_error.data(), r.vertex_error.size()));
-  val grainlines = val::array();
-  for (const Eigen::Vector2d& g : r.grainlines) {
-    val pair = val::array();
-    pair.call<void>("push", g.x());
-    pair.call<void>("push", g.y());
-    grainlines.call<void>("push", pair);
-  }
-  out.set("grainlines", grainlines);
+  Json grainlines = Json::array();
+  for (const Eigen::Vector2d& g : r.grainlines) grainlines.push_back({g.x(), g.y()});
+  out.set("grainlines", to_js(grainlines));
   val outlines = val::array();
   for (const std::vector<std::uint32_t>& loop : r.outlines) {
     outlines.call<void>("push", copy_to_js(loop.data(), loop.size()));
   }
   out.set("outlines", outlines);
   out.set("outlinePieces", copy_to_js(r.outline_pieces.data(), r.outline_pieces.size()));
-  out.set("metrics", metrics_to_js(r.metrics));
+  out.set("metrics", to_js(to_json(r.metrics)));
   out.set("factorizations", r.factorizations);
   return out;
 }
 
-MeshFormat export_format(const std::string& name) {
-  if (name == "obj") return MeshFormat::Obj;
-  if (name == "off") return MeshFormat::Off;
-  if (name == "ply") return MeshFormat::Ply;
-  if (name == "stl") return MeshFormat::Stl;
-  fail(ErrorCode::BadParameter, "export format must be obj, off, ply or stl, got '" + name + "'");
+val bytes_copy(const std::string& bytes) {
+  return copy_to_js(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
 }
 
 // ---- Session methods as JS sees them -------------------------------------
@@ -167,19 +79,21 @@ MeshFormat export_format(const std::string& name) {
 val load_mesh(Session& s, const val& bytes, const std::string& name) {
   return guarded([&] {
     const std::vector<std::uint8_t> data = byte_vector(bytes);
-    return info_to_js(s.load_mesh(data.data(), data.size(), name));
+    return to_js(to_json(s.load_mesh(data.data(), data.size(), name)));
   });
 }
 
-val set_mesh(Session& s, const val& positions, const val& triangles, bool weld) {
+val set_mesh(Session& s, const val& positions, const val& triangles, const std::string& options) {
   return guarded([&] {
-    return info_to_js(
-        s.set_mesh(double_vector(positions), checked_indices<std::uint32_t>(triangles, "setMesh: triangles"), weld));
+    const MeshOptions parsed = mesh_options_from_json(parse_request(options, "setMesh options"));
+    return to_js(to_json(s.set_mesh(double_vector(positions),
+                                    checked_indices<std::uint32_t>(triangles, "setMesh: triangles"),
+                                    parsed.weld)));
   });
 }
 
 val info(Session& s) {
-  return guarded([&] { return info_to_js(s.info()); });
+  return guarded([&] { return to_js(to_json(s.info())); });
 }
 
 val positions_view(Session& s) {
@@ -206,9 +120,11 @@ val selection_view(Session& s) {
   });
 }
 
-val select(Session& s, const val& region, double falloff, const std::string& mode) {
+val select(Session& s, const std::string& region, const std::string& options) {
   return guarded([&] {
-    return s.select(region_from_js(region), falloff, selection_mode_from_js(mode));
+    const Region parsed_region = region_from_json(parse_request(region, "region"));
+    const SelectOptions parsed = select_options_from_json(parse_request(options, "select options"));
+    return s.select(parsed_region, parsed.falloff, parsed.mode);
   });
 }
 
@@ -216,8 +132,8 @@ val set_selection(Session& s, const val& weights) {
   return guarded([&] { return s.set_selection(float_vector(weights)); });
 }
 
-val deform(Session& s, const val& request) {
-  return guarded([&] { return edit_result_to_js(s.deform(edit_from_js(request))); });
+val deform(Session& s, const std::string& op) {
+  return guarded([&] { return to_js(to_json(s.deform(deform_op_from_json(parse_request(op, "op"))))); });
 }
 
 val commit(Session& s) {
@@ -232,42 +148,40 @@ val set_positions(Session& s, const val& positions) {
   return guarded([&] { s.set_positions(double_vector(positions)); });
 }
 
-val direction_field(Session& s, const val& direction) {
-  return guarded([&] { return positions_copy(s.direction_field(direction_from_js(direction))); });
+val direction_field(Session& s, const std::string& direction) {
+  return guarded([&] {
+    return positions_copy(s.direction_field(direction_from_json(parse_request(direction, "direction"), "direction")));
+  });
 }
 
 val distortion(Session& s, const std::string& kind, const std::string& reference) {
   return guarded([&] {
-    const Eigen::VectorXd values =
-        s.distortion(distortion_kind_from_js(kind), distortion_reference_from_js(reference));
-    const Eigen::VectorXf floats = values.cast<float>();
-    return copy_to_js(floats.data(), static_cast<std::size_t>(floats.size()));
+    const Eigen::VectorXf values =
+        s.distortion(distortion_kind_from_name(kind), distortion_reference_from_name(reference)).cast<float>();
+    return copy_to_js(values.data(), static_cast<std::size_t>(values.size()));
   });
 }
 
 val export_mesh(Session& s, const std::string& format) {
+  return guarded([&] { return bytes_copy(s.export_mesh(mesh_format_from_name(format))); });
+}
+
+val flatten(Session& s, const std::string& options) {
   return guarded([&] {
-    const std::string bytes = s.export_mesh(export_format(format));
-    return copy_to_js(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+    return flatten_result_to_js(s.flatten(flatten_options_from_json(parse_request(options, "flatten options"))));
   });
 }
 
-val flatten(Session& s, const val& request) {
-  return guarded([&] { return flatten_result_to_js(s.flatten(flatten_from_js(request))); });
-}
-
-val export_pattern(Session& s, const std::string& format, double mm_per_unit) {
+val export_pattern(Session& s, const std::string& format, const std::string& options) {
   return guarded([&] {
-    const std::string text = s.export_pattern(format, mm_per_unit);
-    return copy_to_js(reinterpret_cast<const std::uint8_t*>(text.data()), text.size());
+    const PatternOptions parsed = pattern_options_from_json(parse_request(options, "exportPattern options"));
+    return bytes_copy(s.export_pattern(format, parsed.mm_per_unit));
   });
 }
 
 val factorizations(Session& s) {
   return guarded([&] { return s.factorizations(); });
 }
-
-// ---- Memory ----------------------------------------------------------------
 
 // {inUse: bytes malloc'd now, heap: bytes of WASM memory (it only grows),
 //  limit: the most it may grow to}: what a host shows, and what the tests
@@ -278,6 +192,11 @@ val memory_use() {
   out.set("heap", static_cast<double>(emscripten_get_heap_size()));
   out.set("limit", static_cast<double>(emscripten_get_heap_max()));
   return out;
+}
+
+// The keys the core accepts in each request object (op_schema, op.h).
+val op_schema_js() {
+  return guarded([] { return to_js(op_schema()); });
 }
 
 }  // namespace
@@ -307,4 +226,5 @@ EMSCRIPTEN_BINDINGS(anisoform) {
       .function("exportPattern", &export_pattern)
       .function("factorizations", &factorizations);
   emscripten::function("memoryUse", &memory_use);
+  emscripten::function("opSchema", &op_schema_js);
 }
