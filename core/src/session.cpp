@@ -8,6 +8,7 @@
 #include "anisoform/element_targets.h"
 #include "anisoform/error.h"
 #include "anisoform/frames.h"
+#include "anisoform/op.h"
 #include "session_flatten_state.h"
 
 namespace aniso {
@@ -229,14 +230,7 @@ int Session::set_selection(const std::vector<float>& weights) {
 SessionEditResult Session::deform(const SessionEdit& edit) {
   require_mesh();
   const auto start = std::chrono::steady_clock::now();
-  DeformRequest request = edit.request;
-  request.weights = weights_;
-  if (request.transform.twist && !edit.twist_origin_given) {
-    request.transform.twist_origin =
-        default_twist_origin(deformer_->rest().V, weights_, request.transform.twist_axis);
-  }
-  if (edit.preview) request.max_iterations = std::min(request.max_iterations, kPreviewIterations);
-  DeformResult result = deformer_->deform(request);
+  DeformResult result = deformer_->deform(resolve_edit(edit, deformer_->rest().V, info_.report.bbox, weights_));
 
   SessionEditResult summary;
   summary.selected = result.selected;

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "anisoform/error.h"
+#include "anisoform/op.h"
 #include "anisoform/pattern_export.h"
 #include "anisoform/session.h"
 #include "session_flatten_state.h"
@@ -100,8 +101,9 @@ SessionFlattenResult reindex(const FlattenPatch& patch, const TriangleCharts& ch
 
 }  // namespace
 
-SessionFlattenResult Session::flatten(const SessionFlatten& request) {
+SessionFlattenResult Session::flatten(const SessionFlatten& given) {
   require_mesh();
+  const SessionFlatten request = resolve_flatten(given, current_);
   if (!(request.max_iterations >= 1)) {
     fail(ErrorCode::BadParameter, "flatten: maxIterations must be at least 1, got " +
                                       std::to_string(request.max_iterations));

@@ -56,6 +56,14 @@ struct SessionEdit {
   // otherwise about default_twist_origin (as the CLI does): the axis line
   // through the selection's weighted centroid, angle 0 at its lowest point.
   bool twist_origin_given = false;
+  // Defaults that depend on the mesh, filled in by resolve_edit (op.h) when
+  // false; deform_op_from_json sets them false when the op leaves them out.
+  // `direction_given` false: along the longest axis of the mesh as loaded.
+  // `handles_given` false (Arap): handles, and pins unless `pins_given`, from
+  // the selection.
+  bool direction_given = true;
+  bool handles_given = true;
+  bool pins_given = true;
   // Live preview: at most kPreviewIterations iterations, warm-started from the
   // previous preview. Rotational edits (rotate, twist, shear) are not capped:
   // they run request.rotation_steps steps from the rest pose (METHOD §5).

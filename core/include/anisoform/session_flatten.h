@@ -20,6 +20,8 @@ struct SessionFlatten {
   double su = 1.0;  // wanted stretch along the direction (unless constraints carry amounts)
   double sv = 1.0;  // wanted stretch across it
   FlattenDirections directions;  // constraints use input-mesh vertex indices
+  // false: along the longest axis of the positions flattened (resolve_flatten, op.h).
+  bool direction_given = true;
   FlattenMethod method = FlattenMethod::Anisotropic;
   int max_iterations = ArapFlattenSettings().max_iterations;
   double tolerance = ArapFlattenSettings().tolerance;
