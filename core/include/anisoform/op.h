@@ -56,6 +56,35 @@ Region region_from_json(const Json& region);
 DirectionSource direction_from_json(const Json& direction, const std::string& field);
 SelectionMode selection_mode_from_json(const Json& mode);  // "replace" | "add" | "subtract"
 
+// ---- the hosts' small option objects (the JS API's; op_schema lists them) --
+
+// select(region, options): {falloff?, mode?}. The falloff's range is
+// apply_falloff's rule (selection.h).
+struct SelectOptions {
+  double falloff = 0.0;
+  SelectionMode mode = SelectionMode::Replace;
+};
+SelectOptions select_options_from_json(const Json& options);
+
+// setMesh(positions, triangles, options): {weld?}.
+struct MeshOptions {
+  bool weld = false;  // merge vertices at equal positions (an unindexed three.js geometry)
+};
+MeshOptions mesh_options_from_json(const Json& options);
+
+// exportPattern(format, options): {mmPerUnit?}. Its range is the pattern
+// writer's rule (pattern_export.h).
+struct PatternOptions {
+  double mm_per_unit = 1.0;
+};
+PatternOptions pattern_options_from_json(const Json& options);
+
+// The names the hosts use for the core's enums; Error(BadParameter) naming
+// the choices otherwise.
+DistortionKind distortion_kind_from_name(const std::string& name);            // "area" | "stretch"
+DistortionReference distortion_reference_from_name(const std::string& name);  // "rest" | "loaded"
+MeshFormat mesh_format_from_name(const std::string& name);                    // "obj" | "off" | "ply" | "stl"
+
 // ---- defaults that depend on the mesh --------------------------------------
 
 // The unit axis along the longest side of the box (x on ties, so a cube or an

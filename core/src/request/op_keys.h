@@ -26,6 +26,9 @@ inline const Keys kRegionKinds{"all", "sphere", "box", "vertices"};
 inline const Keys kSphere{"center", "radius"};
 inline const Keys kBox{"min", "max"};
 inline const Keys kVertices{"vertices", "weights"};
+inline const Keys kSelect{"falloff", "mode"};
+inline const Keys kMeshOptions{"weld"};
+inline const Keys kPatternOptions{"mmPerUnit"};
 inline const Keys kFlatten{"compress", "direction", "baseline", "patch", "maxIterations", "tolerance"};
 
 }  // namespace aniso::op_keys

@@ -91,6 +91,9 @@ Json op_schema() {
       {"region.box", kBox},
       {"region.vertices", kVertices},
       {"flatten", kFlatten},
+      {"select", kSelect},
+      {"setMesh", kMeshOptions},
+      {"exportPattern", kPatternOptions},
   };
 }
 
