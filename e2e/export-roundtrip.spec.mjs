@@ -7,7 +7,7 @@ test('export round-trips in OBJ, PLY, STL and GLB', async ({ page }) => {
   await openApp(page);
   const results = await page.evaluate(async () => {
     const api = window.anisoform;
-    api.select({ sphere: { center: [0, 0.5, 0.6], radius: 0.35 } }, { falloff: 0.15 });
+    await api.select({ sphere: { center: [0, 0.5, 0.6], radius: 0.35 } }, { falloff: 0.15 });
     await api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.3, 1] } });
     const edited = api.positions();
     const sortedRows = (positions) => {

@@ -120,7 +120,7 @@ test('a closed mesh is refused with a clear message and the mesh is kept; a sele
     const after = api.positions();
     const unchanged = before.length === after.length && before.every((value, i) => value === after[i]);
 
-    const selected = api.select({ sphere: { center: [0, 0.5, 0.6], radius: 0.4 } });
+    const selected = await api.select({ sphere: { center: [0, 0.5, 0.6], radius: 0.4 } });
     const flattened = await api.flatten({ compress: [0.9, 1], direction: { type: 'global', vector: [1, 0, 0] }, patch: 'selection' });
     const weights = api.selection();
     let insideFinite = true;

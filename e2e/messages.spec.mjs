@@ -63,3 +63,22 @@ test('a repair notice counts problems and lists them on demand', async ({ page }
   await details.locator('summary').click();
   await expect(fullLine).toBeVisible();
 });
+
+test('a refused selection reaches the banner and rejects with the core code, the selection unchanged', async ({ page }) => {
+  await openApp(page);
+  const outcome = await page.evaluate(async () => {
+    const api = window.anisoform;
+    const before = api.selection();
+    try {
+      await api.select({ sphere: { center: [0, 0, 0], radius: -1 } });
+      return { rejected: false };
+    } catch (error) {
+      const after = api.selection();
+      return { rejected: true, code: error.code, message: error.message, same: after.every((w, i) => w === before[i]) };
+    }
+  });
+  expect(outcome).toMatchObject({ rejected: true, code: 'bad-parameter', same: true });
+  expect(outcome.message).toContain('The selection was not changed');
+  expect(outcome.message).toContain('radius');
+  await expect(page.getByTestId('error')).toContainText('The selection was not changed');
+});

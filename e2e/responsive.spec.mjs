@@ -18,7 +18,7 @@ test('the page answers within 200 ms while a 200k-vertex solve runs', async ({ p
   expect(outcome).toMatchObject({ ok: true, info: { vertices: 199990, triangles: 399976 } });
 
   // The upper third of the koala, to be stretched upwards.
-  await page.evaluate(() => {
+  await page.evaluate(async () => {
     const positions = window.anisoform.positions();
     let low = Infinity;
     let high = -Infinity;
@@ -27,7 +27,7 @@ test('the page answers within 200 ms while a 200k-vertex solve runs', async ({ p
       high = Math.max(high, positions[i]);
     }
     const cut = high - (high - low) / 3;
-    window.anisoform.select({ box: { min: [-1e9, cut, -1e9], max: [1e9, 1e9, 1e9] } });
+    await window.anisoform.select({ box: { min: [-1e9, cut, -1e9], max: [1e9, 1e9, 1e9] } });
   });
   // Let the page draw the new mesh and selection before measuring.
   await expect

@@ -7,7 +7,7 @@ test('undo and redo restore positions bitwise', async ({ page }) => {
     const api = window.anisoform;
     const same = (a, b) => a.length === b.length && a.every((value, i) => Object.is(value, b[i]));
     const original = api.positions();
-    api.select({ sphere: { center: [0, 0.3, 0.5], radius: 0.4 } }, { falloff: 0.2 });
+    await api.select({ sphere: { center: [0, 0.3, 0.5], radius: 0.4 } }, { falloff: 0.2 });
     await api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 0, 1] }, transform: { scale: [1.4, 1] } });
     const stretched = api.positions();
     await api.deform({ method: 'andefgrad', direction: { type: 'global', vector: [1, 0, 0] }, transform: { shear: 0.3 } });

@@ -226,3 +226,29 @@ TEST_CASE("selection: apply_falloff refuses a negative or non-finite width", "[s
   CHECK_THAT(bad_parameter_message([&] { aniso::distance_from(mesh, Eigen::VectorXd::Ones(3)); }),
              Catch::Contains("seed weights have 3 entries, the mesh has 6 vertices"));
 }
+
+TEST_CASE("selection: a bounded falloff gives exactly the weights of a walk over the whole mesh",
+          "[selection]") {
+  // The reference: the unbounded edge-path distance of every vertex, put into
+  // the documented rule max(w, smoothstep(1 - d/falloff)).
+  const aniso::Mesh mesh = aniso::test::load("closed/armadillo.off");
+  const aniso::BoundingBox box = aniso::bounding_box(mesh.V);
+  Region sphere;
+  sphere.kind = Region::Kind::Sphere;
+  sphere.center = mesh.V.row(100).transpose();
+  sphere.radius = 0.03 * box.diagonal();
+  const Eigen::VectorXd region = aniso::region_weights(mesh, sphere);
+  const Eigen::VectorXd d = aniso::distance_from(mesh, region);
+  REQUIRE(std::isfinite(d.maxCoeff()));  // the unbounded walk reaches every vertex
+  for (double share : {0.01, 0.05, 0.3}) {
+    const double falloff = share * box.diagonal();
+    const Eigen::VectorXd w = aniso::apply_falloff(mesh, region, falloff);
+    int border = 0, differ = 0;
+    for (int i = 0; i < mesh.num_vertices(); ++i) {
+      differ += w[i] != std::max(region[i], smoothstep(1.0 - d[i] / falloff));
+      border += w[i] > 0.0 && w[i] < 1.0;
+    }
+    CHECK(differ == 0);
+    CHECK(border > 0);
+  }
+}

@@ -14,9 +14,10 @@
 namespace aniso {
 namespace {
 
-// Largest singular value of the linear map taking the rest triangle (a, b, c)
-// onto the deformed one (A, B, C), both seen in their own planes.
-double max_singular_value(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+// The singular value farthest from 1 by ratio (|log s| largest) of the linear
+// map taking the rest triangle (a, b, c) onto the deformed one (A, B, C),
+// both seen in their own planes. A collapsed triangle gives 0.
+double most_deviating_singular_value(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                           const Eigen::Vector3d& c, const Eigen::Vector3d& A,
                           const Eigen::Vector3d& B, const Eigen::Vector3d& C) {
   // Rest edges in an orthonormal 2D frame of the rest triangle's plane.
@@ -28,12 +29,16 @@ double max_singular_value(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
   Eigen::Matrix<double, 3, 2> deformed_edges;
   deformed_edges << B - A, C - A;
   const Eigen::Matrix<double, 3, 2> J = deformed_edges * rest_edges.inverse();
-  // sigma_max^2 is the larger eigenvalue of the 2x2 J^T J.
+  // The squared singular values are the eigenvalues of the 2x2 J^T J.
   const Eigen::Matrix2d G = J.transpose() * J;
+  // sqrt(half_trace^2 - det), written without the cancellation that would
+  // leave an unchanged triangle about 1e-8 away from 1.
   const double half_trace = 0.5 * (G(0, 0) + G(1, 1));
-  const double det = G.determinant();
-  const double largest = half_trace + std::sqrt(std::max(0.0, half_trace * half_trace - det));
-  return std::sqrt(largest);
+  const double root = std::hypot(0.5 * (G(0, 0) - G(1, 1)), G(0, 1));
+  const double largest = std::sqrt(half_trace + root);
+  const double smallest = std::sqrt(std::max(0.0, half_trace - root));
+  // largest * smallest >= 1 means the larger one is farther from 1 by ratio.
+  return largest * smallest >= 1.0 ? largest : smallest;
 }
 
 // A rest triangle with area, by the same relative threshold the cotangent
@@ -117,7 +122,7 @@ Eigen::VectorXd vertex_distortion(const Mesh& rest, const Positions& deformed,
     const double area = 0.5 * (b - a).cross(c - a).norm();
     const double value = kind == DistortionKind::AreaRatio
                              ? 0.5 * (B - A).cross(C - A).norm()
-                             : area * max_singular_value(a, b, c, A, B, C);
+                             : area * most_deviating_singular_value(a, b, c, A, B, C);
     for (int k = 0; k < 3; ++k) {
       rest_area[rest.F(t, k)] += area;
       measure[rest.F(t, k)] += value;

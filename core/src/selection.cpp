@@ -153,10 +153,16 @@ struct DistanceResult {
   std::vector<int> nearest;  // that seed (-1 where unreachable)
 };
 
-// Multi-source Dijkstra over mesh edges with Euclidean lengths. Edges with a
-// non-finite length (a vertex with a NaN coordinate) are not walked, so bad
-// coordinates cannot spread NaN into the weights.
-DistanceResult edge_path_distances(const Mesh& mesh, const Eigen::VectorXd& seed_weights) {
+// Multi-source Dijkstra over mesh edges with Euclidean lengths, walking only
+// paths shorter than `limit`: a vertex at `limit` or farther keeps infinity
+// (and nearest -1). A small falloff on a large mesh then visits the vertices
+// near the region, not the whole component; every distance below `limit` is
+// the same as an unbounded walk gives, since its shortest path only passes
+// nearer vertices. Edges with a non-finite length (a vertex with a NaN
+// coordinate) are not walked, so bad coordinates cannot spread NaN into the
+// weights.
+DistanceResult edge_path_distances(const Mesh& mesh, const VertexAdjacency& adjacency,
+                                   const Eigen::VectorXd& seed_weights, double limit) {
   const int n = mesh.num_vertices();
   if (seed_weights.size() != n) {
     bad_region_parameter("seed weights have " + std::to_string(seed_weights.size()) + " entries, the mesh has " +
@@ -173,9 +179,6 @@ DistanceResult edge_path_distances(const Mesh& mesh, const Eigen::VectorXd& seed
       queue.emplace(0.0, i);
     }
   }
-  if (queue.empty()) return result;
-
-  const VertexAdjacency adjacency = vertex_adjacency(mesh.F, n);
   while (!queue.empty()) {
     const auto [distance, i] = queue.top();
     queue.pop();
@@ -184,10 +187,11 @@ DistanceResult edge_path_distances(const Mesh& mesh, const Eigen::VectorXd& seed
       const int j = adjacency.neighbors[k];
       const double length = (mesh.V.row(j) - mesh.V.row(i)).norm();
       if (!std::isfinite(length)) continue;
-      if (distance + length < result.distance[j]) {
-        result.distance[j] = distance + length;
+      const double candidate = distance + length;
+      if (candidate < result.distance[j] && candidate < limit) {
+        result.distance[j] = candidate;
         result.nearest[j] = result.nearest[i];
-        queue.emplace(result.distance[j], j);
+        queue.emplace(candidate, j);
       }
     }
   }
@@ -233,7 +237,8 @@ Eigen::VectorXd region_weights(const Mesh& mesh, const Region& region) {
 }
 
 Eigen::VectorXd distance_from(const Mesh& mesh, const Eigen::VectorXd& seed_weights) {
-  return edge_path_distances(mesh, seed_weights).distance;
+  const VertexAdjacency adjacency = vertex_adjacency(mesh.F, mesh.num_vertices());
+  return edge_path_distances(mesh, adjacency, seed_weights, std::numeric_limits<double>::infinity()).distance;
 }
 
 // The border fades from the weight of the nearest region vertex:
@@ -241,12 +246,14 @@ Eigen::VectorXd distance_from(const Mesh& mesh, const Eigen::VectorXd& seed_weig
 // (weights 0 or 1) that is the documented max(w, smoothstep(1 - d/falloff));
 // scaling by w_nearest keeps the soft weights of a weighted vertex list
 // instead of lifting every listed vertex (at distance 0) to 1.
-Eigen::VectorXd apply_falloff(const Mesh& mesh, const Eigen::VectorXd& weights, double falloff) {
+// Vertices at falloff or farther get smoothstep(<= 0) = 0, so the walk stops there.
+Eigen::VectorXd apply_falloff(const Mesh& mesh, const VertexAdjacency& adjacency,
+                              const Eigen::VectorXd& weights, double falloff) {
   if (!std::isfinite(falloff) || falloff < 0.0) {
     bad_region_parameter("falloff must be a finite distance >= 0, got " + std::to_string(falloff));
   }
   if (falloff == 0.0) return weights;
-  const DistanceResult seeds = edge_path_distances(mesh, weights);
+  const DistanceResult seeds = edge_path_distances(mesh, adjacency, weights, falloff);
   Eigen::VectorXd result = weights;
   for (int i = 0; i < result.size(); ++i) {
     if (seeds.nearest[i] < 0) continue;
@@ -256,8 +263,18 @@ Eigen::VectorXd apply_falloff(const Mesh& mesh, const Eigen::VectorXd& weights, 
   return result;
 }
 
+Eigen::VectorXd apply_falloff(const Mesh& mesh, const Eigen::VectorXd& weights, double falloff) {
+  if (falloff == 0.0) return weights;
+  return apply_falloff(mesh, vertex_adjacency(mesh.F, mesh.num_vertices()), weights, falloff);
+}
+
 Eigen::VectorXd selection_weights(const Mesh& mesh, const Region& region, double falloff) {
   return apply_falloff(mesh, region_weights(mesh, region), falloff);
+}
+
+Eigen::VectorXd selection_weights(const Mesh& mesh, const VertexAdjacency& adjacency,
+                                  const Region& region, double falloff) {
+  return apply_falloff(mesh, adjacency, region_weights(mesh, region), falloff);
 }
 
 }  // namespace aniso

@@ -9,6 +9,7 @@
 #include "anisoform/error.h"
 #include "anisoform/frames.h"
 #include "anisoform/op.h"
+#include "anisoform/topology.h"
 #include "session_flatten_state.h"
 
 namespace aniso {
@@ -154,6 +155,7 @@ const SessionMeshInfo& Session::adopt_mesh(Mesh mesh, std::vector<std::string> n
 
   // Nothing below throws or allocates: moves only.
   targets_.reset();
+  adjacency_.reset();
   if (deformer_) retired_factorizations_ += deformer_->factorizations();
   deformer_ = std::move(deformer);
   info_ = std::move(info);
@@ -195,8 +197,11 @@ void Session::replace_rest(Positions V) {
 
 int Session::select(const Region& region, double falloff, SelectionMode mode) {
   require_mesh();
+  const Mesh& rest = deformer_->rest();
+  // The adjacency is built once per mesh, not on every select (the page asks for each one).
+  if (!adjacency_) adjacency_ = std::make_unique<VertexAdjacency>(vertex_adjacency(rest.F, rest.num_vertices()));
   // Regions are evaluated on the rest pose, which is what is on screen between edits.
-  const Eigen::VectorXd picked = selection_weights(deformer_->rest(), region, falloff);
+  const Eigen::VectorXd picked = selection_weights(rest, *adjacency_, region, falloff);
   Eigen::VectorXd weights = weights_;
   switch (mode) {
     case SelectionMode::Replace: weights = picked; break;

@@ -327,7 +327,10 @@ export interface Session {
   setPositions(positions: Float32Array | Float64Array | number[]): void;
   /** Unit tangent direction per vertex (#V*3, a copy), as the AnARAP solver frames it: for glyphs. */
   directionField(direction: Direction): Float32Array;
-  /** Per vertex (a copy): 'area' = one-ring area ratio, 'stretch' = largest principal stretch; 1 = unchanged. */
+  /**
+   * Per vertex (a copy): 'area' = one-ring area ratio; 'stretch' = the principal stretch farthest
+   * from 1 by ratio (2 and 0.5 equally strong), area-weighted over the one-ring; 1 = unchanged.
+   */
   distortion(kind: 'area' | 'stretch', reference?: 'rest' | 'loaded'): Float32Array;
   /** The current mesh as file bytes (a copy; PLY and STL binary). */
   exportMesh(format: 'obj' | 'off' | 'ply' | 'stl'): Uint8Array;

@@ -2,7 +2,7 @@
 // panels and the public API (window.anisoform), then loads the default mesh.
 import { createAnisoformApi } from './api/create-api.js';
 import { Editor } from './editor/editor.js';
-import { Settings } from './editor/settings.js';
+import { Settings } from './shared/settings.js';
 import { BrushCursor } from './interaction/brush-cursor.js';
 import { installKeyboardShortcuts } from './interaction/keyboard-shortcuts.js';
 import { Picker } from './interaction/picker.js';
@@ -68,7 +68,7 @@ settings.on('change', ({ section }) => {
 const reportError = (error, context) => editor.report(error, context);
 const brushCursor = new BrushCursor(viewer);
 const directionDisplay = new DirectionDisplay({ editor, settings, viewer, meshView });
-new HeatmapDisplay({ editor, settings, meshView });
+new HeatmapDisplay({ editor, settings, meshView, reportError });
 const tools = createTools({
   editor,
   viewer,

@@ -10,10 +10,12 @@ namespace aniso {
 enum class DistortionKind {
   // Area of the vertex's one-ring deformed / rest: 1 unchanged, 2 doubled.
   AreaRatio,
-  // Largest singular value of the triangles' deformation maps (the stretch
-  // along the most stretched tangent direction), area-weighted over the
-  // one-ring: 1 = no line element got longer.
-  MaxStretch,
+  // The principal stretch of each triangle's deformation map (a singular
+  // value) that deviates most from 1 by ratio, area-weighted over the
+  // one-ring: 2 = some line element doubled, 0.5 = one halved (a squeeze along
+  // one direction shows, although no line element got longer), 1 = unchanged.
+  // The heat map shows its log2, so 2 and 0.5 look equally strong.
+  Stretch,
 };
 
 // #V values for `rest` (V and F) deformed to `deformed` (#V by 3, same

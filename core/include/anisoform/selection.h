@@ -13,6 +13,8 @@
 
 namespace aniso {
 
+struct VertexAdjacency;  // topology.h
+
 struct Region {
   enum class Kind { All, Box, Sphere, Vertices };
   Kind kind = Kind::All;
@@ -41,10 +43,18 @@ Eigen::VectorXd distance_from(const Mesh& mesh, const Eigen::VectorXd& seed_weig
 
 // Adds a soft border of width `falloff` (model units) around the region:
 // w = max(w, smoothstep(1 - d/falloff)). falloff 0 returns the input.
-// Throws Error(BadParameter) if falloff < 0 or not finite.
+// Throws Error(BadParameter) if falloff < 0 or not finite. Only vertices
+// nearer than `falloff` to the region are visited, so the cost follows the
+// border's size, not the mesh's.
 Eigen::VectorXd apply_falloff(const Mesh& mesh, const Eigen::VectorXd& weights, double falloff);
+// The same with the mesh's vertex_adjacency built once by the caller (a host
+// that selects many times on one mesh, such as the browser's brush).
+Eigen::VectorXd apply_falloff(const Mesh& mesh, const VertexAdjacency& adjacency,
+                              const Eigen::VectorXd& weights, double falloff);
 
 // Convenience: region_weights + apply_falloff.
 Eigen::VectorXd selection_weights(const Mesh& mesh, const Region& region, double falloff);
+Eigen::VectorXd selection_weights(const Mesh& mesh, const VertexAdjacency& adjacency,
+                                  const Region& region, double falloff);
 
 }  // namespace aniso

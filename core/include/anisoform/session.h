@@ -36,6 +36,7 @@ namespace aniso {
 
 class TargetContext;
 struct SessionFlattenState;
+struct VertexAdjacency;
 
 // What the session knows about its mesh as loaded.
 struct SessionMeshInfo {
@@ -168,6 +169,7 @@ class Session {
 
   std::unique_ptr<Deformer> deformer_;  // owns the rest pose
   std::unique_ptr<TargetContext> targets_;  // for direction_field(), built lazily per rest pose
+  std::unique_ptr<VertexAdjacency> adjacency_;  // for select(), built lazily per mesh (not per pose)
   std::unique_ptr<SessionFlattenState> flatten_;  // always set; dropped per positions change
   int retired_factorizations_ = 0;      // done by the Deformers of earlier rest poses
   Positions loaded_;                    // positions as loaded, for DistortionReference::Loaded

@@ -40,7 +40,7 @@ PatternOptions pattern_options_from_json(const Json& options) {
 
 DistortionKind distortion_kind_from_name(const std::string& name) {
   if (name == "area") return DistortionKind::AreaRatio;
-  if (name == "stretch") return DistortionKind::MaxStretch;
+  if (name == "stretch") return DistortionKind::Stretch;
   fail(ErrorCode::BadParameter, "distortion: kind must be one of area, stretch, got '" + name + "'");
 }
 

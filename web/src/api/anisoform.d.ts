@@ -169,8 +169,12 @@ export interface Anisoform {
   info(): MeshInfo;
   /** A copy: xyz per vertex. */
   positions(): Float32Array;
-  /** Returns the number of vertices with weight > 0. */
-  select(region: Region, options?: SelectOptions): number;
+  /**
+   * Selects by the core's rule (in the solver worker) as one undoable step;
+   * resolves with the number of vertices with weight > 0. Rejects (and emits
+   * 'error') with code 'bad-parameter' for a bad region or option.
+   */
+  select(region: Region, options?: SelectOptions): Promise<number>;
   /** A copy: weight per vertex in [0, 1]. */
   selection(): Float32Array;
   /** One committed, undoable edit. An empty selection edits the whole mesh. */

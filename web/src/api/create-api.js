@@ -30,7 +30,8 @@ export function createAnisoformApi({ editor, viewer, picker, ready }) {
 
     positions: () => document().positions.slice(),
 
-    select(region, options = {}) {
+    // The core's selection rule, run in the solver worker: a promise.
+    async select(region, options = {}) {
       document();
       return editor.select(region, options);
     },

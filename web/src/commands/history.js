@@ -2,7 +2,7 @@
 // `label`, `undo()` and `redo()`; it is pushed after it has been applied,
 // because edits are computed by the worker before they can be recorded.
 // Loading a new mesh clears the history.
-import { EventEmitter } from '../editor/event-emitter.js';
+import { EventEmitter } from '../shared/event-emitter.js';
 
 // Each step may hold two position arrays (2.4 MB each at 200k vertices);
 // 100 steps keep the worst case near half a gigabyte.

@@ -38,7 +38,8 @@ export class MeshDocument {
     return this.#adjacency;
   }
 
-  setSelection(weights, count) {
+  /** `count`: the vertices with weight > 0, when the core has counted them already. */
+  setSelection(weights, count = countSelected(weights)) {
     this.selection = weights;
     this.selectionCount = count;
     this.selectionVersion++;
@@ -48,6 +49,13 @@ export class MeshDocument {
   bounds() {
     return boundsOf(this.positions);
   }
+}
+
+// The core's meaning of "selected" (Session.select's count): weight > 0.
+function countSelected(weights) {
+  let count = 0;
+  for (let i = 0; i < weights.length; i++) if (weights[i] > 0) count++;
+  return count;
 }
 
 export function boundsOf(positions) {

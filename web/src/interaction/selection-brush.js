@@ -1,9 +1,13 @@
 // The selection brush's dab: every vertex within the brush radius of the hit
-// point gets the brush weight, full in the core and fading out over the soft
-// rim (softness = the rim's share of the radius). 'add' raises weights to the
-// dab, 'subtract' lowers them to 1 - dab; both are idempotent, so painting
-// over the same place twice changes nothing.
-import { smoothstep } from '../selection/region-weights.js';
+// point gets the brush weight, full in the middle and fading out over the soft
+// rim (softness = the rim's share of the radius). The dab is the brush's own
+// shape (the ball the cursor shows, found by a BVH query near the pointer),
+// not a core selection rule: it stays on the page so the stroke repaints on
+// every pointer move. It combines with the weights by the core's rule for
+// Session.select's modes ('add' = max(old, dab), 'subtract' = min(old,
+// 1 - dab)); wasm/test/brush-parity.test.mjs pins that to the core. Both are
+// idempotent, so painting over the same place twice changes nothing. The
+// stroke is committed with setSelection, which the core checks.
 
 export function brushWeight(distance, radius, softness) {
   const hardRadius = radius * (1 - softness);
@@ -33,4 +37,9 @@ export function strokePoints(from, to, spacing) {
     points.push([0, 1, 2].map((axis) => from[axis] + (to[axis] - from[axis]) * t));
   }
   return points;
+}
+
+function smoothstep(x) {
+  const t = Math.min(Math.max(x, 0), 1);
+  return t * t * (3 - 2 * t);
 }

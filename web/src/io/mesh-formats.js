@@ -9,6 +9,8 @@
 export const CORE_FORMATS = ['obj', 'off', 'ply', 'stl'];
 export const GLTF_FORMATS = ['glb', 'gltf'];
 export const EXPORT_FORMATS = ['obj', 'ply', 'stl', 'glb'];
+// Written by the core's writers in the worker (the CLI's too); GLB by three.js.
+export const CORE_EXPORT_FORMATS = ['obj', 'ply', 'stl'];
 export const ACCEPT_ATTRIBUTE = [...CORE_FORMATS, ...GLTF_FORMATS].map((ext) => `.${ext}`).join(',');
 
 export class UnsupportedFormatError extends Error {

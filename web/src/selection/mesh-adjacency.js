@@ -1,6 +1,6 @@
 // Vertex adjacency of a triangle mesh in compressed rows (CSR): the one-ring
 // neighbours of vertex i are neighbours[offsets[i] .. offsets[i+1]). Built once
-// per loaded mesh; selection falloff, grow and shrink walk it.
+// per loaded mesh, on the first grow or shrink (selection-morphology.js).
 export function buildVertexAdjacency(vertexCount, triangles) {
   const degree = new Uint32Array(vertexCount + 1);
   for (let t = 0; t < triangles.length; t += 3) {

@@ -1,5 +1,9 @@
 // Growing and shrinking a weighted selection by one ring of vertices
 // (dilation and erosion of the weights over the one-ring), and inverting it.
+// Page-side edits of the weights, like a brush stroke: the core has no such
+// rule (its selection is regions and a geodesic falloff, Session.select), so
+// nothing here repeats it; the result reaches the core through setSelection,
+// which checks it.
 export function growSelection(weights, adjacency) {
   const { offsets, neighbours } = adjacency;
   const grown = new Float32Array(weights);

@@ -2,7 +2,7 @@
 // (global axis, principal curvature, arrows, or the last screen drag), and the
 // one a flattening uses, from the Flatten panel's (global axis or arrows with
 // their own compression), in the public API's `direction` form.
-import { axisVector } from '../editor/settings.js';
+import { axisVector } from '../shared/settings.js';
 
 export class DirectionMissingError extends Error {
   constructor(message) {

@@ -14,7 +14,7 @@
 //
 // With the method 'arap' (ARAP with handles) the drag moves the selection
 // instead: op.move = d.
-import { describeEdit } from '../editor/editor.js';
+import { describeEdit } from '../editor/edit-wording.js';
 import { extentAlong, normalized, worldDragVector } from '../interaction/screen-drag.js';
 import { directionFromSettings } from './direction-source.js';
 
@@ -26,7 +26,7 @@ export class TransformTool {
 
   /**
    * @param {{editor: import('../editor/editor.js').Editor, viewer: import('../viewer/viewer.js').Viewer,
-   *          settings: import('../editor/settings.js').Settings, reportError: (error: Error) => void}} context
+   *          settings: import('../shared/settings.js').Settings, reportError: (error: Error) => void}} context
    */
   constructor(context) {
     this.editor = context.editor;

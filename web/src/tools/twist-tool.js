@@ -3,7 +3,7 @@
 // dragged gives 180° over the selection; Shift+drag twists the other way.
 // The axis line runs through the selection's weighted centroid (the core's
 // default) or through a point: typed, or clicked on the mesh.
-import { axisVector } from '../editor/settings.js';
+import { axisVector } from '../shared/settings.js';
 import { extentAlong } from '../interaction/screen-drag.js';
 import { round } from './stretch-tool.js';
 import { TransformTool } from './transform-tool.js';

@@ -1,11 +1,13 @@
-// Selection commands: all, clear, invert, grow and shrink by one ring, and
-// a select-all with a soft border; each is one undo step.
+// Selection commands: all, clear, invert, grow and shrink by one ring; each
+// is one undo step. All and Clear are the core's regions (api.select); grow,
+// shrink and invert work on the page's weights (selection-morphology.js).
 import { growSelection, invertSelection, shrinkSelection } from '../selection/selection-morphology.js';
 import { h, section } from './dom.js';
 
 export function selectionPanel({ api, editor }) {
   const count = h('p', { className: 'selection-count' });
-  const withDocument = (action) => () => editor.document && action(editor.document);
+  // The editor reports failures itself (the banner); a rejected select() needs no second word.
+  const withDocument = (action) => () => editor.document && Promise.resolve(action(editor.document)).catch(() => {});
   const button = (label, testId, action) =>
     h('button', { className: 'button', 'data-testid': testId, onclick: withDocument(action) }, label);
 

@@ -3,7 +3,7 @@
 // time; the loop also measures frames per second for the status bar.
 import { Color, PerspectiveCamera, Scene, Vector3, WebGLRenderer } from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-import { EventEmitter } from '../editor/event-emitter.js';
+import { EventEmitter } from '../shared/event-emitter.js';
 
 // A three-quarter view from the front right, slightly above.
 const DEFAULT_VIEW_DIRECTION = new Vector3(0.8, 0.35, -1).normalize();

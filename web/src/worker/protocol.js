@@ -1,6 +1,7 @@
 // The typed message protocol between the page and the solver worker.
 //
-// Every request is `{id, kind, ...payload}` and gets exactly one reply
+// Every request is `{id, kind, ...payload}` (so no payload field may be named
+// id or kind) and gets exactly one reply
 // `{id, ok: true, result}` or `{id, ok: false, error: {code, message}}`.
 // Between them the worker may post `{kind: 'progress', stage, message}`.
 // The worker handles requests strictly in order; the client (solver-client.js)
@@ -16,16 +17,31 @@ export const Request = Object.freeze({
   setMesh: 'setMesh',
   /** {} -> {ms}: factorize ahead of the first edit, so the first drag is live. */
   prepare: 'prepare',
+  /**
+   * {region, options: {falloff, mode}} -> {count, weights: Float32Array}: the
+   * core's selection rule (Session.select) on the rest pose; weights is a copy
+   * of the session's whole selection afterwards.
+   */
+  select: 'select',
   /** {weights: Float32Array} -> {count}. */
   setSelection: 'setSelection',
-  /** {op, commit} -> {positions, stats}: a preview (commit false) or a committed edit. */
+  /**
+   * {op, commit, distortion?: 'area'|'stretch'} -> {positions, stats, distortion?}:
+   * a preview (commit false) or a committed edit; with `distortion`, the
+   * reply also carries that distortion against the mesh as loaded
+   * (Session.distortion, a ratio per vertex) for the heat map.
+   */
   deform: 'deform',
+  /** {distortion: 'area'|'stretch'} -> {values: Float32Array}: Session.distortion(distortion, 'loaded'). */
+  distortion: 'distortion',
   /** {} -> {positions}: drop the preview, back to the rest mesh. */
   cancel: 'cancel',
   /** {positions} -> {}: undo/redo/reset; the positions become the rest mesh. */
   setPositions: 'setPositions',
   /** {direction} -> {field: Float32Array}: per-vertex unit directions for glyphs. */
   directionField: 'directionField',
+  /** {format: 'obj'|'off'|'ply'|'stl'} -> {bytes: Uint8Array}: the current positions as a mesh file (the core's writers). */
+  exportMesh: 'exportMesh',
   /** {options} -> FlattenPayload: a garment pattern of the current positions. */
   flatten: 'flatten',
   /** {format: 'svg'|'dxf', mmPerUnit} -> {bytes: Uint8Array}: the last flattening as a pattern file. */

@@ -15,11 +15,14 @@ export class SessionHost {
       [Request.loadFile]: (payload) => this.loadFile(payload),
       [Request.setMesh]: (payload) => this.setMesh(payload),
       [Request.prepare]: () => this.prepare(),
+      [Request.select]: (payload) => this.select(payload),
       [Request.setSelection]: (payload) => this.setSelection(payload),
       [Request.deform]: (payload) => this.deform(payload),
+      [Request.distortion]: (payload) => this.distortion(payload),
       [Request.cancel]: () => this.cancel(),
       [Request.setPositions]: (payload) => this.setPositions(payload),
       [Request.directionField]: (payload) => this.directionField(payload),
+      [Request.exportMesh]: (payload) => this.exportMesh(payload),
       [Request.flatten]: (payload) => this.flatten(payload),
       [Request.exportPattern]: (payload) => this.exportPattern(payload),
     };
@@ -52,7 +55,7 @@ export class SessionHost {
 
   // Factorizes the Laplacian now (a one-iteration identity edit of the whole
   // mesh, then cancel), so the first drag does not pay for it. The page's
-  // selection is sent again before the next edit.
+  // selection is sent again before the next edit or select.
   prepare() {
     this.reportProgress('factorize', 'Preparing the solver');
     const started = performance.now();
@@ -66,19 +69,38 @@ export class SessionHost {
       preview: true,
     });
     this.session.cancel();
-    this.session.setSelection(new Float32Array(vertexCount));
+    // Clears the selection through select(), which also builds the mesh's
+    // adjacency now rather than in the first select with a falloff.
+    this.session.select({ vertices: [] });
     return { result: { ms: performance.now() - started }, transfer: [] };
+  }
+
+  select({ region, options }) {
+    const count = this.session.select(region, options);
+    const weights = this.session.selection().slice();
+    return { result: { count, weights }, transfer: [weights.buffer] };
   }
 
   setSelection({ weights }) {
     return { result: { count: this.session.setSelection(weights) }, transfer: [] };
   }
 
-  deform({ op, commit }) {
+  deform({ op, commit, distortion }) {
     const stats = this.session.deform(op);
     if (commit) this.session.commit();
     const positions = this.session.positions().slice();
-    return { result: { positions, stats: plainStats(stats) }, transfer: [positions.buffer] };
+    const result = { positions, stats: plainStats(stats) };
+    const transfer = [positions.buffer];
+    if (distortion) {
+      result.distortion = this.session.distortion(distortion, 'loaded');
+      transfer.push(result.distortion.buffer);
+    }
+    return { result, transfer };
+  }
+
+  distortion({ distortion }) {
+    const values = this.session.distortion(distortion, 'loaded');
+    return { result: { values }, transfer: [values.buffer] };
   }
 
   cancel() {
@@ -95,6 +117,11 @@ export class SessionHost {
   directionField({ direction }) {
     const field = this.session.directionField(direction).slice();
     return { result: { field }, transfer: [field.buffer] };
+  }
+
+  exportMesh({ format }) {
+    const bytes = this.session.exportMesh(format);
+    return { result: { bytes }, transfer: [bytes.buffer] };
   }
 
   flatten({ options }) {

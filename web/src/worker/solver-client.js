@@ -5,7 +5,7 @@
 // preview replaces the waiting one (whose promise resolves with null), so
 // while the pointer moves faster than the solver, the worker only ever solves
 // the latest position, never a backlog of stale ones.
-import { EventEmitter } from '../editor/event-emitter.js';
+import { EventEmitter } from '../shared/event-emitter.js';
 import { PROGRESS, Request } from './protocol.js';
 
 export class SolverError extends Error {
@@ -62,11 +62,15 @@ export class SolverClient extends EventEmitter {
     return this.#pending.size > 0;
   }
 
-  /** Resolves with {positions, stats}, or null when a newer preview superseded it. */
-  preview(op) {
+  /**
+   * Resolves with {positions, stats, distortion?}, or null when a newer
+   * preview superseded it. `distortion`: a heat map kind to send back with
+   * the positions (protocol.js, Request.deform).
+   */
+  preview(op, distortion = null) {
     return new Promise((resolve, reject) => {
       this.#queuedPreview?.resolve(null);
-      this.#queuedPreview = { op, resolve, reject };
+      this.#queuedPreview = { op, distortion, resolve, reject };
       this.#sendQueuedPreview();
     });
   }
@@ -79,13 +83,13 @@ export class SolverClient extends EventEmitter {
 
   #sendQueuedPreview() {
     if (this.#previewInFlight || !this.#queuedPreview) return;
-    const { op, resolve, reject } = this.#queuedPreview;
+    const { op, distortion, resolve, reject } = this.#queuedPreview;
     this.#queuedPreview = null;
     this.#previewInFlight = true;
     // A preview runs the solver's few warm-started iterations; the committed
     // edit on release gets the iteration cap.
     const { maxIterations, ...previewOp } = op;
-    this.request(Request.deform, { op: { ...previewOp, preview: true }, commit: false })
+    this.request(Request.deform, { op: { ...previewOp, preview: true }, commit: false, distortion })
       .then(resolve, reject)
       .finally(() => {
         this.#previewInFlight = false;

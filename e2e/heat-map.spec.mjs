@@ -1,0 +1,44 @@
+// The distortion heat map shows the core's numbers (Session.distortion in the
+// worker) and follows the mesh: live-preview frames bring their values along,
+// a commit too, and undo asks the worker again. Red = grown (distortion_heatmap.glsl).
+import { armChange, canvasCentre, expect, openApp, test } from './support.mjs';
+
+// Pixels of the viewport that are clearly red (the heat map's "grown").
+async function redPixels(page) {
+  const png = await page.getByTestId('viewport').screenshot();
+  return page.evaluate(async (base64) => {
+    const image = new Image();
+    image.src = `data:image/png;base64,${base64}`;
+    await image.decode();
+    const canvas = new OffscreenCanvas(image.width, image.height);
+    const context = canvas.getContext('2d');
+    context.drawImage(image, 0, 0);
+    const { data } = context.getImageData(0, 0, image.width, image.height);
+    let red = 0;
+    for (let i = 0; i < data.length; i += 4) if (data[i] > data[i + 1] + 60 && data[i] > data[i + 2] + 60) red++;
+    return red;
+  }, png.toString('base64'));
+}
+
+test('the stretch heat map colours a live drag, its commit, and clears on undo', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  await page.locator('#display-heatMap').selectOption('stretch');
+  await page.getByTestId('tool-stretch').click();
+  const unchanged = await redPixels(page);
+
+  const centre = await canvasCentre(page);
+  const committed = await armChange(page, 'positions');
+  await page.mouse.move(...centre.page);
+  await page.mouse.down();
+  await page.mouse.move(centre.page[0] + 150, centre.page[1], { steps: 12 });
+  await expect(page.getByTestId('status-solve')).toContainText('preview');
+  await expect.poll(() => redPixels(page), { timeout: 10_000 }).toBeGreaterThan(unchanged + 500);
+  await page.mouse.up();
+  await committed();
+  await expect.poll(() => redPixels(page), { timeout: 10_000 }).toBeGreaterThan(unchanged + 500);
+
+  expect(await page.evaluate(() => window.anisoform.undo())).toBe(true);
+  await expect.poll(() => redPixels(page), { timeout: 10_000 }).toBeLessThan(unchanged + 50);
+  await expect(page.getByTestId('error')).toBeHidden();
+  expect(pageErrors).toEqual([]);
+});

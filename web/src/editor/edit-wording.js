@@ -1,0 +1,37 @@
+// What the editor says about edits and failures, in plain words: the undo
+// label of an edit, the fold-over warning, and the one way an error reaches
+// the user (reporter()).
+
+const TRANSFORM_NAMES = { scale: 'Stretch', shear: 'Shear', rotate: 'Rotate', twist: 'Twist' };
+const METHOD_NAMES = { anarap: 'AnARAP', andefgrad: 'AnDefGrad', arap: 'ARAP', linear: 'Linear' };
+
+export function describeEdit(op) {
+  if (op.method === 'arap' && op.move) return 'Move (ARAP)';
+  const kind = Object.keys(op.transform ?? {}).find((key) => key in TRANSFORM_NAMES) ?? 'scale';
+  return `${TRANSFORM_NAMES[kind]} (${METHOD_NAMES[op.method] ?? op.method})`;
+}
+
+export function foldOverWarning(count) {
+  return `${count} triangle${count === 1 ? '' : 's'} folded over: reduce the amount or the falloff.`;
+}
+
+/**
+ * Returns report(error, context): emits 'error' {code, message} (the banner
+ * and the API's event) once per error, whoever catches it, and returns the
+ * Error to throw on, with the code of the layer that raised it (core codes
+ * pass through unchanged). `context` says what was refused ("Stretch was not
+ * applied").
+ */
+export function reporter(emit) {
+  const reported = new WeakSet();
+  return (error, context) => {
+    if (reported.has(error)) return error;
+    const code = error?.code ?? 'internal';
+    const detail = error?.message ?? String(error);
+    const message = context ? `${context}: ${detail}` : detail;
+    emit('error', { code, message });
+    const wrapped = Object.assign(new Error(message), { code, cause: error });
+    reported.add(wrapped);
+    return wrapped;
+  };
+}

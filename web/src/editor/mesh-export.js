@@ -1,0 +1,21 @@
+// The committed mesh as a file: OBJ, PLY (binary) and STL (binary) by the
+// core's writers in the worker (the CLI writes the same), GLB by three.js
+// (io/export-mesh.js), since the core has no glTF writer.
+import { exportGlb } from '../io/export-mesh.js';
+import { CORE_EXPORT_FORMATS, EXPORT_FORMATS } from '../io/mesh-formats.js';
+import { Request } from '../worker/protocol.js';
+
+/** @returns {Promise<ArrayBuffer>} */
+export async function exportMeshFile(client, document, format) {
+  if (!EXPORT_FORMATS.includes(format)) {
+    throw Object.assign(new Error(`export format must be one of ${EXPORT_FORMATS.join(', ')}, got '${format}'`), {
+      code: 'bad-parameter',
+    });
+  }
+  if (!CORE_EXPORT_FORMATS.includes(format)) {
+    const baseName = document.name.replace(/\.[^.]+$/, '') || 'anisoform';
+    return exportGlb(document.positions, document.triangles, baseName);
+  }
+  const { bytes } = await client.request(Request.exportMesh, { format });
+  return bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength);
+}

@@ -1,0 +1,76 @@
+// The garment pattern of the committed mesh: the last flattening (the
+// worker's Session.flatten) and its export as SVG or DXF. The pattern is kept
+// until the mesh, its positions or the flattened selection change.
+import { Request } from '../worker/protocol.js';
+
+export class PatternState {
+  /** The last flattening (FlattenPayload plus its options), or null. */
+  pattern = null;
+  #editor;
+  #client;
+
+  constructor({ editor, client }) {
+    this.#editor = editor;
+    this.#client = client;
+  }
+
+  /**
+   * Flattens the committed mesh (or its selection); options as
+   * Session.flatten (wasm/CONTRACT.md). The mesh and its history are untouched.
+   */
+  async flatten(options = {}) {
+    const editor = this.#editor;
+    const document = editor.requireDocument();
+    if (editor.gestureActive || editor.busy) throw editor.report(badParameter('an edit is in progress'), 'Flatten');
+    if (!options || typeof options !== 'object') throw editor.report(badParameter('options must be an object'), 'Flatten');
+    if (options.patch === 'selection') {
+      if (document.selectionCount === 0) {
+        const error = badParameter('nothing is selected: paint the patch to flatten, or flatten the whole mesh');
+        throw editor.report(error, 'Flatten');
+      }
+      editor.selectionState.syncForEdit();
+    }
+    const done = editor.beginBusy();
+    try {
+      const result = await this.#client.request(Request.flatten, { options });
+      // Undo, redo and edits wait while this runs (busy); only a new mesh can
+      // have arrived meanwhile.
+      if (editor.document !== document) return result;
+      this.pattern = { ...result, options: { patch: 'mesh', ...options } };
+      editor.emit('pattern', this.pattern);
+      return result;
+    } catch (error) {
+      throw editor.report(error, 'Flatten failed');
+    } finally {
+      done();
+      editor.emit('progress', { stage: 'done', message: '' });
+    }
+  }
+
+  /** The last flattening as an SVG or DXF file (bytes). */
+  async export(format, options = {}) {
+    try {
+      if (!this.pattern) throw badParameter('there is no pattern: flatten the mesh first');
+      const { bytes } = await this.#client.request(Request.exportPattern, { format, mmPerUnit: options.mmPerUnit ?? 1 });
+      return bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength);
+    } catch (error) {
+      throw this.#editor.report(error, `Pattern export as ${String(format).toUpperCase()} failed`);
+    }
+  }
+
+  /** The mesh or its positions changed: the pattern no longer applies. */
+  drop() {
+    if (!this.pattern) return;
+    this.pattern = null;
+    this.#editor.emit('pattern', null);
+  }
+
+  /** The selection changed: a pattern of the selected patch no longer applies. */
+  selectionChanged() {
+    if (this.pattern?.options.patch === 'selection') this.drop();
+  }
+}
+
+function badParameter(message) {
+  return Object.assign(new Error(message), { code: 'bad-parameter' });
+}

@@ -1,0 +1,92 @@
+// The selection as the page holds it. Regions are the core's: select() asks
+// the worker's Session.select (region, falloff, add/subtract), and the page
+// keeps a copy of the weights it answers with, to draw them and to undo.
+// Brush strokes, grow, shrink, invert and undo change the weights on the
+// page; they reach the worker before the next edit, select or flattening.
+import { SelectionCommand } from '../commands/selection-command.js';
+import { Request } from '../worker/protocol.js';
+
+export class SelectionState {
+  #editor;
+  #client;
+  #beforeChange;
+  // What the worker's session holds: a document.selectionVersion, 'whole'
+  // (all ones, see syncForEdit) or null (unknown: send again).
+  #sent = null;
+
+  /**
+   * @param {{editor: import('./editor.js').Editor, client: object, beforeChange: () => void}} parts
+   *   beforeChange runs before every committed change (the pattern of the
+   *   selected patch no longer applies).
+   */
+  constructor({ editor, client, beforeChange }) {
+    this.#editor = editor;
+    this.#client = client;
+    this.#beforeChange = beforeChange;
+  }
+
+  /** The worker's selection is unknown (a new mesh; prepare leaves it empty). */
+  forget() {
+    this.#sent = null;
+  }
+
+  /** The core's selection of `region`, committed as one undoable step; resolves with the count. */
+  async select(region, options) {
+    const editor = this.#editor;
+    let document;
+    try {
+      document = editor.requireDocument();
+      // add and subtract combine with the session's selection: it must be the page's.
+      this.#send(document.selectionVersion, () => document.selection.slice());
+      const { count, weights } = await this.#client.request(Request.select, { region, options });
+      if (editor.document !== document) return count; // a new mesh arrived meanwhile
+      this.commit(weights, 'Select', count);
+      this.#sent = document.selectionVersion;
+      return count;
+    } catch (error) {
+      if (document && editor.document === document) this.#sent = null;
+      throw editor.report(error, 'The selection was not changed');
+    }
+  }
+
+  /** Commits new weights as one undoable step; returns the selected count. */
+  commit(weights, label, count) {
+    const document = this.#editor.requireDocument();
+    const before = document.selection;
+    this.#apply(weights, count);
+    this.#editor.history.push(new SelectionCommand(label, before, weights, (w) => this.#apply(w)));
+    return document.selectionCount;
+  }
+
+  /** Shows weights of a stroke in progress without committing them. */
+  show(weights) {
+    this.#editor.emit('selection', { weights, count: null, live: true });
+  }
+
+  #apply(weights, count) {
+    const document = this.#editor.requireDocument();
+    this.#beforeChange();
+    document.setSelection(weights, count);
+    this.#editor.emit('selection', { weights, count: document.selectionCount, live: false });
+    this.#editor.emit('change', { reason: 'selection' });
+  }
+
+  // An empty selection means "the whole mesh": a first drag on a freshly
+  // loaded mesh does something visible instead of nothing.
+  syncForEdit() {
+    const document = this.#editor.requireDocument();
+    if (document.selectionCount === 0) this.#send('whole', () => new Float32Array(document.vertexCount).fill(1));
+    else this.#send(document.selectionVersion, () => document.selection.slice());
+  }
+
+  // Requests are ordered, so the request that follows sees these weights.
+  #send(key, weightsOf) {
+    if (key === this.#sent) return;
+    const weights = weightsOf();
+    this.#sent = key;
+    this.#client.request(Request.setSelection, { weights }, [weights.buffer]).catch((error) => {
+      this.#sent = null;
+      this.#editor.report(error, 'The selection could not be sent to the solver');
+    });
+  }
+}
