@@ -29,7 +29,7 @@ import { Request } from '../worker/protocol.js';
 import { EventEmitter } from './event-emitter.js';
 import { MeshDocument } from './mesh-document.js';
 import { describeProblems } from './problem-summary.js';
-import { toSolverOp, validateOp } from './solver-op.js';
+import { toSolverOp } from './solver-op.js';
 
 export class Editor extends EventEmitter {
   /** @type {MeshDocument|null} */
@@ -215,7 +215,6 @@ export class Editor extends EventEmitter {
     let document;
     try {
       document = this.#requireDocument();
-      validateOp(op);
       label ??= describeEdit(op);
       if (this.#gesture) throw Object.assign(new Error('an interactive edit is in progress: finish the drag first'), { code: 'bad-parameter' });
       solverOp = toSolverOp(op, document, this.#view);
