@@ -37,8 +37,6 @@ TEST_CASE("op: an empty op has the structs' defaults and leaves the mesh's defau
   CHECK(edit.request.transform.is_identity());
   CHECK(edit.preview == edit_defaults.preview);
   CHECK_FALSE(edit.direction_given);
-  CHECK_FALSE(edit.handles_given);
-  CHECK_FALSE(edit.pins_given);
   CHECK_FALSE(edit.twist_origin_given);
 
   const SessionFlatten flatten = flatten_options_from_json(Json::object());
@@ -75,7 +73,6 @@ TEST_CASE("op: every field is read into the request", "[op]") {
   CHECK(r.transform.twist_origin == Eigen::Vector3d(1, 2, 3));
   CHECK(edit.twist_origin_given);
   CHECK(r.pins == std::vector<int>{4, 5});
-  CHECK(edit.pins_given);
   CHECK(r.handle_offset == Eigen::Vector3d(0, 0, 1));
   CHECK(r.elements == ArapElements::SpokesAndRims);
   CHECK(r.max_iterations == 7);
@@ -218,11 +215,15 @@ TEST_CASE("op: the mesh's defaults are resolved by the session's rule", "[op]") 
   CHECK(resolved.pins.front() == 3);
   CHECK(resolved.direction.vector == longest_axis(box));
 
-  // Nothing selected: the whole mesh is the handle; given pins are kept.
+  // Nothing selected: the whole mesh is the handle; given pins and handles are kept.
   const SessionEdit pinned = deform_op_from_json(Json::parse(R"({"method":"arap","pins":[7]})"));
   const DeformRequest all = resolve_edit(pinned, mesh.V, box, Eigen::VectorXd::Zero(n));
   CHECK(static_cast<int>(all.handles.size()) == n);
   CHECK(all.pins == std::vector<int>{7});
+  const SessionEdit handled = deform_op_from_json(Json::parse(R"({"method":"arap","handles":[5, 6]})"));
+  const DeformRequest kept = resolve_edit(handled, mesh.V, box, weights);
+  CHECK(kept.handles == std::vector<int>{5, 6});
+  CHECK(kept.pins.empty());
 
   // Preview caps the iterations; a twist without origin turns about the selection's centroid line.
   const SessionEdit twist = deform_op_from_json(

@@ -123,14 +123,7 @@ SessionFlattenResult Session::flatten(const SessionFlatten& given) {
   }
   Flattener& flattener = built ? *built : *state.flattener;
 
-  FlattenOptions options;
-  options.method = request.method;
-  options.directions = request.directions;
-  options.su = request.su;
-  options.sv = request.sv;
-  options.solver.max_iterations = request.max_iterations;
-  options.solver.tolerance = request.tolerance;
-  FlattenResult result = flattener.flatten(options);
+  FlattenResult result = flattener.flatten(flatten_options(request));
   SessionFlattenResult out =
       reindex(flattener.patch(), flattener.charts(), result, deformer_->rest().num_vertices());
 

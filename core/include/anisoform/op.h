@@ -95,10 +95,10 @@ Eigen::Vector3d longest_axis(const BoundingBox& box);
 // "not given" parts filled in and `weights` as the selection:
 //   direction not given: global along longest_axis(loaded_box), the mesh as loaded;
 //   twist origin not given: default_twist_origin (transforms.h) of the rest pose;
-//   Arap without handles: handles are the vertices with selection weight >= 0.999
-//     and, unless pins are given, pins those with weight 0 (the soft border in
-//     between deforms as rigidly as possible); nothing selected: every vertex
-//     is a handle, none pinned;
+//   Arap with no handles (none would move: the edit would do nothing): handles
+//     are the vertices with selection weight >= 0.999 and, unless pins are
+//     given, pins those with weight 0 (the soft border in between deforms as
+//     rigidly as possible); nothing selected: every vertex is a handle;
 //   preview: max_iterations capped at kPreviewIterations.
 DeformRequest resolve_edit(const SessionEdit& edit, const Positions& rest, const BoundingBox& loaded_box,
                            const Eigen::VectorXd& weights);

@@ -27,6 +27,11 @@ struct SessionFlatten {
   double tolerance = ArapFlattenSettings().tolerance;
 };
 
+// The flatten() options a request means (its direction resolved first,
+// resolve_flatten in op.h): the one place they are built, for the Session and
+// the CLI's one-shot flatten alike.
+FlattenOptions flatten_options(const SessionFlatten& request);
+
 struct SessionFlattenResult {
   FlattenMetrics metrics;
   std::vector<float> uv;                  // #V * 2; NaN for vertices outside the patch

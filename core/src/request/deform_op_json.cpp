@@ -72,10 +72,8 @@ SessionEdit deform_op_from_json(const Json& op) {
   edit.direction_given = has(op, "direction");
   if (edit.direction_given) request.direction = direction_from_json(op["direction"], "op.direction");
   if (has(op, "transform")) request.transform = transform_from_json(op["transform"], &edit.twist_origin_given);
-  edit.pins_given = has(op, "pins");
-  if (edit.pins_given) request.pins = indices(op["pins"], "op.pins");
-  edit.handles_given = has(op, "handles");
-  if (edit.handles_given) request.handles = indices(op["handles"], "op.handles");
+  if (has(op, "pins")) request.pins = indices(op["pins"], "op.pins");
+  if (has(op, "handles")) request.handles = indices(op["handles"], "op.handles");
   if (has(op, "move")) request.handle_offset = vector3(op["move"], "op.move");
   if (has(op, "elements")) {
     request.elements = one_of(op["elements"], {"spokes", "spokes-rims"}, "op.elements") == "spokes"

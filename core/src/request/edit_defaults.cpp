@@ -23,12 +23,11 @@ namespace {
 // deforms as rigidly as possible, the unselected rest is pinned.
 constexpr double kHandleWeight = 0.999;
 
-void arap_handles_from_selection(const Eigen::VectorXd& weights, bool pins_given, DeformRequest& request) {
-  request.handles.clear();
+void arap_handles_from_selection(const Eigen::VectorXd& weights, DeformRequest& request) {
+  const bool pins_given = !request.pins.empty();
   if (!(weights.array() > 0.0).any()) {
     // Nothing selected: the whole mesh is the handle.
     for (Eigen::Index i = 0; i < weights.size(); ++i) request.handles.push_back(static_cast<int>(i));
-    if (!pins_given) request.pins.clear();
     return;
   }
   std::vector<int> pins;
@@ -52,9 +51,7 @@ DeformRequest resolve_edit(const SessionEdit& edit, const Positions& rest, const
   if (request.transform.twist && !edit.twist_origin_given) {
     request.transform.twist_origin = default_twist_origin(rest, weights, request.transform.twist_axis);
   }
-  if (request.method == Method::Arap && !edit.handles_given) {
-    arap_handles_from_selection(weights, edit.pins_given, request);
-  }
+  if (request.method == Method::Arap && request.handles.empty()) arap_handles_from_selection(weights, request);
   if (edit.preview) request.max_iterations = std::min(request.max_iterations, kPreviewIterations);
   return request;
 }
