@@ -13,7 +13,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "anisoform/selection.h"
-#include "anisoform/topology.h"
+#include "mesh/topology.h"
 #include "solver_test_support.h"
 #include "test_support.h"
 

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <map>
 
-#include "anisoform/curvature.h"
-#include "anisoform/frames.h"
+#include "directions/curvature.h"
+#include "geometry/frames.h"
 #include "anisoform/selection.h"
-#include "anisoform/topology.h"
+#include "mesh/topology.h"
 #include "solver_test_support.h"
 #include "test_support.h"
 

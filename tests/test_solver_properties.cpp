@@ -2,8 +2,8 @@
 // real mesh has the needed shape.
 #include <catch2/catch.hpp>
 
-#include "anisoform/andefgrad.h"
-#include "anisoform/laplacian_solver.h"
+#include "deform/andefgrad.h"
+#include "geometry/laplacian_solver.h"
 #include "solver_test_support.h"
 #include "test_support.h"
 

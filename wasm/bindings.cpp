@@ -33,7 +33,7 @@
 
 #include "anisoform/error.h"
 #include "anisoform/laplacian.h"
-#include "anisoform/primitives.h"
+#include "bench/primitives.h"
 #include "anisoform/session.h"
 #include "js_values.h"
 

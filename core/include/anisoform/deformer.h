@@ -17,12 +17,13 @@
 
 #include "anisoform/direction_field.h"
 #include "anisoform/laplacian.h"
-#include "anisoform/laplacian_solver.h"
 #include "anisoform/mesh.h"
 #include "anisoform/screen_direction.h"
 #include "anisoform/transforms.h"
 
 namespace aniso {
+
+class LaplacianSolver;  // geometry/laplacian_solver.h (internal)
 
 enum class Method {
   AnArap,     // anisotropic ARAP on vertex fans (METHOD §5)

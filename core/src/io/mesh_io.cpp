@@ -10,7 +10,7 @@
 #include "anisoform/error.h"
 #include "anisoform/file_io.h"
 #include "anisoform/mesh_check.h"
-#include "io_common.h"
+#include "io/io_common.h"
 
 namespace aniso {
 

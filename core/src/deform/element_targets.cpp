@@ -1,14 +1,14 @@
-#include "anisoform/element_targets.h"
+#include "deform/element_targets.h"
 
 #include <map>
 #include <utility>
 
-#include "anisoform/curvature.h"
+#include "directions/curvature.h"
 #include "anisoform/direction_field.h"
 #include "anisoform/error.h"
-#include "anisoform/frames.h"
+#include "geometry/frames.h"
 #include "anisoform/screen_direction.h"
-#include "anisoform/topology.h"
+#include "mesh/topology.h"
 
 namespace aniso {
 

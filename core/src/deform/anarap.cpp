@@ -1,4 +1,4 @@
-#include "anisoform/anarap.h"
+#include "deform/anarap.h"
 
 #include <cmath>
 

@@ -8,8 +8,8 @@
 #include <Eigen/SVD>
 
 #include "anisoform/error.h"
-#include "anisoform/frames.h"
-#include "anisoform/topology.h"
+#include "geometry/frames.h"
+#include "mesh/topology.h"
 
 namespace aniso {
 namespace {

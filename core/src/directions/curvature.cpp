@@ -4,7 +4,7 @@
 //
 // Sign convention: with outward (counter-clockwise) normals a convex surface
 // has positive curvature (a sphere of radius R: k_min = k_max = 1/R).
-#include "anisoform/curvature.h"
+#include "directions/curvature.h"
 
 #include <algorithm>
 #include <array>
@@ -15,9 +15,9 @@
 #include <Eigen/Dense>
 
 #include "anisoform/error.h"
-#include "anisoform/frames.h"
-#include "anisoform/topology.h"
-#include "direction_field_transport.h"
+#include "geometry/frames.h"
+#include "mesh/topology.h"
+#include "directions/direction_field_transport.h"
 
 namespace aniso {
 namespace {

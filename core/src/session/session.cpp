@@ -5,10 +5,10 @@
 #include <cmath>
 #include <utility>
 
-#include "anisoform/element_targets.h"
+#include "deform/element_targets.h"
 #include "anisoform/error.h"
-#include "anisoform/frames.h"
-#include "session_flatten_state.h"
+#include "geometry/frames.h"
+#include "session/session_flatten_state.h"
 
 namespace aniso {
 namespace {

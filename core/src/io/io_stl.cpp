@@ -12,7 +12,7 @@
 
 #include "anisoform/mesh_check.h"
 #include "anisoform/mesh_io.h"
-#include "io_common.h"
+#include "io/io_common.h"
 
 namespace aniso {
 namespace io {

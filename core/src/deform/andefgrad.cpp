@@ -1,4 +1,4 @@
-#include "anisoform/andefgrad.h"
+#include "deform/andefgrad.h"
 
 namespace aniso {
 

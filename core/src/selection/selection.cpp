@@ -13,8 +13,8 @@
 #include "anisoform/error.h"
 #include "anisoform/file_io.h"
 #include "anisoform/strict_number.h"
-#include "anisoform/topology.h"
-#include "selection_text.h"
+#include "mesh/topology.h"
+#include "io/selection_text.h"
 
 namespace aniso {
 namespace {

@@ -9,7 +9,7 @@
 #include "anisoform/error.h"
 #include "anisoform/pattern_export.h"
 #include "anisoform/session.h"
-#include "session_flatten_state.h"
+#include "session/session_flatten_state.h"
 
 namespace aniso {
 namespace {

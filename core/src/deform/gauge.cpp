@@ -1,9 +1,9 @@
-#include "anisoform/gauge.h"
+#include "deform/gauge.h"
 
 #include <Eigen/LU>
 #include <Eigen/SVD>
 
-#include "anisoform/topology.h"
+#include "mesh/topology.h"
 
 namespace aniso {
 

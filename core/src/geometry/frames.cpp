@@ -1,4 +1,4 @@
-#include "anisoform/frames.h"
+#include "geometry/frames.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include <Eigen/Geometry>
 
-#include "anisoform/topology.h"
+#include "mesh/topology.h"
 
 namespace aniso {
 

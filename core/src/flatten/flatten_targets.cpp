@@ -5,7 +5,7 @@
 
 #include "anisoform/error.h"
 #include "anisoform/flatten.h"
-#include "anisoform/frames.h"
+#include "geometry/frames.h"
 #include "anisoform/transforms.h"
 
 namespace aniso {

@@ -16,7 +16,7 @@
 
 #include "anisoform/error.h"
 #include "anisoform/limits.h"
-#include "anisoform/topology.h"
+#include "mesh/topology.h"
 
 namespace aniso {
 

@@ -13,7 +13,7 @@
 #include "anisoform/error.h"
 #include "anisoform/flatten.h"
 #include "anisoform/laplacian.h"
-#include "anisoform/laplacian_solver.h"
+#include "geometry/laplacian_solver.h"
 
 namespace aniso {
 

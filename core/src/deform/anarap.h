@@ -22,7 +22,7 @@
 
 #include "anisoform/deformer.h"
 #include "anisoform/laplacian.h"
-#include "anisoform/laplacian_solver.h"
+#include "geometry/laplacian_solver.h"
 #include "anisoform/mesh.h"
 
 namespace aniso {

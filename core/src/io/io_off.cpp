@@ -4,7 +4,7 @@
 #include <algorithm>
 
 #include "anisoform/mesh_io.h"
-#include "io_common.h"
+#include "io/io_common.h"
 
 namespace aniso {
 namespace io {

@@ -32,13 +32,13 @@
 #include <sstream>
 
 #include "anisoform/error.h"
-#include "anisoform/frames.h"
+#include "geometry/frames.h"
 #include "anisoform/laplacian.h"
-#include "anisoform/topology.h"
+#include "mesh/topology.h"
 #include "anisoform/transforms.h"
-#include "direction_field_dirichlet.h"
-#include "direction_field_transport.h"
-#include "selection_text.h"
+#include "directions/direction_field_dirichlet.h"
+#include "directions/direction_field_transport.h"
+#include "io/selection_text.h"
 
 namespace aniso {
 namespace {

@@ -5,13 +5,13 @@
 #include <cmath>
 #include <string>
 
-#include "anisoform/anarap.h"
-#include "anisoform/andefgrad.h"
+#include "deform/anarap.h"
+#include "deform/andefgrad.h"
 #include "anisoform/distortion.h"
-#include "anisoform/curvature.h"
-#include "anisoform/element_targets.h"
+#include "directions/curvature.h"
+#include "deform/element_targets.h"
 #include "anisoform/error.h"
-#include "anisoform/gauge.h"
+#include "deform/gauge.h"
 #include "anisoform/mesh_check.h"
 
 namespace aniso {

@@ -2,7 +2,7 @@
 // SimplicialLDLT (AMD ordering); solves walk the factor once for all right-hand
 // side columns together (Eigen's own solve walks it once per column), which is
 // what makes an ARAP iteration cheaper than three separate solves.
-#include "anisoform/laplacian_solver.h"
+#include "geometry/laplacian_solver.h"
 
 #include <algorithm>
 #include <string>

@@ -7,7 +7,7 @@
 // reject such meshes first; this only keeps a bad mesh from crashing us).
 // A face with a repeated corner still connects its vertices, and its sides
 // between distinct vertices count as edges; its zero-length side does not.
-#include "anisoform/topology.h"
+#include "mesh/topology.h"
 
 #include <algorithm>
 #include <numeric>

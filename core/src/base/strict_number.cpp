@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <limits>
 
-#include "io_common.h"
+#include "io/io_common.h"
 
 namespace aniso {
 

@@ -9,7 +9,7 @@
 #include "anisoform/error.h"
 #include "anisoform/flatten.h"
 #include "anisoform/mesh_check.h"
-#include "anisoform/topology.h"
+#include "mesh/topology.h"
 
 namespace aniso {
 

@@ -1,4 +1,4 @@
-#include "anisoform/primitives.h"
+#include "bench/primitives.h"
 
 #include <algorithm>
 #include <cmath>
