@@ -179,9 +179,9 @@ BuiltRequest build_request(const DeformPlan& plan, const Mesh& mesh,
   BuiltRequest built;
   DeformRequest& request = built.request;
   request.method = plan.method;
-  request.weights = naming_option(
+  request.selection = naming_option(
       "--select", [&] { return selection_weights(mesh, plan.selection, plan.falloff); });
-  if (!(request.weights.array() > 0.0).any()) {
+  if (!(request.selection.array() > 0.0).any()) {
     warnings.push_back("the selection holds no vertex: the mesh is left unchanged");
   }
   const DirectionChoice direction =
@@ -190,7 +190,7 @@ BuiltRequest build_request(const DeformPlan& plan, const Mesh& mesh,
   built.direction_description = direction.description;
   request.transform = plan.transform;
   if (request.transform.twist) {
-    request.transform.twist_origin = default_twist_origin(mesh.V, request.weights, request.transform.twist_axis);
+    request.transform.twist_origin = default_twist_origin(mesh.V, request.selection, request.transform.twist_axis);
   }
   if (plan.method == Method::Arap && !plan.transform.is_identity()) {
     warnings.push_back("--method arap is isotropic ARAP with handles: the local transform "

@@ -69,7 +69,7 @@ double target_term(const Eigen::Matrix3d& T, const Eigen::Matrix3d& C) {
 
 }  // namespace
 
-ArapIterations::ArapIterations(const Mesh& rest, const CotanWeights& weights,
+AnArapSolver::AnArapSolver(const Mesh& rest, const CotanWeights& weights,
                                const Eigen::SparseMatrix<double>& laplacian, ArapElements elements)
     : rest_(rest), weights_(weights), elements_(elements), n_(rest.num_vertices()) {
   offsets_.assign(n_ + 1, 0);
@@ -117,7 +117,7 @@ ArapIterations::ArapIterations(const Mesh& rest, const CotanWeights& weights,
   rotation_.assign(n_, Eigen::Quaterniond::Identity());
 }
 
-void ArapIterations::set_targets(const std::vector<Eigen::Matrix3d>& T) {
+void AnArapSolver::set_targets(const std::vector<Eigen::Matrix3d>& T) {
   T_ = T;
   symmetric_targets_ = true;
   for (int i = 0; i < n_; ++i) {
@@ -129,11 +129,11 @@ void ArapIterations::set_targets(const std::vector<Eigen::Matrix3d>& T) {
   }
 }
 
-void ArapIterations::reset_rotations() {
+void AnArapSolver::reset_rotations() {
   rotation_.assign(n_, Eigen::Quaterniond::Identity());
 }
 
-void ArapIterations::covariance_spokes(const Positions& V, std::vector<Eigen::Matrix3d>& A,
+void AnArapSolver::covariance_spokes(const Positions& V, std::vector<Eigen::Matrix3d>& A,
                                        Eigen::VectorXd& edge_energy) const {
   for (int i = 0; i < n_; ++i) {
     Eigen::Matrix3d acc = Eigen::Matrix3d::Zero();
@@ -150,7 +150,7 @@ void ArapIterations::covariance_spokes(const Positions& V, std::vector<Eigen::Ma
   }
 }
 
-void ArapIterations::covariance_spokes_rims(const Positions& V, std::vector<Eigen::Matrix3d>& A,
+void AnArapSolver::covariance_spokes_rims(const Positions& V, std::vector<Eigen::Matrix3d>& A,
                                             Eigen::VectorXd& edge_energy) const {
   std::fill(A.begin(), A.end(), Eigen::Matrix3d::Zero());
   edge_energy.setZero();
@@ -172,7 +172,7 @@ void ArapIterations::covariance_spokes_rims(const Positions& V, std::vector<Eige
   }
 }
 
-double ArapIterations::local_step(const Positions& V) {
+double AnArapSolver::local_step(const Positions& V) {
   std::vector<Eigen::Matrix3d>& A = covariance_;
   Eigen::VectorXd& edge_energy = edge_energy_;
   A.resize(n_);
@@ -194,7 +194,7 @@ double ArapIterations::local_step(const Positions& V) {
   return energy;
 }
 
-void ArapIterations::global_rhs(Positions& b) const {
+void AnArapSolver::global_rhs(Positions& b) const {
   b.setZero(n_, 3);
   if (elements_ == ArapElements::Spokes) {
     // b_i = -1/2 (B_i g_i + sum_j w_ij B_j e_ij), with g_i = sum_j w_ij e_ij.
@@ -218,7 +218,7 @@ void ArapIterations::global_rhs(Positions& b) const {
   }
 }
 
-int ArapIterations::run(const LaplacianSolver& solver, Positions& V, int max_iterations,
+int AnArapSolver::run(const LaplacianSolver& solver, Positions& V, int max_iterations,
                         double tolerance, std::vector<double>& history) {
   Positions b;
   double previous = local_step(V);

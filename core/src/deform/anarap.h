@@ -1,5 +1,5 @@
-// AnARAP local/global iterations (METHOD §5) on a fixed rest mesh, with the
-// isotropic ARAP of Sorkine & Alexa as the case T = I.
+// The AnARAP solver: local/global iterations (METHOD §5) on a fixed rest mesh,
+// with the isotropic ARAP of Sorkine & Alexa as the case T = I.
 //
 //   E(v', R) = sum_i sum_{j in N(i)} w_ij || e'_ij - R_i T_i e_ij ||^2
 //
@@ -20,16 +20,16 @@
 
 #include <Eigen/Geometry>
 
-#include "anisoform/deformer.h"
+#include "anisoform/deform_request.h"
 #include "anisoform/laplacian.h"
 #include "geometry/laplacian_solver.h"
 #include "anisoform/mesh.h"
 
 namespace aniso {
 
-class ArapIterations {
+class AnArapSolver {
  public:
-  ArapIterations(const Mesh& rest, const CotanWeights& weights,
+  AnArapSolver(const Mesh& rest, const CotanWeights& weights,
                  const Eigen::SparseMatrix<double>& laplacian, ArapElements elements);
 
   // Per-vertex targets (#V). Keeps the current rotations (warm start).

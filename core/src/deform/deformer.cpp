@@ -80,19 +80,19 @@ void check_indices(const std::vector<int>& indices, int n, const char* what) {
 }
 
 Eigen::VectorXd checked_weights(const DeformRequest& request, int n) {
-  if (request.weights.size() == 0) return Eigen::VectorXd::Ones(n);
-  if (request.weights.size() != n) {
-    fail(ErrorCode::BadParameter, "the selection has " + std::to_string(request.weights.size()) +
+  if (request.selection.size() == 0) return Eigen::VectorXd::Ones(n);
+  if (request.selection.size() != n) {
+    fail(ErrorCode::BadParameter, "the selection has " + std::to_string(request.selection.size()) +
                                       " weights but the mesh has " + std::to_string(n) + " vertices");
   }
   for (int i = 0; i < n; ++i) {
-    const double w = request.weights[i];
+    const double w = request.selection[i];
     if (!(w >= 0.0 && w <= 1.0)) {
       fail(ErrorCode::BadParameter, "selection weight of vertex " + std::to_string(i) +
                                         " must be in [0, 1], got " + std::to_string(w));
     }
   }
-  return request.weights;
+  return request.selection;
 }
 
 void validate_request(const DeformRequest& request, int n) {
@@ -132,7 +132,7 @@ Eigen::Vector3d linear_center(const Mesh& mesh, const Eigen::VectorXd& w) {
 struct Deformer::Workspace {
   explicit Workspace(const Mesh& rest) : targets(rest) {}
   TargetContext targets;
-  std::map<ArapElements, std::unique_ptr<ArapIterations>> arap;
+  std::map<ArapElements, std::unique_ptr<AnArapSolver>> arap;
   // Warm start: the last result of a setup (method, elements, pins).
   std::string last_key;
   Positions last_V;
@@ -154,8 +154,8 @@ Deformer::Deformer(Mesh rest) : rest_(std::move(rest)) {
   diagonal_ = bounding_box(rest_.V).diagonal();
   scale_ = unit_scale(diagonal_);
   unit_ = Mesh{rest_.V / scale_, rest_.F};
-  weights_ = cotangent_weights(unit_);
-  laplacian_ = cotangent_laplacian(unit_, weights_);
+  cotan_weights_ = cotangent_weights(unit_);
+  laplacian_ = cotangent_laplacian(unit_, cotan_weights_);
 }
 
 Deformer::~Deformer() = default;
@@ -237,11 +237,11 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
     const LaplacianSolver& solver = solver_for(gauge.pins, &precompute_ms);
     const ElementTargets targets = triangle_targets(ws.targets, request.direction, request.transform, w);
     Positions b;
-    gradient_rhs(unit_, weights_, targets.T, b);
+    gradient_rhs(unit_, cotan_weights_, targets.T, b);
     result.V = unit_.V;
     solver.solve(b, result.V);
     realign(unit_, gauge, w, Alignment::Translation, result.V);
-    result.energy = gradient_energy(unit_, weights_, targets.T, result.V);
+    result.energy = gradient_energy(unit_, cotan_weights_, targets.T, result.V);
     result.iterations = 1;
     result.directions_filled = targets.filled;
   } else {
@@ -259,7 +259,7 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
     auto& iterations = ws.arap[request.elements];
     if (!iterations) {
       const auto t0 = Clock::now();
-      iterations = std::make_unique<ArapIterations>(unit_, weights_, laplacian_, request.elements);
+      iterations = std::make_unique<AnArapSolver>(unit_, cotan_weights_, laplacian_, request.elements);
       precompute_ms += ms_since(t0);
     }
     bool rotational = false;
@@ -269,7 +269,7 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
       const ElementTargets targets = vertex_targets(ws.targets, request.direction, request.transform, w);
       iterations->set_targets(targets.T);
       result.directions_filled = targets.filled;
-      rotational = request.transform.has_rotation();
+      rotational = request.transform.has_rotational_part();
     }
     std::string key = std::string(method_name(request.method)) + ":" +
                       std::to_string(static_cast<int>(request.elements));

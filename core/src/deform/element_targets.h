@@ -6,7 +6,7 @@
 #include <memory>
 #include <vector>
 
-#include "anisoform/deformer.h"
+#include "anisoform/deform_request.h"
 #include "anisoform/mesh.h"
 
 namespace aniso {

@@ -9,11 +9,12 @@
 
 #include "anisoform/error.h"
 #include "anisoform/limits.h"
+#include "base/math_constants.h"
 
 namespace aniso {
 namespace {
 
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+constexpr double kDegToRad = kPi / 180.0;
 
 void require_finite(double value, const char* name) {
   if (!std::isfinite(value)) {
@@ -37,13 +38,13 @@ void require_in_range(double value, double lowest, double highest, const char* n
 
 }  // namespace
 
-bool TransformSpec::has_rotation() const {
+bool TransformSpec::has_rotational_part() const {
   return (rotate_axis != RotateAxis::None && rotate_degrees != 0.0) ||
          (twist && twist_degrees_per_unit != 0.0) || shear != 0.0;
 }
 
 bool TransformSpec::is_identity() const {
-  return su == 1.0 && sv == 1.0 && sn == 1.0 && !has_rotation();
+  return su == 1.0 && sv == 1.0 && sn == 1.0 && !has_rotational_part();
 }
 
 void validate_scale(double value, const std::string& name) {

@@ -3,7 +3,7 @@
 #include <chrono>
 #include <optional>
 
-#include "anisoform/flatten.h"
+#include "flatten/flatten_pipeline.h"
 
 namespace aniso {
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "anisoform/error.h"
-#include "anisoform/flatten.h"
+#include "flatten/flatten_pipeline.h"
 #include "anisoform/laplacian.h"
 #include "geometry/laplacian_solver.h"
 

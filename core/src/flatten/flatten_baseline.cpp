@@ -4,7 +4,7 @@
 // wrong where they curve, which is what the anisotropic flattening fixes.
 #include <vector>
 
-#include "anisoform/flatten.h"
+#include "flatten/flatten_pipeline.h"
 
 namespace aniso {
 

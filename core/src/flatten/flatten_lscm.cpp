@@ -10,7 +10,7 @@
 #include <Eigen/SparseCholesky>
 
 #include "anisoform/error.h"
-#include "anisoform/flatten.h"
+#include "flatten/flatten_pipeline.h"
 
 namespace aniso {
 

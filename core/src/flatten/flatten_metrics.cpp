@@ -7,7 +7,7 @@
 
 #include <Eigen/LU>
 
-#include "anisoform/flatten.h"
+#include "flatten/flatten_pipeline.h"
 
 namespace aniso {
 

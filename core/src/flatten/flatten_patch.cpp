@@ -7,7 +7,7 @@
 #include <Eigen/Geometry>
 
 #include "anisoform/error.h"
-#include "anisoform/flatten.h"
+#include "flatten/flatten_pipeline.h"
 #include "anisoform/mesh_check.h"
 #include "mesh/topology.h"
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "anisoform/flatten.h"
+#include "flatten/flatten_pipeline.h"
 
 namespace aniso {
 

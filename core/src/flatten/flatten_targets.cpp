@@ -4,7 +4,7 @@
 #include <string>
 
 #include "anisoform/error.h"
-#include "anisoform/flatten.h"
+#include "flatten/flatten_pipeline.h"
 #include "geometry/frames.h"
 #include "anisoform/transforms.h"
 

@@ -11,13 +11,12 @@
 #include <Eigen/SparseCholesky>
 
 #include "anisoform/error.h"
-#include "anisoform/flatten.h"
+#include "base/math_constants.h"
+#include "flatten/flatten_pipeline.h"
 
 namespace aniso {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 double loop_length(const Positions& V, const std::vector<int>& loop) {
   double length = 0.0;

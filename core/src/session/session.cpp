@@ -230,7 +230,7 @@ SessionEditResult Session::deform(const SessionEdit& edit) {
   require_mesh();
   const auto start = std::chrono::steady_clock::now();
   DeformRequest request = edit.request;
-  request.weights = weights_;
+  request.selection = weights_;
   if (request.transform.twist && !edit.twist_origin_given) {
     request.transform.twist_origin =
         default_twist_origin(deformer_->rest().V, weights_, request.transform.twist_axis);
