@@ -6,11 +6,10 @@
 #include <vector>
 
 #include "anisoform/error.h"
+#include "base/math_constants.h"
 
 namespace aniso {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // A circle of vertices: the first vertex index, the vertex count and the angle
 // of the first vertex (the others follow counter-clockwise seen from +z).

@@ -26,13 +26,6 @@ constexpr int kNumKinds = static_cast<int>(ProblemKind::UnreferencedVertex) + 1;
 
 // ---------------------------------------------------------------- elements
 
-bool face_in_range(const Triangles& F, Eigen::Index f, int num_vertices) {
-  for (int k = 0; k < 3; ++k) {
-    if (F(f, k) < 0 || F(f, k) >= num_vertices) return false;
-  }
-  return true;
-}
-
 bool has_repeated_corner(const Triangles& F, Eigen::Index f) {
   return F(f, 0) == F(f, 1) || F(f, 1) == F(f, 2) || F(f, 2) == F(f, 0);
 }

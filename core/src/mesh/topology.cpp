@@ -14,14 +14,14 @@
 
 namespace aniso {
 
-namespace {
-
 bool face_in_range(const Triangles& F, Eigen::Index f, int num_vertices) {
   for (int k = 0; k < 3; ++k) {
     if (F(f, k) < 0 || F(f, k) >= num_vertices) return false;
   }
   return true;
 }
+
+namespace {
 
 class UnionFind {
  public:

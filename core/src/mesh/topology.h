@@ -9,6 +9,11 @@
 
 namespace aniso {
 
+// Whether the three corners of face f are vertex indices in [0, num_vertices):
+// the one test the mesh check (which reports such faces) and the queries
+// below (which skip them) share.
+bool face_in_range(const Triangles& F, Eigen::Index f, int num_vertices);
+
 // Component label per vertex (#V); faces connect the vertices they share.
 // Unreferenced vertices get a component of their own each.
 // Labels are 0..count-1; returns count through `count` when not null.
