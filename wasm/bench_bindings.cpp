@@ -12,7 +12,7 @@
 
 #include "anisoform/error.h"
 #include "anisoform/laplacian.h"
-#include "anisoform/primitives.h"
+#include "bench/primitives.h"
 #include "anisoform/session.h"
 #include "guarded.h"
 #include "js_values.h"

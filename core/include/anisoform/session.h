@@ -49,7 +49,7 @@ struct SessionMeshInfo {
 // min(old, 1 - new).
 enum class SelectionMode { Replace, Add, Subtract };
 
-// One edit as the host asks for it. `request.weights` is ignored: the
+// One edit as the host asks for it. `request.selection` is ignored: the
 // session's selection is used.
 struct SessionEdit {
   DeformRequest request;
