@@ -43,7 +43,7 @@ void arap_handles_from_selection(const Eigen::VectorXd& weights, DeformRequest& 
 DeformRequest resolve_edit(const SessionEdit& edit, const Positions& rest, const BoundingBox& loaded_box,
                            const Eigen::VectorXd& weights) {
   DeformRequest request = edit.request;
-  request.weights = weights;
+  request.selection = weights;
   if (!edit.direction_given) {
     request.direction = DirectionSource();
     request.direction.vector = longest_axis(loaded_box);
