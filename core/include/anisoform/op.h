@@ -1,7 +1,7 @@
 // The public op: one edit, one flattening, one region, as JSON. This is the
 // one place its schema lives: the WASM module, the edit document and
-// `anisoform deform --op FILE` all hand their JSON here, and the CLI's flags
-// are turned into the same JSON first.
+// `anisoform deform --op FILE` all hand their JSON here; the CLI's flags build
+// the same SessionEdit, and every host deforms through Session::deform.
 //
 // An op (every key optional):
 //   {method: 'anarap'|'andefgrad'|'arap'|'linear',
