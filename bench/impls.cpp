@@ -90,7 +90,7 @@ Sample run_iterative(const Problem& problem, const aniso::DeformRequest& request
 aniso::DeformRequest stretch_request(const Problem& problem, aniso::Method method) {
   aniso::DeformRequest request;
   request.method = method;
-  request.weights = problem.top_half;
+  request.selection = problem.top_half;
   request.direction.kind = aniso::DirectionSource::Kind::Global;
   request.direction.vector = problem.direction;
   request.transform.su = 1.5;

@@ -5,7 +5,7 @@
 #include <numeric>
 
 #include "anisoform/mesh_io.h"
-#include "anisoform/primitives.h"
+#include "bench/primitives.h"
 
 namespace aniso_bench {
 namespace {

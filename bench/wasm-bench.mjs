@@ -192,7 +192,7 @@ function runAndefgrad(session, problem) {
 
 async function main() {
   const options = parseArguments(process.argv.slice(2));
-  const { wasm } = await loadAnisoform();
+  const { wasm } = await loadAnisoform({ bench: true });
   const session = new wasm.Session();
   try {
     const problem = loadProblem(wasm, session, options.mesh);

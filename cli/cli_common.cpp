@@ -1,5 +1,7 @@
 #include "cli_common.h"
 
+#include "anisoform/op.h"
+
 #include <climits>
 #include <cmath>
 #include <filesystem>
@@ -176,19 +178,11 @@ DirectionChoice parse_direction(const std::string& text) {
   return choice;
 }
 
-DirectionChoice longest_axis_direction(const Mesh& mesh) {
-  const BoundingBox box = bounding_box(mesh.V);
-  const Eigen::Vector3d extent = box.max - box.min;
-  int axis = 0;
-  for (int k = 1; k < 3; ++k) {
-    if (extent[k] > extent[axis]) axis = k;
-  }
-  DirectionChoice choice;
-  choice.kind = DirectionSource::Kind::Global;
-  choice.vector = Eigen::Vector3d::Unit(axis);
+std::string longest_axis_description(const BoundingBox& box) {
+  const Eigen::Vector3d axis = longest_axis(box);
   const char* names[] = {"global:1,0,0", "global:0,1,0", "global:0,0,1"};
-  choice.description = std::string(names[axis]) + " (longest axis)";
-  return choice;
+  const int k = axis.x() == 1.0 ? 0 : axis.y() == 1.0 ? 1 : 2;
+  return std::string(names[k]) + " (longest axis)";
 }
 
 std::vector<int> region_vertices(const Mesh& mesh, const Region& region,
@@ -206,12 +200,14 @@ std::string read_text_file(const std::string& path, const std::string& option) {
   return naming_option(option, [&] { return read_regular_file(path, ErrorCode::BadParameter); });
 }
 
-void weld_if_soup(Mesh& mesh, std::vector<std::string>& warnings) {
-  if (!is_triangle_soup(mesh)) return;
-  const int before = mesh.num_vertices();
-  mesh = weld_vertices(mesh);
-  warnings.push_back("the input is a triangle soup (no shared vertices): welded by exact position, " +
-                     std::to_string(before) + " -> " + std::to_string(mesh.num_vertices()) + " vertices");
+ReadReport load_into_session(Session& session, const std::string& path) {
+  ReadResult read = read_input_mesh(path);
+  try {
+    session.adopt_mesh(std::move(read.mesh), {});
+  } catch (const Error& e) {
+    throw Error(e.code(), path + ": " + e.what());
+  }
+  return std::move(read.report);
 }
 
 ReadResult read_input_mesh(const std::string& path) {

@@ -24,6 +24,7 @@
 #include "anisoform/mesh_check.h"
 #include "anisoform/mesh_io.h"
 #include "anisoform/selection.h"
+#include "anisoform/session.h"
 #include "anisoform/strict_number.h"
 #include "anisoform/transforms.h"
 
@@ -107,9 +108,9 @@ struct DirectionChoice {
 };
 // "global:X,Y,Z" | "curvature:min" | "curvature:max" | "field:PATH".
 DirectionChoice parse_direction(const std::string& text);
-// The unit axis along the longest side of the mesh's bounding box (x on ties),
-// described as "global:0,0,1 (longest axis)".
-DirectionChoice longest_axis_direction(const Mesh& mesh);
+// How the default direction (op.h longest_axis of `box`, the rule the core
+// applies) is echoed: "global:0,0,1 (longest axis)".
+std::string longest_axis_description(const BoundingBox& box);
 
 // ---- regions -------------------------------------------------------------
 
@@ -132,10 +133,11 @@ std::string read_text_file(const std::string& path, const std::string& option);
 // with the path in front of the message.
 ReadResult read_input_mesh(const std::string& path);
 
-// A soup has no shared vertices, so no edit or flattening could spread over
-// it: welding by exact position is the one repair the commands make on their
-// own, and they say so (a line appended to `warnings`).
-void weld_if_soup(Mesh& mesh, std::vector<std::string>& warnings);
+// Reads IN (read_input_mesh) into the session, through the session's own
+// preparation as the browser's meshes (Session::adopt_mesh: a soup is welded
+// and noted in info().notes, a mesh that cannot be solved on is refused with
+// Error(BadMesh) "PATH: cannot edit this mesh: ..."). Returns what the reader did.
+ReadReport load_into_session(Session& session, const std::string& path);
 
 // Checks OUT before any work is done: a known extension and an existing
 // directory, else Error(BadParameter). Returns the format.

@@ -1,16 +1,21 @@
 // `anisoform deform IN OUT [options]`: one anisotropic edit of a mesh, from the
-// command line to the core's Deformer and back to a file.
+// command line to the core's Session (the browser's, too) and back to a file.
+// The edit comes from flags or, with --op FILE, as the public op (op.h); both
+// become the same SessionEdit, and the Session resolves what the mesh decides
+// (the default direction and twist origin, ARAP's handles).
 //
 // The order of the work follows the exit-status contract: first everything
 // the command line alone decides (a mistake there exits 2 before any file is
 // read), then the input mesh (exit 3 when it cannot be solved on), then what
 // needs both (a region or field naming a vertex that does not exist: exit 2),
 // and only then the solve and the output file.
+#include <cstdio>
 #include <memory>
 #include <optional>
 #include <utility>
 
 #include "anisoform/direction_field.h"
+#include "anisoform/op.h"
 #include "cli_common.h"
 #include "commands.h"
 
@@ -22,7 +27,7 @@ namespace {
 struct DeformArguments {
   std::string input;
   std::string output;
-  std::string method = "anarap";
+  std::string method;
   std::string select = "all";
   std::string falloff;
   std::string direction;
@@ -37,23 +42,18 @@ struct DeformArguments {
   std::string iterations;
   std::string tolerance;
   std::string elements;
+  std::string op;
   bool ascii = false;
 };
 
 // What the command line alone decides, checked before the mesh is read.
 struct DeformPlan {
-  Method method = Method::AnArap;
-  TransformSpec transform;
+  SessionEdit edit;  // pins and handles given as regions are filled in with the mesh
   Region selection;
   double falloff = 0.0;
-  std::optional<DirectionChoice> direction;  // none: the mesh's longest axis
-  std::vector<DirectionConstraint> field_constraints;
+  std::string direction_description;  // empty: the mesh's longest axis
   std::optional<Region> pins;
   std::optional<Region> handles;
-  Eigen::Vector3d handle_offset = Eigen::Vector3d::Zero();
-  std::optional<int> iterations;  // --iterations: the cap, and the steps of a rotation
-  double tolerance = DeformRequest().tolerance;
-  ArapElements elements = ArapElements::Spokes;
   WriteOptions write;
 };
 
@@ -75,59 +75,88 @@ TransformSpec parse_transform(const DeformArguments& args) {
   return spec;
 }
 
+// The op flags as (option, value): the ones --op replaces.
+std::vector<std::pair<const char*, const std::string*>> op_flags(const DeformArguments& args) {
+  return {{"--method", &args.method},       {"--direction", &args.direction}, {"--scale", &args.scale},
+          {"--thicken", &args.thicken},     {"--shear", &args.shear},         {"--rotate", &args.rotate},
+          {"--twist", &args.twist},         {"--pin", &args.pin},             {"--handle", &args.handle},
+          {"--move", &args.move},           {"--iterations", &args.iterations},
+          {"--tolerance", &args.tolerance}, {"--elements", &args.elements}};
+}
+
+// --op FILE: the public op, parsed by the core (op.h) as the browser's is.
+SessionEdit edit_from_op_file(const DeformArguments& args) {
+  for (const auto& [option, value] : op_flags(args)) {
+    if (!value->empty()) {
+      fail(ErrorCode::BadParameter, std::string(option) + " cannot be combined with --op: the op file " +
+                                        args.op + " gives the whole edit");
+    }
+  }
+  const std::string text = read_text_file(args.op, "--op");
+  Json op;
+  try {
+    op = Json::parse(text);
+  } catch (const Json::parse_error& e) {
+    fail(ErrorCode::BadParameter, "--op: " + args.op + " is not valid JSON: " + e.what());
+  }
+  return naming_option("--op", [&] { return deform_op_from_json(op); });
+}
+
+// The flags as the same SessionEdit an op gives.
+SessionEdit edit_from_flags(const DeformArguments& args, DeformPlan& plan) {
+  SessionEdit edit;
+  DeformRequest& request = edit.request;
+  if (!args.method.empty()) request.method = naming_option("--method", [&] { return parse_method(args.method); });
+  request.transform = parse_transform(args);
+  edit.direction_given = !args.direction.empty();
+  if (edit.direction_given) {
+    const DirectionChoice choice = parse_direction(args.direction);
+    plan.direction_description = choice.description;
+    request.direction.kind = choice.kind;
+    request.direction.vector = choice.vector;
+    if (choice.kind == DirectionSource::Kind::Constraints) {
+      request.direction.constraints = naming_option("--direction", [&] {
+        return parse_direction_constraints(read_text_file(choice.field_path, "--direction"), choice.field_path);
+      });
+    }
+  }
+  if (!args.handle.empty() && request.method != Method::Arap) {
+    fail(ErrorCode::BadParameter, "--handle: handles are for --method arap (the anisotropic methods need none)");
+  }
+  if (!args.move.empty()) {
+    if (args.handle.empty()) fail(ErrorCode::BadParameter, "--move: needs --handle (the vertices to move)");
+    request.handle_offset = parse_vector3(args.move, "--move");
+  }
+  if (!args.iterations.empty()) {
+    const int iterations = parse_integer(args.iterations, "--iterations");
+    if (iterations < 1) fail(ErrorCode::BadParameter, "--iterations: must be at least 1, got " + args.iterations);
+    // One count for both: AnARAP iterates to the tolerance (capped) unless T
+    // has a rotational part, which has no fixed point and runs exactly this
+    // many steps instead (DeformRequest::rotation_steps).
+    request.max_iterations = iterations;
+    request.rotation_steps = iterations;
+  }
+  if (!args.tolerance.empty()) {
+    request.tolerance = parse_number(args.tolerance, "--tolerance");
+    if (request.tolerance < 0.0) fail(ErrorCode::BadParameter, "--tolerance: must be >= 0, got " + args.tolerance);
+  }
+  if (!args.elements.empty()) request.elements = parse_elements(args.elements);
+  return edit;
+}
+
 DeformPlan plan_deform(const DeformArguments& args) {
   DeformPlan plan;
-  plan.method = naming_option("--method", [&] { return parse_method(args.method); });
-  plan.transform = parse_transform(args);
+  plan.edit = args.op.empty() ? edit_from_flags(args, plan) : edit_from_op_file(args);
   plan.selection = naming_option("--select", [&] { return parse_region(args.select); });
   if (!args.falloff.empty()) {
     plan.falloff = parse_number(args.falloff, "--falloff");
     if (plan.falloff < 0.0) fail(ErrorCode::BadParameter, "--falloff: must be >= 0, got " + args.falloff);
   }
-  if (!args.direction.empty()) {
-    plan.direction = parse_direction(args.direction);
-    if (plan.direction->kind == DirectionSource::Kind::Constraints) {
-      const std::string& path = plan.direction->field_path;
-      plan.field_constraints = naming_option("--direction", [&] {
-        return parse_direction_constraints(read_text_file(path, "--direction"), path);
-      });
-    }
-  }
   if (!args.pin.empty()) plan.pins = naming_option("--pin", [&] { return parse_region(args.pin); });
-  if (!args.handle.empty()) {
-    if (plan.method != Method::Arap) {
-      fail(ErrorCode::BadParameter,
-           "--handle: handles are for --method arap (the anisotropic methods need none)");
-    }
-    plan.handles = naming_option("--handle", [&] { return parse_region(args.handle); });
-  }
-  if (!args.move.empty()) {
-    if (!plan.handles) fail(ErrorCode::BadParameter, "--move: needs --handle (the vertices to move)");
-    plan.handle_offset = parse_vector3(args.move, "--move");
-  }
-  if (!args.iterations.empty()) {
-    plan.iterations = parse_integer(args.iterations, "--iterations");
-    if (*plan.iterations < 1) {
-      fail(ErrorCode::BadParameter, "--iterations: must be at least 1, got " + args.iterations);
-    }
-  }
-  if (!args.tolerance.empty()) {
-    plan.tolerance = parse_number(args.tolerance, "--tolerance");
-    if (plan.tolerance < 0.0) {
-      fail(ErrorCode::BadParameter, "--tolerance: must be >= 0, got " + args.tolerance);
-    }
-  }
-  if (!args.elements.empty()) plan.elements = parse_elements(args.elements);
+  if (!args.handle.empty()) plan.handles = naming_option("--handle", [&] { return parse_region(args.handle); });
   plan.write.binary = !args.ascii;
   return plan;
 }
-
-// The input mesh, made ready for the solver, and what was done to it.
-struct PreparedMesh {
-  Mesh mesh;
-  ReadReport read;
-  std::vector<std::string> warnings;
-};
 
 // Problems the solver works through (METHOD §2: clamped weights), worth telling.
 void warn_about_solvable_problems(const MeshReport& report, std::vector<std::string>& warnings) {
@@ -148,67 +177,26 @@ void warn_about_solvable_problems(const MeshReport& report, std::vector<std::str
   warn_count(report.unreferenced_vertices, "unreferenced vertex(es): left where they are");
 }
 
-PreparedMesh prepare_mesh(const std::string& path) {
-  ReadResult read = read_input_mesh(path);
-  PreparedMesh prepared{std::move(read.mesh), std::move(read.report), {}};
-  weld_if_soup(prepared.mesh, prepared.warnings);
-  const MeshReport report = check_mesh(prepared.mesh);
-  if (!report.solvable()) {
-    fail(ErrorCode::BadMesh, path + ": cannot deform this mesh: " + report.blocking_summary());
-  }
-  warn_about_solvable_problems(report, prepared.warnings);
-  return prepared;
+std::string echo_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
 }
 
-DirectionSource direction_source(const DirectionChoice& choice,
-                                 const std::vector<DirectionConstraint>& constraints) {
-  DirectionSource source;
-  source.kind = choice.kind;
-  source.vector = choice.vector;
-  source.constraints = constraints;
-  return source;
-}
-
-struct BuiltRequest {
-  DeformRequest request;
-  std::string direction_description;
-};
-
-BuiltRequest build_request(const DeformPlan& plan, const Mesh& mesh,
-                           std::vector<std::string>& warnings) {
-  BuiltRequest built;
-  DeformRequest& request = built.request;
-  request.method = plan.method;
-  request.weights = naming_option(
-      "--select", [&] { return selection_weights(mesh, plan.selection, plan.falloff); });
-  if (!(request.weights.array() > 0.0).any()) {
-    warnings.push_back("the selection holds no vertex: the mesh is left unchanged");
+// How an op's direction is echoed (flags echo their text as typed).
+std::string op_direction_description(const DirectionSource& source) {
+  switch (source.kind) {
+    case DirectionSource::Kind::Global:
+      return "global:" + echo_number(source.vector.x()) + "," + echo_number(source.vector.y()) + "," +
+             echo_number(source.vector.z());
+    case DirectionSource::Kind::CurvatureMin: return "curvature:min";
+    case DirectionSource::Kind::CurvatureMax: return "curvature:max";
+    case DirectionSource::Kind::Constraints:
+      return "field (" + std::to_string(source.constraints.size()) + " constraints)";
+    case DirectionSource::Kind::Screen: return "screen";
+    case DirectionSource::Kind::Dense: return "dense";
   }
-  const DirectionChoice direction =
-      plan.direction ? *plan.direction : longest_axis_direction(mesh);
-  request.direction = direction_source(direction, plan.field_constraints);
-  built.direction_description = direction.description;
-  request.transform = plan.transform;
-  if (request.transform.twist) {
-    request.transform.twist_origin = default_twist_origin(mesh.V, request.weights, request.transform.twist_axis);
-  }
-  if (plan.method == Method::Arap && !plan.transform.is_identity()) {
-    warnings.push_back("--method arap is isotropic ARAP with handles: the local transform "
-                       "(--scale, --shear, --rotate, --twist, --thicken) is not used");
-  }
-  if (plan.pins) request.pins = region_vertices(mesh, *plan.pins, "--pin");
-  if (plan.handles) request.handles = region_vertices(mesh, *plan.handles, "--handle");
-  request.handle_offset = plan.handle_offset;
-  request.elements = plan.elements;
-  if (plan.iterations) {
-    // One count for both: AnARAP iterates to the tolerance (capped) unless T
-    // has a rotational part, which has no fixed point and runs exactly this
-    // many steps instead (DeformRequest::rotation_steps).
-    request.max_iterations = *plan.iterations;
-    request.rotation_steps = *plan.iterations;
-  }
-  request.tolerance = plan.tolerance;
-  return built;
+  return "";
 }
 
 double max_displacement(const Positions& rest, const Positions& deformed) {
@@ -216,18 +204,47 @@ double max_displacement(const Positions& rest, const Positions& deformed) {
   return (deformed - rest).rowwise().norm().maxCoeff();
 }
 
-Json result_json(const DeformArguments& args, const PreparedMesh& prepared,
-                           const BuiltRequest& built, const DeformResult& result) {
-  return {
-      {"method", method_name(result.method)},
+int run_deform(const DeformArguments& args) {
+  DeformPlan plan = plan_deform(args);
+  check_output_path(args.output);
+
+  Session session;
+  const ReadReport read = load_into_session(session, args.input);
+  const Mesh& mesh = session.rest();
+  const SessionMeshInfo& info = session.info();
+  std::vector<std::string> warnings = info.notes;
+  warn_about_solvable_problems(info.report, warnings);
+
+  const int selected = naming_option(
+      "--select", [&] { return session.select(plan.selection, plan.falloff, SelectionMode::Replace); });
+  if (selected == 0) warnings.push_back("the selection holds no vertex: the mesh is left unchanged");
+  SessionEdit& edit = plan.edit;
+  if (plan.pins) edit.request.pins = region_vertices(mesh, *plan.pins, "--pin");
+  if (plan.handles) edit.request.handles = region_vertices(mesh, *plan.handles, "--handle");
+  if (edit.request.method == Method::Arap && !edit.request.transform.is_identity()) {
+    warnings.push_back("--method arap is isotropic ARAP with handles: the local transform "
+                       "(--scale, --shear, --rotate, --twist, --thicken) is not used");
+  }
+  // What the session will solve, for the counts echoed below.
+  const DeformRequest resolved = resolve_edit(edit, mesh.V, info.report.bbox, session.selection());
+  const SessionEditResult result = session.deform(edit);
+
+  write_mesh(args.output, Mesh{session.positions(), mesh.F}, plan.write);
+  std::string direction = plan.direction_description;
+  if (direction.empty()) {
+    direction = edit.direction_given ? op_direction_description(edit.request.direction)
+                                     : longest_axis_description(info.report.bbox);
+  }
+  print_json({
+      {"method", method_name(edit.request.method)},
       {"input", args.input},
       {"output", args.output},
-      {"vertices", prepared.mesh.num_vertices()},
-      {"triangles", prepared.mesh.num_triangles()},
+      {"vertices", mesh.num_vertices()},
+      {"triangles", mesh.num_triangles()},
       {"selected", result.selected},
-      {"direction", built.direction_description},
-      {"pins", built.request.pins.size()},
-      {"handles", built.request.handles.size()},
+      {"direction", direction},
+      {"pins", resolved.pins.size()},
+      {"handles", resolved.handles.size()},
       {"iterations", result.iterations},
       {"converged", result.converged},
       {"energy", result.energy},
@@ -237,24 +254,10 @@ Json result_json(const DeformArguments& args, const PreparedMesh& prepared,
       {"factorizations", result.factorizations},
       {"precompute_ms", result.precompute_ms},
       {"solve_ms", result.solve_ms},
-      {"max_displacement", max_displacement(prepared.mesh.V, result.V)},
-      {"warnings", prepared.warnings},
-      {"read", to_json(prepared.read)},
-  };
-}
-
-int run_deform(const DeformArguments& args) {
-  const DeformPlan plan = plan_deform(args);
-  check_output_path(args.output);
-
-  PreparedMesh prepared = prepare_mesh(args.input);
-  const BuiltRequest built = build_request(plan, prepared.mesh, prepared.warnings);
-
-  Deformer deformer(prepared.mesh);
-  const DeformResult result = deformer.deform(built.request);
-
-  write_mesh(args.output, Mesh{result.V, prepared.mesh.F}, plan.write);
-  print_json(result_json(args, prepared, built, result));
+      {"max_displacement", max_displacement(mesh.V, session.positions())},
+      {"warnings", warnings},
+      {"read", to_json(read)},
+  });
   return kExitSuccess;
 }
 
@@ -275,6 +278,12 @@ void add_deform_options(CLI::App& deform, DeformArguments& args) {
                     "Output mesh; its extension sets the format (unknown, or no such directory: exit 2; "
                     "a failed write: exit 3, an existing OUT left unchanged)")
       ->required();
+  deform.add_option("--op", args.op,
+                    "The edit as the public op, a JSON object (the browser API's and the edit "
+                    "document's: method, direction, transform, pins, handles, move, elements, "
+                    "maxIterations, rotationSteps, tolerance); replaces the edit's flags (--method "
+                    "... --elements), which are refused beside it. --select and --falloff still apply")
+      ->type_name("FILE.json");
   deform.add_option("--method", args.method, "anarap | andefgrad | arap | linear (default anarap)")
       ->type_name("NAME");
   deform.add_option("--select", args.select, "Region to edit (default all); see REGION forms")
@@ -305,7 +314,9 @@ void add_deform_options(CLI::App& deform, DeformArguments& args) {
       ->type_name("X,Y,Z:DEGREES_PER_UNIT");
   deform.add_option("--pin", args.pin, "Vertices held at their rest positions")
       ->type_name("REGION");
-  deform.add_option("--handle", args.handle, "Vertices moved by --move and held (--method arap)")
+  deform.add_option("--handle", args.handle,
+                    "Vertices moved by --move and held (--method arap; default: the fully selected "
+                    "vertices, with the unselected ones pinned unless --pin is given)")
       ->type_name("REGION");
   deform.add_option("--move", args.move, "Offset of the --handle vertices")->type_name("DX,DY,DZ");
   deform.add_option("--iterations", args.iterations,

@@ -14,6 +14,7 @@
 
 #include "anisoform/direction_field.h"
 #include "anisoform/flatten.h"
+#include "anisoform/op.h"
 #include "anisoform/pattern_export.h"
 #include "cli_common.h"
 #include "commands.h"
@@ -41,13 +42,9 @@ enum class PatternFormat { Obj, Svg, Dxf };
 struct FlattenPlan {
   PatternFormat format = PatternFormat::Obj;
   Region selection;
-  double su = 1.0;
-  double sv = 1.0;
-  std::optional<DirectionChoice> direction;  // none: the mesh's longest axis
-  std::vector<DirectionConstraint> field_constraints;
-  FlattenMethod method = FlattenMethod::Anisotropic;
+  SessionFlatten request;            // the Session's request; its options are built by the core
+  std::string direction_description; // empty: the mesh's longest axis
   double mm_per_unit = 1.0;
-  ArapFlattenSettings solver;
 };
 
 std::string lowercase_extension(const std::string& path) {
@@ -89,17 +86,22 @@ FlattenPlan plan_flatten(const FlattenArguments& args) {
     if (amounts.empty() || amounts.size() > 2) {
       fail(ErrorCode::BadParameter, "--compress: expected SU or SU,SV, got '" + args.compress + "'");
     }
-    plan.su = amounts[0];
-    plan.sv = amounts.size() > 1 ? amounts[1] : 1.0;
+    plan.request.su = amounts[0];
+    if (amounts.size() > 1) plan.request.sv = amounts[1];
     // Their range is the core's rule (validate_scale, limits.h), checked by flatten().
   }
-  if (!args.direction.empty()) {
-    plan.direction = parse_direction(args.direction);
-    if (plan.direction->kind == DirectionSource::Kind::Constraints) {
-      const std::string& path = plan.direction->field_path;
-      plan.field_constraints =
-          parse_direction_constraints(read_text_file(path, "--direction"), path);
-    } else if (plan.direction->kind != DirectionSource::Kind::Global) {
+  plan.request.direction_given = !args.direction.empty();
+  if (plan.request.direction_given) {
+    const DirectionChoice direction = parse_direction(args.direction);
+    plan.direction_description = direction.description;
+    FlattenDirections& directions = plan.request.directions;
+    if (direction.kind == DirectionSource::Kind::Constraints) {
+      directions.kind = FlattenDirections::Kind::Constraints;
+      directions.constraints =
+          parse_direction_constraints(read_text_file(direction.field_path, "--direction"), direction.field_path);
+    } else if (direction.kind == DirectionSource::Kind::Global) {
+      directions.global = direction.vector;
+    } else {
       fail(ErrorCode::BadParameter,
            "--direction: flatten takes global:X,Y,Z or field:PATH, got '" + args.direction + "'");
     }
@@ -108,41 +110,22 @@ FlattenPlan plan_flatten(const FlattenArguments& args) {
     if (args.baseline != "uniform") {
       fail(ErrorCode::BadParameter, "--baseline: the one baseline is 'uniform', got '" + args.baseline + "'");
     }
-    plan.method = FlattenMethod::UniformBaseline;
+    plan.request.method = FlattenMethod::UniformBaseline;
   }
   if (!args.mm_per_unit.empty()) plan.mm_per_unit = positive_number(args.mm_per_unit, "--mm-per-unit");
   if (!args.iterations.empty()) {
-    plan.solver.max_iterations = parse_integer(args.iterations, "--iterations");
-    if (plan.solver.max_iterations < 1) {
+    plan.request.max_iterations = parse_integer(args.iterations, "--iterations");
+    if (plan.request.max_iterations < 1) {
       fail(ErrorCode::BadParameter, "--iterations: must be at least 1, got " + args.iterations);
     }
   }
   if (!args.tolerance.empty()) {
-    plan.solver.tolerance = parse_number(args.tolerance, "--tolerance");
-    if (plan.solver.tolerance < 0.0) {
+    plan.request.tolerance = parse_number(args.tolerance, "--tolerance");
+    if (plan.request.tolerance < 0.0) {
       fail(ErrorCode::BadParameter, "--tolerance: must be >= 0, got " + args.tolerance);
     }
   }
   return plan;
-}
-
-struct FlattenInput {
-  Mesh mesh;
-  std::vector<std::string> warnings;
-};
-
-FlattenInput prepare_flatten_input(const std::string& path) {
-  FlattenInput prepared{read_input_mesh(path).mesh, {}};
-  weld_if_soup(prepared.mesh, prepared.warnings);
-  const MeshReport report = check_mesh(prepared.mesh);
-  if (!report.solvable()) {
-    fail(ErrorCode::BadMesh, path + ": cannot flatten this mesh: " + report.blocking_summary());
-  }
-  if (report.unreferenced_vertices > 0) {
-    prepared.warnings.push_back(std::to_string(report.unreferenced_vertices) +
-                                " unreferenced vertex(es): not part of the pattern");
-  }
-  return prepared;
 }
 
 // Selected vertices as a mask (empty: everything).
@@ -154,21 +137,22 @@ std::vector<char> selection_mask(const Mesh& mesh, const Region& region) {
   return mask;
 }
 
-std::string short_number(double value) {
+std::string pattern_number(double value) {
   char text[32];
   std::snprintf(text, sizeof text, "%g", value);
   return text;
 }
 
 std::string pattern_note(const FlattenPlan& plan, const std::string& direction) {
-  std::string note = plan.method == FlattenMethod::UniformBaseline ? "uniform baseline" : "anisotropic";
-  note += ", su " + short_number(plan.su) + " sv " + short_number(plan.sv);
+  const SessionFlatten& request = plan.request;
+  std::string note = request.method == FlattenMethod::UniformBaseline ? "uniform baseline" : "anisotropic";
+  note += ", su " + pattern_number(request.su) + " sv " + pattern_number(request.sv);
   note += ", direction " + direction + "; grainline = mean compression direction";
   return note;
 }
 
 nlohmann::json result_json(const FlattenArguments& args, const FlattenPlan& plan,
-                           const std::string& direction, const FlattenInput& prepared,
+                           const std::string& direction, const std::vector<std::string>& warnings,
                            const FlattenResult& result) {
   const FlattenMetrics& m = result.metrics;
   nlohmann::json grainlines = nlohmann::json::array();
@@ -182,8 +166,8 @@ nlohmann::json result_json(const FlattenArguments& args, const FlattenPlan& plan
       {"components", m.components},
       {"boundary_loops", m.boundary_loops},
       {"flipped", m.flipped},
-      {"su", plan.su},
-      {"sv", plan.sv},
+      {"su", plan.request.su},
+      {"sv", plan.request.sv},
       {"direction", direction},
       {"compression_error_mean", m.compression_error_mean},
       {"compression_error_max", m.compression_error_max},
@@ -198,33 +182,31 @@ nlohmann::json result_json(const FlattenArguments& args, const FlattenPlan& plan
       {"grainline", grainlines},
       {"mm_per_unit", plan.mm_per_unit},
       {"seconds", m.seconds},
-      {"warnings", prepared.warnings},
+      {"warnings", warnings},
   };
 }
 
 int run_flatten(const FlattenArguments& args) {
   const FlattenPlan plan = plan_flatten(args);
-  const FlattenInput prepared = prepare_flatten_input(args.input);
-  const std::vector<char> mask = selection_mask(prepared.mesh, plan.selection);
-
-  const DirectionChoice direction =
-      plan.direction ? *plan.direction : longest_axis_direction(prepared.mesh);
-  FlattenOptions options;
-  options.method = plan.method;
-  options.su = plan.su;
-  options.sv = plan.sv;
-  options.solver = plan.solver;
-  if (direction.kind == DirectionSource::Kind::Constraints) {
-    options.directions.kind = FlattenDirections::Kind::Constraints;
-    options.directions.constraints = plan.field_constraints;
-  } else {
-    options.directions.global = direction.vector;
+  Session session;
+  load_into_session(session, args.input);
+  const Mesh& mesh = session.rest();
+  std::vector<std::string> warnings = session.info().notes;
+  if (session.info().report.unreferenced_vertices > 0) {
+    warnings.push_back(std::to_string(session.info().report.unreferenced_vertices) +
+                       " unreferenced vertex(es): not part of the pattern");
   }
-  const FlattenOutput flattened = flatten(prepared.mesh, mask, options);
+  const std::vector<char> mask = selection_mask(mesh, plan.selection);
+
+  // The one-shot flatten (its patch is written out), with the Session's request rules.
+  const SessionFlatten request = resolve_flatten(plan.request, mesh.V);
+  const std::string direction =
+      plan.direction_description.empty() ? longest_axis_description(bounding_box(mesh.V)) : plan.direction_description;
+  const FlattenOutput flattened = flatten(mesh, mask, flatten_options(request));
 
   PatternExportOptions pattern_options;
   pattern_options.mm_per_unit = plan.mm_per_unit;
-  pattern_options.note = pattern_note(plan, direction.description);
+  pattern_options.note = pattern_note(plan, direction);
   switch (plan.format) {
     case PatternFormat::Obj:
       write_file_atomically(args.output, write_obj_with_uv(flattened.patch.mesh, flattened.result.uv));
@@ -238,7 +220,7 @@ int run_flatten(const FlattenArguments& args) {
                  write_pattern_dxf(make_pattern(flattened.patch, flattened.result), pattern_options));
       break;
   }
-  print_json(result_json(args, plan, direction.description, prepared, flattened.result));
+  print_json(result_json(args, plan, direction, warnings, flattened.result));
   return kExitSuccess;
 }
 

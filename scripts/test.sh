@@ -41,6 +41,9 @@ ctest --test-dir build-asan -j"$JOBS" --output-on-failure --timeout 600
 stage "WASM build (emcmake)"
 bash scripts/build-wasm.sh
 
+stage "type declarations (tsc: the page API built on the module's one contract)"
+npm run check:types --prefix web
+
 stage "WASM tests (node --test)"
 ANISO_CLI="$ROOT/build-asan/cli/anisoform" node --test wasm/test/
 

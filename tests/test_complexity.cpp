@@ -12,7 +12,7 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
-#include "anisoform/frames.h"
+#include "geometry/frames.h"
 #include "anisoform/mesh_check.h"
 #include "anisoform/mesh_io.h"
 #include "cli_runner.h"

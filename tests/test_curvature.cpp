@@ -11,10 +11,10 @@
 
 #include <Eigen/Dense>
 
-#include "anisoform/curvature.h"
+#include "directions/curvature.h"
 #include "anisoform/error.h"
-#include "anisoform/frames.h"
-#include "anisoform/topology.h"
+#include "geometry/frames.h"
+#include "mesh/topology.h"
 #include "test_support.h"
 
 namespace {

@@ -14,7 +14,7 @@
 
 #include "anisoform/direction_field.h"
 #include "anisoform/error.h"
-#include "anisoform/frames.h"
+#include "geometry/frames.h"
 #include "anisoform/laplacian.h"
 #include "test_support.h"
 

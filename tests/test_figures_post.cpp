@@ -13,7 +13,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "anisoform/selection.h"
-#include "anisoform/topology.h"
+#include "mesh/topology.h"
 #include "solver_test_support.h"
 #include "test_support.h"
 
@@ -156,7 +156,7 @@ TEST_CASE("fig. 4: shearing the top of the spool along y moves it along the shea
     for (double h : {0.5, -0.5}) {
       DeformRequest request;
       request.method = method;
-      request.weights = w;
+      request.selection = w;
       request.direction.vector = Eigen::Vector3d::Unit(side);
       request.transform.shear = h;
       const DeformResult r = deformer.deform(request);
@@ -215,7 +215,7 @@ TEST_CASE("fig. 5: rotating the spool's top elements about z bends it into a hoo
       // together they turn the top about z, bending it sideways.
       DeformRequest request;
       request.method = method;
-      request.weights = w;
+      request.selection = w;
       request.direction.vector = Eigen::Vector3d::UnitZ();
       request.transform.rotate_axis = RotateAxis::U;
       request.transform.rotate_degrees = theta;
@@ -334,7 +334,7 @@ TEST_CASE("fig. 6: a twist of the spool's top with a geodesic falloff: k per uni
   Deformer deformer(mesh);
   for (Method method : {Method::AnDefGrad, Method::AnArap}) {
     DeformRequest request = spool_twist(method, mesh, k, level);
-    request.weights = w;
+    request.selection = w;
     const DeformResult r = deformer.deform(request);
     const RingTurns t = spool_ring_turns(mesh, r.V, rings, w);
     RingTurns full;
@@ -387,7 +387,7 @@ TEST_CASE("fig. 7: a local stretch of the spool's top follows its direction and 
   Deformer deformer(mesh);
   for (Method method : {Method::AnDefGrad, Method::AnArap}) {
     DeformRequest request = test::stretch_request(method, Eigen::Vector3d::UnitY(), 1.4);
-    request.weights = w;
+    request.selection = w;
     const DeformResult r = deformer.deform(request);
     const double along = ring_extent(r.V, top, 1) / ring_extent(mesh.V, top, 1);
     const double across = ring_extent(r.V, top, 2) / ring_extent(mesh.V, top, 2);
@@ -416,7 +416,7 @@ TEST_CASE("fig. 7: a local rotation of the spool's top turns it about the chosen
     for (int axis : {2, 1}) {  // rotate about z, then about y
       DeformRequest request;
       request.method = method;
-      request.weights = w;
+      request.selection = w;
       request.direction.vector = Eigen::Vector3d::Unit(axis);
       request.transform.rotate_axis = RotateAxis::U;
       request.transform.rotate_degrees = 30.0;

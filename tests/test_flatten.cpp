@@ -21,7 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "anisoform/error.h"
-#include "anisoform/flatten.h"
+#include "flatten/flatten_pipeline.h"
 #include "cli_runner.h"
 #include "test_support.h"
 
@@ -425,14 +425,9 @@ namespace {
 using test::CliRun;
 using test::run_cli;
 using test::slurp;
+using test::count_of;
 
 std::string temp_file(const std::string& name) { return test::temp_path("flatten_" + name); }
-
-int count_of(const std::string& text, const std::string& part) {
-  int count = 0;
-  for (std::size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++count;
-  return count;
-}
 
 }  // namespace
 

@@ -3,8 +3,8 @@
 
 #include <Eigen/Geometry>
 
-#include "anisoform/frames.h"
-#include "anisoform/topology.h"
+#include "geometry/frames.h"
+#include "mesh/topology.h"
 #include "test_support.h"
 
 using namespace aniso;

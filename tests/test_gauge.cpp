@@ -15,7 +15,7 @@ TEST_CASE("gauge: unselected parts stay where they were", "[gauge]") {
   Deformer deformer(mesh);
   for (Method method : {Method::AnArap, Method::AnDefGrad}) {
     DeformRequest request = test::stretch_request(method, Eigen::Vector3d::UnitX(), 1.4);
-    request.weights = w;
+    request.selection = w;
     const DeformResult r = deformer.deform(request);
     double far_motion = 0.0;
     int far = 0;
@@ -38,7 +38,7 @@ TEST_CASE("gauge: each component of a multi-part mesh is solved and kept in plac
   Eigen::VectorXd w(mesh.num_vertices());
   for (int i = 0; i < mesh.num_vertices(); ++i) w[i] = mesh.V(i, 0) > 1.2 ? 1.0 : 0.0;
   DeformRequest request = test::stretch_request(Method::AnArap, Eigen::Vector3d::UnitY(), 1.3);
-  request.weights = w;
+  request.selection = w;
   const DeformResult r = deformer.deform(request);
   double untouched = 0.0, moved = 0.0;
   for (int i = 0; i < mesh.num_vertices(); ++i) {
@@ -67,12 +67,12 @@ TEST_CASE("deformer: bad requests are refused with the problem named, and the se
   const Mesh mesh = test::load("closed/spool.off");
   Deformer deformer(mesh);
   DeformRequest request = test::stretch_request(Method::AnArap, Eigen::Vector3d::UnitX(), 1.2);
-  request.weights = Eigen::VectorXd::Constant(5, 1.0);
+  request.selection = Eigen::VectorXd::Constant(5, 1.0);
   CHECK_THROWS_WITH(deformer.deform(request), Catch::Contains("5 weights") && Catch::Contains("649"));
-  request.weights = Eigen::VectorXd::Constant(mesh.num_vertices(), 1.0);
-  request.weights[17] = 1.5;
+  request.selection = Eigen::VectorXd::Constant(mesh.num_vertices(), 1.0);
+  request.selection[17] = 1.5;
   CHECK_THROWS_WITH(deformer.deform(request), Catch::Contains("vertex 17"));
-  request.weights[17] = 1.0;
+  request.selection[17] = 1.0;
   request.pins = {100000};
   CHECK_THROWS_WITH(deformer.deform(request), Catch::Contains("100000"));
   request.pins.clear();

@@ -5,8 +5,8 @@
 #include <Eigen/SparseCholesky>
 
 #include "anisoform/laplacian.h"
-#include "anisoform/laplacian_solver.h"
-#include "anisoform/topology.h"
+#include "geometry/laplacian_solver.h"
+#include "mesh/topology.h"
 #include "test_support.h"
 
 using namespace aniso;

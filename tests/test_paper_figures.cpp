@@ -5,10 +5,10 @@
 #include <cmath>
 #include <map>
 
-#include "anisoform/curvature.h"
-#include "anisoform/frames.h"
+#include "directions/curvature.h"
+#include "geometry/frames.h"
 #include "anisoform/selection.h"
-#include "anisoform/topology.h"
+#include "mesh/topology.h"
 #include "solver_test_support.h"
 #include "test_support.h"
 
@@ -65,7 +65,7 @@ TEST_CASE("fig. 2: on a torus AnARAP spreads an elongation over the selection bo
   (void)center;
   Deformer deformer(mesh);
   DeformRequest request = test::stretch_request(Method::AnArap, along, 1.6);
-  request.weights = w;
+  request.selection = w;
   const DeformResult arap = deformer.deform(request);
   request.method = Method::AnDefGrad;
   const DeformResult defgrad = deformer.deform(request);
@@ -149,7 +149,7 @@ TEST_CASE("fig. 1: a quadruped's leg is elongated along its direction and the bo
   REQUIRE(w.sum() > 30);
   Deformer deformer(mesh);
   DeformRequest request = test::stretch_request(Method::AnArap, Eigen::Vector3d::Unit(up_axis), 1.5);
-  request.weights = w;
+  request.selection = w;
   const DeformResult r = deformer.deform(request);
   // The leg's vertical extent grows ...
   double rest_lo = 1e9, rest_hi = -1e9, new_lo = 1e9, new_hi = -1e9;
@@ -217,7 +217,7 @@ TEST_CASE("fig. 10: a stretch along a field bent upwards at its ends lifts the e
     }
     DeformRequest request;
     request.method = Method::AnArap;
-    request.weights = w;
+    request.selection = w;
     request.direction.kind = DirectionSource::Kind::Dense;
     request.direction.dense = field;
     request.transform.su = 1.3;

@@ -17,6 +17,7 @@ namespace {
 
 using namespace aniso;
 
+using aniso::test::count_of;
 using aniso::test::kPi;
 
 // A flat annulus (two boundary loops) in the plane z = 0, radii 1 and 2.
@@ -52,12 +53,6 @@ Mesh two_annuli() {
   both.F.resize(left.num_triangles() * 2, 3);
   both.F << left.F, (right.F.array() + left.num_vertices()).matrix();
   return both;
-}
-
-int count_of(const std::string& text, const std::string& part) {
-  int count = 0;
-  for (std::size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++count;
-  return count;
 }
 
 // A small XML well-formedness scan: every element opened is closed in order,

@@ -2,8 +2,8 @@
 // real mesh has the needed shape.
 #include <catch2/catch.hpp>
 
-#include "anisoform/andefgrad.h"
-#include "anisoform/laplacian_solver.h"
+#include "deform/andefgrad.h"
+#include "geometry/laplacian_solver.h"
 #include "solver_test_support.h"
 #include "test_support.h"
 
@@ -114,7 +114,7 @@ TEST_CASE("solvers: rotating and translating the input rotates and translates th
   }
   for (Method method : {Method::AnArap, Method::AnDefGrad}) {
     DeformRequest request = test::stretch_request(method, Eigen::Vector3d(1, 0.3, 0), 1.6);
-    request.weights = w;
+    request.selection = w;
     request.tolerance = 1e-10;
     Deformer original(mesh), transformed(moved);
     const DeformResult a = original.deform(request);
@@ -133,7 +133,7 @@ TEST_CASE("anarap: the energy decreases monotonically over the iterations", "[so
   Eigen::VectorXd w = Eigen::VectorXd::Zero(mesh.num_vertices());
   const double zmid = 0.5 * (mesh.V.col(2).maxCoeff() + mesh.V.col(2).minCoeff());
   for (int i = 0; i < mesh.num_vertices(); ++i) w[i] = mesh.V(i, 2) > zmid ? 1.0 : 0.0;
-  request.weights = w;
+  request.selection = w;
   request.tolerance = 0.0;
   request.max_iterations = 30;
   for (ArapElements elements : {ArapElements::Spokes, ArapElements::SpokesAndRims}) {
@@ -169,8 +169,8 @@ TEST_CASE("solvers: a new selection does not refactor", "[solver][method9]") {
   Deformer deformer(mesh);
   DeformRequest request = test::stretch_request(Method::AnArap, Eigen::Vector3d::UnitX(), 1.3);
   for (int part = 0; part < 3; ++part) {
-    request.weights = Eigen::VectorXd::Zero(mesh.num_vertices());
-    for (int i = part * 500; i < part * 500 + 400; ++i) request.weights[i] = 1.0;
+    request.selection = Eigen::VectorXd::Zero(mesh.num_vertices());
+    for (int i = part * 500; i < part * 500 + 400; ++i) request.selection[i] = 1.0;
     CHECK(deformer.deform(request).factorizations == 1);
   }
 }

@@ -29,6 +29,13 @@ CliRun run_cli_expecting(const std::vector<std::string>& args, int expected_exit
 // A whole file as bytes ("" if it cannot be read).
 std::string slurp(const std::string& path);
 
+// How often `part` occurs in `text` (overlapping occurrences counted).
+inline int count_of(const std::string& text, const std::string& part) {
+  int count = 0;
+  for (std::size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++count;
+  return count;
+}
+
 // The message of the aniso::Error that `call` throws; fails the test if it
 // throws nothing or an error with another code.
 template <typename Call>

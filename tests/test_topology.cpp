@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "anisoform/topology.h"
+#include "mesh/topology.h"
 #include "test_support.h"
 
 using aniso::Mesh;

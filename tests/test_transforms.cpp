@@ -45,7 +45,7 @@ TEST_CASE("transforms: shear moves cv along cu by h (paper eq. 7)", "[transforms
   CHECK((T * cu - cu).norm() < 1e-14);
   CHECK((T * cv - (cv + 0.3 * cu)).norm() < 1e-14);
   CHECK((T * n - n).norm() < 1e-14);
-  CHECK(spec.has_rotation());  // a shear has a rotational polar part
+  CHECK(spec.has_rotational_part());  // a shear has a rotational polar part
 }
 
 TEST_CASE("transforms: rotation about n, cu or cv turns the frame by the angle (paper eq. 8)", "[transforms]") {

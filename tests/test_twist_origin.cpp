@@ -58,7 +58,7 @@ TEST_CASE("twist origin: the default keeps a twisted part's centroid line in pla
         region.min = Eigen::Vector3d(0.0, -1.0, -1.0);
         region.max = Eigen::Vector3d(1.0, 1.0, 1.0);
       }
-      request.weights = selection_weights(mesh, region, falloff);
+      request.selection = selection_weights(mesh, region, falloff);
       request.transform.twist = true;
       request.transform.twist_axis = axis;
       // ~47 deg end to end. The slab centroids sit ~1.5e-3 off the centroid
@@ -66,7 +66,7 @@ TEST_CASE("twist origin: the default keeps a twisted part's centroid line in pla
       // with the angle: 1.2e-3 here for AnDefGrad; the old default (the lowest
       // vertex, on the rim) drifted 0.32 (AnDefGrad) and 0.16 (AnARAP).
       request.transform.twist_degrees_per_unit = 90.0;
-      request.transform.twist_origin = default_twist_origin(mesh.V, request.weights, axis);
+      request.transform.twist_origin = default_twist_origin(mesh.V, request.selection, axis);
       const DeformResult result = deformer.deform(request);
       const double drift = centroid_line_drift(mesh.V, result.V);
       INFO(method_name(method) << " falloff " << falloff);

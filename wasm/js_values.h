@@ -1,8 +1,7 @@
-// Reading the core's request structs from the plain JS objects that the JS
-// layer (js/anisoform-wasm.mjs) builds. The JS layer checks the user's input
-// and fills in every field, so these readers only guard against a field that
-// is missing or of the wrong type (Error(BadParameter) naming it) and never
-// apply defaults of their own: there is one place for those.
+// The bulk arguments of the bindings, read from JS arrays and typed arrays:
+// mesh bytes, positions, weights and triangle corners. Requests (ops, regions,
+// directions, options) do not come this way: they arrive as JSON text and are
+// parsed by the core (anisoform/op.h).
 #pragma once
 
 #include <cstdint>
@@ -11,31 +10,7 @@
 
 #include <emscripten/val.h>
 
-#include "anisoform/selection.h"
-#include "anisoform/session.h"
-
 namespace aniso::wasm {
-
-// request: {method, direction, transform, pins, handles, move, elements,
-//           maxIterations, rotationSteps, tolerance, warmStart, preview}, as documented in
-// js/anisoform-wasm.mjs (normalizeOp).
-SessionEdit edit_from_js(const emscripten::val& request);
-
-// request: {useSelection, su, sv, direction: {kind: 'global'|'constraints', vector,
-//           constraints}, method: 'anisotropic'|'uniform-baseline', maxIterations,
-//           tolerance}, as built by js/anisoform-wasm.mjs (normalizeFlatten).
-SessionFlatten flatten_from_js(const emscripten::val& request);
-
-// direction: {kind, vector, constraints, screen, dense, smoothing}.
-DirectionSource direction_from_js(const emscripten::val& direction);
-
-// region: {kind: 'all'|'box'|'sphere'|'vertices', min, max, center, radius,
-//          vertices, weights}.
-Region region_from_js(const emscripten::val& region);
-
-SelectionMode selection_mode_from_js(const std::string& mode);
-DistortionKind distortion_kind_from_js(const std::string& kind);
-DistortionReference distortion_reference_from_js(const std::string& reference);
 
 // Indices (vertices, pins, handles, triangle corners) from a JS array or
 // typed array, each checked to be an integer Number in [0, max of Index]

@@ -21,14 +21,19 @@ export const wasmDir = path.resolve(process.env.ANISO_WASM_DIR ?? path.join(repo
 export const sharedDir = path.resolve(process.env.ANISO_SHARED_DIR ?? path.join(repoDir, '..', 'shared'));
 export const meshesDir = path.join(sharedDir, 'meshes');
 
-// {wasm: {Session, LaplacianFloor, cappedCylinder}, AnisoformError}
-export async function loadAnisoform() {
-  const layer = path.join(wasmDir, 'anisoform-wasm.mjs');
+// {wasm: {Session, memoryUse}, AnisoformError}: the shipped module; with
+// {bench: true} the benchmarks' build, which adds LaplacianFloor and
+// cappedCylinder (js/anisoform-bench-wasm.mjs).
+export async function loadAnisoform({ bench = false } = {}) {
+  const [layerName, binaryName, create] = bench
+    ? ['anisoform-bench-wasm.mjs', 'anisoform-bench.wasm', 'createAnisoformBenchWasm']
+    : ['anisoform-wasm.mjs', 'anisoform.wasm', 'createAnisoformWasm'];
+  const layer = path.join(wasmDir, layerName);
   if (!existsSync(layer)) {
     throw new Error(`${layer} does not exist: build the WASM module first, or set ANISO_WASM_DIR`);
   }
-  const { createAnisoformWasm, AnisoformError } = await import(pathToFileURL(layer).href);
-  const wasm = await createAnisoformWasm({ wasmBinary: readFileSync(path.join(wasmDir, 'anisoform.wasm')) });
+  const { [create]: createWasm, AnisoformError } = await import(pathToFileURL(layer).href);
+  const wasm = await createWasm({ wasmBinary: readFileSync(path.join(wasmDir, binaryName)) });
   return { wasm, AnisoformError };
 }
 

@@ -1,6 +1,9 @@
-// Type declarations of the Anisoform WASM JS layer (anisoform-wasm.mjs).
-// Hand-written; keep them in step with the .mjs and wasm/CONTRACT.md.
-
+// Type declarations of the Anisoform WASM JS layer (anisoform-wasm.mjs): the
+// one contract of the module. Every request object below is parsed by the
+// core (core/include/anisoform/op.h); an interface tagged `@schema PATH`
+// declares exactly the keys the core accepts at PATH, which
+// wasm/test/contract.test.mjs checks against the core's op_schema(). Defaults
+// named here are the core's (the C++ structs' initializers).
 export type ErrorCode = 'bad-parameter' | 'bad-mesh' | 'bad-file' | 'numerical' | 'out-of-memory' | 'internal';
 
 /** Every failure of the module: a code and a message that names the problem. */
@@ -13,22 +16,6 @@ export class AnisoformError extends Error {
 export type Vec2 = [number, number];
 export type Vec3 = [number, number, number];
 type Numbers = ArrayLike<number>;
-
-export const DEFAULTS: Readonly<{
-  method: 'anarap';
-  maxIterations: 50;
-  rotationSteps: 1;
-  tolerance: 1e-6;
-  curvatureSmoothing: 10;
-  elements: 'spokes';
-}>;
-
-export const FLATTEN_DEFAULTS: Readonly<{
-  compress: readonly [1, 1];
-  patch: 'mesh';
-  maxIterations: 500;
-  tolerance: 1e-8;
-}>;
 
 export type ProblemKind =
   | 'empty-mesh' | 'non-finite-coordinate' | 'index-out-of-range' | 'repeated-corner'
@@ -62,12 +49,29 @@ export interface MeshInfo {
   notes: string[];
 }
 
-export type Region =
-  | { all: true }
-  | { sphere: { center: Vec3 | Numbers; radius: number } }
-  | { box: { min: Vec3 | Numbers; max: Vec3 | Numbers } }
-  | { vertices: Numbers; weights?: Numbers };
+/** @schema region.sphere */
+export interface Sphere {
+  center: Vec3 | Numbers;
+  radius: number;
+}
 
+/** @schema region.box */
+export interface Box {
+  min: Vec3 | Numbers;
+  max: Vec3 | Numbers;
+}
+
+/** @schema region.vertices */
+export interface VertexRegion {
+  vertices: Numbers;
+  /** One weight in [0, 1] per listed vertex (default 1). */
+  weights?: Numbers;
+}
+
+/** @schema region */
+export type Region = { all: true } | { sphere: Sphere } | { box: Box } | VertexRegion;
+
+/** @schema select */
 export interface SelectOptions {
   /** Soft border width in model units, measured along edges (default 0). */
   falloff?: number;
@@ -75,6 +79,7 @@ export interface SelectOptions {
   mode?: 'replace' | 'add' | 'subtract';
 }
 
+/** @schema direction.screen.camera */
 export interface ScreenCamera {
   /** World -> camera, column-major (three.js camera.matrixWorldInverse.elements). */
   view: Numbers;
@@ -86,36 +91,92 @@ export interface ScreenCamera {
   anchor: Vec3 | Numbers;
 }
 
-export type Direction =
-  | { type: 'global'; vector: Vec3 | Numbers }
-  | { type: 'curvature'; which: 'min' | 'max'; /** line-field smoothing steps, default 10 */ smoothing?: number }
-  | { type: 'screen'; /** pixels, y down */ from: Vec2 | Numbers; to: Vec2 | Numbers; camera: ScreenCamera }
-  | { type: 'constraints'; constraints: Array<{ vertex: number; direction: Vec3 | Numbers; su?: number; sv?: number }> }
-  | { type: 'dense'; /** #V*3 directions, used as given (projected per element) */ directions: Float32Array | number[] };
+/** @schema direction.global */
+export interface GlobalDirection {
+  type: 'global';
+  vector: Vec3 | Numbers;
+}
 
+/** @schema direction.curvature */
+export interface CurvatureDirection {
+  type: 'curvature';
+  which: 'min' | 'max';
+  /** Line-field smoothing steps, 0..1000 (default 10). */
+  smoothing?: number;
+}
+
+/** @schema direction.screen */
+export interface ScreenDirection {
+  type: 'screen';
+  /** Pixels, y down. */
+  from: Vec2 | Numbers;
+  to: Vec2 | Numbers;
+  camera: ScreenCamera;
+}
+
+/** @schema direction.constraint */
+export interface DirectionConstraint {
+  vertex: number;
+  direction: Vec3 | Numbers;
+  /** Local amounts (both default 1); if every constraint has them they spread harmonically. */
+  su?: number;
+  sv?: number;
+}
+
+/** @schema direction.constraints */
+export interface ConstraintsDirection {
+  type: 'constraints';
+  constraints: DirectionConstraint[];
+}
+
+/** @schema direction.dense */
+export interface DenseDirection {
+  type: 'dense';
+  /** #V*3 directions, used as given (projected per element). */
+  directions: Float32Array | number[];
+}
+
+/** @schema direction.type */
+export type Direction = GlobalDirection | CurvatureDirection | ScreenDirection | ConstraintsDirection | DenseDirection;
+
+/** @schema op.transform.rotate */
+export interface Rotate {
+  axis: 'n' | 'u' | 'v';
+  degrees: number;
+}
+
+/** @schema op.transform.twist */
+export interface Twist {
+  axis: Vec3 | Numbers;
+  degreesPerUnit: number;
+  /**
+   * The angle is 0 here (default: on the line through the selection's weighted centroid, at its
+   * lowest point along the axis).
+   */
+  origin?: Vec3 | Numbers;
+}
+
+/** @schema op.transform */
 export interface Transform {
   /** su, or [su, sv]: scale along the direction and across it (default 1). */
   scale?: number | [number] | [number, number];
   /** sn: scale along the normal (default 1). */
   thickness?: number;
   shear?: number;
-  rotate?: { axis: 'n' | 'u' | 'v'; degrees: number };
-  /**
-   * Twist about the axis line through `origin` along `axis`; the angle is 0 at `origin`
-   * (default: on the line through the selection's weighted centroid, at its lowest point along the axis).
-   */
-  twist?: { axis: Vec3 | Numbers; degreesPerUnit: number; origin?: Vec3 | Numbers };
+  rotate?: Rotate;
+  twist?: Twist;
 }
 
+/** @schema op */
 export interface DeformOp {
   /** default 'anarap' */
   method?: 'anarap' | 'andefgrad' | 'arap' | 'linear';
-  /** default: global, along the longest side of the bounding box */
+  /** default: global, along the longest side of the mesh's bounding box as loaded */
   direction?: Direction;
   transform?: Transform;
-  /** Vertices held at their rest positions. */
+  /** Vertices held at their rest positions ('arap' without handles: the unselected ones). */
   pins?: Numbers;
-  /** 'arap': vertices moved by `move` and held. */
+  /** 'arap': vertices moved by `move` and held (default: the fully selected ones, or all). */
   handles?: Numbers;
   move?: Vec3 | Numbers;
   /** AnARAP/ARAP energy elements, default 'spokes'. */
@@ -141,7 +202,7 @@ export interface DeformResult {
   iterations: number;
   energy: number;
   /** Energy after each iteration (AnARAP / ARAP; empty for AnDefGrad and linear). */
-  energyHistory: Float64Array;
+  energyHistory: number[];
   converged: boolean;
   /** Elements whose direction was parallel to the normal, filled from neighbours. */
   directionsFilled: number;
@@ -155,6 +216,7 @@ export interface DeformResult {
   ms: number;
 }
 
+/** @schema flatten */
 export interface FlattenOptions {
   /** Wanted stretch su along the direction and sv across it (default [1, 1]; 0.8 = 20 % shrinkage). */
   compress?: number | [number] | [number, number];
@@ -162,9 +224,7 @@ export interface FlattenOptions {
    * Where the wanted direction runs (default: global along the longest side of the current
    * positions' bounding box, as the CLI). Constraint amounts override `compress`.
    */
-  direction?:
-    | { type: 'global'; vector: Vec3 | Numbers }
-    | { type: 'constraints'; constraints: Array<{ vertex: number; direction: Vec3 | Numbers; su?: number; sv?: number }> };
+  direction?: GlobalDirection | ConstraintsDirection;
   /** 'uniform': the industry baseline (flatten isometrically, then scale each piece). */
   baseline?: 'uniform';
   /** 'mesh' (default): every triangle; 'selection': the triangles whose 3 vertices have weight > 0. */
@@ -225,12 +285,24 @@ export interface FlattenResult {
   factorizations: number;
 }
 
+/** @schema setMesh */
+export interface SetMeshOptions {
+  /** Merge vertices at equal positions (an unindexed three.js geometry); default false. A soup is welded anyway. */
+  weld?: boolean;
+}
+
+/** @schema exportPattern */
+export interface PatternOptions {
+  /** Millimetres per model unit (default 1). */
+  mmPerUnit?: number;
+}
+
 /** One editing session on the WASM heap. Call delete() when done. */
 export interface Session {
   /** Replaces the mesh; the format comes from `name`'s extension (.obj .off .ply .stl). On failure the session keeps its mesh. */
   loadMesh(bytes: Uint8Array | ArrayBuffer | ArrayBufferView, name: string): MeshInfo;
   /** Replaces the mesh from flat arrays; `weld` merges vertices at equal positions. */
-  setMesh(positions: Float32Array | Float64Array | number[], triangles: Uint32Array | number[], options?: { weld?: boolean }): MeshInfo;
+  setMesh(positions: Float32Array | Float64Array | number[], triangles: Uint32Array | number[], options?: SetMeshOptions): MeshInfo;
   info(): MeshInfo;
   /** VIEW on the WASM heap (xyz per vertex): fetch again after every call, copy to keep. */
   positions(): Float32Array;
@@ -242,7 +314,10 @@ export interface Session {
   setSelection(weights: Float32Array | number[]): number;
   /** VIEW on the WASM heap: one weight per vertex. */
   selection(): Float32Array;
-  /** Deforms FROM the rest pose; positions() then shows the result. */
+  /**
+   * Deforms FROM the rest pose with the current selection; positions() then shows the result.
+   * An empty selection leaves the mesh unchanged (selected: 0), as the CLI.
+   */
   deform(op: DeformOp): DeformResult;
   /** The current positions become the rest pose (the next edit starts here). */
   commit(): void;
@@ -252,47 +327,41 @@ export interface Session {
   setPositions(positions: Float32Array | Float64Array | number[]): void;
   /** Unit tangent direction per vertex (#V*3, a copy), as the AnARAP solver frames it: for glyphs. */
   directionField(direction: Direction): Float32Array;
-  /** Per vertex (a copy): 'area' = one-ring area ratio, 'stretch' = largest principal stretch; 1 = unchanged. */
+  /**
+   * Per vertex (a copy): 'area' = one-ring area ratio; 'stretch' = the principal stretch farthest
+   * from 1 by ratio (2 and 0.5 equally strong), area-weighted over the one-ring; 1 = unchanged.
+   */
   distortion(kind: 'area' | 'stretch', reference?: 'rest' | 'loaded'): Float32Array;
   /** The current mesh as file bytes (a copy; PLY and STL binary). */
   exportMesh(format: 'obj' | 'off' | 'ply' | 'stl'): Uint8Array;
   /**
-   * Flattens the current positions into a garment pattern. The patch's factorization is kept while
-   * the positions and the patch are unchanged. A closed patch -> 'bad-mesh'; an empty selection
-   * -> 'bad-parameter'; the session is then unchanged.
+   * Flattens the CURRENT positions (what the user sees) into a garment pattern, as `anisoform
+   * flatten`. The patch's factorization is kept while the positions and the patch are unchanged:
+   * another compress/direction/baseline costs no factorization. A closed patch -> 'bad-mesh'; an
+   * empty selection -> 'bad-parameter'; the session is then unchanged.
    */
   flatten(options?: FlattenOptions): FlattenResult;
-  /** The last flatten() as SVG or DXF text bytes in millimetres (a copy); 'bad-parameter' "flatten first" when the positions changed since. */
-  exportPattern(format: 'svg' | 'dxf', options?: { /** millimetres per model unit, default 1 */ mmPerUnit?: number }): Uint8Array;
+  /**
+   * The last flatten() as SVG or DXF text bytes in millimetres (a copy): one outline per boundary
+   * loop, a grainline per piece, a scale bar. Any change of the positions (load, deform, cancel,
+   * commit, setPositions) drops the last flattening: 'bad-parameter' "flatten first".
+   */
+  exportPattern(format: 'svg' | 'dxf', options?: PatternOptions): Uint8Array;
   /** Over the whole session: every rest pose and every flattened patch. */
   factorizations(): number;
   delete(): void;
   isDeleted(): boolean;
 }
 
-/**
- * Bench only: the session's cotangent Laplacian without the `pins` rows and columns, factored by
- * Eigen's SimplicialLDLT (constructing it is the precompute). Call delete().
- */
-export interface LaplacianFloor {
-  /** Eigen's solve of the rest positions' 3 columns. */
-  solve(): void;
-  delete(): void;
-}
-
 export interface AnisoformWasm {
   Session: { new (): Session };
-  LaplacianFloor: { new (session: Session, pins: Numbers): LaplacianFloor };
-  /**
-   * The benchmarks' procedural mesh: a closed capped cylinder around z (from -height/2 to height/2)
-   * of near-equilateral triangles with about `approxVertices` (>= 16) vertices. For setMesh.
-   */
-  cappedCylinder(approxVertices: number, radius?: number, height?: number): { positions: Float64Array; triangles: Uint32Array };
   /**
    * Bytes malloc'd now (inUse), of WASM memory (heap: it only grows, never shrinks) and the most
    * it may grow to (limit, 2 GB); beyond it a call fails with code 'out-of-memory'.
    */
   memoryUse(): { inUse: number; heap: number; limit: number };
+  /** The keys the core accepts in each request object, by the `@schema` paths above. */
+  opSchema(): Record<string, string[]>;
 }
 
 export interface CreateOptions {

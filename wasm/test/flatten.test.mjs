@@ -169,8 +169,8 @@ test('a closed mesh or an empty selection is refused; the session stays as it wa
 });
 
 test('bad options name the field', () => withSession('open/plane.off', (session) => {
-  expectError(() => session.flatten({ compress: 0 }), 'bad-parameter', /flatten: options\.compress must be > 0/);
-  expectError(() => session.flatten({ compress: [0.8, -1] }), 'bad-parameter', /options\.compress\[1\] must be > 0/);
+  expectError(() => session.flatten({ compress: 0 }), 'bad-parameter', /flatten: options\.compress must be positive, got 0/);
+  expectError(() => session.flatten({ compress: [0.8, -1] }), 'bad-parameter', /options\.compress\[1\] must be positive, got -1/);
   expectError(() => session.flatten({ compress: [1, 2, 3] }), 'bad-parameter', /options\.compress must be su, \[su\] or \[su, sv\]/);
   expectError(() => session.flatten({ compres: 0.8 }), 'bad-parameter', /unknown field 'compres'/);
   expectError(() => session.flatten({ direction: { type: 'curvature', which: 'min' } }), 'bad-parameter', /options\.direction\.type must be one of global, constraints/);
@@ -182,8 +182,8 @@ test('bad options name the field', () => withSession('open/plane.off', (session)
   expectError(() => session.flatten({ tolerance: -1 }), 'bad-parameter', /options\.tolerance must be >= 0/);
   expectError(() => session.flatten(null), 'bad-parameter', /flatten: options must be an object/);
   session.flatten();
-  expectError(() => session.exportPattern('pdf'), 'bad-parameter', /exportPattern: format must be one of svg, dxf/);
-  expectError(() => session.exportPattern('svg', { mmPerUnit: 0 }), 'bad-parameter', /options\.mmPerUnit must be > 0/);
+  expectError(() => session.exportPattern('pdf'), 'bad-parameter', /pattern format must be svg or dxf, got 'pdf'/);
+  expectError(() => session.exportPattern('svg', { mmPerUnit: 0 }), 'bad-parameter', /millimetres per unit must be a positive number/);
   expectError(() => session.exportPattern('svg', { scale: 2 }), 'bad-parameter', /unknown field 'scale'/);
   // A core check: a constraint outside the patch keeps the core's code and message.
   session.select({ box: { min: [-1, -1, -1], max: [0, 1, 1] } });

@@ -1,10 +1,12 @@
 // The WASM build gives the native build's results: the same edits through the
-// native CLI (ANISO_CLI=/path/to/anisoform) and through a WASM session agree
-// within 1e-6 of the bounding-box diagonal. AnARAP runs a fixed number of
-// iterations (tolerance 0) so that both stop at the same step.
+// native CLI (ANISO_CLI=/path/to/anisoform), once as flags and once as the very
+// op object JS passes (`--op FILE.json`), and through a WASM session agree
+// within 1e-6 of the bounding-box diagonal (the WASM positions are float32).
+// AnARAP runs a fixed number of iterations (tolerance 0) so that all stop at
+// the same step.
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
@@ -70,8 +72,18 @@ for (const c of CASES) {
       assert.equal(result.iterations, report.iterations);
       const native = objVertices(readFileSync(output, 'utf8'));
       const diagonal = boundingBox(native).diagonal;
-      const distance = maxVertexDistance(session.positions(), native);
       assert.ok(report.max_displacement > 1e-3 * diagonal, 'the edit moved the mesh');
+
+      // The same op object, as JSON, through the CLI's --op (the selection stays a flag).
+      const opFile = `${output}.op.json`;
+      writeFileSync(opFile, JSON.stringify(op));
+      const opOutput = `${output}.op.obj`;
+      execFileSync(cli, ['deform', meshPath(c.file), opOutput, '--op', opFile,
+        '--select', `box:${[...box.min, ...box.max].join(',')}`, '--falloff', String(box.falloff)]);
+      const fromOp = objVertices(readFileSync(opOutput, 'utf8'));
+      assert.equal(maxVertexDistance(fromOp, native), 0, '--op and the flags give the same positions');
+
+      const distance = maxVertexDistance(session.positions(), native);
       t.diagnostic(`max distance ${(distance / diagonal).toExponential(2)} x diagonal`);
       assert.ok(distance <= 1e-6 * diagonal, `max distance ${distance} > 1e-6 x diagonal ${diagonal}`);
     } finally {

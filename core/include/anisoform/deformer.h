@@ -1,7 +1,9 @@
-// The deformation session: a rest mesh, its cotangent weights and shared
-// factorizations, and one entry point that runs any method on any selection,
-// direction source and transform. The CLI, the WASM module and the benchmark
-// all go through this class.
+// The solver for one rest pose: a rest mesh, its cotangent weights and the
+// factorizations shared by every call, and one entry point that runs any
+// method on any selection, direction source and transform (a DeformRequest,
+// deform_request.h). The editing state around it (the current mesh, its
+// selection, undo) is the Session's (session.h); the CLI, the Session and the
+// benchmark all deform through this class.
 //
 // Gauge (METHOD §7): with no user pins, one vertex per component (and every
 // unreferenced vertex) is pinned inside the solver, and the result is moved so
@@ -15,91 +17,18 @@
 #include <string>
 #include <vector>
 
-#include "anisoform/direction_field.h"
+#include "anisoform/deform_request.h"
 #include "anisoform/laplacian.h"
-#include "anisoform/laplacian_solver.h"
 #include "anisoform/mesh.h"
-#include "anisoform/screen_direction.h"
-#include "anisoform/transforms.h"
 
 namespace aniso {
 
-enum class Method {
-  AnArap,     // anisotropic ARAP on vertex fans (METHOD §5)
-  AnDefGrad,  // anisotropic deformation gradients, one Poisson solve (METHOD §6)
-  Arap,       // isotropic ARAP with handles: the paper's baseline
-  Linear,     // linear directional map blended by weight: the "cage-like" baseline
-};
-Method parse_method(const std::string& name);  // "anarap" ...; Error(BadParameter)
-const char* method_name(Method method);
-
-enum class ArapElements {
-  Spokes,         // the fan's edges from the centre vertex (Sorkine & Alexa)
-  SpokesAndRims,  // plus the fan's rim edges (Chao et al.; CGAL's default)
-};
-
-struct DirectionSource {
-  enum class Kind {
-    Global,        // `vector`, projected per element
-    CurvatureMin,  // principal curvature direction fields (smoothed)
-    CurvatureMax,
-    Constraints,   // `constraints` propagated to a line field (amounts too)
-    Screen,        // `screen`: a pointer drag unprojected at the anchor's depth
-    Dense,         // `dense`: #V by 3, one direction per vertex, used as is
-  };
-  Kind kind = Kind::Global;
-  Eigen::Vector3d vector = Eigen::Vector3d::UnitX();
-  std::vector<DirectionConstraint> constraints;
-  ScreenDrag screen;
-  Positions dense;
-  int curvature_smoothing = 10;
-};
-
-// Checks a direction source against a mesh of n vertices before any work is
-// done with it: the curvature smoothing in range (curvature.h), at least one
-// constraint and each one valid (validate_direction_constraints), one finite
-// direction per vertex for a dense field. Error(BadParameter) naming what is
-// wrong. Deformer::deform and Session::direction_field call it; a global or
-// screen direction is checked where it becomes one vector.
-void validate_direction_source(const DirectionSource& source, int n);
-
-struct DeformRequest {
-  Method method = Method::AnArap;
-  Eigen::VectorXd weights;  // #V selection weights in [0, 1]; empty = all 1
-  DirectionSource direction;
-  TransformSpec transform;
-  std::vector<int> pins;     // held at their rest positions
-  std::vector<int> handles;  // Arap: moved by handle_offset and held
-  Eigen::Vector3d handle_offset = Eigen::Vector3d::Zero();
-  ArapElements elements = ArapElements::Spokes;
-  int max_iterations = 50;   // AnARAP / ARAP: cap on local/global iterations
-  double tolerance = 1e-6;   // relative energy change that ends the iterations
-  // AnARAP with a rotational part in T (rotate, twist, shear) has no fixed
-  // point (METHOD §5): each step turns the selected fans once more. It runs
-  // exactly this many steps instead of converging.
-  int rotation_steps = 1;
-  bool warm_start = true;    // start from the previous result of the same setup
-};
-
-struct DeformResult {
-  Positions V;                          // #V by 3 deformed positions
-  Method method = Method::AnArap;
-  int selected = 0;                     // vertices with weight > 0
-  int iterations = 0;
-  double energy = 0.0;                  // final energy (AnDefGrad: the Poisson energy)
-  std::vector<double> energy_history;   // after each iteration (AnARAP / ARAP)
-  bool converged = true;
-  int directions_filled = 0;            // degenerate projections filled (METHOD §3)
-  int inverted = 0;                     // triangles folded over (count_inverted)
-  int factorizations = 0;               // total so far in this session
-  double precompute_ms = 0.0;           // factorization etc. done for this call
-  double solve_ms = 0.0;
-};
+class LaplacianSolver;  // geometry/laplacian_solver.h (internal)
 
 class Deformer {
  public:
-  // Checks the mesh (Error(BadMesh) unless solvable) and computes the weights;
-  // factorizations happen lazily, once per pin set.
+  // Checks the mesh (Error(BadMesh) unless solvable) and computes the
+  // cotangent weights; factorizations happen lazily, once per pin set.
   explicit Deformer(Mesh rest);
   ~Deformer();
 
@@ -107,7 +36,7 @@ class Deformer {
 
   const Mesh& rest() const { return rest_; }
   int factorizations() const { return factorizations_; }
-  const CotanWeights& weights() const { return weights_; }  // of the unit-size copy (scale-free)
+  const CotanWeights& cotan_weights() const { return cotan_weights_; }  // of the unit-size copy (scale-free)
 
  private:
   struct Workspace;
@@ -120,7 +49,7 @@ class Deformer {
   Mesh unit_;
   double scale_ = 1.0;
   double diagonal_ = 0.0;
-  CotanWeights weights_;
+  CotanWeights cotan_weights_;
   Eigen::SparseMatrix<double> laplacian_;
   std::map<std::vector<int>, std::unique_ptr<LaplacianSolver>> solvers_;
   int factorizations_ = 0;

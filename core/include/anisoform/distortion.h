@@ -16,8 +16,6 @@ enum class DistortionKind {
   // one direction shows, although no line element got longer), 1 = unchanged.
   // The heat map shows its log2, so 2 and 0.5 look equally strong.
   Stretch,
-  // The WASM binding's earlier name of Stretch.
-  MaxStretch = Stretch,
 };
 
 // #V values for `rest` (V and F) deformed to `deformed` (#V by 3, same

@@ -1,34 +1,9 @@
-// Garment-pattern flattening: a free-boundary anisotropic ARAP
+// Garment-pattern flattening, the public API: a free-boundary anisotropic ARAP
 // parameterization (METHOD §8; paper §4.2, Fig. 11-12; Liu et al. 2008 with a
 // per-triangle target), and the industry baseline it is measured against.
-//
-// The pipeline, in the order the Flattener runs it:
-//  1. extract_flatten_patch: the faces whose three vertices are selected, made
-//     compact (unreferenced vertices are left out), split into components;
-//     a component without a boundary loop is refused (a closed surface has no
-//     free boundary to flatten to);
-//  2. triangle_charts: every triangle laid flat isometrically in its own 2D
-//     frame (its chart);
-//  3. flatten_targets: the wanted direction cu per triangle (in its chart) and
-//     the wanted stretch su along it, sv across it: T_t = C_t diag(su, sv) C_t^T;
-//  4. lscm_free_boundary: the initial map (conformal, free boundary), or
-//     tutte_embedding, a fold-free one (see "Folds" below);
-//  5. ArapFlattening: local/global iterations on
-//       E(u, L) = sum_t sum_{edges (i,j) of t} w_ij |(u_j - u_i) - L_t T_t (x_j - x_i)|^2,
-//     L_t in SO(2), w_ij the clamped half-cotangent weights of laplacian.h,
-//     global step = one prefactored 2D Poisson solve (one pin per component);
-//  6. measure_stretch / summarize_stretch: achieved stretch along and across
-//     the wanted direction per triangle, errors against the wanted amounts;
-//  7. align_grainlines / layout_components: each piece turned so that its
-//     mean compression direction is horizontal, pieces side by side.
-//
-// Folds: the local step only ever fits proper rotations, and the global step
-// is guarded (shortened so that no triangle folds over) whenever the current
-// map is fold-free. LSCM can fold nearly closed patches; ARAP is then given a
-// few iterations to unfold, and if folds remain the Flattener starts again
-// from the Tutte embedding, which has none. The guard can stall on a triangle
-// driven towards zero area (very non-developable patches with hard targets):
-// the result is then fold-free but not converged, and says so.
+// Build a Flattener once per patch and call flatten() with any options; the
+// pipeline stages it runs are internal (src/flatten/flatten_pipeline.h, which
+// describes them in order, and how folds are avoided).
 //
 // Units: uv is in model units (the flattening is metric: a unit of length on
 // the surface is a unit in the plane before the wanted stretch). Pattern files
@@ -49,6 +24,8 @@ namespace aniso {
 
 // ---- the patch -------------------------------------------------------------
 
+// The part of the mesh that is flattened: the faces whose three vertices are
+// selected, made compact and split into face-connected components (pieces).
 struct FlattenPatch {
   Mesh mesh;                      // #P by 3 positions, #T by 3 triangles (compact)
   std::vector<int> input_vertex;  // #P: the vertex's index in the input mesh
@@ -58,13 +35,6 @@ struct FlattenPatch {
   std::vector<std::vector<int>> boundary_loops;  // patch vertex indices, in walking order
   std::vector<int> loop_component;               // per loop: its component
 };
-
-// The faces of `mesh` whose three vertices have vertex_mask[i] != 0 (an empty
-// mask selects everything). Throws Error(BadParameter) when the mask has the
-// wrong size or holds no whole triangle, Error(BadMesh) when a coordinate of the
-// patch is not finite, and Error(BadMesh) "the patch is closed: flattening needs
-// a boundary; select a part of the mesh" when a component has no boundary loop.
-FlattenPatch extract_flatten_patch(const Mesh& mesh, const std::vector<char>& vertex_mask);
 
 // ---- per-triangle charts ---------------------------------------------------
 
@@ -77,13 +47,6 @@ struct TriangleCharts {
   Eigen::MatrixXd corners;  // #T by 6: corner k at (corners(t,2k), corners(t,2k+1)); corner 0 = 0
   Eigen::VectorXd area;     // #T: 3D area (model units^2); 0 for a degenerate triangle
 };
-
-TriangleCharts triangle_charts(const Mesh& mesh);
-
-// Relative area below which a triangle counts as degenerate (area <= this
-// fraction of its longest edge squared): it has no chart, no stretch to
-// measure and cannot be "flipped".
-constexpr double kDegenerateAreaFraction = 1e-12;
 
 // ---- what every triangle should become -------------------------------------
 
@@ -107,46 +70,6 @@ struct FlattenTargets {
                                // them and was taken from their neighbours
 };
 
-// Targets for the patch of `input` (the mesh the patch was extracted from).
-// Global: `su`, `sv` everywhere. Constraints: per-vertex field and amounts by
-// propagate_direction_field over the patch; a triangle takes the line-field
-// mean of its corners' directions (doubled-angle average in its chart) and the
-// mean of their amounts; when no constraint carries amounts, `su`, `sv` apply
-// everywhere. Throws Error(BadParameter) for a non-positive or non-finite
-// amount, a zero global direction, or a constraint vertex outside the patch.
-FlattenTargets flatten_targets(const Mesh& input, const FlattenPatch& patch,
-                               const TriangleCharts& charts, const FlattenDirections& directions,
-                               double su, double sv);
-
-// The same directions with other amounts everywhere (the baseline's isometric
-// flattening uses su = sv = 1 on the same field).
-FlattenTargets with_uniform_amounts(const FlattenTargets& targets, double su, double sv);
-
-// ---- initial maps ----------------------------------------------------------
-
-// Least-squares conformal map (Levy et al. 2002) with a free boundary: per
-// component two boundary vertices far apart (a diameter of its boundary) are
-// pinned; the sparse normal equations are solved by SimplicialLDLT. Each
-// component is then scaled about its centroid to the 3D area of its triangles.
-// uv: #P by 2 output. Throws Error(Numerical) if the factorization fails.
-void lscm_free_boundary(const FlattenPatch& patch, const TriangleCharts& charts,
-                        Eigen::MatrixX2d& uv);
-
-// Fold-free start (Tutte 1963, Floater 2003): per component the longest
-// boundary loop is put on a circle by arc length, every other loop is closed
-// by a virtual fan vertex, and every interior vertex is the mean of its
-// neighbours. For a patch of disk topology with holes (genus 0) no triangle
-// is folded over. Scaled to the 3D area like lscm_free_boundary. uv: #P by 2.
-void tutte_embedding(const FlattenPatch& patch, const TriangleCharts& charts,
-                     Eigen::MatrixX2d& uv);
-
-// Scales each component of uv about its centroid so that its signed area is
-// the sum of `triangle_area` (#T) over it: the 3D areas for a start map, the
-// areas the targets ask for (area * su * sv) before the iterations. A
-// component with negative total area is mirrored first (v -> -v).
-void scale_to_area(const FlattenPatch& patch, const Eigen::VectorXd& triangle_area,
-                   Eigen::MatrixX2d& uv);
-
 // ---- the local/global solver -----------------------------------------------
 
 struct ArapFlattenSettings {
@@ -162,41 +85,6 @@ struct ArapFlattenSettings {
   std::function<bool(int, double)> progress;
 };
 
-struct ArapFlattenReport {
-  int iterations = 0;
-  double energy = 0.0;          // E at the end (model units^2)
-  bool converged = false;       // the tolerance was reached
-  bool stalled = false;         // the guard could not make progress without a fold
-  int folded = 0;               // folded triangles at the end (count_folded)
-  int shortened_steps = 0;      // global steps the guard shortened
-  std::vector<double> energy_history;  // E before the first and after each iteration
-};
-
-// Prefactors the patch's cotangent Laplacian once (one pinned vertex per
-// component: the global step is free up to a translation; rotations are fixed
-// by the local step). Every solve reuses it, whatever the targets.
-class ArapFlattening {
- public:
-  ArapFlattening(const FlattenPatch& patch, const TriangleCharts& charts);
-  ~ArapFlattening();
-  ArapFlattening(const ArapFlattening&) = delete;
-  ArapFlattening& operator=(const ArapFlattening&) = delete;
-
-  // Iterates from uv (#P by 2, in/out). Local step per triangle: the rotation
-  // L_t maximizing tr(L^T S), S = sum_k w_k e'_k (T_t x_k)^T, in closed form
-  // (angle atan2(S10 - S01, S00 + S11)): always a proper rotation, so the
-  // local step never mirrors. Global step: L u = b with one pin per component.
-  ArapFlattenReport solve(const FlattenTargets& targets, const ArapFlattenSettings& settings,
-                          Eigen::MatrixX2d& uv) const;
-
-  int factorizations() const { return factorizations_; }
-
- private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
-  int factorizations_ = 0;
-};
-
 // ---- measuring --------------------------------------------------------------
 
 // Per triangle, J = the linear map from its chart to the plane (2 by 2).
@@ -210,15 +98,6 @@ struct TriangleStretch {
   std::vector<char> degenerate;        // #T: no chart (zero 3D area): NaN in every measure
                                        // above, and left out of means and maxima
 };
-
-TriangleStretch measure_stretch(const Triangles& F, const TriangleCharts& charts,
-                                const FlattenTargets& targets, const Eigen::MatrixX2d& uv);
-
-// Signed area of triangle t in uv (positive when counter-clockwise).
-double uv_signed_area(const Triangles& F, const Eigen::MatrixX2d& uv, int t);
-
-// Triangles (non-degenerate in 3D) whose signed area in uv is <= 0.
-int count_folded(const Triangles& F, const TriangleCharts& charts, const Eigen::MatrixX2d& uv);
 
 struct FlattenMetrics {
   int triangles = 0;
@@ -240,47 +119,7 @@ struct FlattenMetrics {
   std::string method;                    // "anisotropic" or "uniform-baseline"
 };
 
-// The error part of the metrics (the counts and timings are the caller's).
-void summarize_stretch(const TriangleCharts& charts, const FlattenTargets& targets,
-                       const TriangleStretch& stretch, FlattenMetrics& metrics);
-
-// Area-weighted mean line direction (doubled-angle average, METHOD §4.4: the
-// sign of a line does not matter) of the triangles of each component:
-// #components unit 2D vectors.
-std::vector<Eigen::Vector2d> mean_pattern_directions(const FlattenPatch& patch,
-                                                     const TriangleCharts& charts,
-                                                     const TriangleStretch& stretch);
-
-// ---- the industry baseline --------------------------------------------------
-
-// Scales each component of an (isometric) flattening about its centroid by
-// su along `directions[c]` and sv across it, with su, sv the area-weighted
-// means of the targets over the component: one uniform 2D scale per piece,
-// which is what garment CAD does (paper §4.2).
-void apply_uniform_scale(const FlattenPatch& patch, const TriangleCharts& charts,
-                         const FlattenTargets& targets,
-                         const std::vector<Eigen::Vector2d>& directions, Eigen::MatrixX2d& uv);
-
-// ---- layout -------------------------------------------------------------------
-
-// Mean uv of each component's vertices: #components points, the centre about
-// which a piece is scaled or turned.
-std::vector<Eigen::RowVector2d> component_centroids(const FlattenPatch& patch,
-                                                    const Eigen::MatrixX2d& uv);
-
-// Rotates each component about its centroid so that its grainline (#components
-// unit 2D vectors, updated to +u) runs along +u: pattern pieces come out with
-// their compression direction horizontal whatever orientation the start map
-// happened to have. A rigid motion: no measure changes.
-void align_grainlines(const FlattenPatch& patch, std::vector<Eigen::Vector2d>& grainlines,
-                      Eigen::MatrixX2d& uv);
-
-// Moves the components side by side along +u (each translated), bottom-aligned at v = 0, first starting at u = 0, with a gap of
-// gap_fraction times the largest piece size between bounding boxes.
-void layout_components(const FlattenPatch& patch, Eigen::MatrixX2d& uv,
-                       double gap_fraction = 0.05);
-
-// ---- the one-call interface -----------------------------------------------------
+// ---- the Flattener ---------------------------------------------------------------
 
 enum class FlattenMethod {
   Anisotropic,      // the wanted stretch is part of every triangle's target (ours)

@@ -49,7 +49,7 @@ struct SessionMeshInfo {
 // min(old, 1 - new).
 enum class SelectionMode { Replace, Add, Subtract };
 
-// One edit as the host asks for it. `request.weights` is ignored: the
+// One edit as the host asks for it. `request.selection` is ignored: the
 // session's selection is used.
 struct SessionEdit {
   DeformRequest request;
@@ -57,6 +57,10 @@ struct SessionEdit {
   // otherwise about default_twist_origin (as the CLI does): the axis line
   // through the selection's weighted centroid, angle 0 at its lowest point.
   bool twist_origin_given = false;
+  // false: along the longest axis of the mesh as loaded (resolve_edit, op.h);
+  // deform_op_from_json sets it false when the op has no direction. (Arap
+  // without handles takes its handles from the selection: resolve_edit too.)
+  bool direction_given = true;
   // Live preview: at most kPreviewIterations iterations, warm-started from the
   // previous preview. Rotational edits (rotate, twist, shear) are not capped:
   // they run request.rotation_steps steps from the rest pose (METHOD §5).
@@ -103,6 +107,11 @@ class Session {
   const SessionMeshInfo& set_mesh(const std::vector<double>& positions,
                                   const std::vector<std::uint32_t>& triangles, bool weld);
 
+  // Same from a mesh already read (the CLI reads files itself, for its own
+  // error texts): the one preparation every host's mesh goes through. `notes`
+  // are kept in info().notes, after which the session adds its own.
+  const SessionMeshInfo& adopt_mesh(Mesh mesh, std::vector<std::string> notes);
+
   bool has_mesh() const { return deformer_ != nullptr; }
   // These throw Error(BadParameter) "no mesh is loaded" before the first mesh.
   const SessionMeshInfo& info() const;
@@ -146,7 +155,6 @@ class Session {
 
  private:
   void require_mesh() const;
-  const SessionMeshInfo& adopt_mesh(Mesh mesh, std::vector<std::string> notes);
   void replace_rest(Positions V);
   // New current positions with their float32 copy, allocated before anything
   // changes (a failed allocation leaves the session as it was); set_current

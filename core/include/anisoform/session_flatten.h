@@ -20,10 +20,17 @@ struct SessionFlatten {
   double su = 1.0;  // wanted stretch along the direction (unless constraints carry amounts)
   double sv = 1.0;  // wanted stretch across it
   FlattenDirections directions;  // constraints use input-mesh vertex indices
+  // false: along the longest axis of the positions flattened (resolve_flatten, op.h).
+  bool direction_given = true;
   FlattenMethod method = FlattenMethod::Anisotropic;
   int max_iterations = ArapFlattenSettings().max_iterations;
   double tolerance = ArapFlattenSettings().tolerance;
 };
+
+// The flatten() options a request means (its direction resolved first,
+// resolve_flatten in op.h): the one place they are built, for the Session and
+// the CLI's one-shot flatten alike.
+FlattenOptions flatten_options(const SessionFlatten& request);
 
 struct SessionFlattenResult {
   FlattenMetrics metrics;

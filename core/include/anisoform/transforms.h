@@ -39,9 +39,10 @@ struct TransformSpec {
   Eigen::Vector3d twist_origin = Eigen::Vector3d::Zero();  // angle 0 here
   double twist_degrees_per_unit = 0.0;
 
-  // true when T has a rotational part (rotation or twist): AnARAP then runs a
-  // fixed number of steps instead of converging (METHOD §5).
-  bool has_rotation() const;
+  // true when T has a rotational part: a rotation, a twist or a shear (a shear's
+  // polar decomposition has a rotation in it). AnARAP then runs a fixed number
+  // of steps instead of converging (METHOD §5).
+  bool has_rotational_part() const;
   bool is_identity() const;
 };
 

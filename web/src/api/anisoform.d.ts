@@ -3,7 +3,26 @@
 // embedders. Coordinates are model units; pixels are CSS pixels of the
 // viewport canvas, origin top-left, y down.
 
-export type Vec3 = [number, number, number];
+// The request and result shapes are the WASM module's, declared once in
+// wasm/js/anisoform-wasm.d.ts (copied beside the module into web/src/wasm/ by
+// the build) and parsed by the core; the page adds only what needs its view:
+// a screen drag given in canvas pixels, the camera filled in by the page.
+import type {
+  ConstraintsDirection,
+  CurvatureDirection,
+  DeformOp as SessionDeformOp,
+  DeformResult as SessionDeformResult,
+  FlattenOptions,
+  FlattenResult as SessionFlattenResult,
+  GlobalDirection,
+  PatternOptions,
+  Region,
+  SelectOptions,
+  Vec3,
+} from '../wasm/anisoform-wasm';
+
+export type { FlattenMetrics, FlattenOptions, Region, SelectOptions, Transform, Vec3 } from '../wasm/anisoform-wasm';
+
 export type Pixel = [number, number];
 
 export interface MeshCounts {
@@ -16,113 +35,26 @@ export interface MeshInfo extends MeshCounts {
   boundaryLoops: number;
 }
 
-export type Region =
-  | { all: true }
-  | { sphere: { center: Vec3; radius: number } }
-  | { box: { min: Vec3; max: Vec3 } }
-  | { vertices: number[]; weights?: number[] };
-
-export interface SelectOptions {
-  /** Soft border width in model units, measured along mesh edges (default 0). */
-  falloff?: number;
-  /** 'replace' (default), 'add' (max of old and new) or 'subtract' (min of old and 1 - new). */
-  mode?: 'replace' | 'add' | 'subtract';
+/** A drag on the canvas; the surface point under `from` (or `anchor`) fixes its depth. */
+export interface PageScreenDirection {
+  type: 'screen';
+  from: Pixel;
+  to: Pixel;
+  anchor?: Vec3;
 }
 
-export type Direction =
-  | { type: 'global'; vector: Vec3 }
-  | { type: 'curvature'; which: 'min' | 'max' }
-  /** A drag on the canvas; the surface point under `from` anchors its depth. */
-  | { type: 'screen'; from: Pixel; to: Pixel }
-  /** Arrows at vertices, propagated to a smooth line field. */
-  | { type: 'constraints'; constraints: { vertex: number; direction: Vec3; su?: number; sv?: number }[] };
+export type Direction = GlobalDirection | CurvatureDirection | PageScreenDirection | ConstraintsDirection;
 
-export interface Transform {
-  /** [along the direction, across it] in the tangent plane. */
-  scale?: [number, number];
-  shear?: number;
-  rotate?: { axis: 'n' | 'u' | 'v'; degrees: number };
-  /**
-   * Twist about the axis line through `origin`; the angle is 0 at `origin` and grows along `axis`.
-   * Default origin: on the line through the selection's weighted centroid, at its lowest point along the axis.
-   */
-  twist?: { axis: Vec3; degreesPerUnit: number; origin?: Vec3 };
-}
+/**
+ * The session's op with the page's directions; 'arap' without handles moves the fully selected
+ * vertices by `move` and pins the unselected ones. Committed in full (no preview).
+ */
+export type DeformOp = Omit<SessionDeformOp, 'direction' | 'preview' | 'warmStart'> & { direction?: Direction };
 
-export interface DeformOp {
-  method: 'anarap' | 'andefgrad' | 'arap' | 'linear';
-  direction?: Direction;
-  transform?: Transform;
-  /** ARAP with handles: the offset of the handles (default: the fully selected vertices). */
-  move?: Vec3;
-  handles?: number[];
-  pins?: number[];
-  maxIterations?: number;
-  tolerance?: number;
-}
+export type DeformResult = Pick<SessionDeformResult, 'iterations' | 'energy' | 'ms' | 'inverted'>;
 
-export interface DeformResult {
-  iterations: number;
-  energy: number;
-  /** Solver time in milliseconds. */
-  ms: number;
-  /** Triangles folded over by the edit (the page warns when above 0). */
-  inverted: number;
-}
-
-export type FlattenDirection =
-  | { type: 'global'; vector: Vec3 }
-  /** Sparse constraints at vertices, spread as a smooth line field; amounts (if every one has them) spread harmonically. */
-  | { type: 'constraints'; constraints: { vertex: number; direction: Vec3; su?: number; sv?: number }[] };
-
-export interface FlattenOptions {
-  /** Wanted stretch along the direction, and across it (0.8 = 20 % shrinkage). Default [1, 1]. */
-  compress?: number | [number] | [number, number];
-  /** Default: the longest side of the bounding box. */
-  direction?: FlattenDirection;
-  /** The garment-CAD baseline: flatten isometrically, then scale the pattern uniformly. */
-  baseline?: 'uniform';
-  /** 'mesh' (default; must be open) or 'selection' (vertices with weight > 0). */
-  patch?: 'mesh' | 'selection';
-  maxIterations?: number;
-  tolerance?: number;
-}
-
-export interface FlattenMetrics {
-  triangles: number;
-  vertices: number;
-  components: number;
-  boundaryLoops: number;
-  /** Folded-over triangles in the pattern. */
-  flipped: number;
-  /** Area-weighted mean and max over triangles of |achieved along / su - 1|. */
-  compressionErrorMean: number;
-  compressionErrorMax: number;
-  /** The same across the direction, against sv. */
-  crossErrorMean: number;
-  crossErrorMax: number;
-  areaDistortionMean: number;
-  iterations: number;
-  energy: number;
-  converged: boolean;
-  seconds: number;
-  filledDirections: number;
-  initialization: 'lscm' | 'tutte';
-  method: 'anisotropic' | 'uniform-baseline';
-}
-
-export interface FlattenResult {
-  /** u, v per mesh vertex (model units); NaN for vertices outside the patch. */
-  uv: Float32Array;
-  metrics: FlattenMetrics;
-  /** The patch's triangles, as mesh vertex indices. */
-  triangles: Uint32Array;
-  /** Per patch triangle: |achieved along / su - 1| and |achieved across / sv - 1|. */
-  compressionError: Float32Array;
-  crossError: Float32Array;
-  /** Per piece: the grainline (mean wanted direction) in the plane; pieces are turned so it runs along +u. */
-  grainlines: [number, number][];
-}
+export type FlattenResult = Pick<SessionFlattenResult,
+  'uv' | 'metrics' | 'triangles' | 'compressionError' | 'crossError' | 'grainlines'>;
 
 export interface Hit {
   point: Vec3;
@@ -187,7 +119,7 @@ export interface Anisoform {
   /** A garment pattern of the mesh or its selection; the mesh and history are untouched. */
   flatten(options?: FlattenOptions): Promise<FlattenResult>;
   /** The last flattening as a pattern file in millimetres (SVG, or DXF R12); rejects if there is none. */
-  exportPattern(format: 'svg' | 'dxf', options?: { mmPerUnit?: number }): Promise<ArrayBuffer>;
+  exportPattern(format: 'svg' | 'dxf', options?: PatternOptions): Promise<ArrayBuffer>;
   /** Returns a function that removes the listener. */
   on(event: 'change', callback: (event: ChangeEvent) => void): () => void;
   on(event: 'error', callback: (event: ErrorEvent) => void): () => void;

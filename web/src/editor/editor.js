@@ -36,7 +36,7 @@ import { fileNameOf, loadError, readMesh } from './mesh-loader.js';
 import { PatternState } from './pattern-state.js';
 import { describeProblems } from './problem-summary.js';
 import { SelectionState } from './selection-state.js';
-import { toSolverOp, validateOp } from './solver-op.js';
+import { toSolverOp } from './solver-op.js';
 
 export class Editor extends EventEmitter {
   /** @type {MeshDocument|null} */
@@ -179,7 +179,6 @@ export class Editor extends EventEmitter {
     let document;
     try {
       document = this.requireDocument();
-      validateOp(op);
       label ??= describeEdit(op);
       if (this.gestureActive) throw Object.assign(new Error('an interactive edit is in progress: finish the drag first'), { code: 'bad-parameter' });
       solverOp = toSolverOp(op, document, this.view);

@@ -1,0 +1,79 @@
+// The AnARAP solver: local/global iterations (METHOD §5) on a fixed rest mesh,
+// with the isotropic ARAP of Sorkine & Alexa as the case T = I.
+//
+//   E(v', R) = sum_i sum_{j in N(i)} w_ij || e'_ij - R_i T_i e_ij ||^2
+//
+// Local step: R_i = argmax_{R in SO(3)} tr(R^T S_i), S_i = sum_j w_ij e'_ij (P_i e_ij)^T
+// with P_i the polar positive part of T_i, found by iterative rotation
+// extraction warm-started from the previous rotation: Newton steps on SO(3)
+// (quadratic convergence, usually one or two steps), with the scaled-gradient
+// step of Müller et al. 2016 ("A robust method to extract the rotational part
+// of deformations") where Newton's Hessian is not definite. No SVD, no sign
+// fix-up, robust for flat (rank-2) fans.
+// Global step: L v' = b, b_i = sum_j (w_ij / 2)(R_i T_i + R_j T_j)(v_i - v_j),
+// solved with the shared prefactored LaplacianSolver.
+// Spokes-and-rims: every triangle's three edges count in each of its corners'
+// cells; the same L results, with b assembled per triangle.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "anisoform/deform_request.h"
+#include "anisoform/laplacian.h"
+#include "geometry/laplacian_solver.h"
+#include "anisoform/mesh.h"
+
+namespace aniso {
+
+class AnArapSolver {
+ public:
+  AnArapSolver(const Mesh& rest, const CotanWeights& weights,
+                 const Eigen::SparseMatrix<double>& laplacian, ArapElements elements);
+
+  // Per-vertex targets (#V). Keeps the current rotations (warm start).
+  void set_targets(const std::vector<Eigen::Matrix3d>& T);
+  void reset_rotations();
+
+  // Fits the rotations to `V` and returns the energy E(V, R) with the new R.
+  double local_step(const Positions& V);
+  // Assembles b for the current rotations (#V by 3).
+  void global_rhs(Positions& b) const;
+
+  // Runs up to `max_iterations` local/global iterations from V (in/out);
+  // stops when the relative energy change falls below `tolerance` (or never,
+  // when tolerance < 0). Returns iterations run; history gets E after each
+  // iteration's local step (E(V_k, R_k), non-increasing for symmetric T).
+  int run(const LaplacianSolver& solver, Positions& V, int max_iterations, double tolerance,
+          std::vector<double>& history);
+
+ private:
+  void covariance_spokes(const Positions& V, std::vector<Eigen::Matrix3d>& A,
+                         Eigen::VectorXd& edge_energy) const;
+  void covariance_spokes_rims(const Positions& V, std::vector<Eigen::Matrix3d>& A,
+                              Eigen::VectorXd& edge_energy) const;
+
+  const Mesh& rest_;
+  const CotanWeights& weights_;
+  ArapElements elements_;
+  int n_;
+  // Spokes in CSR form: neighbours, weights, rest edge vectors e_ij = v_j - v_i.
+  std::vector<int> offsets_, neighbors_;
+  std::vector<double> spoke_weight_;
+  Positions spoke_edge_;
+  Positions weighted_edge_sum_;         // g_i = sum_j w_ij e_ij
+  std::vector<Eigen::Matrix3d> rest_covariance_;  // C_i = sum w e e^T (for the energy)
+  std::vector<Eigen::Matrix3d> T_, P_, B_;        // targets, their polar parts, R_i T_i
+  // tr(B_i^T B_i C_i) = tr(T_i^T T_i C_i): R_i is orthonormal, so this part of
+  // the energy depends on the targets only and is computed once per target set.
+  Eigen::VectorXd target_energy_;
+  std::vector<Eigen::Quaterniond> rotation_;
+  // Scratch of the local step, kept to avoid reallocating every iteration.
+  std::vector<Eigen::Matrix3d> covariance_;
+  Eigen::VectorXd edge_energy_;
+  bool symmetric_targets_ = true;
+  double energy_scale_ = 0.0;  // sum of |tr C_i|: the size of the rest fans
+};
+
+}  // namespace aniso

@@ -1,0 +1,300 @@
+#include "anisoform/deformer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "deform/anarap.h"
+#include "deform/andefgrad.h"
+#include "anisoform/distortion.h"
+#include "directions/curvature.h"
+#include "deform/element_targets.h"
+#include "anisoform/error.h"
+#include "deform/gauge.h"
+#include "anisoform/mesh_check.h"
+
+namespace aniso {
+
+Method parse_method(const std::string& name) {
+  if (name == "anarap") return Method::AnArap;
+  if (name == "andefgrad") return Method::AnDefGrad;
+  if (name == "arap") return Method::Arap;
+  if (name == "linear") return Method::Linear;
+  fail(ErrorCode::BadParameter,
+       "unknown method '" + name + "' (expected anarap, andefgrad, arap or linear)");
+}
+
+const char* method_name(Method method) {
+  switch (method) {
+    case Method::AnArap: return "anarap";
+    case Method::AnDefGrad: return "andefgrad";
+    case Method::Arap: return "arap";
+    case Method::Linear: return "linear";
+  }
+  return "unknown";
+}
+
+void validate_direction_source(const DirectionSource& source, int n) {
+  switch (source.kind) {
+    case DirectionSource::Kind::CurvatureMin:
+    case DirectionSource::Kind::CurvatureMax:
+      validate_curvature_smoothing(source.curvature_smoothing);
+      return;
+    case DirectionSource::Kind::Constraints:
+      if (source.constraints.empty()) fail(ErrorCode::BadParameter, "a direction field needs at least one constraint");
+      validate_direction_constraints(source.constraints, n);
+      return;
+    case DirectionSource::Kind::Global:
+    case DirectionSource::Kind::Screen:
+      return;  // checked as one vector, after a screen drag's unprojection (element_targets.cpp)
+    case DirectionSource::Kind::Dense:
+      if (source.dense.rows() != n) {
+        fail(ErrorCode::BadParameter, "a dense direction field needs one direction per vertex (" +
+                                          std::to_string(n) + "), got " + std::to_string(source.dense.rows()));
+      }
+      for (int i = 0; i < n; ++i) {
+        if (!source.dense.row(i).allFinite()) {
+          fail(ErrorCode::BadParameter, "the direction of vertex " + std::to_string(i) + " is not finite");
+        }
+      }
+      return;
+  }
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+void check_indices(const std::vector<int>& indices, int n, const char* what) {
+  for (int i : indices) {
+    if (i < 0 || i >= n) {
+      fail(ErrorCode::BadParameter, std::string(what) + " vertex " + std::to_string(i) +
+                                        " is out of range (the mesh has " + std::to_string(n) + " vertices)");
+    }
+  }
+}
+
+Eigen::VectorXd checked_weights(const DeformRequest& request, int n) {
+  if (request.selection.size() == 0) return Eigen::VectorXd::Ones(n);
+  if (request.selection.size() != n) {
+    fail(ErrorCode::BadParameter, "the selection has " + std::to_string(request.selection.size()) +
+                                      " weights but the mesh has " + std::to_string(n) + " vertices");
+  }
+  for (int i = 0; i < n; ++i) {
+    const double w = request.selection[i];
+    if (!(w >= 0.0 && w <= 1.0)) {
+      fail(ErrorCode::BadParameter, "selection weight of vertex " + std::to_string(i) +
+                                        " must be in [0, 1], got " + std::to_string(w));
+    }
+  }
+  return request.selection;
+}
+
+void validate_request(const DeformRequest& request, int n) {
+  validate(request.transform);
+  if (request.method != Method::Arap) validate_direction_source(request.direction, n);
+  check_indices(request.pins, n, "pinned");
+  check_indices(request.handles, n, "handle");
+  if (!request.handles.empty() && request.method != Method::Arap) {
+    fail(ErrorCode::BadParameter, "handles are only used by the arap method");
+  }
+  if (!request.handle_offset.allFinite()) fail(ErrorCode::BadParameter, "the handle offset must be finite");
+  if (request.max_iterations < 1) {
+    fail(ErrorCode::BadParameter, "iterations must be at least 1, got " + std::to_string(request.max_iterations));
+  }
+  if (request.rotation_steps < 1) {
+    fail(ErrorCode::BadParameter, "rotation steps must be at least 1, got " + std::to_string(request.rotation_steps));
+  }
+  if (!(request.tolerance >= 0.0) || !std::isfinite(request.tolerance)) {
+    fail(ErrorCode::BadParameter, "tolerance must be a finite number >= 0");
+  }
+}
+
+// The point the linear baseline scales about: the weighted centroid of the
+// selection.
+Eigen::Vector3d linear_center(const Mesh& mesh, const Eigen::VectorXd& w) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  double total = 0.0;
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    sum += w[i] * mesh.V.row(i).transpose();
+    total += w[i];
+  }
+  return total > 0.0 ? Eigen::Vector3d(sum / total) : Eigen::Vector3d::Zero();
+}
+
+}  // namespace
+
+struct Deformer::Workspace {
+  explicit Workspace(const Mesh& rest) : targets(rest) {}
+  TargetContext targets;
+  std::map<ArapElements, std::unique_ptr<AnArapSolver>> arap;
+  // Warm start: the last result of a setup (method, elements, pins).
+  std::string last_key;
+  Positions last_V;
+};
+
+namespace {
+
+// The power of two nearest below the mesh's bounding-box diagonal (1 for a
+// mesh without extent): dividing by it is exact in floating point, so the
+// unit-size copy is the mesh itself in other units, and scaling back is exact.
+double unit_scale(double diagonal) {
+  return diagonal > 0.0 && std::isfinite(diagonal) ? std::ldexp(1.0, std::ilogb(diagonal)) : 1.0;
+}
+
+}  // namespace
+
+Deformer::Deformer(Mesh rest) : rest_(std::move(rest)) {
+  require_solvable(rest_);  // also bounds the coordinates (limits.h), so the diagonal is finite
+  diagonal_ = bounding_box(rest_.V).diagonal();
+  scale_ = unit_scale(diagonal_);
+  unit_ = Mesh{rest_.V / scale_, rest_.F};
+  cotan_weights_ = cotangent_weights(unit_);
+  laplacian_ = cotangent_laplacian(unit_, cotan_weights_);
+}
+
+Deformer::~Deformer() = default;
+
+const LaplacianSolver& Deformer::solver_for(std::vector<int> pins, double* precompute_ms) {
+  std::sort(pins.begin(), pins.end());
+  pins.erase(std::unique(pins.begin(), pins.end()), pins.end());
+  auto it = solvers_.find(pins);
+  if (it != solvers_.end()) return *it->second;
+  const auto start = Clock::now();
+  auto solver = std::make_unique<LaplacianSolver>(laplacian_, pins);
+  ++factorizations_;
+  *precompute_ms += ms_since(start);
+  return *solvers_.emplace(std::move(pins), std::move(solver)).first->second;
+}
+
+DeformResult Deformer::deform(const DeformRequest& request) {
+  const auto start = Clock::now();
+  validate_request(request, rest_.num_vertices());
+  validate_twist(request.transform, diagonal_);
+  // Solve on the unit-size copy (limits.h: results independent of the units,
+  // no overflow in squared areas), then scale lengths and energies back.
+  DeformRequest unit_request = request;
+  unit_request.transform.twist_origin /= scale_;
+  unit_request.transform.twist_degrees_per_unit *= scale_;
+  unit_request.handle_offset /= scale_;
+  DeformResult result = deform_unit(unit_request);
+  result.V *= scale_;
+  result.energy *= scale_ * scale_;
+  for (double& energy : result.energy_history) energy *= scale_ * scale_;
+  // The last guard: no non-finite number leaves the deformer.
+  for (int i = 0; i < result.V.rows(); ++i) {
+    if (!result.V.row(i).allFinite()) {
+      fail(ErrorCode::Numerical, "the solve produced a non-finite position at vertex " + std::to_string(i));
+    }
+  }
+  for (const double energy : result.energy_history) {
+    if (!std::isfinite(energy)) fail(ErrorCode::Numerical, "the solve produced a non-finite energy");
+  }
+  if (!std::isfinite(result.energy)) fail(ErrorCode::Numerical, "the solve produced a non-finite energy");
+  result.inverted = count_inverted(rest_, result.V);
+  result.solve_ms = ms_since(start) - result.precompute_ms;
+  return result;
+}
+
+DeformResult Deformer::deform_unit(const DeformRequest& request) {
+  const int n = unit_.num_vertices();
+  const Eigen::VectorXd w = checked_weights(request, n);
+
+  DeformResult result;
+  result.method = request.method;
+  result.selected = static_cast<int>((w.array() > 0.0).count());
+  double precompute_ms = 0.0;
+  if (!workspace_) {
+    const auto t0 = Clock::now();
+    workspace_ = std::make_unique<Workspace>(unit_);
+    precompute_ms += ms_since(t0);
+  }
+  Workspace& ws = *workspace_;
+
+  if (request.method == Method::Linear) {
+    // Each vertex moves by its own local map about the selection's centroid,
+    // then by the twist map itself (about its axis line), as a cage would.
+    TransformSpec local = request.transform;
+    local.twist = false;
+    const ElementTargets targets = vertex_targets(ws.targets, request.direction, local, w);
+    const Eigen::Vector3d center = linear_center(unit_, w);
+    result.V = unit_.V;
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Vector3d p = unit_.V.row(i).transpose();
+      const Eigen::Vector3d q = center + targets.T[i] * (p - center);
+      const Eigen::Vector3d o = request.transform.twist_origin;
+      result.V.row(i) = (o + twist_rotation(request.transform, w[i], p) * (q - o)).transpose();
+    }
+    for (int p : request.pins) result.V.row(p) = unit_.V.row(p);
+    result.directions_filled = targets.filled;
+  } else if (request.method == Method::AnDefGrad) {
+    const Gauge gauge = make_gauge(unit_, request.pins);
+    const LaplacianSolver& solver = solver_for(gauge.pins, &precompute_ms);
+    const ElementTargets targets = triangle_targets(ws.targets, request.direction, request.transform, w);
+    Positions b;
+    gradient_rhs(unit_, cotan_weights_, targets.T, b);
+    result.V = unit_.V;
+    solver.solve(b, result.V);
+    realign(unit_, gauge, w, Alignment::Translation, result.V);
+    result.energy = gradient_energy(unit_, cotan_weights_, targets.T, result.V);
+    result.iterations = 1;
+    result.directions_filled = targets.filled;
+  } else {
+    const bool isotropic = request.method == Method::Arap;
+    std::vector<int> user_pins = request.pins;
+    if (isotropic) user_pins.insert(user_pins.end(), request.handles.begin(), request.handles.end());
+    // ARAP's unaffected part is everything but the handles.
+    Eigen::VectorXd affected = w;
+    if (isotropic) {
+      affected.setZero();
+      for (int h : request.handles) affected[h] = 1.0;
+    }
+    const Gauge gauge = make_gauge(unit_, user_pins);
+    const LaplacianSolver& solver = solver_for(gauge.pins, &precompute_ms);
+    auto& iterations = ws.arap[request.elements];
+    if (!iterations) {
+      const auto t0 = Clock::now();
+      iterations = std::make_unique<AnArapSolver>(unit_, cotan_weights_, laplacian_, request.elements);
+      precompute_ms += ms_since(t0);
+    }
+    bool rotational = false;
+    if (isotropic) {
+      iterations->set_targets(std::vector<Eigen::Matrix3d>(n, Eigen::Matrix3d::Identity()));
+    } else {
+      const ElementTargets targets = vertex_targets(ws.targets, request.direction, request.transform, w);
+      iterations->set_targets(targets.T);
+      result.directions_filled = targets.filled;
+      rotational = request.transform.has_rotational_part();
+    }
+    std::string key = std::string(method_name(request.method)) + ":" +
+                      std::to_string(static_cast<int>(request.elements));
+    for (int p : gauge.pins) key += "," + std::to_string(p);
+    // A rotation is applied incrementally, so it always starts from the rest pose.
+    const bool warm = request.warm_start && !rotational && key == ws.last_key && ws.last_V.rows() == n;
+    result.V = warm ? ws.last_V : unit_.V;
+    if (!warm) iterations->reset_rotations();
+    if (isotropic) {
+      for (int h : request.handles) result.V.row(h) = unit_.V.row(h) + request.handle_offset.transpose();
+    }
+    for (int p : request.pins) result.V.row(p) = unit_.V.row(p);
+    const int steps = rotational ? request.rotation_steps : request.max_iterations;
+    result.iterations = iterations->run(solver, result.V, steps, rotational ? -1.0 : request.tolerance,
+                                        result.energy_history);
+    result.energy = result.energy_history.empty() ? 0.0 : result.energy_history.back();
+    result.converged = rotational || result.iterations < steps;
+    realign(unit_, gauge, affected, Alignment::Rigid, result.V);
+    ws.last_key = key;
+    ws.last_V = result.V;
+  }
+
+  result.factorizations = factorizations_;
+  result.precompute_ms = precompute_ms;
+  return result;
+}
+
+}  // namespace aniso

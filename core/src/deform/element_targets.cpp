@@ -1,0 +1,211 @@
+#include "deform/element_targets.h"
+
+#include <map>
+#include <utility>
+
+#include "directions/curvature.h"
+#include "anisoform/direction_field.h"
+#include "anisoform/error.h"
+#include "geometry/frames.h"
+#include "anisoform/screen_direction.h"
+#include "mesh/topology.h"
+
+namespace aniso {
+
+struct TargetContext::CurvatureCache {
+  std::map<std::pair<int, int>, Positions> fields;  // (min/max, smoothing) -> field
+};
+
+TargetContext::TargetContext(const Mesh& rest)
+    : rest_(rest), curvature_(std::make_unique<CurvatureCache>()) {
+  vertex_normals_ = aniso::vertex_normals(rest);
+  triangle_normals_ = aniso::triangle_normals(rest);
+  // A zero-area triangle has no normal of its own: its frame borrows the mean
+  // of its corners' vertex normals so that T stays a proper 3D map there.
+  for (int t = 0; t < rest.num_triangles(); ++t) {
+    if (triangle_normals_.row(t).squaredNorm() > 0.0) continue;
+    Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
+    for (int k = 0; k < 3; ++k) sum += vertex_normals_.row(rest.F(t, k));
+    triangle_normals_.row(t) = sum.norm() > 0.0 ? Eigen::RowVector3d(sum.normalized())
+                                                : Eigen::RowVector3d(0, 0, 1);
+  }
+  const VertexAdjacency adjacency = vertex_adjacency(rest.F, rest.num_vertices());
+  vertex_offsets_ = adjacency.offsets;
+  vertex_neighbors_ = adjacency.neighbors;
+  triangle_adjacency(rest.F, rest.num_vertices(), triangle_offsets_, triangle_neighbors_);
+}
+
+TargetContext::~TargetContext() = default;
+
+void TargetContext::vertex_directions(const DirectionSource& source, Positions& directions,
+                                      Eigen::VectorXd& su, Eigen::VectorXd& sv) {
+  const int n = rest_.num_vertices();
+  su.resize(0);
+  sv.resize(0);
+  switch (source.kind) {
+    case DirectionSource::Kind::Global:
+    case DirectionSource::Kind::Screen: {
+      const Eigen::Vector3d d = source.kind == DirectionSource::Kind::Global
+                                    ? source.vector
+                                    : screen_drag_to_world(source.screen);
+      if (!d.allFinite() || d.norm() == 0.0) {
+        fail(ErrorCode::BadParameter, "the direction must be a non-zero finite vector");
+      }
+      directions = d.normalized().transpose().replicate(n, 1);
+      return;
+    }
+    case DirectionSource::Kind::CurvatureMin:
+    case DirectionSource::Kind::CurvatureMax: {
+      const int which = source.kind == DirectionSource::Kind::CurvatureMin ? 0 : 1;
+      const auto key = std::make_pair(which, source.curvature_smoothing);
+      auto it = curvature_->fields.find(key);
+      if (it == curvature_->fields.end()) {
+        it = curvature_->fields
+                 .emplace(key, curvature_direction_field(
+                                   rest_, which == 0 ? CurvatureDirection::Min : CurvatureDirection::Max,
+                                   source.curvature_smoothing))
+                 .first;
+      }
+      directions = it->second;
+      return;
+    }
+    case DirectionSource::Kind::Constraints: {
+      const DirectionField field = propagate_direction_field(rest_, source.constraints);
+      directions = field.direction;
+      bool any_amounts = false;
+      for (const auto& c : source.constraints) any_amounts = any_amounts || c.has_amounts;
+      if (any_amounts) {
+        su = field.su;
+        sv = field.sv;
+      }
+      return;
+    }
+    case DirectionSource::Kind::Dense: {
+      directions = source.dense;
+      return;
+    }
+  }
+}
+
+namespace {
+
+Amounts amounts_at(const TransformSpec& spec, const Eigen::VectorXd& su, const Eigen::VectorXd& sv,
+                   int i) {
+  if (su.size() == 0) return {spec.su, spec.sv};
+  return {su[i], sv[i]};
+}
+
+// A shear moves points along cu in proportion to their cv coordinate, and
+// cv = n x cu flips between opposite sides of a part (front and back of a
+// box), which would shear them against each other. We orient cv to point away
+// from the unselected part (from its centroid towards the selection's), so a
+// shear displaces the whole selection one way. Zero when there is nothing to
+// orient by (no shear, or no unselected vertex).
+Eigen::Vector3d shear_orientation(const Mesh& mesh, const TransformSpec& spec, const Eigen::VectorXd& w) {
+  if (spec.shear == 0.0) return Eigen::Vector3d::Zero();
+  Eigen::Vector3d selected = Eigen::Vector3d::Zero(), unselected = Eigen::Vector3d::Zero();
+  double ws = 0.0;
+  int wu = 0;
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    if (w[i] > 0.0) {
+      selected += w[i] * mesh.V.row(i).transpose();
+      ws += w[i];
+    } else {
+      unselected += mesh.V.row(i).transpose();
+      ++wu;
+    }
+  }
+  if (ws == 0.0 || wu == 0) return Eigen::Vector3d::Zero();
+  return selected / ws - unselected / wu;
+}
+
+// Element frame columns with cv oriented along `orientation` (see above):
+// flipping cv and n together keeps the frame right-handed.
+void oriented_frame(const Frames& frames, int e, const Eigen::Vector3d& orientation, Eigen::Vector3d& u,
+                    Eigen::Vector3d& v, Eigen::Vector3d& n) {
+  u = frames.u.row(e).transpose();
+  v = frames.v.row(e).transpose();
+  n = frames.n.row(e).transpose();
+  if (v.dot(orientation) < 0.0) {
+    v = -v;
+    n = -n;
+  }
+}
+
+}  // namespace
+
+ElementTargets vertex_targets(TargetContext& context, const DirectionSource& source,
+                              const TransformSpec& spec, const Eigen::VectorXd& weights) {
+  const Mesh& mesh = context.rest();
+  const int n = mesh.num_vertices();
+  Positions directions;
+  Eigen::VectorXd su, sv;
+  context.vertex_directions(source, directions, su, sv);
+  const Frames frames = build_frames(context.vertex_normals(), directions, context.vertex_offsets(),
+                                     context.vertex_neighbors());
+  ElementTargets out;
+  out.filled = frames.filled;
+  out.T.resize(n);
+  const Eigen::Vector3d orientation = shear_orientation(mesh, spec, weights);
+  Eigen::Vector3d u, v, normal;
+  for (int i = 0; i < n; ++i) {
+    oriented_frame(frames, i, orientation, u, v, normal);
+    out.T[i] = element_transform(spec, u, v, normal, weights[i], mesh.V.row(i).transpose(),
+                                 amounts_at(spec, su, sv, i));
+  }
+  return out;
+}
+
+ElementTargets triangle_targets(TargetContext& context, const DirectionSource& source,
+                                const TransformSpec& spec, const Eigen::VectorXd& weights) {
+  const Mesh& mesh = context.rest();
+  const int m = mesh.num_triangles();
+  Positions vdir;
+  Eigen::VectorXd su, sv;
+  context.vertex_directions(source, vdir, su, sv);
+  const bool constant_direction = source.kind == DirectionSource::Kind::Global ||
+                                  source.kind == DirectionSource::Kind::Screen;
+  Positions directions(m, 3);
+  Eigen::VectorXd tri_su, tri_sv;
+  if (su.size() > 0) {
+    tri_su.resize(m);
+    tri_sv.resize(m);
+  }
+  for (int t = 0; t < m; ++t) {
+    const int a = mesh.F(t, 0), b = mesh.F(t, 1), c = mesh.F(t, 2);
+    if (constant_direction) {
+      directions.row(t) = vdir.row(a);
+    } else {
+      // Line-field mean: align the corners' signs to the first non-zero one.
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+      Eigen::Vector3d ref = Eigen::Vector3d::Zero();
+      for (int k = 0; k < 3; ++k) {
+        Eigen::Vector3d d = vdir.row(mesh.F(t, k)).transpose();
+        if (ref.squaredNorm() == 0.0) ref = d;
+        sum += d.dot(ref) < 0.0 ? Eigen::Vector3d(-d) : d;
+      }
+      directions.row(t) = sum.transpose();
+    }
+    if (su.size() > 0) {
+      tri_su[t] = (su[a] + su[b] + su[c]) / 3.0;
+      tri_sv[t] = (sv[a] + sv[b] + sv[c]) / 3.0;
+    }
+  }
+  const Frames frames = build_frames(context.triangle_normals(), directions, context.triangle_offsets(),
+                                     context.triangle_neighbors());
+  ElementTargets out;
+  out.filled = frames.filled;
+  out.T.resize(m);
+  const Eigen::Vector3d orientation = shear_orientation(mesh, spec, weights);
+  Eigen::Vector3d u, v, normal;
+  for (int t = 0; t < m; ++t) {
+    const int a = mesh.F(t, 0), b = mesh.F(t, 1), c = mesh.F(t, 2);
+    const double w = (weights[a] + weights[b] + weights[c]) / 3.0;
+    const Eigen::Vector3d centroid = (mesh.V.row(a) + mesh.V.row(b) + mesh.V.row(c)).transpose() / 3.0;
+    oriented_frame(frames, t, orientation, u, v, normal);
+    out.T[t] = element_transform(spec, u, v, normal, w, centroid, amounts_at(spec, tri_su, tri_sv, t));
+  }
+  return out;
+}
+
+}  // namespace aniso

@@ -1,0 +1,62 @@
+// From a selection, a direction source and a transform to the per-element
+// target matrices T the solvers consume (METHOD §3–4): per vertex (AnARAP fans,
+// the linear baseline) or per triangle (AnDefGrad).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "anisoform/deform_request.h"
+#include "anisoform/mesh.h"
+
+namespace aniso {
+
+// Per-rest-mesh data the targets need, computed once and reused across edits.
+class TargetContext {
+ public:
+  explicit TargetContext(const Mesh& rest);
+  ~TargetContext();
+
+  // Unit wanted direction per vertex (#V by 3), before projection; may be
+  // zero where the source gives none (filled later as degenerate). Amounts
+  // per vertex when the source carries them (constraint amounts), else empty.
+  // `source` must have passed validate_direction_source (deformer.h).
+  void vertex_directions(const DirectionSource& source, Positions& directions,
+                         Eigen::VectorXd& su, Eigen::VectorXd& sv);
+
+  const Mesh& rest() const { return rest_; }
+  const Positions& vertex_normals() const { return vertex_normals_; }
+  const Positions& triangle_normals() const { return triangle_normals_; }
+  const std::vector<int>& vertex_offsets() const { return vertex_offsets_; }
+  const std::vector<int>& vertex_neighbors() const { return vertex_neighbors_; }
+  const std::vector<int>& triangle_offsets() const { return triangle_offsets_; }
+  const std::vector<int>& triangle_neighbors() const { return triangle_neighbors_; }
+
+ private:
+  const Mesh& rest_;
+  Positions vertex_normals_;
+  Positions triangle_normals_;
+  std::vector<int> vertex_offsets_, vertex_neighbors_;
+  std::vector<int> triangle_offsets_, triangle_neighbors_;
+  // Curvature fields are costly and depend on the rest mesh only: cached per
+  // (direction, smoothing).
+  struct CurvatureCache;
+  std::unique_ptr<CurvatureCache> curvature_;
+};
+
+struct ElementTargets {
+  std::vector<Eigen::Matrix3d> T;  // per element
+  int filled = 0;                  // degenerate directions filled (METHOD §3)
+};
+
+// Per-vertex targets: vertex normals, the source's per-vertex directions.
+ElementTargets vertex_targets(TargetContext& context, const DirectionSource& source,
+                              const TransformSpec& spec, const Eigen::VectorXd& weights);
+
+// Per-triangle targets: triangle normals, directions averaged from the
+// triangle's vertices as a line field (signs aligned), weight = mean of the
+// vertices' weights, position = centroid.
+ElementTargets triangle_targets(TargetContext& context, const DirectionSource& source,
+                                const TransformSpec& spec, const Eigen::VectorXd& weights);
+
+}  // namespace aniso

@@ -1,0 +1,164 @@
+#include "anisoform/transforms.h"
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+
+#include "anisoform/error.h"
+#include "anisoform/limits.h"
+#include "base/math_constants.h"
+
+namespace aniso {
+namespace {
+
+constexpr double kDegToRad = kPi / 180.0;
+
+void require_finite(double value, const char* name) {
+  if (!std::isfinite(value)) {
+    fail(ErrorCode::BadParameter, std::string(name) + " must be a finite number");
+  }
+}
+
+std::string range_number_text(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+// "scale su = 1e+300 is out of range (0.01 .. 100)".
+void require_in_range(double value, double lowest, double highest, const char* name) {
+  require_finite(value, name);
+  if (value >= lowest && value <= highest) return;
+  fail(ErrorCode::BadParameter, std::string(name) + " = " + range_number_text(value) + " is out of range (" +
+                                    range_number_text(lowest) + " .. " + range_number_text(highest) + ")");
+}
+
+}  // namespace
+
+bool TransformSpec::has_rotational_part() const {
+  return (rotate_axis != RotateAxis::None && rotate_degrees != 0.0) ||
+         (twist && twist_degrees_per_unit != 0.0) || shear != 0.0;
+}
+
+bool TransformSpec::is_identity() const {
+  return su == 1.0 && sv == 1.0 && sn == 1.0 && !has_rotational_part();
+}
+
+void validate_scale(double value, const std::string& name) {
+  require_finite(value, name.c_str());
+  if (value <= 0.0) fail(ErrorCode::BadParameter, name + " must be positive, got " + range_number_text(value));
+  require_in_range(value, limits::kMinScale, limits::kMaxScale, name.c_str());
+}
+
+void validate(const TransformSpec& spec) {
+  validate_scale(spec.su, "scale su");
+  validate_scale(spec.sv, "scale sv");
+  validate_scale(spec.sn, "thickness scale sn");
+  require_in_range(spec.shear, -limits::kMaxShear, limits::kMaxShear, "shear");
+  require_in_range(spec.rotate_degrees, -limits::kMaxRotateDegrees, limits::kMaxRotateDegrees,
+                   "rotation angle (degrees)");
+  require_finite(spec.twist_degrees_per_unit, "twist rate");  // its range depends on the mesh (validate_twist)
+  if (spec.twist) {
+    if (!spec.twist_axis.allFinite() || spec.twist_axis.norm() < 1e-12) {
+      fail(ErrorCode::BadParameter, "twist axis must be a non-zero finite vector");
+    }
+    if (!spec.twist_origin.allFinite()) fail(ErrorCode::BadParameter, "twist origin must be finite");
+  }
+}
+
+void validate_twist(const TransformSpec& spec, double mesh_diagonal) {
+  if (!spec.twist) return;
+  const double total = std::abs(spec.twist_degrees_per_unit) * mesh_diagonal;
+  if (total <= limits::kMaxTwistDegrees) return;
+  fail(ErrorCode::BadParameter,
+       "twist rate = " + range_number_text(spec.twist_degrees_per_unit) + " degrees per unit turns the mesh by " +
+           range_number_text(total) + " degrees over its bounding-box diagonal of " +
+           range_number_text(mesh_diagonal) + "; at most " + range_number_text(limits::kMaxTwistDegrees) +
+           " degrees are allowed");
+}
+
+Eigen::Matrix3d element_transform(const TransformSpec& spec, const Eigen::Vector3d& cu,
+                                  const Eigen::Vector3d& cv, const Eigen::Vector3d& n,
+                                  double weight, const Eigen::Vector3d& position,
+                                  const Amounts& amounts) {
+  const double s = weight;
+  if (s <= 0.0) return Eigen::Matrix3d::Identity();
+  Eigen::Matrix3d local = Eigen::Matrix3d::Zero();
+  local(0, 0) = 1.0 + s * (amounts.su - 1.0);
+  local(1, 1) = 1.0 + s * (amounts.sv - 1.0);
+  local(2, 2) = 1.0 + s * (spec.sn - 1.0);
+  if (spec.shear != 0.0) {
+    Eigen::Matrix3d shear = Eigen::Matrix3d::Identity();
+    shear(0, 1) = s * spec.shear;
+    local = shear * local;
+  }
+  if (spec.rotate_axis != RotateAxis::None && spec.rotate_degrees != 0.0) {
+    const int axis = spec.rotate_axis == RotateAxis::Normal ? 2 : spec.rotate_axis == RotateAxis::U ? 0 : 1;
+    const Eigen::Vector3d unit = Eigen::Vector3d::Unit(axis);
+    local = Eigen::AngleAxisd(s * spec.rotate_degrees * kDegToRad, unit).toRotationMatrix() * local;
+  }
+  Eigen::Matrix3d C;
+  C.col(0) = cu;
+  C.col(1) = cv;
+  C.col(2) = n;
+  Eigen::Matrix3d T = C * local * C.transpose();
+  if (spec.twist && spec.twist_degrees_per_unit != 0.0) {
+    T = twist_jacobian(spec, weight, position) * T;
+  }
+  return T;
+}
+
+Eigen::Matrix3d twist_rotation(const TransformSpec& spec, double weight, const Eigen::Vector3d& position) {
+  if (!spec.twist || weight <= 0.0) return Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d axis = spec.twist_axis.normalized();
+  const double rate = weight * spec.twist_degrees_per_unit * kDegToRad;
+  return Eigen::AngleAxisd(rate * (position - spec.twist_origin).dot(axis), axis).toRotationMatrix();
+}
+
+Eigen::Matrix3d twist_jacobian(const TransformSpec& spec, double weight, const Eigen::Vector3d& position) {
+  if (!spec.twist || weight <= 0.0) return Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d axis = spec.twist_axis.normalized();
+  const double rate = weight * spec.twist_degrees_per_unit * kDegToRad;
+  const Eigen::Vector3d r = position - spec.twist_origin;
+  // d/dp [Rot(rate * r.a) r] = Rot (I + rate (a x r) a^T).
+  return twist_rotation(spec, weight, position) *
+         (Eigen::Matrix3d::Identity() + rate * axis.cross(r) * axis.transpose());
+}
+
+Eigen::Matrix3d polar_positive_part(const Eigen::Matrix3d& T) {
+  if ((T - T.transpose()).cwiseAbs().maxCoeff() <= 1e-14 * T.cwiseAbs().maxCoeff()) {
+    // Symmetric: our scale transforms are C diag C^T with positive factors.
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+    eig.computeDirect(T);
+    if (eig.eigenvalues().minCoeff() > 0.0) return T;
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  eig.computeDirect(T.transpose() * T);
+  const Eigen::Vector3d root = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  return eig.eigenvectors() * root.asDiagonal() * eig.eigenvectors().transpose();
+}
+
+Eigen::Vector3d default_twist_origin(const Positions& V, const Eigen::VectorXd& weights,
+                                     const Eigen::Vector3d& axis) {
+  const Eigen::Vector3d a = axis.normalized();
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  double total = 0.0;
+  double lowest = 0.0;
+  for (Eigen::Index i = 0; i < V.rows(); ++i) {
+    if (!(weights[i] > 0.0)) continue;
+    const Eigen::Vector3d p = V.row(i).transpose();
+    if (total == 0.0 || p.dot(a) < lowest) lowest = p.dot(a);
+    centroid += weights[i] * p;
+    total += weights[i];
+  }
+  if (!(total > 0.0)) return Eigen::Vector3d::Zero();
+  centroid /= total;
+  // Slide along the axis line (which stays through the centroid) down to the
+  // lowest selected height, where the angle is 0.
+  return centroid + (lowest - centroid.dot(a)) * a;
+}
+
+}  // namespace aniso

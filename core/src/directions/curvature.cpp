@@ -1,0 +1,243 @@
+// Principal curvatures and directions (Rusinkiewicz 2004, "Estimating
+// curvatures and their derivatives on triangle meshes"), and the smoothed
+// principal direction field of the paper's Fig. 8.
+//
+// Sign convention: with outward (counter-clockwise) normals a convex surface
+// has positive curvature (a sphere of radius R: k_min = k_max = 1/R).
+#include "directions/curvature.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <complex>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "anisoform/error.h"
+#include "geometry/frames.h"
+#include "mesh/topology.h"
+#include "directions/direction_field_transport.h"
+
+namespace aniso {
+namespace {
+
+// Second fundamental form [[a, b], [b, c]] in some 2D tangent basis.
+struct Tensor2 {
+  double a = 0.0;
+  double b = 0.0;
+  double c = 0.0;
+};
+
+// Per-face tensor in the face basis (u, v) fitted by least squares to the
+// change of the vertex normals along the three edges: II * (e.u, e.v) =
+// (dn.u, dn.v) for every edge e with normal difference dn.
+Tensor2 face_tensor(const std::array<Eigen::Vector3d, 3>& p, const std::array<Eigen::Vector3d, 3>& n,
+                    const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
+  Eigen::Matrix3d normal_matrix = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 3; ++k) {
+    const int from = (k + 1) % 3;
+    const int to = (k + 2) % 3;
+    const Eigen::Vector3d edge = p[to] - p[from];
+    const Eigen::Vector3d dn = n[to] - n[from];
+    const double eu = edge.dot(u);
+    const double ev = edge.dot(v);
+    const double dnu = dn.dot(u);
+    const double dnv = dn.dot(v);
+    // Rows of the overdetermined system in the unknowns (a, b, c).
+    const Eigen::Vector3d row1(eu, ev, 0.0);  // a eu + b ev = dnu
+    const Eigen::Vector3d row2(0.0, eu, ev);  // b eu + c ev = dnv
+    normal_matrix += row1 * row1.transpose() + row2 * row2.transpose();
+    rhs += row1 * dnu + row2 * dnv;
+  }
+  const Eigen::Vector3d abc = normal_matrix.ldlt().solve(rhs);
+  return {abc[0], abc[1], abc[2]};
+}
+
+// Mixed Voronoi areas of the three corners (Meyer et al. 2003): the Voronoi
+// region inside the triangle when it is not obtuse, else half the area for
+// the obtuse corner and a quarter for the others. They sum to the triangle area.
+std::array<double, 3> corner_areas(const std::array<Eigen::Vector3d, 3>& p) {
+  const double area = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
+  std::array<double, 3> cot{};
+  std::array<double, 3> dot{};
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d a = p[(k + 1) % 3] - p[k];
+    const Eigen::Vector3d b = p[(k + 2) % 3] - p[k];
+    dot[k] = a.dot(b);
+    cot[k] = dot[k] / a.cross(b).norm();
+  }
+  std::array<double, 3> result{};
+  for (int k = 0; k < 3; ++k) {
+    if (dot[k] < 0.0) {
+      result = {0.25 * area, 0.25 * area, 0.25 * area};
+      result[k] = 0.5 * area;
+      return result;
+    }
+  }
+  for (int k = 0; k < 3; ++k) {
+    const int next = (k + 1) % 3;
+    const int prev = (k + 2) % 3;
+    // The edge k-next is opposite corner prev, the edge k-prev opposite next.
+    result[k] = ((p[next] - p[k]).squaredNorm() * cot[prev] + (p[prev] - p[k]).squaredNorm() * cot[next]) / 8.0;
+  }
+  return result;
+}
+
+// The face tensor seen in a vertex basis: the vertex basis is first rotated
+// into the face plane (its normal onto the face normal), then II is evaluated
+// on the rotated basis vectors.
+Tensor2 tensor_in_vertex_basis(const Tensor2& face, const Eigen::Vector3d& u, const Eigen::Vector3d& v,
+                               const Eigen::Vector3d& face_normal, const field::TangentBasis& vertex) {
+  const Eigen::Vector3d e1 = field::rotate_between_normals(vertex.e1, vertex.n, face_normal);
+  const Eigen::Vector3d e2 = field::rotate_between_normals(vertex.e2, vertex.n, face_normal);
+  const Eigen::Vector2d r1(e1.dot(u), e1.dot(v));
+  const Eigen::Vector2d r2(e2.dot(u), e2.dot(v));
+  Eigen::Matrix2d II;
+  II << face.a, face.b, face.b, face.c;
+  return {r1.dot(II * r1), r1.dot(II * r2), r2.dot(II * r2)};
+}
+
+bool finite_triangle(const std::array<Eigen::Vector3d, 3>& p, const std::array<Eigen::Vector3d, 3>& n) {
+  for (int k = 0; k < 3; ++k) {
+    if (!p[k].allFinite() || !n[k].allFinite()) return false;
+  }
+  return true;
+}
+
+std::vector<field::TangentBasis> vertex_bases(const Positions& normals) {
+  std::vector<field::TangentBasis> bases(normals.rows());
+  for (Eigen::Index i = 0; i < normals.rows(); ++i) bases[i] = field::tangent_basis(normals.row(i).transpose());
+  return bases;
+}
+
+// Area-weighted mean of the face tensors around every vertex, in its basis.
+std::vector<Tensor2> vertex_tensors(const Mesh& mesh, const Positions& normals,
+                                    const std::vector<field::TangentBasis>& bases) {
+  std::vector<Tensor2> sum(mesh.num_vertices());
+  std::vector<double> weight(mesh.num_vertices(), 0.0);
+  for (int t = 0; t < mesh.num_triangles(); ++t) {
+    std::array<Eigen::Vector3d, 3> p;
+    std::array<Eigen::Vector3d, 3> n;
+    for (int k = 0; k < 3; ++k) {
+      p[k] = mesh.V.row(mesh.F(t, k)).transpose();
+      n[k] = normals.row(mesh.F(t, k)).transpose();
+    }
+    if (!finite_triangle(p, n)) continue;
+    const Eigen::Vector3d cross = (p[1] - p[0]).cross(p[2] - p[0]);
+    const double longest = std::max({(p[1] - p[0]).squaredNorm(), (p[2] - p[1]).squaredNorm(),
+                                     (p[0] - p[2]).squaredNorm()});
+    if (cross.norm() <= 1e-12 * longest) continue;  // zero area: no plane, no tensor
+    const Eigen::Vector3d face_normal = cross.normalized();
+    const Eigen::Vector3d u = (p[2] - p[1]).normalized();
+    const Eigen::Vector3d v = face_normal.cross(u);
+    const Tensor2 face = face_tensor(p, n, u, v);
+    const std::array<double, 3> areas = corner_areas(p);
+    for (int k = 0; k < 3; ++k) {
+      const int vertex = mesh.F(t, k);
+      const Tensor2 local = tensor_in_vertex_basis(face, u, v, face_normal, bases[vertex]);
+      sum[vertex].a += areas[k] * local.a;
+      sum[vertex].b += areas[k] * local.b;
+      sum[vertex].c += areas[k] * local.c;
+      weight[vertex] += areas[k];
+    }
+  }
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    if (weight[i] > 0.0) sum[i] = {sum[i].a / weight[i], sum[i].b / weight[i], sum[i].c / weight[i]};
+  }
+  return sum;
+}
+
+// Applies `smoothing_steps` Jacobi steps of one-ring averaging to line values
+// u (doubled angles, see direction_field_transport.h), each neighbour
+// transported into the vertex's basis first.
+void smooth_line_values(const Mesh& mesh, const std::vector<field::TangentBasis>& bases,
+                        int smoothing_steps, std::vector<std::complex<double>>& u) {
+  const VertexAdjacency adjacency = vertex_adjacency(mesh.F, mesh.num_vertices());
+  std::vector<std::complex<double>> transport(adjacency.neighbors.size());
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    for (int k = adjacency.offsets[i]; k < adjacency.offsets[i + 1]; ++k) {
+      transport[k] = field::line_transport(bases[adjacency.neighbors[k]], bases[i]);
+    }
+  }
+  std::vector<std::complex<double>> next(u.size());
+  for (int step = 0; step < smoothing_steps; ++step) {
+    for (int i = 0; i < mesh.num_vertices(); ++i) {
+      std::complex<double> total = u[i];
+      for (int k = adjacency.offsets[i]; k < adjacency.offsets[i + 1]; ++k) {
+        total += transport[k] * u[adjacency.neighbors[k]];
+      }
+      next[i] = total / double(1 + adjacency.offsets[i + 1] - adjacency.offsets[i]);
+    }
+    u.swap(next);
+  }
+}
+
+// Principal curvatures and directions from the vertex tensors, each in its basis.
+PrincipalCurvature principal_curvature_in(const Mesh& mesh, const Positions& normals,
+                                          const std::vector<field::TangentBasis>& bases) {
+  const std::vector<Tensor2> tensors = vertex_tensors(mesh, normals, bases);
+  const int n = mesh.num_vertices();
+  PrincipalCurvature result;
+  result.min_direction.resize(n, 3);
+  result.max_direction.resize(n, 3);
+  result.k_min.resize(n);
+  result.k_max.resize(n);
+  for (int i = 0; i < n; ++i) {
+    const Tensor2& II = tensors[i];
+    // Closed-form eigen-decomposition of the symmetric 2x2 tensor.
+    const double mean = 0.5 * (II.a + II.c);
+    const double half_gap = std::hypot(0.5 * (II.a - II.c), II.b);
+    const double max_angle = 0.5 * std::atan2(2.0 * II.b, II.a - II.c);
+    const Eigen::Vector3d max_direction = std::cos(max_angle) * bases[i].e1 + std::sin(max_angle) * bases[i].e2;
+    result.k_max[i] = mean + half_gap;
+    result.k_min[i] = mean - half_gap;
+    result.max_direction.row(i) = max_direction.transpose();
+    result.min_direction.row(i) = bases[i].n.cross(max_direction).transpose();
+  }
+  return result;
+}
+
+}  // namespace
+
+PrincipalCurvature principal_curvature(const Mesh& mesh) {
+  const Positions normals = vertex_normals(mesh);
+  return principal_curvature_in(mesh, normals, vertex_bases(normals));
+}
+
+// Each vertex's line enters the averaging with weight k_max - k_min, its
+// confidence: near-umbilic vertices, whose raw direction is noise, carry
+// almost none and take the direction of their neighbours.
+void validate_curvature_smoothing(int steps) {
+  if (steps < 0 || steps > kMaxCurvatureSmoothing) {
+    fail(ErrorCode::BadParameter, "curvature smoothing steps must be an integer from 0 to " +
+                                      std::to_string(kMaxCurvatureSmoothing) + ", got " + std::to_string(steps));
+  }
+}
+
+Positions curvature_direction_field(const Mesh& mesh, CurvatureDirection which, int smoothing_steps) {
+  validate_curvature_smoothing(smoothing_steps);
+  const Positions normals = vertex_normals(mesh);
+  const std::vector<field::TangentBasis> bases = vertex_bases(normals);
+  const PrincipalCurvature curvature = principal_curvature_in(mesh, normals, bases);
+  const Positions& raw = which == CurvatureDirection::Min ? curvature.min_direction : curvature.max_direction;
+  if (smoothing_steps == 0) return raw;
+
+  std::vector<std::complex<double>> u(mesh.num_vertices());
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    const double confidence = curvature.k_max[i] - curvature.k_min[i];
+    u[i] = std::isfinite(confidence) ? confidence * field::line_to_complex(raw.row(i).transpose(), bases[i])
+                                     : std::complex<double>(0.0);
+  }
+  smooth_line_values(mesh, bases, smoothing_steps, u);
+
+  Positions result = raw;
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    // A vertex no confident direction reached (a flat region) keeps its raw one.
+    if (std::abs(u[i]) > 0.0) result.row(i) = field::complex_to_line(u[i], bases[i]).transpose();
+  }
+  return result;
+}
+
+}  // namespace aniso

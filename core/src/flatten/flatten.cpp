@@ -1,0 +1,134 @@
+// The Flattener: keeps what depends only on the patch (charts, start maps, the
+// one factorization) and runs a flattening per request, ours or the baseline.
+#include <chrono>
+#include <optional>
+
+#include "flatten/flatten_pipeline.h"
+
+namespace aniso {
+
+namespace {
+
+Eigen::VectorXd target_areas(const TriangleCharts& charts, const FlattenTargets& targets) {
+  return charts.area.cwiseProduct(targets.su).cwiseProduct(targets.sv);
+}
+
+}  // namespace
+
+struct Flattener::Impl {
+  Mesh input;
+  FlattenPatch patch;
+  TriangleCharts charts;
+  std::unique_ptr<ArapFlattening> arap;
+  Eigen::MatrixX2d conformal_start;
+  std::optional<Eigen::MatrixX2d> fold_free_start;  // built the first time it is needed
+
+  struct Solved {
+    Eigen::MatrixX2d uv;
+    ArapFlattenReport report;
+    int iterations = 0;
+    const char* initialization = "lscm";
+  };
+
+  ArapFlattenReport iterate_from(const Eigen::MatrixX2d& start, const FlattenTargets& targets,
+                                 const ArapFlattenSettings& settings, Eigen::MatrixX2d& uv) const {
+    uv = start;
+    scale_to_area(patch, target_areas(charts, targets), uv);
+    return arap->solve(targets, settings, uv);
+  }
+
+  // ARAP from the conformal start; if folds remain (ARAP cannot be trusted to
+  // undo folds it starts with), again from the fold-free start, guarded.
+  Solved solve(const FlattenTargets& targets, const ArapFlattenSettings& settings) {
+    Solved solved;
+    solved.report = iterate_from(conformal_start, targets, settings, solved.uv);
+    solved.iterations = solved.report.iterations;
+    if (solved.report.folded == 0) return solved;
+    if (!fold_free_start) {
+      fold_free_start.emplace();
+      tutte_embedding(patch, charts, *fold_free_start);
+    }
+    Eigen::MatrixX2d uv;
+    const ArapFlattenReport report = iterate_from(*fold_free_start, targets, settings, uv);
+    solved.iterations += report.iterations;
+    if (report.folded <= solved.report.folded) {
+      solved.uv = std::move(uv);
+      solved.report = report;
+      solved.initialization = "tutte";
+    }
+    return solved;
+  }
+};
+
+Flattener::Flattener(const Mesh& mesh, const std::vector<char>& vertex_mask)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& im = *impl_;
+  im.input = mesh;
+  im.patch = extract_flatten_patch(mesh, vertex_mask);
+  im.charts = triangle_charts(im.patch.mesh);
+  im.arap = std::make_unique<ArapFlattening>(im.patch, im.charts);
+  lscm_free_boundary(im.patch, im.charts, im.conformal_start);
+}
+
+Flattener::~Flattener() = default;
+
+const FlattenPatch& Flattener::patch() const { return impl_->patch; }
+const TriangleCharts& Flattener::charts() const { return impl_->charts; }
+int Flattener::factorizations() const { return impl_->arap->factorizations(); }
+
+FlattenResult Flattener::flatten(const FlattenOptions& options) {
+  const auto started = std::chrono::steady_clock::now();
+  Impl& im = *impl_;
+  const FlattenPatch& patch = im.patch;
+  const Triangles& F = patch.mesh.F;
+
+  FlattenResult result;
+  result.targets = flatten_targets(im.input, patch, im.charts, options.directions, options.su,
+                                   options.sv);
+  const bool baseline = options.method == FlattenMethod::UniformBaseline;
+  // The baseline flattens the same field without compression first.
+  const FlattenTargets solved_targets =
+      baseline ? with_uniform_amounts(result.targets, 1.0, 1.0) : result.targets;
+  Impl::Solved solved = im.solve(solved_targets, options.solver);
+  result.uv = std::move(solved.uv);
+
+  // The grainline: where the wanted field runs on average in the pattern. For
+  // the baseline it is measured on the isometric flattening and is its axis
+  // of scaling.
+  const TriangleStretch solved_stretch = measure_stretch(F, im.charts, solved_targets, result.uv);
+  result.grainline = mean_pattern_directions(patch, im.charts, solved_stretch);
+  if (baseline) apply_uniform_scale(patch, im.charts, result.targets, result.grainline, result.uv);
+  align_grainlines(patch, result.grainline, result.uv);
+  layout_components(patch, result.uv);
+  result.stretch = measure_stretch(F, im.charts, result.targets, result.uv);
+
+  FlattenMetrics& metrics = result.metrics;
+  summarize_stretch(im.charts, result.targets, result.stretch, metrics);
+  metrics.triangles = patch.mesh.num_triangles();
+  metrics.vertices = patch.mesh.num_vertices();
+  metrics.components = patch.num_components;
+  metrics.boundary_loops = static_cast<int>(patch.boundary_loops.size());
+  metrics.flipped = count_folded(F, im.charts, result.uv);
+  metrics.iterations = solved.iterations;
+  metrics.energy = solved.report.energy;
+  metrics.converged = solved.report.converged;
+  metrics.filled_directions = result.targets.filled_directions;
+  metrics.initialization = solved.initialization;
+  metrics.method = baseline ? "uniform-baseline" : "anisotropic";
+  metrics.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return result;
+}
+
+FlattenOutput flatten(const Mesh& mesh, const std::vector<char>& vertex_mask,
+                      const FlattenOptions& options) {
+  const auto started = std::chrono::steady_clock::now();
+  Flattener flattener(mesh, vertex_mask);
+  FlattenOutput output{flattener.patch(), flattener.flatten(options)};
+  // The one-shot call's time includes the precomputation.
+  output.result.metrics.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return output;
+}
+
+}  // namespace aniso

@@ -1,0 +1,124 @@
+// What a flattening achieved per triangle (stretch along and across the
+// wanted direction, singular values, folds) and its errors against the wanted
+// amounts: the numbers the paper's Fig. 11 claim is measured by.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/LU>
+
+#include "flatten/flatten_pipeline.h"
+
+namespace aniso {
+
+double uv_signed_area(const Triangles& F, const Eigen::MatrixX2d& uv, int t) {
+  const Eigen::Vector2d ab = (uv.row(F(t, 1)) - uv.row(F(t, 0))).transpose();
+  const Eigen::Vector2d ac = (uv.row(F(t, 2)) - uv.row(F(t, 0))).transpose();
+  return 0.5 * (ab.x() * ac.y() - ab.y() * ac.x());
+}
+
+namespace {
+
+// The map from the triangle's chart to the plane: J = D_uv D_chart^-1.
+Eigen::Matrix2d chart_to_plane(const Triangles& F, const TriangleCharts& charts,
+                               const Eigen::MatrixX2d& uv, int t) {
+  Eigen::Matrix2d chart_edges, plane_edges;
+  chart_edges << charts.corners(t, 2), charts.corners(t, 4),  //
+      charts.corners(t, 3), charts.corners(t, 5);
+  plane_edges.col(0) = (uv.row(F(t, 1)) - uv.row(F(t, 0))).transpose();
+  plane_edges.col(1) = (uv.row(F(t, 2)) - uv.row(F(t, 0))).transpose();
+  return plane_edges * chart_edges.inverse();
+}
+
+}  // namespace
+
+int count_folded(const Triangles& F, const TriangleCharts& charts, const Eigen::MatrixX2d& uv) {
+  int folded = 0;
+  for (int t = 0; t < F.rows(); ++t) {
+    if (charts.area[t] > 0.0 && !(uv_signed_area(F, uv, t) > 0.0)) ++folded;
+  }
+  return folded;
+}
+
+TriangleStretch measure_stretch(const Triangles& F, const TriangleCharts& charts,
+                                const FlattenTargets& targets, const Eigen::MatrixX2d& uv) {
+  const int m = static_cast<int>(F.rows());
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  TriangleStretch stretch;
+  stretch.along.setConstant(m, nan);
+  stretch.across.setConstant(m, nan);
+  stretch.sigma_max.setConstant(m, nan);
+  stretch.sigma_min.setConstant(m, nan);
+  stretch.area_ratio.setConstant(m, nan);
+  stretch.pattern_direction.setZero(m, 2);
+  stretch.degenerate.assign(m, 0);
+  for (int t = 0; t < m; ++t) {
+    if (!(charts.area[t] > 0.0)) {
+      stretch.degenerate[t] = 1;
+      continue;
+    }
+    const Eigen::Matrix2d J = chart_to_plane(F, charts, uv, t);
+    const Eigen::Vector2d cu = targets.direction.row(t);
+    const Eigen::Vector2d cv(-cu.y(), cu.x());
+    const Eigen::Vector2d mapped_u = J * cu;
+    stretch.along[t] = mapped_u.norm();
+    stretch.across[t] = (J * cv).norm();
+    if (stretch.along[t] > 0.0) stretch.pattern_direction.row(t) = mapped_u.normalized().transpose();
+    // Closed-form signed singular values of a 2x2 matrix.
+    const double e = 0.5 * (J(0, 0) + J(1, 1)), f = 0.5 * (J(0, 0) - J(1, 1));
+    const double g = 0.5 * (J(1, 0) + J(0, 1)), h = 0.5 * (J(1, 0) - J(0, 1));
+    const double conformal = std::hypot(e, h), anticonformal = std::hypot(f, g);
+    stretch.sigma_max[t] = conformal + anticonformal;
+    stretch.sigma_min[t] = conformal - anticonformal;
+    stretch.area_ratio[t] = J.determinant();
+  }
+  return stretch;
+}
+
+void summarize_stretch(const TriangleCharts& charts, const FlattenTargets& targets,
+                       const TriangleStretch& stretch, FlattenMetrics& metrics) {
+  double total_area = 0.0, along_sum = 0.0, across_sum = 0.0, area_sum = 0.0;
+  double along_max = 0.0, across_max = 0.0;
+  for (int t = 0; t < charts.area.size(); ++t) {
+    if (stretch.degenerate[t]) continue;
+    const double area = charts.area[t];
+    const double along_error = std::abs(stretch.along[t] / targets.su[t] - 1.0);
+    const double across_error = std::abs(stretch.across[t] / targets.sv[t] - 1.0);
+    const double area_error =
+        std::abs(stretch.area_ratio[t] / (targets.su[t] * targets.sv[t]) - 1.0);
+    total_area += area;
+    along_sum += area * along_error;
+    across_sum += area * across_error;
+    area_sum += area * area_error;
+    along_max = std::max(along_max, along_error);
+    across_max = std::max(across_max, across_error);
+  }
+  const double inverse = total_area > 0.0 ? 1.0 / total_area : 0.0;
+  metrics.compression_error_mean = along_sum * inverse;
+  metrics.compression_error_max = along_max;
+  metrics.cross_error_mean = across_sum * inverse;
+  metrics.cross_error_max = across_max;
+  metrics.area_distortion_mean = area_sum * inverse;
+}
+
+std::vector<Eigen::Vector2d> mean_pattern_directions(const FlattenPatch& patch,
+                                                     const TriangleCharts& charts,
+                                                     const TriangleStretch& stretch) {
+  std::vector<Eigen::Vector2d> doubled(patch.num_components, Eigen::Vector2d::Zero());
+  const Triangles& F = patch.mesh.F;
+  for (int t = 0; t < F.rows(); ++t) {
+    if (stretch.degenerate[t]) continue;
+    const double x = stretch.pattern_direction(t, 0), y = stretch.pattern_direction(t, 1);
+    doubled[patch.component[F(t, 0)]] += charts.area[t] * Eigen::Vector2d(x * x - y * y, 2.0 * x * y);
+  }
+  std::vector<Eigen::Vector2d> directions(patch.num_components, Eigen::Vector2d::UnitX());
+  for (int c = 0; c < patch.num_components; ++c) {
+    if (doubled[c].norm() > 0.0) {
+      const double angle = 0.5 * std::atan2(doubled[c].y(), doubled[c].x());
+      directions[c] = Eigen::Vector2d(std::cos(angle), std::sin(angle));
+    }
+  }
+  return directions;
+}
+
+}  // namespace aniso

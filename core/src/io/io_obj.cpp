@@ -1,0 +1,234 @@
+// Wavefront OBJ: reading `v` and `f` (all corner forms, negative relative
+// indices, polygons), skipping everything else; writing positions and faces,
+// optionally with texture coordinates.
+#include <climits>
+
+#include "anisoform/mesh_io.h"
+#include "io/io_common.h"
+
+namespace aniso {
+namespace io {
+
+namespace {
+
+// Statements that carry no surface geometry we use: attributes, grouping,
+// materials, free-form surface data. They are ignored without a note.
+bool is_ignored_statement(std::string_view keyword) {
+  static constexpr std::string_view kIgnored[] = {
+      "vt",   "vn",    "vp",    "o",      "g",    "s",     "usemtl",   "mtllib",
+      "usemap", "maplib", "lod", "shadow_obj", "trace_obj", "bevel", "c_interp", "d_interp",
+      "cstype", "deg", "bmat", "step", "parm", "trim", "hole", "scrv",
+      "sp",   "end",   "con",   "mg",     "ctech", "stech", "call", "csh"};
+  for (std::string_view ignored : kIgnored) {
+    if (keyword == ignored) return true;
+  }
+  return false;
+}
+
+// Non-surface elements: points, lines and free-form curves/surfaces.
+bool is_skipped_element(std::string_view keyword) {
+  return keyword == "p" || keyword == "l" || keyword == "curv" || keyword == "curv2" ||
+         keyword == "surf";
+}
+
+class ObjParser {
+ public:
+  ReadResult parse(std::string_view text, ReadReport report) {
+    LineReader lines(text);
+    std::string_view line;
+    while (lines.next(line)) {
+      line_ = lines.line_number();
+      std::string_view rest = line;
+      const std::string_view keyword = next_token(rest);
+      if (keyword.empty() || keyword[0] == '#') continue;
+      if (keyword == "v") {
+        parse_vertex(rest);
+      } else if (keyword == "f" || keyword == "fo") {
+        parse_face(rest);
+      } else if (is_skipped_element(keyword)) {
+        ++skipped_elements_;
+      } else if (!is_ignored_statement(keyword)) {
+        if (unknown_statements_++ == 0) first_unknown_ = std::string(keyword);
+      }
+    }
+    check_indices();
+    note_skipped(report, skipped_elements_, "point, line or curve elements (p, l, curv, surf)");
+    if (unknown_statements_ > 0) {
+      report.notes.push_back("ignored " + std::to_string(unknown_statements_) +
+                             " lines with unknown statements, the first being " +
+                             quoted(first_unknown_));
+    }
+    return assemble_mesh(polygons_, std::move(report));
+  }
+
+ private:
+  void parse_vertex(std::string_view rest) {
+    double xyz[3];
+    for (double& value : xyz) {
+      const std::string_view token = next_token(rest);
+      if (token.empty()) fail_file("a vertex has fewer than 3 coordinates" + at_line(line_));
+      if (const char* problem = parse_coordinate(token, value)) {
+        fail_file(number_problem(token, problem) + at_line(line_));
+      }
+    }
+    // Optional w, or r g b [a] vertex colours: checked to be numbers, then unused.
+    int extra = 0;
+    for (std::string_view token = next_token(rest); !token.empty(); token = next_token(rest)) {
+      double unused;
+      if (token[0] == '#') break;
+      if (const char* problem = parse_coordinate(token, unused)) {
+        fail_file(number_problem(token, problem) + at_line(line_));
+      }
+      if (++extra > 4) fail_file("a vertex has more than 7 values" + at_line(line_));
+    }
+    polygons_.add_vertex(xyz[0], xyz[1], xyz[2]);
+  }
+
+  // "v", "v/vt", "v//vn" or "v/vt/vn": returns the vertex index as written.
+  long long parse_corner(std::string_view token) const {
+    const std::size_t slash = token.find('/');
+    const std::string_view vertex = token.substr(0, slash);
+    long long index = 0;
+    if (!parse_integer(vertex, index)) {
+      fail_file("face " + std::to_string(face_number()) + " has a malformed corner " +
+                quoted(token) + at_line(line_));
+    }
+    if (slash != std::string_view::npos) {
+      std::string_view attributes = token.substr(slash + 1);  // "vt", "vt/vn" or "/vn"
+      const std::size_t second = attributes.find('/');
+      const std::string_view uv = attributes.substr(0, second);
+      const std::string_view normal =
+          second == std::string_view::npos ? std::string_view() : attributes.substr(second + 1);
+      long long unused;
+      const bool uv_ok = uv.empty() ? second != std::string_view::npos : parse_integer(uv, unused);
+      const bool normal_ok = second == std::string_view::npos || parse_integer(normal, unused);
+      if (!uv_ok || !normal_ok) {
+        fail_file("face " + std::to_string(face_number()) + " has a malformed corner " +
+                  quoted(token) + at_line(line_));
+      }
+    }
+    return index;
+  }
+
+  void parse_face(std::string_view rest) {
+    const long long vertices_so_far = polygons_.num_vertices();
+    int corners = 0;
+    for (std::string_view token = next_token(rest); !token.empty(); token = next_token(rest)) {
+      if (token[0] == '#') break;
+      const long long index = parse_corner(token);
+      long long zero_based = 0;
+      if (index > 0) {
+        // Checked against the final vertex count in check_indices(): OBJ lets a
+        // face come before the vertices it uses.
+        if (index > INT_MAX) {
+          fail_file("face " + std::to_string(face_number()) + " references vertex " +
+                    std::to_string(index) + ", more than any file can hold" + at_line(line_));
+        }
+        zero_based = index - 1;
+      } else if (index < 0) {
+        zero_based = vertices_so_far + index;  // -1 is the vertex defined last
+        if (zero_based < 0) {
+          zero_based = invalid_corner("uses relative index " + std::to_string(index) + ", but only " +
+                                      std::to_string(vertices_so_far) + " vertices precede it");
+        }
+      } else {
+        zero_based = invalid_corner("references vertex 0, but OBJ vertex numbers start at 1");
+      }
+      polygons_.corners.push_back(static_cast<int>(zero_based));
+      ++corners;
+    }
+    if (corners < 3) {
+      fail_file("face " + std::to_string(face_number()) + " has " + std::to_string(corners) +
+                " corners; a face needs at least 3" + at_line(line_));
+    }
+    polygons_.end_polygon();
+    face_lines_.push_back(line_);
+  }
+
+  // Errors are reported for the first bad face in file order, and whether a
+  // positive index is in range is known only at the end: so a corner that is
+  // wrong already when read is remembered, and marked -1, until then.
+  int invalid_corner(const std::string& problem) {
+    if (first_invalid_face_ < 0) {
+      first_invalid_face_ = polygons_.num_polygons();
+      first_invalid_message_ = "face " + std::to_string(face_number()) + " " + problem + at_line(line_);
+    }
+    return -1;
+  }
+
+  void check_indices() const {
+    const int num_vertices = polygons_.num_vertices();
+    for (int face = 0; face < polygons_.num_polygons(); ++face) {
+      if (face == first_invalid_face_) fail_file(first_invalid_message_);
+      for (int c = polygons_.offsets[face]; c < polygons_.offsets[face + 1]; ++c) {
+        if (polygons_.corners[c] < num_vertices) continue;
+        fail_file("face " + std::to_string(face + 1) + " references vertex " +
+                  std::to_string(polygons_.corners[c] + 1) + ", but the file has " +
+                  std::to_string(num_vertices) + " vertices" + at_line(face_lines_[face]));
+      }
+    }
+  }
+
+  int face_number() const { return polygons_.num_polygons() + 1; }  // 1-based, of the face being read
+
+  PolygonMesh polygons_;
+  std::vector<int> face_lines_;
+  int line_ = 0;
+  int skipped_elements_ = 0;
+  int unknown_statements_ = 0;
+  std::string first_unknown_;
+  int first_invalid_face_ = -1;  // 0-based
+  std::string first_invalid_message_;
+};
+
+}  // namespace
+
+ReadResult read_obj(const char* data, std::size_t size) {
+  ReadReport report;
+  std::string decoded;
+  const std::string_view text = decode_text(data, size, decoded, report);
+  reject_binary_text(text, "OBJ");
+  return ObjParser().parse(text, std::move(report));
+}
+
+std::string write_obj(const Mesh& mesh) {
+  std::string out = "# written by anisoform\n";
+  out.reserve(static_cast<std::size_t>(mesh.V.rows()) * 40 + static_cast<std::size_t>(mesh.F.rows()) * 24);
+  append_position_rows(out, mesh.V, "v ");
+  append_triangle_rows(out, mesh.F, "f", 1);
+  return out;
+}
+
+}  // namespace io
+
+std::string write_obj_with_uv(const Mesh& mesh, const Eigen::MatrixX2d& uv) {
+  if (uv.rows() != mesh.V.rows()) {
+    fail(ErrorCode::BadParameter, "write_obj_with_uv: " + std::to_string(uv.rows()) +
+                                      " uv rows for " + std::to_string(mesh.V.rows()) +
+                                      " vertices; they must match");
+  }
+  io::require_valid_indices(mesh);
+  std::string out = "# written by anisoform: positions and their flattened uv\n";
+  io::append_position_rows(out, mesh.V, "v ");
+  for (Eigen::Index i = 0; i < uv.rows(); ++i) {
+    out += "vt ";
+    io::append_number(out, uv(i, 0));
+    out += ' ';
+    io::append_number(out, uv(i, 1));
+    out += '\n';
+  }
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    out += 'f';
+    for (int k = 0; k < 3; ++k) {
+      const long long index = static_cast<long long>(mesh.F(f, k)) + 1;
+      out += ' ';
+      io::append_number(out, index);
+      out += '/';
+      io::append_number(out, index);
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+}  // namespace aniso

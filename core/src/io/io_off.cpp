@@ -1,0 +1,158 @@
+// Object File Format (OFF, ASCII): reading the OFF/COFF/NOFF/STOFF family
+// (per-vertex colours, normals and texture coordinates are skipped, as are
+// face colours) and writing plain OFF.
+#include <algorithm>
+
+#include "anisoform/mesh_io.h"
+#include "io/io_common.h"
+
+namespace aniso {
+namespace io {
+
+namespace {
+
+// Yields the lines that hold data: comments ('#' to the end of a line) and
+// blank lines are dropped.
+class OffLines {
+ public:
+  explicit OffLines(std::string_view text) : lines_(text) {}
+  bool next(std::string_view& line) {
+    while (lines_.next(line)) {
+      line = line.substr(0, line.find('#'));
+      std::string_view probe = line;
+      if (!next_token(probe).empty()) return true;
+    }
+    return false;
+  }
+  int line_number() const { return lines_.line_number(); }
+  std::size_t bytes_left() const { return lines_.rest().size(); }
+
+ private:
+  LineReader lines_;
+};
+
+// "OFF" with optional prefixes: ST (texture coordinates), C (colour),
+// N (normal). "4OFF"/"nOFF" (other dimensions) and binary OFF are not ours.
+void check_header_keyword(std::string_view keyword, std::string_view rest) {
+  static constexpr std::string_view kAccepted[] = {"OFF",    "COFF",    "NOFF",    "CNOFF",
+                                                   "NCOFF",  "STOFF",   "STCOFF",  "STNOFF",
+                                                   "STCNOFF", "STNCOFF"};
+  for (std::string_view accepted : kAccepted) {
+    if (keyword != accepted) continue;
+    std::string_view probe = rest;
+    if (next_token(probe) == "BINARY") fail_file("binary OFF files are not supported; use ASCII OFF");
+    return;
+  }
+  if (keyword.size() >= 3 && keyword.substr(keyword.size() - 3) == "OFF") {
+    fail_file("unsupported OFF variant " + quoted(keyword) +
+              " (only 3D OFF, COFF, NOFF and STOFF are read)");
+  }
+  fail_file("not an OFF file: it starts with " + quoted(keyword) + " instead of 'OFF'");
+}
+
+long long parse_count(std::string_view token, const char* what, int line) {
+  long long count = 0;
+  if (token.empty()) fail_file(std::string("the header has no ") + what + " count" + at_line(line));
+  if (!parse_integer(token, count) || count < 0 || count > INT32_MAX) {
+    fail_file(std::string("the ") + what + " count " + quoted(token) + " is not a valid count" +
+              at_line(line));
+  }
+  return count;
+}
+
+}  // namespace
+
+ReadResult read_off(const char* data, std::size_t size) {
+  ReadReport report;
+  std::string decoded;
+  const std::string_view text = decode_text(data, size, decoded, report);
+  reject_binary_text(text, "OFF");
+  OffLines lines(text);
+  std::string_view line;
+
+  if (!lines.next(line)) fail_file("the file has no OFF header (only blank lines and comments)");
+  std::string_view rest = line;
+  check_header_keyword(next_token(rest), rest);
+  // The counts may follow the keyword on the same line ("OFF 8 6 0").
+  {
+    std::string_view probe = rest;
+    if (next_token(probe).empty() && !lines.next(rest)) fail_file("the file ends after the OFF header");
+  }
+  const int counts_line = lines.line_number();
+  const long long num_vertices = parse_count(next_token(rest), "vertex", counts_line);
+  const long long num_faces = parse_count(next_token(rest), "face", counts_line);
+
+  // The counts come from the file: refuse those its bytes cannot hold before
+  // anything is allocated or looped over. Each vertex and face is a line of
+  // at least one character and a newline (a truncated file that passes this
+  // is reported where it ends, which says more).
+  require_declared_bytes(text_bytes_for(num_vertices + num_faces),
+                         std::to_string(num_vertices) + " vertices and " + std::to_string(num_faces) + " faces",
+                         lines.bytes_left());
+  PolygonMesh polygons;
+  // Reserve no more than the bytes could hold: a vertex line takes 6 at least.
+  polygons.xyz.reserve(3 * static_cast<std::size_t>(std::min<long long>(num_vertices, size / 6)));
+  polygons.offsets.reserve(static_cast<std::size_t>(std::min<long long>(num_faces, size / 6)) + 1);
+
+  for (long long v = 0; v < num_vertices; ++v) {
+    if (!lines.next(line)) fail_file(truncated_message(v, num_vertices, "vertices"));
+    double xyz[3];
+    for (double& value : xyz) {
+      const std::string_view token = next_token(line);
+      if (token.empty()) {
+        fail_file("vertex " + std::to_string(v + 1) + " has fewer than 3 coordinates" +
+                  at_line(lines.line_number()));
+      }
+      if (const char* problem = parse_coordinate(token, value)) {
+        fail_file(number_problem(token, problem) + at_line(lines.line_number()));
+      }
+    }
+    polygons.add_vertex(xyz[0], xyz[1], xyz[2]);
+  }
+
+  for (long long f = 0; f < num_faces; ++f) {
+    if (!lines.next(line)) fail_file(truncated_message(f, num_faces, "faces"));
+    const int line_number = lines.line_number();
+    const std::string face = "face " + std::to_string(f + 1);
+    long long corners = 0;
+    const std::string_view count_token = next_token(line);
+    if (!parse_integer(count_token, corners) || corners < 3 || corners > INT32_MAX) {
+      fail_file(face + " has corner count " + quoted(count_token) +
+                "; a face needs at least 3 corners" + at_line(line_number));
+    }
+    for (long long c = 0; c < corners; ++c) {
+      const std::string_view token = next_token(line);
+      long long index = 0;
+      if (token.empty()) {
+        fail_file(face + " lists " + std::to_string(corners) + " corners but gives only " +
+                  std::to_string(c) + at_line(line_number));
+      }
+      if (!parse_integer(token, index)) {
+        fail_file(face + " has a malformed vertex index " + quoted(token) + at_line(line_number));
+      }
+      if (index < 0 || index >= num_vertices) {
+        fail_file(face + " references vertex " + std::to_string(index) + ", but the file has " +
+                  std::to_string(num_vertices) + " vertices (OFF numbers them from 0)" +
+                  at_line(line_number));
+      }
+      polygons.corners.push_back(static_cast<int>(index));
+    }
+    polygons.end_polygon();  // anything after the corners is a face colour
+  }
+  return assemble_mesh(polygons, std::move(report));
+}
+
+std::string write_off(const Mesh& mesh) {
+  std::string out = "OFF\n";
+  out.reserve(static_cast<std::size_t>(mesh.V.rows()) * 40 + static_cast<std::size_t>(mesh.F.rows()) * 24);
+  append_number(out, static_cast<long long>(mesh.V.rows()));
+  out += ' ';
+  append_number(out, static_cast<long long>(mesh.F.rows()));
+  out += " 0\n";
+  append_position_rows(out, mesh.V, "");
+  append_triangle_rows(out, mesh.F, "3", 0);
+  return out;
+}
+
+}  // namespace io
+}  // namespace aniso

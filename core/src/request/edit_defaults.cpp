@@ -1,0 +1,69 @@
+// The defaults of an edit and a flattening that depend on the mesh (op.h):
+// the one place they are decided, for the Session and so for every host.
+#include <algorithm>
+
+#include "anisoform/op.h"
+#include "anisoform/transforms.h"
+
+namespace aniso {
+
+Eigen::Vector3d longest_axis(const BoundingBox& box) {
+  const Eigen::Vector3d extent = box.max - box.min;
+  int axis = 0;
+  for (int k = 1; k < 3; ++k) {
+    if (extent[k] > extent[axis]) axis = k;
+  }
+  return Eigen::Vector3d::Unit(axis);
+}
+
+namespace {
+
+// ARAP with handles in the modelling sense (Sorkine & Alexa): the fully
+// selected vertices are the handle and move with the drag, the soft border
+// deforms as rigidly as possible, the unselected rest is pinned.
+constexpr double kHandleWeight = 0.999;
+
+void arap_handles_from_selection(const Eigen::VectorXd& weights, DeformRequest& request) {
+  const bool pins_given = !request.pins.empty();
+  if (!(weights.array() > 0.0).any()) {
+    // Nothing selected: the whole mesh is the handle.
+    for (Eigen::Index i = 0; i < weights.size(); ++i) request.handles.push_back(static_cast<int>(i));
+    return;
+  }
+  std::vector<int> pins;
+  for (Eigen::Index i = 0; i < weights.size(); ++i) {
+    if (weights[i] >= kHandleWeight) request.handles.push_back(static_cast<int>(i));
+    else if (weights[i] == 0.0) pins.push_back(static_cast<int>(i));
+  }
+  if (!pins_given) request.pins = std::move(pins);
+}
+
+}  // namespace
+
+DeformRequest resolve_edit(const SessionEdit& edit, const Positions& rest, const BoundingBox& loaded_box,
+                           const Eigen::VectorXd& weights) {
+  DeformRequest request = edit.request;
+  request.selection = weights;
+  if (!edit.direction_given) {
+    request.direction = DirectionSource();
+    request.direction.vector = longest_axis(loaded_box);
+  }
+  if (request.transform.twist && !edit.twist_origin_given) {
+    request.transform.twist_origin = default_twist_origin(rest, weights, request.transform.twist_axis);
+  }
+  if (request.method == Method::Arap && request.handles.empty()) arap_handles_from_selection(weights, request);
+  if (edit.preview) request.max_iterations = std::min(request.max_iterations, kPreviewIterations);
+  return request;
+}
+
+SessionFlatten resolve_flatten(const SessionFlatten& request, const Positions& positions) {
+  SessionFlatten out = request;
+  if (!out.direction_given) {
+    out.directions = FlattenDirections();
+    out.directions.global = longest_axis(bounding_box(positions));
+    out.direction_given = true;
+  }
+  return out;
+}
+
+}  // namespace aniso

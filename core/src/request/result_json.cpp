@@ -1,0 +1,100 @@
+// The results as JSON with the keys the JS API returns (op.h), and the op's
+// schema as the parsers read it.
+#include "anisoform/op.h"
+#include "op_keys.h"
+
+namespace aniso {
+namespace {
+
+Json vector3_json(const Eigen::Vector3d& v) { return Json::array({v.x(), v.y(), v.z()}); }
+
+}  // namespace
+
+Json to_json(const SessionMeshInfo& info) {
+  const MeshReport& r = info.report;
+  Json problems = Json::array();
+  for (const Problem& p : r.problems) {
+    problems.push_back({{"kind", problem_kind_name(p.kind)}, {"element", p.element}, {"message", p.message}});
+  }
+  return {
+      {"vertices", r.vertices},
+      {"triangles", r.triangles},
+      {"components", r.components},
+      {"boundaryLoops", r.boundary_loops},
+      {"edgeManifold", r.edge_manifold},
+      {"vertexManifold", r.vertex_manifold},
+      {"consistentlyOriented", r.consistently_oriented},
+      {"degenerateTriangles", r.degenerate_triangles},
+      {"duplicateFaces", r.duplicate_faces},
+      {"unreferencedVertices", r.unreferenced_vertices},
+      {"bbox", {{"min", vector3_json(r.bbox.min)}, {"max", vector3_json(r.bbox.max)}}},
+      {"problems", problems},
+      {"notes", info.notes},
+  };
+}
+
+Json to_json(const SessionEditResult& r) {
+  return {
+      {"selected", r.selected},
+      {"iterations", r.iterations},
+      {"energy", r.energy},
+      {"energyHistory", r.energy_history},
+      {"converged", r.converged},
+      {"directionsFilled", r.directions_filled},
+      {"inverted", r.inverted},
+      {"factorizations", r.factorizations},
+      {"precomputeMs", r.precompute_ms},
+      {"solveMs", r.solve_ms},
+      {"ms", r.total_ms},
+  };
+}
+
+Json to_json(const FlattenMetrics& m) {
+  return {
+      {"triangles", m.triangles},
+      {"vertices", m.vertices},
+      {"components", m.components},
+      {"boundaryLoops", m.boundary_loops},
+      {"flipped", m.flipped},
+      {"compressionErrorMean", m.compression_error_mean},
+      {"compressionErrorMax", m.compression_error_max},
+      {"crossErrorMean", m.cross_error_mean},
+      {"crossErrorMax", m.cross_error_max},
+      {"areaDistortionMean", m.area_distortion_mean},
+      {"iterations", m.iterations},
+      {"energy", m.energy},
+      {"converged", m.converged},
+      {"seconds", m.seconds},
+      {"filledDirections", m.filled_directions},
+      {"initialization", m.initialization},
+      {"method", m.method},
+  };
+}
+
+Json op_schema() {
+  using namespace op_keys;
+  return {
+      {"op", kOp},
+      {"op.transform", kTransform},
+      {"op.transform.rotate", kRotate},
+      {"op.transform.twist", kTwist},
+      {"direction.type", kDirectionTypes},
+      {"direction.global", kGlobal},
+      {"direction.curvature", kCurvature},
+      {"direction.screen", kScreen},
+      {"direction.screen.camera", kCamera},
+      {"direction.constraints", kConstraints},
+      {"direction.constraint", kConstraint},
+      {"direction.dense", kDense},
+      {"region", kRegionKinds},
+      {"region.sphere", kSphere},
+      {"region.box", kBox},
+      {"region.vertices", kVertices},
+      {"flatten", kFlatten},
+      {"select", kSelect},
+      {"setMesh", kMeshOptions},
+      {"exportPattern", kPatternOptions},
+  };
+}
+
+}  // namespace aniso

@@ -1,0 +1,306 @@
+#include "anisoform/session.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <utility>
+
+#include "deform/element_targets.h"
+#include "anisoform/error.h"
+#include "anisoform/op.h"
+#include "geometry/frames.h"
+#include "mesh/topology.h"
+#include "session/session_flatten_state.h"
+
+namespace aniso {
+namespace {
+
+double milliseconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::vector<float> to_float32(const Positions& V) {
+  std::vector<float> out(static_cast<std::size_t>(V.size()));
+  for (Eigen::Index i = 0; i < V.rows(); ++i)
+    for (int k = 0; k < 3; ++k) out[static_cast<std::size_t>(3 * i + k)] = static_cast<float>(V(i, k));
+  return out;
+}
+
+Positions positions_from_xyz(const std::vector<double>& xyz) {
+  Positions V(static_cast<Eigen::Index>(xyz.size() / 3), 3);
+  for (Eigen::Index i = 0; i < V.rows(); ++i)
+    for (int k = 0; k < 3; ++k) V(i, k) = xyz[static_cast<std::size_t>(3 * i + k)];
+  return V;
+}
+
+void require_xyz_count(std::size_t count, const std::string& what) {
+  if (count % 3 != 0) {
+    fail(ErrorCode::BadParameter, what + " needs 3 numbers per vertex, got " +
+                                      std::to_string(count) + " numbers");
+  }
+}
+
+int count_selected(const Eigen::VectorXd& weights) {
+  return static_cast<int>((weights.array() > 0.0).count());
+}
+
+// Prefixes a reader's message with the file name, keeping its code.
+[[noreturn]] void fail_with_name(const Error& error, const std::string& name) {
+  fail(error.code(), name + ": " + error.what());
+}
+
+}  // namespace
+
+Session::Session() : flatten_(std::make_unique<SessionFlattenState>()) {}
+Session::~Session() = default;
+
+void Session::require_mesh() const {
+  if (!deformer_) fail(ErrorCode::BadParameter, "no mesh is loaded");
+}
+
+const SessionMeshInfo& Session::info() const {
+  require_mesh();
+  return info_;
+}
+
+const Mesh& Session::rest() const {
+  require_mesh();
+  return deformer_->rest();
+}
+
+const Positions& Session::positions() const {
+  require_mesh();
+  return current_;
+}
+
+const SessionMeshInfo& Session::load_mesh(const std::uint8_t* data, std::size_t size,
+                                          const std::string& name) {
+  const MeshFormat format = format_from_path(name);  // its message names the file already
+  ReadResult read;
+  try {
+    read = read_mesh_from_memory(reinterpret_cast<const char*>(data), size, format);
+  } catch (const Error& error) {
+    fail_with_name(error, name);
+  }
+  try {
+    return adopt_mesh(std::move(read.mesh), std::move(read.report.notes));
+  } catch (const Error& error) {
+    fail_with_name(error, name);
+  }
+}
+
+const SessionMeshInfo& Session::set_mesh(const std::vector<double>& positions,
+                                         const std::vector<std::uint32_t>& triangles, bool weld) {
+  require_xyz_count(positions.size(), "setMesh: positions");
+  if (triangles.size() % 3 != 0) {
+    fail(ErrorCode::BadParameter, "setMesh: triangles needs 3 indices per triangle, got " +
+                                      std::to_string(triangles.size()) + " indices");
+  }
+  Mesh mesh;
+  mesh.V = positions_from_xyz(positions);
+  mesh.F.resize(static_cast<Eigen::Index>(triangles.size() / 3), 3);
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    // Checked here, before the indices are narrowed to int or used by welding.
+    if (triangles[i] >= static_cast<std::uint32_t>(mesh.num_vertices())) {
+      fail(ErrorCode::BadMesh, "triangle " + std::to_string(i / 3) + " references vertex " +
+                                   std::to_string(triangles[i]) + ", but there are only " +
+                                   std::to_string(mesh.num_vertices()) + " vertices");
+    }
+    mesh.F(static_cast<Eigen::Index>(i / 3), static_cast<Eigen::Index>(i % 3)) =
+        static_cast<int>(triangles[i]);
+  }
+  std::vector<std::string> notes;
+  if (weld) {
+    const int before = mesh.num_vertices();
+    const int faces_before = mesh.num_triangles();
+    mesh = weld_vertices(mesh);
+    if (mesh.num_vertices() < before) {
+      notes.push_back("welded vertices at equal positions: " + std::to_string(before) + " -> " +
+                      std::to_string(mesh.num_vertices()) + " vertices");
+    }
+    if (mesh.num_triangles() < faces_before) {
+      notes.push_back(std::to_string(faces_before - mesh.num_triangles()) +
+                      " triangle(s) collapsed by welding were dropped");
+    }
+  }
+  return adopt_mesh(std::move(mesh), std::move(notes));
+}
+
+const SessionMeshInfo& Session::adopt_mesh(Mesh mesh, std::vector<std::string> notes) {
+  // A soup has no shared vertices, so no edit could spread over it: weld it,
+  // as the CLI does, and say so.
+  if (is_triangle_soup(mesh)) {
+    const int before = mesh.num_vertices();
+    mesh = weld_vertices(mesh);
+    notes.push_back("the file is a triangle soup (no shared vertices): welded by exact position, " +
+                    std::to_string(before) + " -> " + std::to_string(mesh.num_vertices()) +
+                    " vertices");
+  }
+  SessionMeshInfo info{check_mesh(mesh), std::move(notes)};
+  if (!info.report.solvable()) {
+    fail(ErrorCode::BadMesh, "cannot edit this mesh: " + info.report.blocking_summary());
+  }
+  auto deformer = std::make_unique<Deformer>(std::move(mesh));
+  // Everything the new mesh needs is allocated before the session changes, so
+  // that running out of memory (std::bad_alloc) leaves it as it was, too.
+  Positions loaded = deformer->rest().V;
+  const Triangles& F = deformer->rest().F;
+  std::vector<std::uint32_t> triangles_u32(static_cast<std::size_t>(F.size()));
+  for (Eigen::Index t = 0; t < F.rows(); ++t)
+    for (int k = 0; k < 3; ++k)
+      triangles_u32[static_cast<std::size_t>(3 * t + k)] = static_cast<std::uint32_t>(F(t, k));
+  CurrentPositions current = current_positions(loaded);
+  Eigen::VectorXd weights = Eigen::VectorXd::Zero(deformer->rest().num_vertices());
+  std::vector<float> weights_f32(static_cast<std::size_t>(weights.size()), 0.0f);
+
+  // Nothing below throws or allocates: moves only.
+  targets_.reset();
+  adjacency_.reset();
+  if (deformer_) retired_factorizations_ += deformer_->factorizations();
+  deformer_ = std::move(deformer);
+  info_ = std::move(info);
+  loaded_ = std::move(loaded);
+  triangles_u32_ = std::move(triangles_u32);
+  set_current(std::move(current));
+  weights_ = std::move(weights);
+  weights_f32_ = std::move(weights_f32);
+  return info_;
+}
+
+Session::CurrentPositions Session::current_positions(Positions V) {
+  std::vector<float> f32 = to_float32(V);
+  return {std::move(V), std::move(f32)};
+}
+
+void Session::set_current(CurrentPositions current) noexcept {
+  // Every change of the positions passes here: a flattening of the old ones
+  // can be neither reused nor exported.
+  flatten_->positions_changed();
+  current_ = std::move(current.V);
+  positions_f32_ = std::move(current.f32);
+}
+
+void Session::set_weights(Eigen::VectorXd weights) {
+  std::vector<float> f32(weights.data(), weights.data() + weights.size());
+  weights_ = std::move(weights);
+  weights_f32_ = std::move(f32);
+}
+
+void Session::replace_rest(Positions V) {
+  auto deformer = std::make_unique<Deformer>(Mesh{V, deformer_->rest().F});
+  CurrentPositions current = current_positions(std::move(V));
+  targets_.reset();  // it refers to the old rest mesh
+  retired_factorizations_ += deformer_->factorizations();
+  deformer_ = std::move(deformer);
+  set_current(std::move(current));
+}
+
+int Session::select(const Region& region, double falloff, SelectionMode mode) {
+  require_mesh();
+  const Mesh& rest = deformer_->rest();
+  // The adjacency is built once per mesh, not on every select (the page asks for each one).
+  if (!adjacency_) adjacency_ = std::make_unique<VertexAdjacency>(vertex_adjacency(rest.F, rest.num_vertices()));
+  // Regions are evaluated on the rest pose, which is what is on screen between edits.
+  const Eigen::VectorXd picked = selection_weights(rest, *adjacency_, region, falloff);
+  Eigen::VectorXd weights = weights_;
+  switch (mode) {
+    case SelectionMode::Replace: weights = picked; break;
+    case SelectionMode::Add: weights = weights.cwiseMax(picked); break;
+    case SelectionMode::Subtract: weights = weights.array().min(1.0 - picked.array()).matrix(); break;
+  }
+  set_weights(std::move(weights));
+  return count_selected(weights_);
+}
+
+int Session::set_selection(const std::vector<float>& weights) {
+  require_mesh();
+  const int n = deformer_->rest().num_vertices();
+  if (weights.size() != static_cast<std::size_t>(n)) {
+    fail(ErrorCode::BadParameter, "setSelection needs one weight per vertex (" + std::to_string(n) +
+                                      "), got " + std::to_string(weights.size()));
+  }
+  Eigen::VectorXd converted(n);
+  for (int i = 0; i < n; ++i) {
+    const double w = weights[static_cast<std::size_t>(i)];
+    if (!(w >= 0.0 && w <= 1.0)) {
+      fail(ErrorCode::BadParameter, "setSelection: the weight of vertex " + std::to_string(i) +
+                                        " is " + std::to_string(w) + ", outside [0, 1]");
+    }
+    converted[i] = w;
+  }
+  set_weights(std::move(converted));
+  return count_selected(weights_);
+}
+
+SessionEditResult Session::deform(const SessionEdit& edit) {
+  require_mesh();
+  const auto start = std::chrono::steady_clock::now();
+  DeformResult result = deformer_->deform(resolve_edit(edit, deformer_->rest().V, info_.report.bbox, weights_));
+
+  SessionEditResult summary;
+  summary.selected = result.selected;
+  summary.iterations = result.iterations;
+  summary.energy = result.energy;
+  summary.energy_history = std::move(result.energy_history);
+  summary.converged = result.converged;
+  summary.directions_filled = result.directions_filled;
+  summary.inverted = result.inverted;
+  summary.precompute_ms = result.precompute_ms;
+  summary.solve_ms = result.solve_ms;
+  set_current(current_positions(std::move(result.V)));
+  summary.factorizations = factorizations();
+  summary.total_ms = milliseconds_since(start);
+  return summary;
+}
+
+void Session::commit() {
+  require_mesh();
+  replace_rest(current_);
+}
+
+void Session::cancel() {
+  require_mesh();
+  set_current(current_positions(deformer_->rest().V));
+}
+
+void Session::set_positions(const std::vector<double>& positions) {
+  require_mesh();
+  const int n = deformer_->rest().num_vertices();
+  if (positions.size() != 3 * static_cast<std::size_t>(n)) {
+    fail(ErrorCode::BadParameter, "setPositions needs 3 numbers per vertex (" +
+                                      std::to_string(3 * static_cast<std::size_t>(n)) + "), got " +
+                                      std::to_string(positions.size()));
+  }
+  replace_rest(positions_from_xyz(positions));
+}
+
+Positions Session::direction_field(const DirectionSource& source) {
+  require_mesh();
+  validate_direction_source(source, deformer_->rest().num_vertices());
+  if (!targets_) targets_ = std::make_unique<TargetContext>(deformer_->rest());
+  Positions directions;
+  Eigen::VectorXd su, sv;
+  targets_->vertex_directions(source, directions, su, sv);
+  return build_frames(targets_->vertex_normals(), directions, targets_->vertex_offsets(),
+                      targets_->vertex_neighbors())
+      .u;
+}
+
+Eigen::VectorXd Session::distortion(DistortionKind kind, DistortionReference reference) const {
+  require_mesh();
+  const Mesh& rest = deformer_->rest();
+  if (reference == DistortionReference::Rest) return vertex_distortion(rest, current_, kind);
+  return vertex_distortion(Mesh{loaded_, rest.F}, current_, kind);
+}
+
+std::string Session::export_mesh(MeshFormat format) const {
+  require_mesh();
+  return write_mesh_to_memory(Mesh{current_, deformer_->rest().F}, format);
+}
+
+int Session::factorizations() const {
+  return retired_factorizations_ + (deformer_ ? deformer_->factorizations() : 0) +
+         flatten_->factorizations();
+}
+
+}  // namespace aniso

@@ -1,0 +1,23 @@
+// Compiled by `npm run check:types --prefix web` (web/tsconfig.json), never
+// run: an embedder's calls written against the declarations, so that a
+// declaration that stops describing the API as the specs use it fails to
+// compile. Each call mirrors one the e2e specs make on window.anisoform.
+import type { Anisoform, DeformOp, FlattenOptions, Region } from '../../web/src/api/anisoform';
+
+export async function usage(api: Anisoform): Promise<number> {
+  await api.ready;
+  const region: Region = { sphere: { center: [0, 0.5, 0], radius: 0.2 } };
+  const count: number = await api.select(region, { falloff: 0.1, mode: 'add' });
+  const stretch: DeformOp = { method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.5, 1] } };
+  const drag: DeformOp = { method: 'andefgrad', direction: { type: 'screen', from: [10, 20], to: [40, 20] }, transform: { scale: 1.2 } };
+  const twist: DeformOp = { method: 'anarap', transform: { twist: { axis: [0, 1, 0], degreesPerUnit: 90 } }, rotationSteps: 2 };
+  for (const op of [stretch, drag, twist]) {
+    const { iterations, inverted } = await api.deform(op);
+    if (iterations < 0 || inverted < 0) return -1;
+  }
+  const options: FlattenOptions = { compress: [0.9, 1], patch: 'selection', direction: { type: 'global', vector: [1, 0, 0] } };
+  const { metrics, uv } = await api.flatten(options);
+  await api.exportPattern('svg', { mmPerUnit: 10 });
+  api.on('error', ({ code, message }) => console.log(code, message));
+  return count + metrics.compressionErrorMax + uv.length;
+}
