@@ -28,6 +28,7 @@ export default defineConfig({
       input: {
         site: fileURLToPath(new URL('./index.html', import.meta.url)),
         configurator: fileURLToPath(new URL('./examples/configurator.html', import.meta.url)),
+        embedding: fileURLToPath(new URL('./examples/embedding.html', import.meta.url)),
       },
     },
   },

@@ -5,11 +5,15 @@
 //
 // Every change is solved again from the original spool: the page steps back
 // to the base mesh with api.undo() (which restores it exactly) and commits
-// the three edits anew with api.deform(). Slider moves that arrive while a
-// solve runs are coalesced: only the latest values are solved next.
+// the three edits anew with api.deform(). While a slider moves ('input') the
+// edits run a few iterations (a preview); when it is let go ('change') they
+// are solved fully, so a slider position always gives the same shape. Moves
+// that arrive while a solve runs are coalesced: only the latest is solved.
 import 'anisoform';
 
 const AXIS = [1, 0, 0]; // the spool's axis of revolution (x in spool.off)
+const PREVIEW_ITERATIONS = 4; // as the modeller's own live drags
+const FULL_ITERATIONS = 50; // the api's default for a committed edit
 const form = document.querySelector('[data-testid=configurator]');
 const status = form.querySelector('[data-testid=status]');
 const sliders = { height: form.elements.height, twist: form.elements.twist, thickness: form.elements.thickness };
@@ -29,13 +33,14 @@ setState('idle', 'Ready');
 
 form.addEventListener('input', () => {
   showValues();
-  request();
+  request(PREVIEW_ITERATIONS);
 });
+form.addEventListener('change', () => request(FULL_ITERATIONS));
 form.addEventListener('reset', () => {
   // The form puts the default values back after this event.
   setTimeout(() => {
     showValues();
-    request();
+    request(FULL_ITERATIONS);
   });
 });
 form.querySelector('[data-testid=export-glb]').addEventListener('click', exportGlb);
@@ -54,17 +59,17 @@ function showValues() {
 
 // The edits for the slider values; one at its neutral value is left out, so
 // the defaults give the original spool exactly.
-function edits({ height, twist, thickness }) {
-  const along = { type: 'global', vector: AXIS };
+function edits({ height, twist, thickness }, maxIterations) {
+  const edit = (transform) => ({ method: 'anarap', direction: { type: 'global', vector: AXIS }, transform, maxIterations });
   const list = [];
-  if (height !== 1) list.push({ method: 'anarap', direction: along, transform: { scale: [height, 1] } });
-  if (twist !== 0) list.push({ method: 'anarap', direction: along, transform: { twist: { axis: AXIS, degreesPerUnit: twist / length } } });
-  if (thickness !== 1) list.push({ method: 'anarap', direction: along, transform: { scale: [1, thickness] } });
+  if (height !== 1) list.push(edit({ scale: [height, 1] }));
+  if (twist !== 0) list.push(edit({ twist: { axis: AXIS, degreesPerUnit: twist / length } }));
+  if (thickness !== 1) list.push(edit({ scale: [1, thickness] }));
   return list;
 }
 
-function request() {
-  wanted = values();
+function request(maxIterations) {
+  wanted = { values: values(), maxIterations };
   if (!solving) solveLatest();
 }
 
@@ -77,13 +82,15 @@ async function solveLatest() {
       wanted = null;
       const started = performance.now();
       while (applied > 0 && api.undo()) applied--;
-      for (const op of edits(target)) {
+      for (const op of edits(target.values, target.maxIterations)) {
         await api.deform(op);
         applied++;
       }
       updates++;
       form.dataset.updates = String(updates);
-      status.textContent = `Solved in ${(performance.now() - started).toFixed(0)} ms`;
+      const what = target.maxIterations === FULL_ITERATIONS ? 'Solved' : 'Preview';
+      status.textContent = `${what} in ${(performance.now() - started).toFixed(0)} ms`;
+      form.dataset.solved = what === 'Solved' ? 'full' : 'preview';
     }
     setState('idle');
   } catch (error) {
