@@ -178,3 +178,38 @@ test('<anisoform-modeller>: src loads, events come out as DOM events, .api works
   expect((await census(page)).workers).toBe(workersBefore);
   expect(pageErrors).toEqual([]);
 });
+
+test('workerUrl and wasmUrl say where the solver is loaded from', async ({ page }) => {
+  const pageErrors = await openExample(page);
+  const outcome = await page.evaluate(async () => {
+    // Where the example's own modellers found them: the worker from the page,
+    // the WASM named in the worker's code (relative to the worker).
+    const worker = performance.getEntriesByType('resource').map((entry) => entry.name)
+      .find((name) => /solver-worker[^/]*\.js$/.test(name));
+    const wasmName = (await (await fetch(worker)).text()).match(/anisoform-[\w-]+\.wasm/)[0];
+    const wasm = new URL(wasmName, worker).href;
+    const attempt = async (options) => {
+      const host = Object.assign(document.createElement('div'), { style: 'height: 200px' });
+      document.body.append(host);
+      const modeller = window.anisoformExample.createModeller(host, { ui: 'none', mesh: '../spool.off', ...options });
+      try {
+        await modeller.api.ready;
+        return { vertices: modeller.api.info().vertices };
+      } catch (error) {
+        return { error: error.message };
+      } finally {
+        modeller.dispose();
+        host.remove();
+      }
+    };
+    return {
+      moved: await attempt({ workerUrl: `${worker}?copy`, wasmUrl: `${wasm}?copy` }),
+      missingWasm: await attempt({ wasmUrl: new URL('no-such.wasm', worker).href }),
+      missingWorker: await attempt({ workerUrl: new URL('no-such-worker.js', worker).href }),
+    };
+  });
+  expect(outcome.moved).toEqual({ vertices: 649 });
+  expect(outcome.missingWasm.error).toMatch(/WASM/);
+  expect(outcome.missingWorker.error).toMatch(/solver stopped/);
+  expect(pageErrors).toEqual([]);
+});
