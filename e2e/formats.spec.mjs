@@ -65,9 +65,9 @@ test('dropping a file on the page loads it', async ({ page }) => {
     transfer.items.add(new File([new Uint8Array(data)], 'spot_lowres.off'));
     return transfer;
   }, bytes);
-  await page.dispatchEvent('#viewport', 'dragenter', { dataTransfer });
-  await expect(page.locator('#drop-overlay')).toBeVisible();
-  await page.dispatchEvent('#viewport', 'drop', { dataTransfer });
+  await page.dispatchEvent('main.viewport', 'dragenter', { dataTransfer });
+  await expect(page.getByTestId('drop-overlay')).toBeVisible();
+  await page.dispatchEvent('main.viewport', 'drop', { dataTransfer });
   expect(await loaded).toMatchObject({ vertices: 829, triangles: 1654 });
-  await expect(page.locator('#drop-overlay')).toBeHidden();
+  await expect(page.getByTestId('drop-overlay')).toBeHidden();
 });

@@ -1,8 +1,12 @@
 // Keyboard shortcuts: Ctrl/Cmd+Z undo, Ctrl/Cmd+Shift+Z (or Ctrl+Y) redo,
 // Esc cancels a live edit, F or Home frames the whole mesh. Ignored while
 // typing in a field, where those keys belong to the field.
-export function installKeyboardShortcuts({ undo, redo, cancel, frame }) {
-  window.addEventListener('keydown', (event) => {
+// `target` decides whose keys they are: the modeller's root element (keys
+// pressed while focus is inside it: an embedded modeller leaves the rest of
+// the page's keys alone) or the window (the standalone site, which is the
+// whole page).
+export function installKeyboardShortcuts(target, lifetime, { undo, redo, cancel, frame }) {
+  lifetime.listen(target, 'keydown', (event) => {
     const typing = event.target instanceof HTMLInputElement || event.target instanceof HTMLSelectElement
       || event.target instanceof HTMLTextAreaElement || event.target?.isContentEditable;
     if (event.key === 'Escape') {

@@ -11,19 +11,20 @@ export class PointerGestures {
    * @param {import('../viewer/viewer.js').Viewer} viewer
    * @param {import('./picker.js').Picker} picker
    * @param {() => object|null} activeTool  the tool under the pointer, or null
+   * @param {import('../embed/lifetime.js').Lifetime} lifetime
    */
-  constructor(viewer, picker, activeTool) {
+  constructor(viewer, picker, activeTool, lifetime) {
     this.viewer = viewer;
     this.picker = picker;
     this.activeTool = activeTool;
     const canvas = viewer.canvas;
-    canvas.addEventListener('pointerdown', (event) => this.#down(event), { capture: true });
-    canvas.addEventListener('pointermove', (event) => this.#move(event));
-    canvas.addEventListener('pointerup', (event) => this.#up(event));
-    canvas.addEventListener('pointercancel', () => this.cancel());
-    canvas.addEventListener('pointerleave', () => this.activeTool()?.hover?.(null));
+    lifetime.listen(canvas, 'pointerdown', (event) => this.#down(event), { capture: true });
+    lifetime.listen(canvas, 'pointermove', (event) => this.#move(event));
+    lifetime.listen(canvas, 'pointerup', (event) => this.#up(event));
+    lifetime.listen(canvas, 'pointercancel', () => this.cancel());
+    lifetime.listen(canvas, 'pointerleave', () => this.activeTool()?.hover?.(null));
     // Double-click on the mesh: orbit around the clicked point from the same distance.
-    canvas.addEventListener('dblclick', (event) => {
+    lifetime.listen(canvas, 'dblclick', (event) => {
       const { x, y } = this.#position(event);
       const hit = this.picker.pick(x, y);
       if (hit) viewer.focusOn(hit.point);

@@ -5,9 +5,9 @@ import { PatternView } from '../viewer/pattern-view.js';
 import { h } from './dom.js';
 import { selectField } from './fields.js';
 
-export function patternPane(container, { editor, settings }) {
+export function patternPane(container, { editor, settings, lifetime }) {
   const host = h('div', { className: 'pattern-host' });
-  const view = new PatternView(host);
+  const view = new PatternView(host, lifetime);
   const fit = h('button', { className: 'button', title: 'Fit the pattern to the pane (double-click)', onclick: () => view.fit() }, 'Fit');
   container.append(
     h('header', { className: 'pattern-header' },

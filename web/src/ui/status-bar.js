@@ -3,7 +3,7 @@
 // indeterminate one when the worker cannot tell how far it is).
 import { h } from './dom.js';
 
-export function statusBar(container, { editor, viewer }) {
+export function statusBar(container, { editor, viewer, lifetime }) {
   const mesh = h('span', { className: 'status-item', 'data-testid': 'status-mesh' });
   const solve = h('span', { className: 'status-item', 'data-testid': 'status-solve' }, 'solve —');
   const fps = h('span', { className: 'status-item', 'data-testid': 'status-fps' });
@@ -32,8 +32,8 @@ export function statusBar(container, { editor, viewer }) {
     }
   });
   // Frames are drawn on demand, so an idle view draws none.
-  setInterval(() => {
+  lifetime.every(500, () => {
     const frames = viewer.framesPerSecond;
     fps.textContent = frames > 0 ? `${frames} fps` : 'idle';
-  }, 500);
+  });
 }

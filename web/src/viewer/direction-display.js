@@ -13,7 +13,8 @@ export class DirectionDisplay {
   #timer = null;
   #request = 0;
 
-  constructor({ editor, settings, viewer, meshView }) {
+  constructor({ editor, settings, viewer, meshView, lifetime }) {
+    lifetime.defer(() => clearTimeout(this.#timer));
     this.editor = editor;
     this.settings = settings;
     this.meshView = meshView;

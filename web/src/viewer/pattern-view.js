@@ -19,8 +19,11 @@ export class PatternView {
   #hovered = -1;
   #drag = null;
 
-  /** @param {HTMLElement} container  receives the canvas and the readout */
-  constructor(container) {
+  /**
+   * @param {HTMLElement} container  receives the canvas and the readout
+   * @param {import('../embed/lifetime.js').Lifetime} lifetime
+   */
+  constructor(container, lifetime) {
     this.container = container;
     this.canvas = document.createElement('canvas');
     this.canvas.className = 'pattern-canvas';
@@ -30,12 +33,14 @@ export class PatternView {
     this.readout.className = 'pattern-readout';
     this.readout.dataset.testid = 'pattern-readout';
     container.append(this.canvas, this.readout);
-    new ResizeObserver(() => this.#resize()).observe(container);
-    this.canvas.addEventListener('wheel', (event) => this.#zoom(event), { passive: false });
-    this.canvas.addEventListener('pointerdown', (event) => this.#startPan(event));
-    this.canvas.addEventListener('pointermove', (event) => this.#pointerMove(event));
-    this.canvas.addEventListener('pointerup', () => (this.#drag = null));
-    this.canvas.addEventListener('dblclick', () => this.fit());
+    const resizeObserver = new ResizeObserver(() => this.#resize());
+    resizeObserver.observe(container);
+    lifetime.defer(() => resizeObserver.disconnect());
+    lifetime.listen(this.canvas, 'wheel', (event) => this.#zoom(event), { passive: false });
+    lifetime.listen(this.canvas, 'pointerdown', (event) => this.#startPan(event));
+    lifetime.listen(this.canvas, 'pointermove', (event) => this.#pointerMove(event));
+    lifetime.listen(this.canvas, 'pointerup', () => (this.#drag = null));
+    lifetime.listen(this.canvas, 'dblclick', () => this.fit());
     this.#resize();
   }
 

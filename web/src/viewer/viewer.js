@@ -18,7 +18,11 @@ export class Viewer extends EventEmitter {
   /** Target and distance the last fit left, to tell whether the user zoomed or panned since. */
   #lastFit = null;
 
-  constructor(container) {
+  /**
+   * @param {HTMLElement} container  receives the canvas
+   * @param {import('../embed/lifetime.js').Lifetime} lifetime  ends the render loop, the observer and the GL context
+   */
+  constructor(container, lifetime) {
     super();
     this.container = container;
     this.renderer = new WebGLRenderer({ antialias: true });
@@ -35,9 +39,19 @@ export class Viewer extends EventEmitter {
     this.controls = new OrbitControls(this.camera, this.canvas);
     this.controls.addEventListener('change', () => this.requestRender());
 
-    new ResizeObserver(() => this.#resize()).observe(container);
+    const resizeObserver = new ResizeObserver(() => this.#resize());
+    resizeObserver.observe(container);
     this.#resize();
     this.renderer.setAnimationLoop(() => this.#tick());
+    lifetime.defer(() => {
+      this.renderer.setAnimationLoop(null);
+      resizeObserver.disconnect();
+      this.controls.dispose();
+      this.renderer.dispose();
+      // Browsers keep only a few WebGL contexts per page: give this one back now.
+      this.renderer.forceContextLoss();
+      this.canvas.remove();
+    });
   }
 
   requestRender() {

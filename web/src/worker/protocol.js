@@ -9,7 +9,7 @@
 // Typed arrays travel as transferables: the sender gives them up.
 
 export const Request = Object.freeze({
-  /** {} -> {version}: load the WASM module and create the session. */
+  /** {wasmUrl?} -> {version}: load the WASM module (from wasmUrl if given) and create the session. */
   init: 'init',
   /** {bytes: ArrayBuffer, name} -> MeshPayload: core readers (OBJ, OFF, PLY, STL). */
   loadFile: 'loadFile',

@@ -22,10 +22,21 @@ export class SolverClient extends EventEmitter {
   #pending = new Map();
   #previewInFlight = false;
   #queuedPreview = null;
+  #wasmUrl;
+  #disposed = false;
 
-  constructor() {
+  /**
+   * workerUrl / wasmUrl: where the solver worker and its WASM are, when not
+   * beside this module (a bundler that moves files, a CDN copy of the WASM;
+   * the worker must be same-origin). The default `new URL(..., import.meta.url)`
+   * stays literal so bundlers find and emit both files.
+   */
+  constructor({ workerUrl, wasmUrl } = {}) {
     super();
-    this.#worker = new Worker(new URL('./solver-worker.js', import.meta.url), { type: 'module' });
+    this.#wasmUrl = wasmUrl === undefined ? undefined : String(wasmUrl);
+    this.#worker = workerUrl === undefined
+      ? new Worker(new URL('./solver-worker.js', import.meta.url), { type: 'module' })
+      : new Worker(workerUrl, { type: 'module' });
     this.#worker.onmessage = (event) => this.#receive(event.data);
     this.#worker.onerror = (event) => {
       const failure = new SolverError({
@@ -50,11 +61,28 @@ export class SolverClient extends EventEmitter {
   }
 
   request(kind, payload = {}, transfer = []) {
+    if (this.#disposed) return Promise.reject(disposedError());
+    // The WASM location travels with init, the one request that loads it.
+    if (kind === Request.init && this.#wasmUrl !== undefined) payload = { ...payload, wasmUrl: this.#wasmUrl };
     const id = this.#nextId++;
     return new Promise((resolve, reject) => {
       this.#pending.set(id, { resolve, reject });
       this.#worker.postMessage({ id, kind, ...payload }, transfer);
     });
+  }
+
+  /**
+   * Ends the worker, and with it the WASM session and its memory; requests
+   * still waiting reject.
+   */
+  dispose() {
+    if (this.#disposed) return;
+    this.#disposed = true;
+    this.#worker.terminate();
+    this.#queuedPreview?.resolve(null);
+    this.#queuedPreview = null;
+    for (const { reject } of this.#pending.values()) reject(disposedError());
+    this.#pending.clear();
   }
 
   /** True while a request is waiting for the worker. */
@@ -96,4 +124,8 @@ export class SolverClient extends EventEmitter {
         this.#sendQueuedPreview();
       });
   }
+}
+
+function disposedError() {
+  return new SolverError({ code: 'bad-parameter', message: 'this modeller was disposed' });
 }

@@ -11,9 +11,13 @@ function reportProgress(stage, message) {
   self.postMessage({ kind: PROGRESS, stage, message });
 }
 
-async function initialize() {
+async function initialize({ wasmUrl }) {
   reportProgress('init', 'Loading the solver');
-  const wasm = await createAnisoformWasm();
+  // wasmUrl: the embedder's override (SolverClient); by default the loader
+  // finds the WASM beside itself.
+  const wasm = await createAnisoformWasm(
+    wasmUrl === undefined ? {} : { locateFile: (path) => (path.endsWith('.wasm') ? wasmUrl : path) },
+  );
   host = new SessionHost(wasm, reportProgress);
   return { result: {}, transfer: [] };
 }
@@ -36,7 +40,7 @@ self.onmessage = (event) => {
   queue = queue.then(async () => {
     try {
       const { result, transfer } =
-        kind === Request.init ? await initialize() : requireHost().handle(kind, payload);
+        kind === Request.init ? await initialize(payload) : requireHost().handle(kind, payload);
       self.postMessage({ id, ok: true, result }, transfer);
     } catch (error) {
       self.postMessage({ id, ok: false, error: describeError(error) });

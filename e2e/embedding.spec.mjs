@@ -1,0 +1,215 @@
+// The anisoform package embedded in an ordinary page (examples/embedding.html):
+// two modellers are independent, and dispose() leaves nothing running
+// (workers, observers, listeners and the render loop counted from outside by
+// resource-census.mjs).
+import { expect, test } from './support.mjs';
+import { installResourceCensus } from './resource-census.mjs';
+
+const census = (page) => page.evaluate(() => window.__census());
+
+async function openExample(page) {
+  const pageErrors = [];
+  page.on('pageerror', (error) => pageErrors.push(error.message));
+  await page.addInitScript(installResourceCensus);
+  await page.goto('examples/embedding.html');
+  await page.evaluate(() => Promise.all(Object.values(window.anisoformExample.modellers).map((m) => m.api.ready)));
+  return pageErrors;
+}
+
+/** Frames requested during `ms` milliseconds of an idle page. */
+async function framesDuring(page, ms) {
+  const before = (await census(page)).frames;
+  await page.waitForTimeout(ms);
+  return (await census(page)).frames - before;
+}
+
+test('two modellers on one page are independent', async ({ page }) => {
+  const pageErrors = await openExample(page);
+  expect(await census(page)).toMatchObject({ workers: 2 });
+
+  const counts = await page.evaluate(() => {
+    const { spool, spot } = window.anisoformExample.modellers;
+    return [spool.api.info().vertices, spot.api.info().vertices];
+  });
+  expect(counts).toEqual([649, 2930]);
+
+  // An edit of the spool leaves Spot's positions, selection and history alone.
+  const outcome = await page.evaluate(async () => {
+    const { spool, spot } = window.anisoformExample.modellers;
+    const spotBefore = Array.from(spot.api.positions());
+    const spoolBefore = Array.from(spool.api.positions());
+    await spool.api.select({ box: { min: [0, -1, -1], max: [1, 1, 1] } });
+    await spool.api.deform({ method: 'anarap', direction: { type: 'global', vector: [1, 0, 0] }, transform: { scale: [1.5, 1] } });
+    const spoolMoved = spool.api.positions().some((value, i) => value !== spoolBefore[i]);
+    const spotSame = spot.api.positions().every((value, i) => value === spotBefore[i]);
+    return { spoolMoved, spotSame, spotSelected: spot.api.selection().some((w) => w > 0), spotCanUndo: spot.api.undo() };
+  });
+  expect(outcome).toEqual({ spoolMoved: true, spotSame: true, spotSelected: false, spotCanUndo: false });
+
+  // Keyboard shortcuts go to the modeller with focus: Ctrl+Z in Spot's view
+  // leaves the spool's edit in place; in the spool's view it undoes it.
+  const spoolEdited = await page.evaluate(() => Array.from(window.anisoformExample.modellers.spool.api.positions()));
+  await page.getByTestId('host-spot').getByTestId('viewport').focus();
+  await page.keyboard.press('Control+z');
+  expect(await page.evaluate(() => Array.from(window.anisoformExample.modellers.spool.api.positions()))).toEqual(spoolEdited);
+  await page.getByTestId('host-spool').getByTestId('viewport').focus();
+  await page.keyboard.press('Control+z');
+  expect(await page.evaluate(() => Array.from(window.anisoformExample.modellers.spool.api.positions()))).not.toEqual(spoolEdited);
+  // Nothing focused: the page's keys are the page's.
+  await page.evaluate(() => document.activeElement?.blur());
+  const spoolNow = await page.evaluate(() => Array.from(window.anisoformExample.modellers.spool.api.positions()));
+  await page.keyboard.press('Control+Shift+z');
+  expect(await page.evaluate(() => Array.from(window.anisoformExample.modellers.spool.api.positions()))).toEqual(spoolNow);
+
+  // Spot's panel lives inside its own container.
+  await expect(page.getByTestId('host-spot').locator('.side-panel')).toBeVisible();
+  await expect(page.getByTestId('host-spool').locator('.side-panel')).toHaveCount(0);
+  expect(pageErrors).toEqual([]);
+});
+
+test('dispose stops the worker, the render loop, the observers and every listener', async ({ page }) => {
+  const pageErrors = await openExample(page);
+  const withBoth = await census(page);
+  expect(withBoth.workers).toBe(2);
+
+  // One disposed: the other still works.
+  await page.getByRole('button', { name: 'Dispose' }).first().click();
+  const withSpot = await census(page);
+  expect(withSpot.workers).toBe(1);
+  expect(withSpot.listeners).toBeLessThan(withBoth.listeners);
+  expect(withSpot.observers).toBeLessThan(withBoth.observers);
+  await expect(page.getByTestId('host-spool')).toBeEmpty();
+  const spotStillWorks = await page.evaluate(async () => {
+    const { spot } = window.anisoformExample.modellers;
+    await spot.api.select({ sphere: { center: [0, 0, 0], radius: 0.3 } });
+    return spot.api.selection().some((w) => w > 0);
+  });
+  expect(spotStillWorks).toBe(true);
+  await page.getByRole('button', { name: 'Dispose' }).last().click();
+
+  // None left: what the page held before any modeller is what it holds now,
+  // and a new modeller's share goes with it again.
+  const none = await census(page);
+  expect(none).toMatchObject({ workers: 0, observers: 0 });
+  expect(await framesDuring(page, 400)).toBe(0);
+  const held = await page.evaluate(() => Object.values(window.anisoformExample.modellers).map((m) => m.held));
+  expect(held).toEqual([0, 0]);
+
+  await page.evaluate(async () => {
+    const host = Object.assign(document.createElement('div'), { style: 'height: 300px' });
+    host.dataset.testid = 'host-third';
+    document.body.append(host);
+    window.third = window.anisoformExample.createModeller(host, { ui: 'full', mesh: '../spool.off' });
+    await window.third.api.ready;
+  });
+  const withThird = await census(page);
+  expect(withThird.workers).toBe(1);
+  expect(withThird.listeners).toBeGreaterThan(none.listeners);
+  expect(withThird.observers).toBeGreaterThan(0);
+  expect(await framesDuring(page, 300)).toBeGreaterThan(0);
+  await page.evaluate(() => window.third.dispose());
+  expect(await census(page)).toMatchObject({ workers: 0, observers: 0, listeners: none.listeners });
+  expect(await page.evaluate(() => window.third.held)).toBe(0);
+  await expect(page.getByTestId('host-third')).toBeEmpty();
+  expect(await framesDuring(page, 400)).toBe(0);
+
+  // A disposed modeller's api refuses with a clear message.
+  const refusal = await page.evaluate(() => window.third.api.select({ all: true }).then(() => 'resolved', (error) => error.message));
+  expect(refusal).toMatch(/disposed/);
+  expect(pageErrors).toEqual([]);
+});
+
+test('<anisoform-modeller>: src loads, events come out as DOM events, .api works, removal disposes', async ({ page }) => {
+  const pageErrors = await openExample(page);
+  const workersBefore = (await census(page)).workers;
+
+  const first = await page.evaluate(async () => {
+    const element = document.createElement('anisoform-modeller');
+    element.setAttribute('ui', 'none');
+    element.setAttribute('src', '../spool.off');
+    element.style.height = '240px';
+    window.events = [];
+    for (const type of ['change', 'error', 'progress']) {
+      element.addEventListener(type, (event) => window.events.push({ type, isCustom: event instanceof CustomEvent, detail: event.detail }));
+    }
+    document.body.append(element);
+    window.element = element;
+    await element.api.ready;
+    return { vertices: element.api.info().vertices, canvases: element.querySelectorAll('canvas').length };
+  });
+  expect(first).toEqual({ vertices: 649, canvases: 1 });
+  expect((await census(page)).workers).toBe(workersBefore + 1);
+  let events = await page.evaluate(() => window.events);
+  expect(events.every((event) => event.isCustom)).toBe(true);
+  expect(events.filter((e) => e.type === 'change').map((e) => e.detail)).toEqual([{ reason: 'load' }]);
+  expect(events.some((e) => e.type === 'progress' && typeof e.detail.message === 'string')).toBe(true);
+
+  // A new src loads; a missing one is an 'error' event and the mesh stays.
+  const loaded = page.evaluate(() => new Promise((resolve) => {
+    window.element.addEventListener('change', (event) => resolve(event.detail), { once: true });
+  }));
+  await page.evaluate(() => window.element.setAttribute('src', '../spot_triangulated.obj'));
+  expect(await loaded).toEqual({ reason: 'load' });
+  expect(await page.evaluate(() => window.element.api.info().vertices)).toBe(2930);
+
+  const failed = page.evaluate(() => new Promise((resolve) => {
+    window.element.addEventListener('error', (event) => resolve(event.detail), { once: true });
+  }));
+  await page.evaluate(() => window.element.setAttribute('src', '../no-such-part.glb'));
+  const error = await failed;
+  expect(error.message).toMatch(/no-such-part\.glb.*HTTP 404/);
+  expect(await page.evaluate(() => window.element.api.info().vertices)).toBe(2930);
+
+  // Edits through .api are the element's 'change' events.
+  const edited = await page.evaluate(async () => {
+    window.events = [];
+    await window.element.api.select({ all: true });
+    await window.element.api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.2, 1] } });
+    return window.events.filter((e) => e.type === 'change').map((e) => e.detail.reason);
+  });
+  expect(edited).toEqual(['selection', 'positions']);
+
+  // Removed from the page: disposed.
+  const afterRemoval = await page.evaluate(() => {
+    window.element.remove();
+    return { api: window.element.api, children: window.element.childElementCount };
+  });
+  expect(afterRemoval).toEqual({ api: null, children: 0 });
+  expect((await census(page)).workers).toBe(workersBefore);
+  expect(pageErrors).toEqual([]);
+});
+
+test('workerUrl and wasmUrl say where the solver is loaded from', async ({ page }) => {
+  const pageErrors = await openExample(page);
+  const outcome = await page.evaluate(async () => {
+    // Where the example's own modellers found them: the worker from the page,
+    // the WASM named in the worker's code (relative to the worker).
+    const worker = performance.getEntriesByType('resource').map((entry) => entry.name)
+      .find((name) => /solver-worker[^/]*\.js$/.test(name));
+    const wasmName = (await (await fetch(worker)).text()).match(/anisoform-[\w-]+\.wasm/)[0];
+    const wasm = new URL(wasmName, worker).href;
+    const attempt = async (options) => {
+      const host = Object.assign(document.createElement('div'), { style: 'height: 200px' });
+      document.body.append(host);
+      const modeller = window.anisoformExample.createModeller(host, { ui: 'none', mesh: '../spool.off', ...options });
+      try {
+        await modeller.api.ready;
+        return { vertices: modeller.api.info().vertices };
+      } catch (error) {
+        return { error: error.message };
+      } finally {
+        modeller.dispose();
+        host.remove();
+      }
+    };
+    return {
+      moved: await attempt({ workerUrl: `${worker}?copy`, wasmUrl: `${wasm}?copy` }),
+      missingWasm: await attempt({ wasmUrl: new URL('no-such.wasm', worker).href }),
+      missingWorker: await attempt({ workerUrl: new URL('no-such-worker.js', worker).href }),
+    };
+  });
+  expect(outcome.moved).toEqual({ vertices: 649 });
+  expect(outcome.missingWasm.error).toMatch(/WASM/);
+  expect(outcome.missingWorker.error).toMatch(/solver stopped/);
+  expect(pageErrors).toEqual([]);
+});

@@ -1,0 +1,18 @@
+// Two modellers on one page through the anisoform package: the spool with no
+// panel, Spot with the full UI. Each "Dispose" button ends one of them
+// (worker, render loop, observers, listeners). window.anisoformExample holds
+// both and createModeller, for the console and the end-to-end tests.
+import { createModeller } from 'anisoform';
+import 'anisoform/style.css';
+
+const modellers = {
+  spool: createModeller(document.querySelector('[data-testid=host-spool]'), { ui: 'none', mesh: '../spool.off' }),
+  spot: createModeller(document.querySelector('[data-testid=host-spot]'), { ui: 'full', mesh: '../spot_triangulated.obj' }),
+};
+for (const button of document.querySelectorAll('[data-dispose]')) {
+  button.addEventListener('click', () => {
+    modellers[button.dataset.dispose].dispose();
+    button.disabled = true;
+  });
+}
+window.anisoformExample = { createModeller, modellers };

@@ -1,0 +1,58 @@
+// The anisoform package: createModeller and <anisoform-modeller>.
+// The api object's types (the same as window.anisoform on the standalone
+// site) are in api.d.ts beside this file.
+import type { Anisoform } from './api.js';
+
+export * from './api.js';
+
+/** A URL (resolved against the page), a File or Blob, or the file's bytes. */
+export type MeshSource = string | URL | File | Blob | ArrayBuffer | ArrayBufferView;
+
+export interface ModellerOptions {
+  /** 'full' (default): side panel, status bar, messages, drag-and-drop; needs `import 'anisoform/style.css'`. 'none': the 3D view alone (orbit), edits through the api. */
+  ui?: 'full' | 'none';
+  /** The mesh to load first (default: none; `api.ready` then resolves once the solver is up). */
+  mesh?: MeshSource;
+  /** The file name of `mesh` when it is bytes or a nameless Blob: its extension picks the reader (obj, off, ply, stl, glb). */
+  meshName?: string;
+  /** An edit document to open on `mesh` as its base mesh (api.open); needs `mesh`. */
+  document?: unknown;
+  /** 'focus' (default): keyboard shortcuts while focus is inside the modeller. 'page': on the whole window (a page that is only the modeller). */
+  keyboard?: 'focus' | 'page';
+  /** The solver worker's URL (same origin), when a bundler or server moved it; default: solver-worker.js beside anisoform.js. */
+  workerUrl?: string | URL;
+  /** The WASM's URL; default: anisoform.wasm beside the worker. */
+  wasmUrl?: string | URL;
+}
+
+export interface Modeller {
+  /** The modeller's api: load, select, deform, undo, export, events... */
+  readonly api: Anisoform;
+  /** Like api.load, and also takes a URL; failures are also 'error' events. */
+  load(source: MeshSource, name?: string): Promise<{ vertices: number; triangles: number }>;
+  /** Stops the render loop, the ResizeObservers, the worker (and its WASM session) and removes every listener and element it added. */
+  dispose(): void;
+  /** Listeners and clean-up steps the modeller still holds (0 after dispose). */
+  readonly held: number;
+}
+
+export function createModeller(container: HTMLElement, options?: ModellerOptions): Modeller;
+
+/**
+ * <anisoform-modeller src="part.glb" ui="none">: attributes src (mesh URL,
+ * loaded when set or changed) and ui ('full' | 'none'); CustomEvents
+ * 'change', 'error', 'progress' with the api's payload as `detail`; `.api`
+ * while connected; disposed when disconnected. Registered on import.
+ */
+export class AnisoformModellerElement extends HTMLElement {
+  readonly api: Anisoform | null;
+}
+
+/** Registers the element under `name` (default 'anisoform-modeller') if not yet registered. */
+export function defineModellerElement(name?: string): void;
+
+declare global {
+  interface HTMLElementTagNameMap {
+    'anisoform-modeller': AnisoformModellerElement;
+  }
+}

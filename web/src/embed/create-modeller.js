@@ -1,0 +1,191 @@
+// createModeller(container, options) -> {api, dispose}: one Anisoform
+// modeller (solver worker, editor, viewer, interaction, tools, and with
+// ui 'full' the side panel) living inside `container`. Everything it holds
+// outside its own objects is registered in a Lifetime, so dispose() ends the
+// render loop, the ResizeObservers, the worker (and with it the WASM session)
+// and every listener it added; several modellers on a page are independent.
+import { createAnisoformApi } from '../api/create-api.js';
+import { Editor } from '../editor/editor.js';
+import { BrushCursor } from '../interaction/brush-cursor.js';
+import { installKeyboardShortcuts } from '../interaction/keyboard-shortcuts.js';
+import { Picker } from '../interaction/picker.js';
+import { PointerGestures } from '../interaction/pointer-gestures.js';
+import { Settings } from '../shared/settings.js';
+import { createTools } from '../tools/tool-registry.js';
+import { HeatmapDisplay } from '../viewer/heatmap-display.js';
+import { DirectionDisplay } from '../viewer/direction-display.js';
+import { MeshView } from '../viewer/mesh-view.js';
+import { Viewer } from '../viewer/viewer.js';
+import { SolverClient } from '../worker/solver-client.js';
+import { installFullUi } from './full-ui.js';
+import { Lifetime } from './lifetime.js';
+import { resolveMeshSource } from './mesh-source.js';
+import { UI_MODES, buildLayout } from './modeller-layout.js';
+
+const OPTIONS = ['ui', 'mesh', 'meshName', 'document', 'keyboard', 'workerUrl', 'wasmUrl'];
+
+/**
+ * @param {HTMLElement} container
+ * @param {object} [options]
+ *   ui: 'full' | 'none' (default 'full'): the side panel, status bar and
+ *       messages, or the 3D view alone (orbit only; edits through the api)
+ *   mesh: URL string/URL, File, Blob, ArrayBuffer or typed array to load first (default: none)
+ *   meshName: its file name when `mesh` is bytes (the extension picks the reader)
+ *   document: an edit document to open with `mesh` as its base (api.open)
+ *   keyboard: 'focus' (default: shortcuts while focus is inside the modeller) or 'page'
+ *   workerUrl, wasmUrl: where the solver worker and its WASM are, when a
+ *       bundler or server moved them from beside this module
+ */
+export function createModeller(container, options = {}) {
+  const { ui = 'full', mesh, meshName, document: editDocument, keyboard = 'focus', workerUrl, wasmUrl } = checkOptions(container, options);
+
+  const lifetime = new Lifetime();
+  const client = new SolverClient({ workerUrl, wasmUrl });
+  lifetime.defer(() => client.dispose());
+  const editor = new Editor(client);
+  // Milestones for the page's timing (app.spec): the first modeller's count.
+  const starting = editor.start().then(() => performance.mark('anisoform:solver-ready'));
+
+  const layout = buildLayout(container, ui);
+  lifetime.defer(() => layout.root.remove());
+  const settings = new Settings();
+  const viewer = new Viewer(layout.viewport, lifetime);
+  const meshView = new MeshView(viewer);
+  const picker = new Picker(viewer, meshView);
+  viewer.setBoundsSource(() => editor.document?.bounds() ?? null);
+  editor.attachView({ cameraState: () => viewer.cameraState(), pick: (x, y) => picker.pick(x, y) });
+
+  editor.on('mesh', (loaded) => {
+    meshView.setMesh(loaded.positions, loaded.triangles);
+    editor.emit('progress', { stage: 'parse', message: 'Building the picking structure' });
+    picker.rebuild();
+    viewer.frame({ defaultDirection: true });
+  });
+  editor.on('positions', ({ positions }) => {
+    meshView.showPositions(positions);
+    picker.markStale();
+  });
+  editor.on('selection', ({ weights }) => meshView.showSelection(weights));
+  settings.on('change', ({ section }) => {
+    if (section === 'display') meshView.setSelectionVisible(settings.values.display.selection);
+  });
+
+  // Errors the editor has reported already are not shown twice.
+  const reportError = (error, context) => editor.report(error, context);
+  const directionDisplay = new DirectionDisplay({ editor, settings, viewer, meshView, lifetime });
+  new HeatmapDisplay({ editor, settings, meshView, reportError });
+  const tools = createTools({
+    editor,
+    viewer,
+    settings,
+    picker,
+    brushCursor: new BrushCursor(viewer),
+    reportError,
+    arrowPreview: (arrows) => directionDisplay.showArrows(arrows),
+  });
+  // Without the panel there is no way to pick a tool: the pointer orbits only.
+  const activeTool = ui === 'full' ? () => tools.get(settings.values.tool) ?? null : () => null;
+  const gestures = new PointerGestures(viewer, picker, activeTool, lifetime);
+  // Arrows, the last screen drag and a stroke in progress belong to the mesh
+  // they were made on; a load drops them before the new mesh is shown.
+  editor.bindToMesh(() => {
+    gestures.cancel();
+    settings.resetMeshBound();
+  });
+  let previousTool = settings.values.tool;
+  settings.on('change', ({ section }) => {
+    if (section !== 'tool') return;
+    gestures.cancel();
+    tools.get(previousTool)?.deactivate?.();
+    previousTool = settings.values.tool;
+  });
+
+  // The mesh download overlaps with compiling the WASM in the worker.
+  const meshSource = mesh === undefined ? null : resolveMeshSource(mesh, meshName);
+  meshSource?.catch(() => {}); // reported through `ready`
+  const ready = (async () => {
+    const [, source] = await Promise.all([starting, meshSource]);
+    if (!source) {
+      if (editDocument !== undefined) throw openWithoutMesh();
+      return;
+    }
+    if (editDocument === undefined) {
+      await editor.load(source.data, source.name);
+    } else {
+      if (typeof api.open !== 'function') throw badParameter('createModeller: this build cannot open edit documents (no api.open)');
+      await api.open(editDocument, source.data);
+    }
+    performance.mark('anisoform:mesh-loaded');
+    // Ready means drawn: wait for the frame that shows the mesh.
+    await new Promise((resolve) => {
+      const off = viewer.on('frame', () => {
+        off();
+        resolve();
+      });
+      viewer.requestRender();
+    });
+    performance.mark('anisoform:interactive');
+  })();
+  ready.catch((error) => {
+    if (!lifetime.disposed) reportError(error, 'The modeller could not start');
+  });
+
+  const api = createAnisoformApi({ editor, viewer, picker, ready });
+
+  const keyTarget = keyboard === 'page' ? window : layout.root;
+  installKeyboardShortcuts(keyTarget, lifetime, {
+    undo: () => api.undo(),
+    redo: () => api.redo(),
+    cancel: () => gestures.cancel() || editor.cancelGesture(),
+    frame: () => api.frame(),
+  });
+  // The panel's own form events stay inside: outside, 'change' is the api's
+  // (the <anisoform-modeller> element relays it under that name).
+  lifetime.listen(layout.root, 'change', (event) => event.stopPropagation());
+  if (ui === 'full') installFullUi(layout, { api, editor, settings, tools, viewer, reportError, lifetime });
+
+  /** Loads a URL as well as what api.load takes; failures are reported as 'error' events too. */
+  async function load(source, name) {
+    let resolved;
+    try {
+      resolved = await resolveMeshSource(source, name);
+    } catch (error) {
+      throw reportError(error, 'Could not load the mesh');
+    }
+    return api.load(resolved.data, resolved.name);
+  }
+
+  return Object.freeze({
+    api,
+    load,
+    /** Stops everything this modeller started; the container is left as it was. */
+    dispose: () => lifetime.dispose(),
+    /** Listeners and clean-up steps still held (0 after dispose): for tests. */
+    get held() {
+      return lifetime.size;
+    },
+  });
+}
+
+function checkOptions(container, options) {
+  if (!(container instanceof HTMLElement)) throw badParameter('createModeller: container must be an HTML element');
+  if (options === null || typeof options !== 'object') throw badParameter('createModeller: options must be an object');
+  for (const key of Object.keys(options)) {
+    if (!OPTIONS.includes(key)) throw badParameter(`createModeller: unknown option '${key}' (options: ${OPTIONS.join(', ')})`);
+  }
+  if (options.ui !== undefined && !UI_MODES.includes(options.ui)) {
+    throw badParameter(`createModeller: ui must be ${UI_MODES.map((m) => `'${m}'`).join(' or ')}, got '${options.ui}'`);
+  }
+  if (options.keyboard !== undefined && !['focus', 'page'].includes(options.keyboard)) {
+    throw badParameter(`createModeller: keyboard must be 'focus' or 'page', got '${options.keyboard}'`);
+  }
+  return options;
+}
+
+function openWithoutMesh() {
+  return badParameter('createModeller: the document option needs its base mesh in the mesh option');
+}
+
+function badParameter(message) {
+  return Object.assign(new Error(message), { code: 'bad-parameter' });
+}

@@ -1,0 +1,40 @@
+// The full UI of a modeller (ui: 'full'): the side panel's sections, the
+// pattern pane, the status bar, the messages over the viewport, drag-and-drop
+// loading onto the modeller and the Frame button, all in its own layout
+// (modeller-layout.js). The styles: ui/styles.css (the package's style.css).
+import '../ui/styles.css';
+import { directionPanel } from '../ui/direction-panel.js';
+import { displayPanel } from '../ui/display-panel.js';
+import { installDropZone } from '../ui/drop-zone.js';
+import { showWhen } from '../ui/fields.js';
+import { filePanel } from '../ui/file-panel.js';
+import { flattenPanel } from '../ui/flatten-panel.js';
+import { frameButton } from '../ui/frame-button.js';
+import { historyButtons } from '../ui/history-panel.js';
+import { installMessages } from '../ui/messages.js';
+import { methodPanel } from '../ui/method-panel.js';
+import { modeSwitch } from '../ui/mode-switch.js';
+import { patternPane } from '../ui/pattern-pane.js';
+import { selectionPanel } from '../ui/selection-panel.js';
+import { statusBar } from '../ui/status-bar.js';
+import { toolPanel } from '../ui/tool-panel.js';
+
+export function installFullUi(layout, { api, editor, settings, tools, viewer, reportError, lifetime }) {
+  const inMode = (mode, element) => showWhen(settings, 'mode', element, (current) => current === mode);
+  layout.sidePanel.append(
+    modeSwitch({ settings, app: layout.root }),
+    filePanel({ api, editor, reportError }),
+    historyButtons({ api, editor }),
+    toolPanel({ settings, tools, reportError }),
+    selectionPanel({ api, editor }),
+    inMode('deform', directionPanel({ settings })),
+    inMode('deform', methodPanel({ settings })),
+    inMode('flatten', flattenPanel({ api, editor, settings, reportError })),
+    displayPanel({ settings }),
+  );
+  patternPane(layout.patternPane, { editor, settings, lifetime });
+  statusBar(layout.statusBar, { editor, viewer, lifetime });
+  installMessages(layout.viewport, { editor });
+  installDropZone(layout.root, layout.dropOverlay, { api, reportError, lifetime });
+  frameButton(layout.viewport, { api });
+}
