@@ -41,14 +41,14 @@ ctest --test-dir build-asan -j"$JOBS" --output-on-failure --timeout 600
 stage "WASM build (emcmake)"
 bash scripts/build-wasm.sh
 
-stage "type declarations (tsc: the page API built on the module's one contract)"
-npm run check:types --prefix web
-
 stage "WASM tests (node --test)"
 ANISO_CLI="$ROOT/build-asan/cli/anisoform" node --test wasm/test/
 
-stage "web build"
+stage "web build (the site and the anisoform package)"
 npm run build:site --prefix web
+
+stage "type declarations (tsc: the package and the page API, built on the module's one contract)"
+npm run check:types --prefix web
 
 stage "end-to-end tests (Playwright, Debian chromium)"
 CI=${CI:-} npx --prefix web playwright test -c e2e/playwright.config.mjs

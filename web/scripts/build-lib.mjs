@@ -4,7 +4,8 @@
 //   solver-worker.js   the solver worker with the WASM loader bundled in
 //   anisoform.wasm     the solver
 //   style.css          the full UI's styles (ui: 'full')
-//   index.d.ts, api.d.ts (the api object: src/api/anisoform.d.ts), package.json, README.md
+//   index.d.ts, api.d.ts (the api object: src/api/anisoform.d.ts) with the module's
+//   anisoform-wasm.d.ts it imports, package.json, README.md
 // The worker and the WASM are separate files, found from anisoform.js through
 // literal `new URL('./x', import.meta.url)` so that an embedder's bundler
 // emits them too and a plain static server serves them; nothing is inlined.
@@ -85,7 +86,11 @@ await copyFile(`${web}lib/README.md`, `${outDir}/README.md`);
 const apiTypes = await readFile(`${web}src/api/anisoform.d.ts`, 'utf8');
 const withoutGlobal = apiTypes.replace(/\ndeclare global \{\n {2}interface Window \{\n {4}anisoform: Anisoform;\n {2}\}\n\}\n/, '\n');
 if (withoutGlobal === apiTypes) throw new Error('build-lib: anisoform.d.ts no longer declares window.anisoform as expected');
-await writeFile(`${outDir}/api.d.ts`, withoutGlobal);
+// Its request and result types are the module's (the one contract), shipped beside it.
+const moduleTypes = "'../wasm/anisoform-wasm'";
+if (!withoutGlobal.includes(moduleTypes)) throw new Error(`build-lib: anisoform.d.ts no longer imports ${moduleTypes}`);
+await writeFile(`${outDir}/api.d.ts`, withoutGlobal.replaceAll(moduleTypes, "'./anisoform-wasm'"));
+await copyFile(`${web}src/wasm/anisoform-wasm.d.ts`, `${outDir}/anisoform-wasm.d.ts`);
 const app = JSON.parse(await readFile(`${web}package.json`, 'utf8'));
 const manifest = {
   name: 'anisoform',
@@ -101,7 +106,7 @@ const manifest = {
     './anisoform.wasm': './anisoform.wasm',
     './package.json': './package.json',
   },
-  files: ['anisoform.js', 'solver-worker.js', 'anisoform.wasm', 'style.css', 'index.d.ts', 'api.d.ts', 'README.md'],
+  files: ['anisoform.js', 'solver-worker.js', 'anisoform.wasm', 'style.css', 'index.d.ts', 'api.d.ts', 'anisoform-wasm.d.ts', 'README.md'],
   sideEffects: ['./anisoform.js', './style.css'],
   dependencies: { three: app.dependencies.three, 'three-mesh-bvh': app.dependencies['three-mesh-bvh'] },
 };
