@@ -5,6 +5,7 @@
 #include <cmath>
 #include <utility>
 
+#include "anisoform/document.h"
 #include "anisoform/element_targets.h"
 #include "anisoform/error.h"
 #include "anisoform/frames.h"
@@ -71,6 +72,16 @@ const Mesh& Session::rest() const {
 const Positions& Session::positions() const {
   require_mesh();
   return current_;
+}
+
+const Positions& Session::loaded_positions() const {
+  require_mesh();
+  return loaded_;
+}
+
+std::uint64_t Session::mesh_hash() const {
+  require_mesh();
+  return aniso::mesh_hash(loaded_, deformer_->rest().F);
 }
 
 const SessionMeshInfo& Session::load_mesh(const std::uint8_t* data, std::size_t size,

@@ -116,6 +116,11 @@ class Session {
   const SessionMeshInfo& info() const;
   const Mesh& rest() const;
   const Positions& positions() const;
+  // The positions as loaded (welded), before any edit: what a document
+  // replays from.
+  const Positions& loaded_positions() const;
+  // mesh_hash (document.h) of the mesh as loaded.
+  std::uint64_t mesh_hash() const;
   const std::vector<float>& positions_f32() const { return positions_f32_; }
   const std::vector<std::uint32_t>& triangles_u32() const { return triangles_u32_; }
 
