@@ -163,7 +163,7 @@ TEST_CASE("document: replay is deterministic and runs every enabled op", "[docum
   SECTION("the op's region is selected on the rest pose") {
     Session selecting;
     load_spool(selecting);
-    const int selected = select_document_region(selecting, document_from_json(document), "everything");
+    const int selected = select_document_region(selecting, document_from_json(document), "thicken");
     CHECK(selected == selecting.rest().num_vertices());
   }
 }

@@ -173,6 +173,10 @@ class Session {
   void set_weights(Eigen::VectorXd weights);
 
   std::unique_ptr<Deformer> deformer_;  // owns the rest pose
+  // The Deformer of the rest pose before the last change, with its
+  // factorizations: going back to exactly that pose (undo, re-parameterising
+  // the last op of an edit document) swaps it in instead of refactoring.
+  std::unique_ptr<Deformer> previous_;
   std::unique_ptr<TargetContext> targets_;  // for direction_field(), built lazily per rest pose
   std::unique_ptr<VertexAdjacency> adjacency_;  // for select(), built lazily per mesh (not per pose)
   std::unique_ptr<SessionFlattenState> flatten_;  // always set; dropped per positions change
