@@ -17,5 +17,6 @@ using Action = std::function<int()>;
 void register_info(CLI::App& app, Action& action);
 void register_deform(CLI::App& app, Action& action);
 void register_flatten(CLI::App& app, Action& action);
+void register_replay(CLI::App& app, Action& action);  // cmd_replay.cpp
 
 }  // namespace aniso::cli

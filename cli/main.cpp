@@ -24,6 +24,7 @@ int parse_and_run(int argc, char** argv) {
   aniso::cli::register_info(app, action);
   aniso::cli::register_deform(app, action);
   aniso::cli::register_flatten(app, action);
+  aniso::cli::register_replay(app, action);
 
   try {
     app.parse(argc, argv);

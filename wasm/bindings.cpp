@@ -21,6 +21,7 @@
 #include <emscripten/heap.h>
 #include <emscripten/val.h>
 
+#include "anisoform/document.h"
 #include "anisoform/error.h"
 #include "anisoform/op.h"
 #include "anisoform/session.h"
@@ -179,6 +180,38 @@ val export_pattern(Session& s, const std::string& format, const std::string& opt
   });
 }
 
+// ---- the edit document (document.h) ----------------------------------------
+
+val replay(Session& s, const std::string& document, const std::string& options) {
+  return guarded([&] {
+    const ReplayRange range = replay_range_from_json(parse_request(options, "replay options"));
+    return to_js(to_json(replay_document(s, document_from_text(document), range)));
+  });
+}
+
+val select_document_region_js(Session& s, const std::string& document, const std::string& op_id) {
+  return guarded([&] { return select_document_region(s, document_from_text(document), op_id); });
+}
+
+// The op as the document stores it: resolved on the current rest pose and
+// selection, view-independent.
+val resolve_op(Session& s, const std::string& op) {
+  return guarded([&] { return to_js(to_json(resolve_for_document(s, deform_op_from_json(parse_request(op, "op"))))); });
+}
+
+val mesh_hash_js(Session& s) {
+  return guarded([&] { return val(mesh_hash_text(s.mesh_hash())); });
+}
+
+// The positions as the doubles the session holds (positions() is float32):
+// what replay parity and a bitwise cache need.
+val positions_exact(Session& s) {
+  return guarded([&] {
+    const Positions& V = s.positions();
+    return copy_to_js(V.data(), static_cast<std::size_t>(V.size()));
+  });
+}
+
 val factorizations(Session& s) {
   return guarded([&] { return s.factorizations(); });
 }
@@ -224,7 +257,12 @@ EMSCRIPTEN_BINDINGS(anisoform) {
       .function("exportMesh", &export_mesh)
       .function("flatten", &flatten)
       .function("exportPattern", &export_pattern)
-      .function("factorizations", &factorizations);
+      .function("factorizations", &factorizations)
+      .function("replay", &replay)
+      .function("selectDocumentRegion", &select_document_region_js)
+      .function("resolveOp", &resolve_op)
+      .function("meshHash", &mesh_hash_js)
+      .function("positionsExact", &positions_exact);
   emscripten::function("memoryUse", &memory_use);
   emscripten::function("opSchema", &op_schema_js);
 }

@@ -297,6 +297,72 @@ export interface PatternOptions {
   mmPerUnit?: number;
 }
 
+/** @schema document.mesh */
+export interface DocumentMesh {
+  /** The base mesh's file name (its extension gives the format). */
+  name: string;
+  vertices: number;
+  triangles: number;
+  /** Session.meshHash() of the mesh as loaded: 'fnv1a64:' and 16 hex digits. */
+  hash: string;
+}
+
+/** @schema document.step */
+export interface DocumentSelectStep {
+  region: Region;
+  /** As SelectOptions.falloff (default 0). */
+  falloff?: number;
+  /** As SelectOptions.mode (default 'replace'). */
+  mode?: 'replace' | 'add' | 'subtract';
+}
+
+/** @schema document.region */
+export interface DocumentRegion {
+  /** Unique in the document; ops refer to it. */
+  name: string;
+  /** Run in order from an empty selection, on the rest pose the op starts from. Sparse weights: one `vertices` step. */
+  steps: DocumentSelectStep[];
+}
+
+/** @schema document.op */
+export interface DocumentOp {
+  /** Unique in the document. */
+  id: string;
+  label?: string;
+  /** default true; a disabled op is skipped by replay. */
+  enabled?: boolean;
+  /** A DocumentRegion's name. */
+  region: string;
+  /** Resolved and view-independent (Session.resolveOp): no screen drags, the twist origin and iterations as used. */
+  op: DeformOp;
+}
+
+/** @schema document */
+export interface EditDocument {
+  format: 'anisoform-document';
+  version: 1;
+  mesh: DocumentMesh;
+  regions: DocumentRegion[];
+  ops: DocumentOp[];
+}
+
+/** @schema replay */
+export interface ReplayOptions {
+  /** First op to run (default 0: from the mesh as loaded; > 0: from the session's rest pose). */
+  from?: number;
+  /** One past the last op to run (default: all). */
+  to?: number;
+}
+
+export interface ReplaySummary {
+  /** Enabled ops solved. */
+  replayed: number;
+  /** Disabled ops. */
+  skipped: number;
+  /** The last solve's result (null when no op ran). */
+  last: DeformResult | null;
+}
+
 /** One editing session on the WASM heap. Call delete() when done. */
 export interface Session {
   /** Replaces the mesh; the format comes from `name`'s extension (.obj .off .ply .stl). On failure the session keeps its mesh. */
@@ -349,6 +415,21 @@ export interface Session {
   exportPattern(format: 'svg' | 'dxf', options?: PatternOptions): Uint8Array;
   /** Over the whole session: every rest pose and every flattened patch. */
   factorizations(): number;
+  /**
+   * Replays an edit document (an object, or its JSON text) on this session's mesh: each enabled op's
+   * region, a full cold solve, a commit. Deterministic (bitwise) for a build. The selection is then
+   * cleared. Any error (bad JSON, version, region, amounts, a mesh whose hash differs) names the op
+   * or field, and the session is left as it was.
+   */
+  replay(document: EditDocument | string, options?: ReplayOptions): ReplaySummary;
+  /** Selects op `opId`'s region, evaluated on the rest pose; returns the number selected. */
+  selectDocumentRegion(document: EditDocument | string, opId: string): number;
+  /** The op as a document stores it: resolved on the rest pose and selection, a screen drag as its 3D vector. */
+  resolveOp(op: DeformOp): DeformOp;
+  /** The hash a document's mesh.hash must equal. */
+  meshHash(): string;
+  /** The current positions as the session's doubles (a copy): for bitwise comparisons and caches. */
+  positionsExact(): Float64Array;
   delete(): void;
   isDeleted(): boolean;
 }

@@ -82,6 +82,8 @@ function numbers(value, Type, what) {
   throw badParameter(`${what} must be a typed array or an array of numbers`);
 }
 
+const documentText = (document) => (typeof document === 'string' ? document : toJson(document, 'document'));
+
 function bytesOf(bytes) {
   if (bytes instanceof Uint8Array) return bytes;
   if (bytes instanceof ArrayBuffer) return new Uint8Array(bytes);
@@ -186,6 +188,19 @@ export async function instantiateAnisoform(factory, options = {}) {
     }
 
     factorizations() { return this.#call('factorizations'); }
+
+    // The edit document (core document.h): JSON text as it is, an object as JSON.
+    replay(document, options = {}) {
+      return this.#call('replay', documentText(document), toJson(options, 'replay options'));
+    }
+
+    selectDocumentRegion(document, opId) { return this.#call('selectDocumentRegion', documentText(document), opId); }
+
+    resolveOp(op) { return this.#call('resolveOp', toJson(op, 'op')); }
+
+    meshHash() { return this.#call('meshHash'); }
+
+    positionsExact() { return this.#call('positionsExact'); }
   }
 
   // {inUse, heap, limit} in bytes: malloc'd now, the WASM memory (it never shrinks), its maximum.

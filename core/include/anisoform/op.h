@@ -120,13 +120,25 @@ Json to_json(const SessionEditResult& result);
 //  iterations, energy, converged, seconds, filledDirections, initialization, method}
 Json to_json(const FlattenMetrics& metrics);
 
+// ---- request -> JSON (the document stores what was solved) ----------------
+
+// The op that deform_op_from_json reads back as `edit` (round trip: every
+// value and every "given" flag). Keys left out are the ones not given; a
+// screen direction stays a screen drag (resolve_for_document, document.h,
+// turns it into the global vector first).
+Json to_json(const SessionEdit& edit);
+// A direction source as an op's `direction`.
+Json to_json(const DirectionSource& direction);
+
 // The allowed keys of each object of the schema, by path, each an array of
 // names: "op", "op.transform", "op.transform.rotate", "op.transform.twist",
 // "direction.type" (the direction types), "direction.global",
 // "direction.curvature", "direction.screen", "direction.screen.camera",
 // "direction.constraints", "direction.constraint", "direction.dense",
 // "region" (the region kinds), "region.sphere", "region.box",
-// "region.vertices", "flatten". For tests that check the TypeScript
+// "region.vertices", "flatten", and the edit document's (document.h)
+// "document", "document.mesh", "document.region", "document.step",
+// "document.op". For tests that check the TypeScript
 // declarations against the parsers.
 Json op_schema();
 

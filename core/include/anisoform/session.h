@@ -117,6 +117,11 @@ class Session {
   const SessionMeshInfo& info() const;
   const Mesh& rest() const;
   const Positions& positions() const;
+  // The positions as loaded (welded), before any edit: what a document
+  // replays from.
+  const Positions& loaded_positions() const;
+  // mesh_hash (document.h) of the mesh as loaded.
+  std::uint64_t mesh_hash() const;
   const std::vector<float>& positions_f32() const { return positions_f32_; }
   const std::vector<std::uint32_t>& triangles_u32() const { return triangles_u32_; }
 
@@ -168,6 +173,10 @@ class Session {
   void set_weights(Eigen::VectorXd weights);
 
   std::unique_ptr<Deformer> deformer_;  // owns the rest pose
+  // The Deformer of the rest pose before the last change, with its
+  // factorizations: going back to exactly that pose (undo, re-parameterising
+  // the last op of an edit document) swaps it in instead of refactoring.
+  std::unique_ptr<Deformer> previous_;
   std::unique_ptr<TargetContext> targets_;  // for direction_field(), built lazily per rest pose
   std::unique_ptr<VertexAdjacency> adjacency_;  // for select(), built lazily per mesh (not per pose)
   std::unique_ptr<SessionFlattenState> flatten_;  // always set; dropped per positions change

@@ -1,5 +1,6 @@
 // The results as JSON with the keys the JS API returns (op.h), and the op's
 // schema as the parsers read it.
+#include "anisoform/document.h"
 #include "anisoform/op.h"
 #include "op_keys.h"
 
@@ -73,7 +74,7 @@ Json to_json(const FlattenMetrics& m) {
 
 Json op_schema() {
   using namespace op_keys;
-  return {
+  Json schema = {
       {"op", kOp},
       {"op.transform", kTransform},
       {"op.transform.rotate", kRotate},
@@ -95,6 +96,8 @@ Json op_schema() {
       {"setMesh", kMeshOptions},
       {"exportPattern", kPatternOptions},
   };
+  schema.update(document_schema());
+  return schema;
 }
 
 }  // namespace aniso

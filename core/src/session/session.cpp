@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <utility>
 
+#include "anisoform/document.h"
 #include "deform/element_targets.h"
 #include "anisoform/error.h"
 #include "anisoform/op.h"
@@ -71,6 +73,16 @@ const Mesh& Session::rest() const {
 const Positions& Session::positions() const {
   require_mesh();
   return current_;
+}
+
+const Positions& Session::loaded_positions() const {
+  require_mesh();
+  return loaded_;
+}
+
+std::uint64_t Session::mesh_hash() const {
+  require_mesh();
+  return aniso::mesh_hash(loaded_, deformer_->rest().F);
 }
 
 const SessionMeshInfo& Session::load_mesh(const std::uint8_t* data, std::size_t size,
@@ -157,6 +169,8 @@ const SessionMeshInfo& Session::adopt_mesh(Mesh mesh, std::vector<std::string> n
   targets_.reset();
   adjacency_.reset();
   if (deformer_) retired_factorizations_ += deformer_->factorizations();
+  if (previous_) retired_factorizations_ += previous_->factorizations();
+  previous_.reset();
   deformer_ = std::move(deformer);
   info_ = std::move(info);
   loaded_ = std::move(loaded);
@@ -187,10 +201,14 @@ void Session::set_weights(Eigen::VectorXd weights) {
 }
 
 void Session::replace_rest(Positions V) {
-  auto deformer = std::make_unique<Deformer>(Mesh{V, deformer_->rest().F});
+  const bool back_to_previous = previous_ && previous_->rest().V.rows() == V.rows() &&
+                                std::memcmp(previous_->rest().V.data(), V.data(), sizeof(double) * static_cast<std::size_t>(V.size())) == 0;
+  std::unique_ptr<Deformer> deformer =
+      back_to_previous ? std::move(previous_) : std::make_unique<Deformer>(Mesh{V, deformer_->rest().F});
   CurrentPositions current = current_positions(std::move(V));
   targets_.reset();  // it refers to the old rest mesh
-  retired_factorizations_ += deformer_->factorizations();
+  if (previous_) retired_factorizations_ += previous_->factorizations();
+  previous_ = std::move(deformer_);
   deformer_ = std::move(deformer);
   set_current(std::move(current));
 }
@@ -300,7 +318,7 @@ std::string Session::export_mesh(MeshFormat format) const {
 
 int Session::factorizations() const {
   return retired_factorizations_ + (deformer_ ? deformer_->factorizations() : 0) +
-         flatten_->factorizations();
+         (previous_ ? previous_->factorizations() : 0) + flatten_->factorizations();
 }
 
 }  // namespace aniso

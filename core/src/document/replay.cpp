@@ -1,0 +1,147 @@
+// check_document, resolve_for_document, replay_document and
+// select_document_region (document.h): the one definition of replay.
+#include <algorithm>
+
+#include "anisoform/document.h"
+#include "anisoform/error.h"
+#include "anisoform/screen_direction.h"
+
+namespace aniso {
+namespace {
+
+std::string document_op_name(const EditDocument& document, std::size_t index) {
+  return "document.ops[" + std::to_string(index) + "] (id '" + document.ops[index].id + "')";
+}
+
+// Runs `work` and puts "WHERE: " before the message of any core Error it
+// throws, keeping the code: a refusal found with the mesh still names the op.
+template <typename Work>
+void naming_document_part(const std::string& where, Work&& work) {
+  try {
+    work();
+  } catch (const Error& error) {
+    throw Error(error.code(), where + ": " + error.what());
+  }
+}
+
+const DocumentRegion& document_region_named(const EditDocument& document, const std::string& name) {
+  for (const DocumentRegion& region : document.regions) {
+    if (region.name == name) return region;
+  }
+  // document_from_json checks every op's region name; a hand-built document may not.
+  fail(ErrorCode::BadParameter, "the document has no region named '" + name + "'");
+}
+
+// The rule's steps from an empty selection, on the session's rest pose.
+void apply_document_region(Session& session, const DocumentRegion& region) {
+  session.set_selection(std::vector<float>(static_cast<std::size_t>(session.rest().num_vertices()), 0.0f));
+  for (const DocumentSelectStep& step : region.steps) session.select(step.region, step.falloff, step.mode);
+}
+
+std::vector<double> xyz_of(const Positions& V) { return std::vector<double>(V.data(), V.data() + V.size()); }
+
+}  // namespace
+
+void check_document(const EditDocument& document, const Session& session) {
+  const Mesh& rest = session.rest();
+  const std::string loaded_hash = mesh_hash_text(session.mesh_hash());
+  if (document.mesh_hash != loaded_hash) {
+    fail(ErrorCode::BadMesh, "document mesh hash " + document.mesh_hash + " ('" + document.mesh_name + "', " +
+                                 std::to_string(document.vertices) + " vertices, " +
+                                 std::to_string(document.triangles) + " triangles) does not match the loaded mesh " +
+                                 loaded_hash + " (" + std::to_string(rest.num_vertices()) + " vertices, " +
+                                 std::to_string(rest.num_triangles()) + " triangles)");
+  }
+  const Mesh loaded{session.loaded_positions(), rest.F};
+  for (std::size_t i = 0; i < document.regions.size(); ++i) {
+    const DocumentRegion& region = document.regions[i];
+    for (std::size_t k = 0; k < region.steps.size(); ++k) {
+      naming_document_part("document.regions[" + std::to_string(i) + "] (name '" + region.name + "').steps[" +
+                               std::to_string(k) + "].region",
+                           [&] { region_weights(loaded, region.steps[k].region); });
+    }
+  }
+  const double diagonal = bounding_box(loaded.V).diagonal();
+  for (std::size_t i = 0; i < document.ops.size(); ++i) {
+    const DocumentOp& op = document.ops[i];
+    naming_document_part(document_op_name(document, i), [&] {
+      document_region_named(document, op.region);
+      validate_twist(op.edit.request.transform, diagonal);
+      validate_direction_source(op.edit.request.direction, rest.num_vertices());
+    });
+  }
+}
+
+SessionEdit resolve_for_document(const Session& session, const SessionEdit& edit) {
+  SessionEdit full = edit;
+  full.preview = false;
+  SessionEdit out;
+  out.request = resolve_edit(full, session.rest().V, session.info().report.bbox, session.selection());
+  DeformRequest& request = out.request;
+  request.weights.resize(0);  // the document's region holds them
+  request.warm_start = false;
+  if (request.direction.kind == DirectionSource::Kind::Screen) {
+    const Eigen::Vector3d vector = screen_drag_to_world(request.direction.screen);
+    if (!vector.allFinite() || vector.norm() == 0.0) {
+      fail(ErrorCode::BadParameter, "op.direction: the screen drag gives no direction (it has zero length)");
+    }
+    request.direction = DirectionSource();
+    request.direction.vector = vector;
+  }
+  out.twist_origin_given = request.transform.twist;
+  out.direction_given = true;
+  out.handles_given = true;
+  out.pins_given = true;
+  out.preview = false;
+  return out;
+}
+
+ReplaySummary replay_document(Session& session, const EditDocument& document, const ReplayRange& range) {
+  check_document(document, session);
+  const std::size_t to = std::min(range.to, document.ops.size());
+  if (range.from > to) {
+    fail(ErrorCode::BadParameter, "replay: from " + std::to_string(range.from) + " is beyond the document's " +
+                                      std::to_string(document.ops.size()) + " ops");
+  }
+  // A scratch session, so that a failing op leaves `session` as it was.
+  Session scratch;
+  scratch.set_mesh(xyz_of(session.loaded_positions()), session.triangles_u32(), /*weld=*/false);
+  if (range.from > 0) scratch.set_positions(xyz_of(session.rest().V));
+  ReplaySummary summary;
+  for (std::size_t i = range.from; i < to; ++i) {
+    const DocumentOp& op = document.ops[i];
+    if (!op.enabled) {
+      ++summary.skipped;
+      continue;
+    }
+    naming_document_part(document_op_name(document, i), [&] {
+      apply_document_region(scratch, document_region_named(document, op.region));
+      // Always a full, cold solve: the result must not depend on what was
+      // previewed before (or on whether anything was).
+      SessionEdit edit = op.edit;
+      edit.preview = false;
+      edit.request.warm_start = false;
+      summary.last = scratch.deform(edit);
+      scratch.commit();
+    });
+    ++summary.replayed;
+  }
+  const std::vector<double> result = xyz_of(scratch.positions());
+  const std::vector<float> cleared(static_cast<std::size_t>(scratch.rest().num_vertices()), 0.0f);
+  session.set_positions(result);
+  session.set_selection(cleared);
+  return summary;
+}
+
+int select_document_region(Session& session, const EditDocument& document, const std::string& op_id) {
+  for (const DocumentOp& op : document.ops) {
+    if (op.id != op_id) continue;
+    const DocumentRegion& region = document_region_named(document, op.region);
+    check_document(document, session);  // every step's range, before the selection changes
+    apply_document_region(session, region);
+    return static_cast<int>((session.selection().array() > 0.0).count());
+  }
+  fail(ErrorCode::BadParameter, "the document has no op with id '" + op_id + "'");
+}
+
+}  // namespace aniso

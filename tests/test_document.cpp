@@ -1,0 +1,297 @@
+// The edit document (document.h): ops round-trip through JSON exactly, replay
+// is deterministic (bitwise), a disabled op is skipped, every bad document is
+// refused naming the op or field and leaves the session as it was, and the
+// CLI's `replay` writes the positions the core computes, digit for digit.
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <string>
+
+#include <catch2/catch.hpp>
+
+#include "anisoform/document.h"
+#include "anisoform/mesh_io.h"
+#include "anisoform/op.h"
+#include "anisoform/session.h"
+#include "test_support.h"
+
+namespace {
+
+using namespace aniso;
+
+void load_spool(Session& session) {
+  const std::string bytes = test::slurp(test::mesh_path("closed/spool.off"));
+  REQUIRE_FALSE(bytes.empty());
+  session.load_mesh(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(), "spool.off");
+}
+
+// Three ops on the spool: stretch the top along y, twist the middle, thicken
+// everything (a disabled-able last op).
+Json spool_document(const Session& session) {
+  Json document = Json::parse(R"({
+    "format": "anisoform-document", "version": 1,
+    "mesh": {"name": "spool.off"},
+    "regions": [
+      {"name": "top", "steps": [{"region": {"box": {"min": [-1, 0.2, -1], "max": [1, 1, 1]}}, "falloff": 0.1}]},
+      {"name": "middle", "steps": [{"region": {"sphere": {"center": [0, 0, 0], "radius": 0.35}}},
+                                   {"region": {"sphere": {"center": [0, 0.1, 0], "radius": 0.1}}, "mode": "subtract"}]},
+      {"name": "everything", "steps": [{"region": {"all": true}}]}],
+    "ops": [
+      {"id": "stretch", "label": "Stretch the top", "enabled": true, "region": "top",
+       "op": {"direction": {"type": "global", "vector": [0, 1, 0]}, "transform": {"scale": 1.3}}},
+      {"id": "twist", "label": "Twist the middle", "enabled": true, "region": "middle",
+       "op": {"transform": {"twist": {"axis": [0, 1, 0], "degreesPerUnit": 40}}, "rotationSteps": 2}},
+      {"id": "thicken", "label": "Thicken", "enabled": true, "region": "everything",
+       "op": {"method": "andefgrad", "transform": {"thickness": 1.2}}}]})");
+  document["mesh"]["vertices"] = session.rest().num_vertices();
+  document["mesh"]["triangles"] = session.rest().num_triangles();
+  document["mesh"]["hash"] = mesh_hash_text(session.mesh_hash());
+  return document;
+}
+
+Positions replayed_spool(const Json& document) {
+  Session session;
+  load_spool(session);
+  replay_document(session, document_from_json(document));
+  return session.positions();
+}
+
+bool positions_bitwise_equal(const Positions& a, const Positions& b) {
+  return a.rows() == b.rows() &&
+         std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
+}
+
+// The refusal a bad document gets, with the session's positions (an edit in
+// progress included) checked unchanged.
+std::string refusal_of_document(const Json& document, ErrorCode code) {
+  Session session;
+  load_spool(session);
+  session.select(Region{}, 0.0, SelectionMode::Replace);
+  SessionEdit edit;
+  edit.request.transform.su = 1.1;
+  session.deform(edit);  // an uncommitted edit: current != rest
+  const Positions rest = session.rest().V;
+  const Positions current = session.positions();
+  const Eigen::VectorXd selection = session.selection();
+  const std::string message = test::error_message_of(
+      [&] { replay_document(session, document_from_json(document)); }, code);
+  CHECK(positions_bitwise_equal(session.rest().V, rest));
+  CHECK(positions_bitwise_equal(session.positions(), current));
+  CHECK(session.selection() == selection);
+  return message;
+}
+
+// to_json(parse(text)) read back gives the same JSON: every value and every
+// "given" flag survives.
+void check_op_round_trip(const Json& op) {
+  const SessionEdit parsed = deform_op_from_json(op);
+  const Json written = to_json(parsed);
+  const SessionEdit again = deform_op_from_json(written);
+  CHECK(to_json(again) == written);
+  CHECK(again.direction_given == parsed.direction_given);
+  CHECK(again.handles_given == parsed.handles_given);
+  CHECK(again.pins_given == parsed.pins_given);
+  CHECK(again.twist_origin_given == parsed.twist_origin_given);
+  CHECK(again.preview == parsed.preview);
+  CHECK(again.request.transform.su == parsed.request.transform.su);
+  CHECK(again.request.transform.twist_origin == parsed.request.transform.twist_origin);
+  CHECK(again.request.direction.vector == parsed.request.direction.vector);
+}
+
+}  // namespace
+
+TEST_CASE("document: an op round-trips through to_json", "[document]") {
+  check_op_round_trip(Json::object());
+  check_op_round_trip(Json::parse(R"({"method":"anarap","direction":{"type":"global","vector":[0.1,0.7,-0.3]},
+      "transform":{"scale":[1.3,0.9],"thickness":1.1,"shear":0.2,"rotate":{"axis":"u","degrees":12.5},
+      "twist":{"axis":[0,0,2],"degreesPerUnit":33.3,"origin":[0.1,0.2,0.3]}},
+      "maxIterations":7,"rotationSteps":3,"tolerance":1e-9,"preview":true,"warmStart":false})"));
+  check_op_round_trip(Json::parse(R"({"method":"arap","handles":[1,2,3],"pins":[4,5],"move":[0,0.25,0],
+      "elements":"spokes-rims"})"));
+  check_op_round_trip(Json::parse(R"({"direction":{"type":"curvature","which":"max","smoothing":3}})"));
+  check_op_round_trip(Json::parse(R"({"direction":{"type":"constraints","constraints":[
+      {"vertex":3,"direction":[1,0,0],"su":1.5,"sv":1},{"vertex":9,"direction":[0,1,0]}]}})"));
+  check_op_round_trip(Json::parse(R"({"direction":{"type":"dense","directions":[1,0,0,0,1,0]}})"));
+  check_op_round_trip(Json::parse(R"({"direction":{"type":"screen","from":[10,20],"to":[40,25],
+      "camera":{"view":[1,0,0,0,0,1,0,0,0,0,1,0,0,0,-3,1],"projection":[1,0,0,0,0,1,0,0,0,0,-1,-1,0,0,-0.2,0],
+      "viewport":[0,0,800,600],"anchor":[0,0,0]}}})"));
+}
+
+TEST_CASE("document: replay is deterministic and runs every enabled op", "[document]") {
+  Session session;
+  load_spool(session);
+  const Json document = spool_document(session);
+  const Positions first = replayed_spool(document);
+  const Positions second = replayed_spool(document);
+  CHECK(positions_bitwise_equal(first, second));
+  CHECK((first - session.loaded_positions()).cwiseAbs().maxCoeff() > 0.05);
+
+  // The same ops by hand, through the Session: cold full solves and commits.
+  Session by_hand;
+  load_spool(by_hand);
+  const EditDocument parsed = document_from_json(document);
+  for (const DocumentOp& op : parsed.ops) {
+    by_hand.set_selection(std::vector<float>(static_cast<std::size_t>(by_hand.rest().num_vertices()), 0.0f));
+    for (const DocumentRegion& region : parsed.regions) {
+      if (region.name != op.region) continue;
+      for (const DocumentSelectStep& step : region.steps) by_hand.select(step.region, step.falloff, step.mode);
+    }
+    SessionEdit edit = op.edit;
+    edit.request.warm_start = false;
+    by_hand.deform(edit);
+    by_hand.commit();
+  }
+  CHECK(positions_bitwise_equal(by_hand.positions(), first));
+
+  SECTION("a disabled op is skipped") {
+    Json without_last = document;
+    without_last["ops"].erase(2);
+    Json toggled = document;
+    toggled["ops"][2]["enabled"] = false;
+    const Positions skipped = replayed_spool(toggled);
+    CHECK(positions_bitwise_equal(skipped, replayed_spool(without_last)));
+    CHECK_FALSE(positions_bitwise_equal(skipped, first));
+  }
+  SECTION("a range replays from the session's rest pose") {
+    Session stepwise;
+    load_spool(stepwise);
+    const EditDocument doc = document_from_json(document);
+    replay_document(stepwise, doc, {0, 1});
+    replay_document(stepwise, doc, {1, 3});
+    CHECK(positions_bitwise_equal(stepwise.positions(), first));
+  }
+  SECTION("the op's region is selected on the rest pose") {
+    Session selecting;
+    load_spool(selecting);
+    const int selected = select_document_region(selecting, document_from_json(document), "thicken");
+    CHECK(selected == selecting.rest().num_vertices());
+  }
+}
+
+TEST_CASE("document: a resolved screen drag replays as the solve it stands for", "[document]") {
+  Session session;
+  load_spool(session);
+  Region cap;
+  cap.kind = Region::Kind::Sphere;
+  cap.center = Eigen::Vector3d(0, 0.4, 0);
+  cap.radius = 0.3;
+  session.select(cap, 0.05, SelectionMode::Replace);
+  const SessionEdit edit = deform_op_from_json(Json::parse(R"({"direction":{"type":"screen","from":[400,300],
+      "to":[400,200],"camera":{"view":[1,0,0,0,0,1,0,0,0,0,1,0,0,0,-3,1],
+      "projection":[1.3,0,0,0,0,1.7,0,0,0,0,-1.002,-1,0,0,-0.2,0],"viewport":[0,0,800,600],"anchor":[0,0.4,0]}},
+      "transform":{"scale":1.25,"twist":{"axis":[0,1,0],"degreesPerUnit":20}},"warmStart":false})"));
+  const SessionEdit resolved = resolve_for_document(session, edit);
+  CHECK(resolved.request.direction.kind == DirectionSource::Kind::Global);
+  CHECK(resolved.twist_origin_given);
+  CHECK_FALSE(resolved.preview);
+  const Json op = to_json(resolved);
+  CHECK(op["direction"]["type"] == "global");
+  CHECK(op.contains("pins"));
+
+  session.deform(edit);
+  const Positions solved = session.positions();
+
+  Session replaying;
+  load_spool(replaying);
+  Json document = Json::parse(R"({"format": "anisoform-document", "version": 1,
+      "mesh": {"name": "spool.off", "vertices": 649, "triangles": 1294},
+      "regions": [{"name": "cap", "steps": [{"region": {"sphere": {"center": [0, 0.4, 0], "radius": 0.3}},
+                                              "falloff": 0.05}]}],
+      "ops": [{"id": "a", "label": "drag", "region": "cap"}]})");
+  document["mesh"]["hash"] = mesh_hash_text(replaying.mesh_hash());
+  document["ops"][0]["op"] = op;
+  replay_document(replaying, document_from_json(document));
+  // The twist axis is normalised once more on the way back in, so the
+  // replay may differ from the live solve in the last bits only.
+  CHECK((replaying.positions() - solved).cwiseAbs().maxCoeff() < 1e-12);
+}
+
+TEST_CASE("document: a bad document is refused naming the field, the session unchanged", "[document]") {
+  Session session;
+  load_spool(session);
+  const Json good = spool_document(session);
+
+  Json version = good;
+  version["version"] = 2;
+  CHECK_THAT(refusal_of_document(version, ErrorCode::BadParameter),
+             Catch::Contains("document.version is 2, which this build does not read (it reads version 1)"));
+
+  Json format = good;
+  format["format"] = "glb";
+  CHECK_THAT(refusal_of_document(format, ErrorCode::BadParameter), Catch::Contains("document.format"));
+
+  Json missing_region = good;
+  missing_region["ops"][1]["region"] = "handle";
+  CHECK_THAT(refusal_of_document(missing_region, ErrorCode::BadParameter),
+             Catch::Contains("document.ops[1] (id 'twist').region names region 'handle', which the document's "
+                             "regions do not hold"));
+
+  Json out_of_range = good;
+  out_of_range["ops"][0]["op"]["transform"]["scale"] = -2;
+  CHECK_THAT(refusal_of_document(out_of_range, ErrorCode::BadParameter),
+             Catch::StartsWith("document.ops[0] (id 'stretch').op.transform"));
+
+  Json twist_too_far = good;
+  twist_too_far["ops"][1]["op"]["transform"]["twist"]["degreesPerUnit"] = 1e6;
+  CHECK_THAT(refusal_of_document(twist_too_far, ErrorCode::BadParameter),
+             Catch::StartsWith("document.ops[1] (id 'twist')"));
+
+  Json vertex_beyond = good;
+  vertex_beyond["regions"][2]["steps"][0]["region"] = Json::parse(R"({"vertices": [1, 5000]})");
+  CHECK_THAT(refusal_of_document(vertex_beyond, ErrorCode::BadParameter),
+             Catch::StartsWith("document.regions[2] (name 'everything').steps[0].region"));
+
+  Json other_mesh = good;
+  other_mesh["mesh"]["hash"] = "fnv1a64:0123456789abcdef";
+  CHECK_THAT(refusal_of_document(other_mesh, ErrorCode::BadMesh),
+             Catch::Contains("document mesh hash fnv1a64:0123456789abcdef ('spool.off', 649 vertices, 1294 "
+                             "triangles) does not match the loaded mesh fnv1a64:"));
+
+  const std::string text = good.dump();
+  CHECK_THAT(test::bad_parameter_message([&] { document_from_text(text.substr(0, text.size() / 2)); }),
+             Catch::StartsWith("the document is not valid JSON"));
+  CHECK_THAT(test::bad_parameter_message([&] { document_from_text("not json"); }),
+             Catch::StartsWith("the document is not valid JSON"));
+}
+
+TEST_CASE("document: the mesh hash is the mesh as loaded", "[document]") {
+  Session a;
+  load_spool(a);
+  Session b;
+  load_spool(b);
+  CHECK(a.mesh_hash() == b.mesh_hash());
+  replay_document(a, document_from_json(spool_document(a)));
+  CHECK(a.mesh_hash() == b.mesh_hash());  // edits do not change the base mesh
+  Positions moved = b.loaded_positions();
+  moved(0, 0) = std::nextafter(moved(0, 0), 1.0);
+  CHECK(mesh_hash(moved, b.rest().F) != b.mesh_hash());
+  CHECK(mesh_hash_text(0x1234) == "fnv1a64:0000000000001234");
+}
+
+TEST_CASE("document: the CLI replays to the core's positions", "[document][cli]") {
+  Session session;
+  load_spool(session);
+  const Json document = spool_document(session);
+  const std::string doc_path = test::temp_path("spool-doc.json");
+  std::ofstream(doc_path) << document.dump();
+  const std::string out = test::temp_path("spool-replayed.obj");
+  const test::CliRun run =
+      test::run_cli_expecting({"replay", doc_path, out, "--mesh", test::mesh_path("closed/spool.off")}, 0);
+  const Json result = Json::parse(run.out);
+  CHECK(result["replayed"] == 3);
+  CHECK(result["skipped"] == 0);
+  CHECK(result["hash"] == document["mesh"]["hash"]);
+  const Positions written = read_mesh(out).mesh.V;
+  CHECK(positions_bitwise_equal(written, replayed_spool(document)));
+
+  Json other = document;
+  other["mesh"]["hash"] = "fnv1a64:0000000000000000";
+  std::ofstream(doc_path) << other.dump();
+  const test::CliRun mismatch =
+      test::run_cli_expecting({"replay", doc_path, out, "--mesh", test::mesh_path("closed/spool.off")}, 3);
+  CHECK_THAT(mismatch.err, Catch::Contains("does not match the loaded mesh"));
+  std::ofstream(doc_path) << "{\"format\":";
+  const test::CliRun truncated =
+      test::run_cli_expecting({"replay", doc_path, out, "--mesh", test::mesh_path("closed/spool.off")}, 2);
+  CHECK_THAT(truncated.err, Catch::Contains("not valid JSON"));
+}

@@ -1,0 +1,140 @@
+// The edit document through the WASM module: a document recorded the way the
+// page records it (Session.resolveOp on the rest pose, regions as select
+// steps) replays bitwise-equal in two fresh Node sessions, and equal to the
+// native CLI's `anisoform replay` within 1e-9 of the bounding-box diagonal
+// (the CLI writes OBJ coordinates with 17 significant digits, so the file
+// holds its doubles exactly). A bad document is refused naming the op or
+// field, and the session keeps its positions.
+import assert from 'node:assert/strict';
+import { execFileSync } from 'node:child_process';
+import { copyFileSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+import { after, before, test } from 'node:test';
+
+import { boundingBox, loadAnisoform, maxVertexDistance, meshPath, objVertices, sessionWith } from '../node-support.mjs';
+
+const cli = process.env.ANISO_CLI;
+const MESH = 'closed/spool.off';
+
+let wasm;
+let outputDir;
+let documentOfSpool;
+before(async () => {
+  ({ wasm } = await loadAnisoform());
+  outputDir = mkdtempSync(path.join(tmpdir(), 'anisoform-document-'));
+  documentOfSpool = recordDocument();
+});
+after(() => {
+  if (outputDir) rmSync(outputDir, { recursive: true, force: true });
+});
+
+const REGIONS = [
+  { name: 'top', steps: [{ region: { box: { min: [-1, 0.2, -1], max: [1, 1, 1] } }, falloff: 0.1 }] },
+  { name: 'middle', steps: [{ region: { sphere: { center: [0, 0, 0], radius: 0.35 } } },
+    { region: { sphere: { center: [0, 0.1, 0], radius: 0.1 } }, mode: 'subtract' }] },
+  { name: 'everything', steps: [{ region: { all: true } }] },
+];
+const OPS = [
+  { id: 'stretch', region: 'top', op: { direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: 1.3 } } },
+  { id: 'twist', region: 'middle', op: { transform: { twist: { axis: [0, 1, 0], degreesPerUnit: 40 } }, rotationSteps: 2 } },
+  { id: 'thicken', region: 'everything', op: { method: 'andefgrad', transform: { thickness: 1.2 } } },
+];
+
+// As the page does: select, resolve the op on the rest pose, solve, commit.
+function recordDocument() {
+  const session = sessionWith(wasm, MESH);
+  try {
+    const ops = OPS.map(({ id, region, op }) => {
+      const rule = REGIONS.find((r) => r.name === region);
+      session.setSelection(new Float32Array(session.info().vertices));
+      for (const step of rule.steps) session.select(step.region, { falloff: step.falloff, mode: step.mode });
+      const resolved = session.resolveOp(op);
+      session.deform(resolved);
+      session.commit();
+      return { id, label: id, enabled: true, region, op: resolved };
+    });
+    const info = session.info();
+    return {
+      format: 'anisoform-document',
+      version: 1,
+      mesh: { name: 'spool.off', vertices: info.vertices, triangles: info.triangles, hash: session.meshHash() },
+      regions: REGIONS,
+      ops,
+    };
+  } finally {
+    session.delete();
+  }
+}
+
+function replayedInNode(document) {
+  const session = sessionWith(wasm, MESH);
+  try {
+    const summary = session.replay(document);
+    assert.equal(summary.replayed, document.ops.filter((o) => o.enabled !== false).length);
+    assert.equal(summary.skipped, document.ops.filter((o) => o.enabled === false).length);
+    assert.equal(typeof summary.last.iterations, 'number');
+    return session.positionsExact();
+  } finally {
+    session.delete();
+  }
+}
+
+const bitwiseEqual = (a, b) => a.length === b.length
+  && Buffer.compare(Buffer.from(a.buffer, a.byteOffset, a.byteLength), Buffer.from(b.buffer, b.byteOffset, b.byteLength)) === 0;
+
+test('a resolved op is view-independent and a replay is bitwise repeatable', () => {
+  const { ops } = documentOfSpool;
+  assert.equal(ops[1].op.transform.twist.origin.length, 3, 'the twist origin is stored as used');
+  assert.equal(ops[0].op.preview, false);
+  assert.equal(ops[0].op.warmStart, false);
+  const first = replayedInNode(documentOfSpool);
+  const second = replayedInNode(JSON.parse(JSON.stringify(documentOfSpool)));
+  assert.ok(bitwiseEqual(first, second), 'two replays in fresh sessions are bitwise equal');
+  const toggled = structuredClone(documentOfSpool);
+  toggled.ops[2].enabled = false;
+  assert.ok(!bitwiseEqual(replayedInNode(toggled), first), 'a disabled op is skipped');
+});
+
+test('Node replay equals `anisoform replay` within 1e-9 of the bbox diagonal', { skip: cli ? false : 'ANISO_CLI is not set' }, (t) => {
+  const docPath = path.join(outputDir, 'spool.anisoform.json');
+  writeFileSync(docPath, JSON.stringify(documentOfSpool));
+  copyFileSync(meshPath(MESH), path.join(outputDir, 'spool.off'));  // the CLI's default: mesh.name beside DOC
+  const out = path.join(outputDir, 'replayed.obj');
+  const result = JSON.parse(execFileSync(cli, ['replay', docPath, out], { encoding: 'utf8' }));
+  assert.equal(result.hash, documentOfSpool.mesh.hash, 'the CLI hashes the mesh as the module does');
+  assert.equal(result.replayed, 3);
+  const native = objVertices(readFileSync(out, 'utf8'));
+  const node = replayedInNode(documentOfSpool);
+  const diagonal = boundingBox(node).diagonal;
+  const difference = maxVertexDistance(native, node) / diagonal;
+  t.diagnostic(`max |Node - CLI| / diagonal = ${difference.toExponential(3)}`);
+  assert.ok(difference <= 1e-9, `relative difference ${difference}`);
+});
+
+test('a bad document names the op or field and leaves the session as it was', async () => {
+  const { AnisoformError } = await loadAnisoform();
+  const session = sessionWith(wasm, MESH);
+  try {
+    session.select({ all: true });
+    session.deform({ transform: { scale: 1.1 } });  // an edit in progress
+    const before = session.positionsExact();
+    const refusals = [
+      [{ ...documentOfSpool, version: 2 }, 'bad-parameter', /document\.version is 2, which this build does not read/],
+      [{ ...documentOfSpool, ops: [{ ...documentOfSpool.ops[0], region: 'handle' }] }, 'bad-parameter',
+        /document\.ops\[0\] \(id 'stretch'\)\.region names region 'handle'/],
+      [{ ...documentOfSpool, ops: [{ ...documentOfSpool.ops[0], op: { transform: { scale: 0 } } }] }, 'bad-parameter',
+        /document\.ops\[0\] \(id 'stretch'\)\.op\.transform/],
+      [{ ...documentOfSpool, mesh: { ...documentOfSpool.mesh, hash: 'fnv1a64:0000000000000000' } }, 'bad-mesh',
+        /document mesh hash fnv1a64:0000000000000000 .* does not match the loaded mesh fnv1a64:/],
+      [JSON.stringify(documentOfSpool).slice(0, 100), 'bad-parameter', /the document is not valid JSON/],
+    ];
+    for (const [document, code, message] of refusals) {
+      assert.throws(() => session.replay(document), (error) => error instanceof AnisoformError
+        && error.code === code && message.test(error.message), String(message));
+      assert.ok(bitwiseEqual(session.positionsExact(), before), `positions unchanged after ${message}`);
+    }
+  } finally {
+    session.delete();
+  }
+});
