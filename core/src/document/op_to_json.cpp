@@ -93,8 +93,10 @@ Json to_json(const SessionEdit& edit) {
   Json op = {{"method", method_key(r.method)}};
   if (edit.direction_given) op["direction"] = to_json(r.direction);
   op["transform"] = transform_json(r.transform, edit.twist_origin_given);
-  if (edit.pins_given) op["pins"] = r.pins;
-  if (edit.handles_given) op["handles"] = r.handles;
+  // Empty lists are "not given": ARAP then takes its handles and pins from
+  // the selection (resolve_edit), and a resolved op lists them.
+  if (!r.pins.empty()) op["pins"] = r.pins;
+  if (!r.handles.empty()) op["handles"] = r.handles;
   op["move"] = xyz_json(r.handle_offset);
   op["elements"] = r.elements == ArapElements::Spokes ? "spokes" : "spokes-rims";
   op["maxIterations"] = r.max_iterations;

@@ -78,7 +78,7 @@ SessionEdit resolve_for_document(const Session& session, const SessionEdit& edit
   SessionEdit out;
   out.request = resolve_edit(full, session.rest().V, session.info().report.bbox, session.selection());
   DeformRequest& request = out.request;
-  request.weights.resize(0);  // the document's region holds them
+  request.selection.resize(0);  // the document's region holds them
   request.warm_start = false;
   if (request.direction.kind == DirectionSource::Kind::Screen) {
     const Eigen::Vector3d vector = screen_drag_to_world(request.direction.screen);
@@ -90,8 +90,6 @@ SessionEdit resolve_for_document(const Session& session, const SessionEdit& edit
   }
   out.twist_origin_given = request.transform.twist;
   out.direction_given = true;
-  out.handles_given = true;
-  out.pins_given = true;
   out.preview = false;
   return out;
 }
