@@ -1,6 +1,7 @@
 // Wires the page together: solver worker, editor, viewer, interaction, tools,
 // panels and the public API (window.anisoform), then loads the default mesh.
 import { createAnisoformApi } from './api/create-api.js';
+import { opsPanel } from './document/ops-panel.js';
 import { Editor } from './editor/editor.js';
 import { Settings } from './shared/settings.js';
 import { BrushCursor } from './interaction/brush-cursor.js';
@@ -95,7 +96,8 @@ settings.on('change', ({ section }) => {
 
 const ready = (async () => {
   const [, bytes] = await Promise.all([starting, defaultMeshBytes]);
-  await editor.load(bytes, DEFAULT_MESH);
+  // The autosaved work (document/autosave.js), else the default mesh.
+  if (!(await editor.ops.restoreAutosave())) await editor.load(bytes, DEFAULT_MESH);
   performance.mark('anisoform:mesh-loaded');
   // Ready means drawn: wait for the frame that shows the mesh.
   await new Promise((resolve) => {
@@ -118,6 +120,7 @@ panel.append(
   modeSwitch({ settings, app: document.getElementById('app') }),
   filePanel({ api, editor, reportError }),
   historyButtons({ api, editor }),
+  opsPanel({ api, editor }),
   toolPanel({ settings, tools, reportError }),
   selectionPanel({ api, editor }),
   inMode('deform', directionPanel({ settings })),
