@@ -137,6 +137,32 @@ test('the work is autosaved and restored bitwise after a reload; reset clears it
   expect(pageErrors).toEqual([]);
 });
 
+test('a full storage quota is reported and the work in the page is kept', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const outcome = await page.evaluate(async () => {
+    const api = window.anisoform;
+    // The browser refuses every write, as with a full quota.
+    IDBObjectStore.prototype.put = () => {
+      throw new DOMException('The quota has been exceeded.', 'QuotaExceededError');
+    };
+    const reported = new Promise((resolve) => {
+      const off = api.on('error', (event) => {
+        off();
+        resolve(event);
+      });
+    });
+    await api.select({ all: true });
+    await api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.2, 1] } });
+    return { error: await reported, ops: api.document().ops.length };
+  });
+  expect(outcome.error.code).toBe('storage');
+  expect(outcome.error.message).toContain('quota');
+  expect(outcome.error.message).toContain('Your work in this page is kept');
+  expect(outcome.ops).toBe(1);
+  await expect(page.getByTestId('error')).toContainText('quota');
+  expect(pageErrors).toEqual([]);
+});
+
 test('a bad document is refused with its code and the work is kept', async ({ page }) => {
   const pageErrors = await openApp(page);
   const { afterThree, document } = await editSpot(page);
@@ -250,6 +276,7 @@ test('a slider on the last op updates the shape live at 20k vertices', async ({ 
   console.log(`slider: ${measured.changedFrames} frames with new positions in ${measured.seconds.toFixed(2)} s = `
     + `${measured.rate.toFixed(1)} updates/s (first after ${measured.firstMs.toFixed(0)} ms; then ${measured.steady.toFixed(1)}/s)`);
   expect(measured.final).toEqual([1.6, 1]);
-  expect(measured.rate).toBeGreaterThanOrEqual(20);
+  // Issue 8: at least 20 distinct solver updates per second (ANISO_SLIDER_MIN_RATE to measure elsewhere).
+  expect(measured.rate).toBeGreaterThanOrEqual(Number(process.env.ANISO_SLIDER_MIN_RATE ?? 20));
   expect(pageErrors).toEqual([]);
 });
