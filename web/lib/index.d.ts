@@ -17,6 +17,12 @@ export interface ModellerOptions {
   meshName?: string;
   /** An edit document to open on `mesh` as its base mesh (api.open); needs `mesh`. */
   document?: unknown;
+  /**
+   * Keep the work (edit document and base mesh) in IndexedDB after every change and restore it on
+   * the next start instead of `mesh` (default false: one store per origin, so only a page with a
+   * single modeller should turn it on; the standalone site does).
+   */
+  autosave?: boolean;
   /** 'focus' (default): keyboard shortcuts while focus is inside the modeller. 'page': on the whole window (a page that is only the modeller). */
   keyboard?: 'focus' | 'page';
   /** The solver worker's URL (same origin), when a bundler or server moved it; default: solver-worker.js beside anisoform.js. */

@@ -11,5 +11,6 @@ const modeller = createModeller(document.querySelector('.site-modeller'), {
   ui: 'full',
   mesh: DEFAULT_MESH,
   keyboard: 'page',
+  autosave: true,
 });
 window.anisoform = modeller.api;

@@ -74,15 +74,28 @@ export interface CameraState {
 }
 
 export interface ChangeEvent {
-  reason: 'load' | 'positions' | 'selection';
+  reason: 'load' | 'positions' | 'selection' | 'document';
 }
+/** Positions shown: committed (live false) or a live preview (a drag, a slider). */
+export interface PositionsEvent {
+  positions: Float32Array;
+  live: boolean;
+}
+/**
+ * The edit document (docs/document.schema.json; wasm/js/anisoform-wasm.d.ts
+ * EditDocument declares its objects): the base mesh, named regions and the
+ * ordered, resolved ops. Replaying it (api.open, Session.replay in Node,
+ * `anisoform replay`) gives the same positions.
+ */
+export type { EditDocument } from '../wasm/anisoform-wasm.js';
 /**
  * Every refusal and failure, once: a rejected load, deform, flatten or export
  * (its promise rejects with the same message), and what the page's own
  * buttons could not do. The message says what to do about it.
  */
 export interface ErrorEvent {
-  code: 'bad-parameter' | 'bad-mesh' | 'bad-file' | 'numerical' | 'internal';
+  /** 'storage': an autosave failed (the work in the page is kept). */
+  code: 'bad-parameter' | 'bad-mesh' | 'bad-file' | 'numerical' | 'internal' | 'out-of-memory' | 'storage';
   message: string;
 }
 export interface ProgressEvent {
@@ -111,10 +124,28 @@ export interface Anisoform {
   selection(): Float32Array;
   /** One committed, undoable edit. An empty selection edits the whole mesh. */
   deform(op: DeformOp): Promise<DeformResult>;
+  /** Undo/redo move over the document's ops (and selection steps). */
   undo(): boolean;
   redo(): boolean;
-  /** Back to the positions as loaded (undoable); false if nothing changed. */
+  /** Back to the mesh as loaded: the ops are cleared (undoable) and so is the autosave; false if there were none. */
   reset(): boolean;
+  /** The edit document (a copy): the ops done so far. */
+  document(): import('../wasm/anisoform-wasm.js').EditDocument;
+  /**
+   * Replays a document on the current mesh, or on `meshBytes` (named document.mesh.name). Any error
+   * (version, region, amounts, a mesh whose hash differs, bad JSON) rejects with its code, naming the
+   * op or field, and the current work is kept.
+   */
+  open(document: import('../wasm/anisoform-wasm.js').EditDocument, meshBytes?: ArrayBuffer | Uint8Array): Promise<void>;
+  /**
+   * Merges `transform` into op `opId`'s and re-solves from that op's input, re-running the later ops.
+   * {preview: true} on the last op: a live, warm-started preview only (a slider being dragged); call
+   * again without it on release to commit the value.
+   */
+  setParameter(opId: string, patch: { transform: import('../wasm/anisoform-wasm.js').Transform },
+    options?: { preview?: boolean }): Promise<unknown>;
+  /** Toggles an op off or on; the later ops re-run. */
+  setOpEnabled(opId: string, enabled: boolean): Promise<void>;
   export(format: 'obj' | 'ply' | 'stl' | 'glb'): Promise<ArrayBuffer>;
   /** A garment pattern of the mesh or its selection; the mesh and history are untouched. */
   flatten(options?: FlattenOptions): Promise<FlattenResult>;
@@ -124,6 +155,8 @@ export interface Anisoform {
   on(event: 'change', callback: (event: ChangeEvent) => void): () => void;
   on(event: 'error', callback: (event: ErrorEvent) => void): () => void;
   on(event: 'progress', callback: (event: ProgressEvent) => void): () => void;
+  on(event: 'positions', callback: (event: PositionsEvent) => void): () => void;
+  on(event: 'document', callback: (document: unknown) => void): () => void;
   /** The surface under a canvas pixel, or null. */
   pick(pixel: Pixel): Hit | null;
   camera(): CameraState;

@@ -4,13 +4,18 @@
 // frame);
 // tests and embedders use nothing else. Declarations: anisoform.d.ts beside
 // this file.
-const EVENTS = ['change', 'error', 'progress'];
+const EVENTS = ['change', 'error', 'progress', 'positions', 'document'];
 
 export function createAnisoformApi({ editor, viewer, picker, ready }) {
   const document = () => {
     if (!editor.document) throw Object.assign(new Error('no mesh is loaded yet: await anisoform.ready'), { code: 'bad-parameter' });
     return editor.document;
   };
+
+  // Errors reach the user (the banner) and the caller (a rejected promise with the code).
+  const reported = (promise, context) => promise.catch((error) => {
+    throw editor.report(error, context);
+  });
 
   return Object.freeze({
     version: '0.1.0',
@@ -39,6 +44,13 @@ export function createAnisoformApi({ editor, viewer, picker, ready }) {
     selection: () => document().selection.slice(),
 
     deform: (op) => editor.deform(op),
+
+    // The edit document (document/op-stack.js): the page's source of truth.
+    document: () => editor.ops.toJSON(),
+    open: (json, meshBytes) => reported(editor.ops.open(json, meshBytes), 'The document was not opened'),
+    setParameter: (opId, patch, options) =>
+      reported(editor.ops.setParameter(opId, patch, options), 'The parameter was not applied'),
+    setOpEnabled: (opId, enabled) => reported(editor.ops.setEnabled(opId, enabled), 'The op was not changed'),
 
     undo: () => editor.undo(),
     redo: () => editor.redo(),

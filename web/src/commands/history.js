@@ -4,9 +4,11 @@
 // Loading a new mesh clears the history.
 import { EventEmitter } from '../shared/event-emitter.js';
 
-// Each step may hold two position arrays (2.4 MB each at 200k vertices);
-// 100 steps keep the worst case near half a gigabyte.
-const MAX_STEPS = 100;
+// Edits are ops of the edit document (document/op-stack.js), whose commands
+// hold no arrays; selection steps hold two weight arrays each. The history is
+// bounded by the bytes its commands hold (`bytes`), not by a step count: the
+// oldest steps go first beyond this budget.
+const BUDGET_BYTES = 64 * 1024 * 1024;
 
 export class History extends EventEmitter {
   #undoStack = [];
@@ -14,7 +16,9 @@ export class History extends EventEmitter {
 
   push(command) {
     this.#undoStack.push(command);
-    if (this.#undoStack.length > MAX_STEPS) this.#undoStack.shift();
+    const bytesOf = (c) => c.bytes ?? 0;
+    let total = this.#undoStack.reduce((sum, c) => sum + bytesOf(c), 0);
+    while (total > BUDGET_BYTES && this.#undoStack.length > 1) total -= bytesOf(this.#undoStack.shift());
     this.#redoStack.length = 0;
     this.emit('change', this.state());
   }

@@ -13,6 +13,11 @@ export class SelectionCommand {
     this.applySelection = applySelection;
   }
 
+  /** What the history's memory budget counts (commands/history.js). */
+  get bytes() {
+    return this.before.byteLength + this.after.byteLength;
+  }
+
   undo() {
     this.applySelection(this.before);
   }

@@ -23,6 +23,8 @@
 //   'warning'    {message}: a committed edit folded triangles over
 //   'pattern'    the last flattening (FlattenPayload plus its options), or null
 //                when the mesh, its positions or the flattened selection changed
+//   'document'   the edit document changed (document/op-stack.js: an op committed,
+//                undone, toggled or re-parameterised, a document opened)
 //   'change'     {reason}: anything committed changed (load, edit, selection, undo)
 import { History } from '../commands/history.js';
 import { EventEmitter } from '../shared/event-emitter.js';
@@ -87,6 +89,11 @@ export class Editor extends EventEmitter {
     };
   }
 
+  /** The edit document and its op stack (document/op-stack.js). */
+  get ops() {
+    return this.#commits.ops;
+  }
+
   get gestureActive() {
     return this.#gestures.active;
   }
@@ -126,12 +133,14 @@ export class Editor extends EventEmitter {
   // the old mesh's vertices (the live edit, the pattern and its heat map, the
   // selection, the history, the arrows and whatever else bindToMesh named)
   // is dropped before the new mesh is announced.
-  #adopt({ info, positions, triangles }, name) {
+  #adopt(payload, name) {
+    const { info, positions, triangles } = payload;
     this.#gestures.abandon();
     this.#patterns.drop();
     for (const reset of this.#meshBound) reset();
     this.document = new MeshDocument({ name, positions, triangles, info });
     this.history.clear();
+    this.ops.adoptMesh(payload, name);
     this.emit('mesh', this.document);
     const notice = describeProblems(info);
     if (notice) this.emit('notice', notice);

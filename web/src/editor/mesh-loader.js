@@ -16,7 +16,9 @@ export async function readMesh(client, source, name, emitProgress) {
   const reader = readerFor(name);
   const bytes = await bytesOf(source, name, emitProgress);
   emitProgress({ stage: 'parse', message: `Reading ${name}` });
-  if (reader === 'core') return client.request(Request.loadFile, { bytes, name }, [bytes]);
+  // The edit document's base mesh travels beside it (autosave): keep the file's bytes.
+  const sourceBytes = bytes.slice(0);
+  if (reader === 'core') return { ...(await client.request(Request.loadFile, { bytes, name }, [bytes])), sourceBytes };
   const { positions, triangles, notes } = await importGltf(bytes, name);
   // glTF splits vertices at seams; welding exact duplicates joins the surface.
   const payload = await client.request(Request.setMesh, { positions, triangles, weld: true }, [
@@ -24,7 +26,7 @@ export async function readMesh(client, source, name, emitProgress) {
     triangles.buffer,
   ]);
   payload.info.notes = [...notes, ...(payload.info.notes ?? [])];
-  return payload;
+  return { ...payload, sourceBytes };
 }
 
 /** The file name load() was given, or the File's own; refused when there is none. */

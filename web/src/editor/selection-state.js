@@ -13,6 +13,12 @@ export class SelectionState {
   // What the worker's session holds: a document.selectionVersion, 'whole'
   // (all ones, see syncForEdit) or null (unknown: send again).
   #sent = null;
+  // The selection as select steps (the edit document's region rule) while it
+  // comes from region selects only, with the rest pose they were evaluated
+  // on; null after a brush stroke, grow, invert or undo (then the weights
+  // themselves are stored).
+  #rule = null;
+  #ruleVersion = -1;
 
   /**
    * @param {{editor: import('./editor.js').Editor, client: object, beforeChange: () => void}} parts
@@ -38,15 +44,26 @@ export class SelectionState {
       document = editor.requireDocument();
       // add and subtract combine with the session's selection: it must be the page's.
       this.#send(document.selectionVersion, () => document.selection.slice());
+      const restVersion = editor.ops.restVersion;
       const { count, weights } = await this.#client.request(Request.select, { region, options });
       if (editor.document !== document) return count; // a new mesh arrived meanwhile
+      const step = { region, ...(options.falloff && { falloff: options.falloff }), ...(options.mode && { mode: options.mode }) };
+      const replaces = !options.mode || options.mode === 'replace';
+      const base = replaces || document.selectionCount === 0 ? [] : this.ruleFor(restVersion);
       this.commit(weights, 'Select', count);
+      this.#rule = base && [...base, step];
+      this.#ruleVersion = restVersion;
       this.#sent = document.selectionVersion;
       return count;
     } catch (error) {
       if (document && editor.document === document) this.#sent = null;
       throw editor.report(error, 'The selection was not changed');
     }
+  }
+
+  /** The select steps of the selection if they hold on rest pose `restVersion`, else null. */
+  ruleFor(restVersion) {
+    return this.#rule && this.#ruleVersion === restVersion ? this.#rule : null;
   }
 
   /** Commits new weights as one undoable step; returns the selected count. */
@@ -65,6 +82,7 @@ export class SelectionState {
 
   #apply(weights, count) {
     const document = this.#editor.requireDocument();
+    this.#rule = null;
     this.#beforeChange();
     document.setSelection(weights, count);
     this.#editor.emit('selection', { weights, count: document.selectionCount, live: false });

@@ -22,7 +22,7 @@ import { Lifetime } from './lifetime.js';
 import { resolveMeshSource } from './mesh-source.js';
 import { UI_MODES, buildLayout } from './modeller-layout.js';
 
-const OPTIONS = ['ui', 'mesh', 'meshName', 'document', 'keyboard', 'workerUrl', 'wasmUrl'];
+const OPTIONS = ['ui', 'mesh', 'meshName', 'document', 'keyboard', 'autosave', 'workerUrl', 'wasmUrl'];
 
 /**
  * @param {HTMLElement} container
@@ -32,12 +32,15 @@ const OPTIONS = ['ui', 'mesh', 'meshName', 'document', 'keyboard', 'workerUrl', 
  *   mesh: URL string/URL, File, Blob, ArrayBuffer or typed array to load first (default: none)
  *   meshName: its file name when `mesh` is bytes (the extension picks the reader)
  *   document: an edit document to open with `mesh` as its base (api.open)
+ *   autosave: keep the work in IndexedDB and restore it on the next start
+ *             instead of `mesh` (default false: one store per origin, so
+ *             only a page with a single modeller should turn it on)
  *   keyboard: 'focus' (default: shortcuts while focus is inside the modeller) or 'page'
  *   workerUrl, wasmUrl: where the solver worker and its WASM are, when a
  *       bundler or server moved them from beside this module
  */
 export function createModeller(container, options = {}) {
-  const { ui = 'full', mesh, meshName, document: editDocument, keyboard = 'focus', workerUrl, wasmUrl } = checkOptions(container, options);
+  const { ui = 'full', mesh, meshName, document: editDocument, keyboard = 'focus', autosave = false, workerUrl, wasmUrl } = checkOptions(container, options);
 
   const lifetime = new Lifetime();
   const client = new SolverClient({ workerUrl, wasmUrl });
@@ -100,11 +103,29 @@ export function createModeller(container, options = {}) {
     previousTool = settings.values.tool;
   });
 
+  // Ready means drawn: wait for the frame that shows the mesh.
+  async function drawn() {
+    performance.mark('anisoform:mesh-loaded');
+    await new Promise((resolve) => {
+      const off = viewer.on('frame', () => {
+        off();
+        resolve();
+      });
+      viewer.requestRender();
+    });
+    performance.mark('anisoform:interactive');
+  }
+
   // The mesh download overlaps with compiling the WASM in the worker.
   const meshSource = mesh === undefined ? null : resolveMeshSource(mesh, meshName);
   meshSource?.catch(() => {}); // reported through `ready`
   const ready = (async () => {
     const [, source] = await Promise.all([starting, meshSource]);
+    if (autosave) editor.ops.enableAutosave();
+    if (autosave && editDocument === undefined && (await editor.ops.restoreAutosave())) {
+      await drawn();
+      return;
+    }
     if (!source) {
       if (editDocument !== undefined) throw openWithoutMesh();
       return;
@@ -115,16 +136,7 @@ export function createModeller(container, options = {}) {
       if (typeof api.open !== 'function') throw badParameter('createModeller: this build cannot open edit documents (no api.open)');
       await api.open(editDocument, source.data);
     }
-    performance.mark('anisoform:mesh-loaded');
-    // Ready means drawn: wait for the frame that shows the mesh.
-    await new Promise((resolve) => {
-      const off = viewer.on('frame', () => {
-        off();
-        resolve();
-      });
-      viewer.requestRender();
-    });
-    performance.mark('anisoform:interactive');
+    await drawn();
   })();
   ready.catch((error) => {
     if (!lifetime.disposed) reportError(error, 'The modeller could not start');
@@ -175,6 +187,9 @@ function checkOptions(container, options) {
   }
   if (options.ui !== undefined && !UI_MODES.includes(options.ui)) {
     throw badParameter(`createModeller: ui must be ${UI_MODES.map((m) => `'${m}'`).join(' or ')}, got '${options.ui}'`);
+  }
+  if (options.autosave !== undefined && typeof options.autosave !== 'boolean') {
+    throw badParameter(`createModeller: autosave must be true or false, got ${JSON.stringify(options.autosave)}`);
   }
   if (options.keyboard !== undefined && !['focus', 'page'].includes(options.keyboard)) {
     throw badParameter(`createModeller: keyboard must be 'focus' or 'page', got '${options.keyboard}'`);

@@ -3,6 +3,7 @@
 // loading onto the modeller and the Frame button, all in its own layout
 // (modeller-layout.js). The styles: ui/styles.css (the package's style.css).
 import '../ui/styles.css';
+import { opsPanel } from '../document/ops-panel.js';
 import { directionPanel } from '../ui/direction-panel.js';
 import { displayPanel } from '../ui/display-panel.js';
 import { installDropZone } from '../ui/drop-zone.js';
@@ -25,6 +26,7 @@ export function installFullUi(layout, { api, editor, settings, tools, viewer, re
     modeSwitch({ settings, app: layout.root }),
     filePanel({ api, editor, reportError }),
     historyButtons({ api, editor }),
+    opsPanel({ api, editor }),
     toolPanel({ settings, tools, reportError }),
     selectionPanel({ api, editor }),
     inMode('deform', directionPanel({ settings })),

@@ -46,6 +46,15 @@ export const Request = Object.freeze({
   flatten: 'flatten',
   /** {format: 'svg'|'dxf', mmPerUnit} -> {bytes: Uint8Array}: the last flattening as a pattern file. */
   exportPattern: 'exportPattern',
+  /** {op} -> {op}: the op as the edit document stores it (Session.resolveOp: on the rest pose and selection). */
+  resolveOp: 'resolveOp',
+  /**
+   * {document, from, to, distortion?} -> {positions, exact: Float64Array, summary, distortion?}:
+   * Session.replay of ops [from, to) (from > 0: from the session's rest pose); the result is the rest pose.
+   */
+  replay: 'replay',
+  /** {document, opId} -> {count}: Session.selectDocumentRegion (a live re-parameterisation's selection). */
+  selectDocumentRegion: 'selectDocumentRegion',
 });
 
 export const PROGRESS = 'progress';
@@ -67,6 +76,8 @@ export const PROGRESS = 'progress';
  * @property {MeshInfo} info
  * @property {Float32Array} positions   xyz per vertex
  * @property {Uint32Array} triangles    three vertex indices per triangle
+ * @property {Float64Array} exact       the session's positions as doubles (the edit document's state 0)
+ * @property {string} hash              Session.meshHash(): the edit document's mesh.hash
  */
 
 /**

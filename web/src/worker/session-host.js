@@ -25,6 +25,12 @@ export class SessionHost {
       [Request.exportMesh]: (payload) => this.exportMesh(payload),
       [Request.flatten]: (payload) => this.flatten(payload),
       [Request.exportPattern]: (payload) => this.exportPattern(payload),
+      [Request.resolveOp]: ({ op }) => ({ result: { op: this.session.resolveOp(op) }, transfer: [] }),
+      [Request.replay]: (payload) => this.replay(payload),
+      [Request.selectDocumentRegion]: ({ document, opId }) => ({
+        result: { count: this.session.selectDocumentRegion(document, opId) },
+        transfer: [],
+      }),
     };
   }
 
@@ -50,7 +56,25 @@ export class SessionHost {
   meshPayload(info) {
     const positions = this.session.positions().slice();
     const triangles = this.session.triangles().slice();
-    return { result: { info, positions, triangles }, transfer: [positions.buffer, triangles.buffer] };
+    const exact = this.session.positionsExact();
+    const hash = this.session.meshHash();
+    return { result: { info, positions, triangles, exact, hash }, transfer: [positions.buffer, triangles.buffer, exact.buffer] };
+  }
+
+  // The edit document's ops [from, to) through the core's replay; the result
+  // is the session's rest pose, returned as float32 (to draw) and doubles (to cache).
+  replay({ document, from, to, distortion }) {
+    const summary = this.session.replay(document, { from, to });
+    const positions = this.session.positions().slice();
+    const exact = this.session.positionsExact();
+    const result = { positions, exact, summary: { replayed: summary.replayed, skipped: summary.skipped,
+      last: summary.last && plainStats(summary.last) } };
+    const transfer = [positions.buffer, exact.buffer];
+    if (distortion) {
+      result.distortion = this.session.distortion(distortion, 'loaded');
+      transfer.push(result.distortion.buffer);
+    }
+    return { result, transfer };
   }
 
   // Factorizes the Laplacian now (a one-iteration identity edit of the whole

@@ -95,10 +95,10 @@ export class SolverClient extends EventEmitter {
    * preview superseded it. `distortion`: a heat map kind to send back with
    * the positions (protocol.js, Request.deform).
    */
-  preview(op, distortion = null) {
+  preview(op, distortion = null, { iterations } = {}) {
     return new Promise((resolve, reject) => {
       this.#queuedPreview?.resolve(null);
-      this.#queuedPreview = { op, distortion, resolve, reject };
+      this.#queuedPreview = { op, distortion, iterations, resolve, reject };
       this.#sendQueuedPreview();
     });
   }
@@ -111,12 +111,13 @@ export class SolverClient extends EventEmitter {
 
   #sendQueuedPreview() {
     if (this.#previewInFlight || !this.#queuedPreview) return;
-    const { op, distortion, resolve, reject } = this.#queuedPreview;
+    const { op, distortion, iterations, resolve, reject } = this.#queuedPreview;
     this.#queuedPreview = null;
     this.#previewInFlight = true;
-    // A preview runs the solver's few warm-started iterations; the committed
-    // edit on release gets the iteration cap.
+    // A preview runs the solver's few warm-started iterations (or `iterations`,
+    // fewer still); the committed edit on release gets the iteration cap.
     const { maxIterations, ...previewOp } = op;
+    if (iterations) previewOp.maxIterations = iterations;
     this.request(Request.deform, { op: { ...previewOp, preview: true }, commit: false, distortion })
       .then(resolve, reject)
       .finally(() => {

@@ -1,0 +1,289 @@
+// The edit document (issue 8 items 1-4): every committed edit is a resolved
+// op; replaying the document on a fresh page gives bitwise the same
+// positions; ops can be toggled and re-parameterised (later ops re-run);
+// autosave restores the work after a reload; a slider on the last op updates
+// live; a bad document is refused with its code and the work kept.
+import { readFileSync } from 'node:fs';
+
+import { armChange, expect, meshPath, openApp, test, uploadFile } from './support.mjs';
+
+// Three edits on Spot: a soft region stretch, a twist of a box, a shear of
+// a selection built with 'add'.
+async function editSpot(page) {
+  return page.evaluate(async () => {
+    const api = window.anisoform;
+    await api.select({ sphere: { center: [0, 0.3, 0.5], radius: 0.4 } }, { falloff: 0.2 });
+    await api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 0, 1] }, transform: { scale: [1.4, 1] } });
+    const afterOne = Array.from(api.positions());
+    await api.select({ box: { min: [-1, -1, -1], max: [1, 0, 1] } });
+    await api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] },
+      transform: { twist: { axis: [0, 1, 0], degreesPerUnit: 30 } } });
+    const afterTwo = Array.from(api.positions());
+    await api.select({ sphere: { center: [0.3, 0, 0], radius: 0.3 } });
+    await api.select({ sphere: { center: [-0.3, 0, 0], radius: 0.3 } }, { mode: 'add' });
+    await api.deform({ method: 'andefgrad', direction: { type: 'global', vector: [1, 0, 0] }, transform: { shear: 0.3 } });
+    return { afterOne, afterTwo, afterThree: Array.from(api.positions()), document: api.document() };
+  });
+}
+
+const bitwise = (a, b) => a.length === b.length && a.every((value, i) => Object.is(value, b[i]));
+
+test('a document replays on a fresh page to bitwise the same positions', async ({ page, browser }) => {
+  const pageErrors = await openApp(page);
+  const { afterThree, document } = await editSpot(page);
+  expect(document.format).toBe('anisoform-document');
+  expect(document.ops.map((op) => op.op.direction.type)).toEqual(['global', 'global', 'global']);
+  expect(document.ops[1].op.transform.twist.origin).toHaveLength(3);
+  expect(document.regions[0].steps[0].region.sphere.radius).toBe(0.4);
+  expect(document.regions.at(-1).steps.map((step) => step.mode ?? 'replace')).toEqual(['replace', 'add']);
+
+  const fresh = await browser.newPage();
+  const freshErrors = await openApp(fresh);
+  const replayed = await fresh.evaluate(async (json) => {
+    await window.anisoform.open(json);
+    return { positions: Array.from(window.anisoform.positions()), document: window.anisoform.document() };
+  }, document);
+  expect(bitwise(replayed.positions, afterThree)).toBe(true);
+  expect(replayed.document.ops.map((op) => op.id)).toEqual(document.ops.map((op) => op.id));
+  await fresh.close();
+  expect(pageErrors).toEqual([]);
+  expect(freshErrors).toEqual([]);
+});
+
+test('an op toggled off is skipped and its amounts re-run the later ops', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const { afterOne, afterTwo, afterThree, document } = await editSpot(page);
+  const [, second, third] = document.ops;
+  await expect(page.getByTestId('op-list').locator('li')).toHaveCount(3);
+
+  // The last op off: the state after two ops, bitwise.
+  // The 'document' change comes after the re-run.
+  let rerun = await armChange(page, 'document');
+  await page.getByTestId(`op-toggle-${third.id}`).uncheck();
+  await rerun();
+  expect(await page.evaluate(() => window.anisoform.document().ops[2].enabled)).toBe(false);
+  expect(bitwise(await page.evaluate(() => Array.from(window.anisoform.positions())), afterTwo)).toBe(true);
+  rerun = await armChange(page, 'document');
+  await page.getByTestId(`op-toggle-${third.id}`).check();
+  await rerun();
+  expect(await page.evaluate(() => window.anisoform.document().ops[2].enabled)).toBe(true);
+  expect(bitwise(await page.evaluate(() => Array.from(window.anisoform.positions())), afterThree)).toBe(true);
+
+  // The middle op's twist amount from the panel: the op and the one after re-run.
+  await page.getByTestId(`op-select-${second.id}`).click();
+  const amount = page.getByTestId(`op-amount-${second.id}-Twist (degrees/unit)`);
+  await expect(amount).toHaveValue('30');
+  rerun = await armChange(page, 'document');
+  await amount.fill('10');
+  await amount.dispatchEvent('change');
+  await rerun();
+  expect(await page.evaluate(() => window.anisoform.document().ops[1].op.transform.twist.degreesPerUnit)).toBe(10);
+  const retwisted = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  expect(bitwise(retwisted, afterThree)).toBe(false);
+  // Back to 30 by the API: bitwise the original three-op result.
+  const restored = await page.evaluate(async (id) => {
+    await window.anisoform.setParameter(id, { transform: { twist: { ...window.anisoform.document().ops[1].op.transform.twist, degreesPerUnit: 30 } } });
+    return Array.from(window.anisoform.positions());
+  }, second.id);
+  expect(bitwise(restored, afterThree)).toBe(true);
+
+  // Undo and redo move over the ops.
+  const undone = await page.evaluate(() => {
+    const api = window.anisoform;
+    api.undo(); // the shear
+    const one = { positions: Array.from(api.positions()), ops: api.document().ops.length };
+    api.undo(); // the 'add' select
+    api.undo(); // the first select of the third region
+    api.undo(); // the twist
+    return { one, two: { positions: Array.from(api.positions()), ops: api.document().ops.length } };
+  });
+  expect(undone.one.ops).toBe(2);
+  expect(bitwise(undone.one.positions, afterTwo)).toBe(true);
+  expect(undone.two.ops).toBe(1);
+  expect(bitwise(undone.two.positions, afterOne)).toBe(true);
+  expect(pageErrors).toEqual([]);
+});
+
+test('the work is autosaved and restored bitwise after a reload; reset clears it', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const { afterThree, document } = await editSpot(page);
+  // The autosave of the last op is written after the commit resolves.
+  await expect.poll(() => page.evaluate(() => new Promise((resolve) => {
+    const request = indexedDB.open('anisoform', 1);
+    request.onsuccess = () => {
+      const get = request.result.transaction('autosave').objectStore('autosave').get('current');
+      get.onsuccess = () => resolve(get.result?.document.ops.length ?? 0);
+    };
+  }))).toBe(3);
+
+  await page.reload();
+  await page.evaluate(() => window.anisoform.ready);
+  const restored = await page.evaluate(() => ({ positions: Array.from(window.anisoform.positions()),
+    document: window.anisoform.document() }));
+  expect(restored.document.ops).toEqual(document.ops);
+  expect(bitwise(restored.positions, afterThree)).toBe(true);
+
+  const loaded = await page.evaluate(() => {
+    window.anisoform.reset();
+    return Array.from(window.anisoform.positions());
+  });
+  await page.waitForTimeout(300);
+  await page.reload();
+  await page.evaluate(() => window.anisoform.ready);
+  const afterReset = await page.evaluate(() => ({ positions: Array.from(window.anisoform.positions()),
+    ops: window.anisoform.document().ops.length }));
+  expect(afterReset.ops).toBe(0);
+  expect(bitwise(afterReset.positions, loaded)).toBe(true);
+  expect(pageErrors).toEqual([]);
+});
+
+test('a full storage quota is reported and the work in the page is kept', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const outcome = await page.evaluate(async () => {
+    const api = window.anisoform;
+    // The browser refuses every write, as with a full quota.
+    IDBObjectStore.prototype.put = () => {
+      throw new DOMException('The quota has been exceeded.', 'QuotaExceededError');
+    };
+    const reported = new Promise((resolve) => {
+      const off = api.on('error', (event) => {
+        off();
+        resolve(event);
+      });
+    });
+    await api.select({ all: true });
+    await api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.2, 1] } });
+    return { error: await reported, ops: api.document().ops.length };
+  });
+  expect(outcome.error.code).toBe('storage');
+  expect(outcome.error.message).toContain('quota');
+  expect(outcome.error.message).toContain('Your work in this page is kept');
+  expect(outcome.ops).toBe(1);
+  await expect(page.getByTestId('error')).toContainText('quota');
+  expect(pageErrors).toEqual([]);
+});
+
+test('a bad document is refused with its code and the work is kept', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const { afterThree, document } = await editSpot(page);
+  const refusals = await page.evaluate(async (good) => {
+    const api = window.anisoform;
+    const outcomes = [];
+    const cases = [
+      { ...good, version: 7 },
+      { ...good, ops: [{ ...good.ops[0], region: 'nowhere' }] },
+      { ...good, ops: [{ ...good.ops[0], op: { ...good.ops[0].op, transform: { scale: [-1, 1] } } }] },
+      { ...good, mesh: { ...good.mesh, hash: 'fnv1a64:0000000000000000' } },
+    ];
+    for (const json of cases) {
+      try {
+        await api.open(json);
+        outcomes.push('opened');
+      } catch (error) {
+        outcomes.push({ code: error.code, message: error.message });
+      }
+    }
+    return { outcomes, positions: Array.from(api.positions()), ops: api.document().ops.length };
+  }, document);
+  expect(refusals.outcomes.map((o) => o.code)).toEqual(['bad-parameter', 'bad-parameter', 'bad-parameter', 'bad-mesh']);
+  expect(refusals.outcomes[0].message).toContain('document.version is 7, which this build does not read');
+  expect(refusals.outcomes[1].message).toContain("names region 'nowhere'");
+  expect(refusals.outcomes[2].message).toContain(`document.ops[0] (id '${document.ops[0].id}').op.transform`);
+  expect(refusals.outcomes[3].message).toContain('does not match the loaded mesh');
+  await expect(page.getByTestId('error')).toContainText('does not match the loaded mesh');
+  expect(refusals.ops).toBe(3);
+  expect(bitwise(refusals.positions, afterThree)).toBe(true);
+
+  // With other mesh bytes: the mesh is loaded, the hash refuses, and the
+  // work (Spot and its three ops) comes back.
+  const knot = Array.from(readFileSync(meshPath('closed/knot1.off')));
+  const withOtherMesh = await page.evaluate(async ({ good, bytes }) => {
+    const api = window.anisoform;
+    let code = null;
+    try {
+      await api.open({ ...good, mesh: { ...good.mesh, name: 'knot1.off' } }, new Uint8Array(bytes));
+    } catch (error) {
+      code = error.code;
+    }
+    return { code, positions: Array.from(api.positions()), ops: api.document().ops.length, vertices: api.info().vertices };
+  }, { good: document, bytes: knot });
+  expect(withOtherMesh.code).toBe('bad-mesh');
+  expect(withOtherMesh.ops).toBe(3);
+  expect(bitwise(withOtherMesh.positions, afterThree)).toBe(true);
+  expect(pageErrors).toEqual([]);
+});
+
+test('a slider on the last op updates the shape live at 20k vertices', async ({ page }) => {
+  test.setTimeout(120_000);
+  const pageErrors = await openApp(page);
+  const loaded = await uploadFile(page, meshPath('closed/armadillo.off'));
+  expect(loaded.ok).toBe(true);
+  expect(loaded.info.vertices).toBeGreaterThanOrEqual(20_000);
+  const measured = await page.evaluate(async () => {
+    const api = window.anisoform;
+    const { min, max } = (() => {
+      const p = api.positions();
+      const lo = [Infinity, Infinity, Infinity];
+      const hi = [-Infinity, -Infinity, -Infinity];
+      for (let i = 0; i < p.length; i++) {
+        lo[i % 3] = Math.min(lo[i % 3], p[i]);
+        hi[i % 3] = Math.max(hi[i % 3], p[i]);
+      }
+      return { min: lo, max: hi };
+    })();
+    const top = [...min];
+    top[1] = min[1] + 0.6 * (max[1] - min[1]);
+    await api.select({ box: { min: top, max } }, { falloff: 0.1 * (max[1] - min[1]) });
+    await api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.1, 1] } });
+    const opId = api.document().ops[0].id;
+
+    // A 2 s drag: a slider value per animation frame; a frame counts when
+    // positions it had not shown yet arrived since the previous frame.
+    let arrived = 0;
+    const arrivals = [];
+    const off = api.on('positions', ({ live }) => {
+      if (!live) return;
+      arrived++;
+      arrivals.push(performance.now());
+    });
+    let seen = 0;
+    let changedFrames = 0;
+    const start = performance.now();
+    await new Promise((resolve) => {
+      const frame = () => {
+        const t = (performance.now() - start) / 2000;
+        if (arrived > seen) {
+          changedFrames++;
+          seen = arrived;
+        }
+        if (t >= 1) {
+          resolve();
+          return;
+        }
+        api.setParameter(opId, { transform: { scale: [1.1 + 0.5 * t, 1] } }, { preview: true }).catch(() => {});
+        requestAnimationFrame(frame);
+      };
+      requestAnimationFrame(frame);
+    });
+    const seconds = (performance.now() - start) / 1000;
+    off();
+    await api.setParameter(opId, { transform: { scale: [1.6, 1] } });
+    // After the first preview (which puts the rest pose back at the op's input).
+    const steady = arrivals.length > 1 ? (arrivals.length - 1) / ((arrivals.at(-1) - arrivals[0]) / 1000) : 0;
+    return { rate: changedFrames / seconds, changedFrames, seconds, firstMs: arrivals[0] - start, steady,
+      final: api.document().ops[0].op.transform.scale };
+  });
+  console.log(`slider: ${measured.changedFrames} frames with new positions in ${measured.seconds.toFixed(2)} s = `
+    + `${measured.rate.toFixed(1)} updates/s (first after ${measured.firstMs.toFixed(0)} ms; then ${measured.steady.toFixed(1)}/s)`);
+  expect(measured.final).toEqual([1.6, 1]);
+  // The slider re-solves live: several distinct shapes arrive during the drag.
+  // Its rate is measured and printed, not asserted (speed belongs to the
+  // benchmarks; on the 2 shared cores of CI it swings 2x); issue 8 asks for 20/s
+  // at 20k vertices: ANISO_SLIDER_MIN_RATE=20 makes this test check that.
+  expect(measured.changedFrames).toBeGreaterThanOrEqual(2);
+  test.info().annotations.push({ type: 'slider updates/s', description: measured.rate.toFixed(1) });
+  if (process.env.ANISO_SLIDER_MIN_RATE) {
+    expect(measured.rate).toBeGreaterThanOrEqual(Number(process.env.ANISO_SLIDER_MIN_RATE));
+  }
+  expect(pageErrors).toEqual([]);
+});

@@ -1,0 +1,71 @@
+// The side panel's list of the edit document's ops (a non-destructive stack,
+// like Blender's modifiers): each op can be toggled off and on, selected, and
+// its amounts edited; the later ops re-run (api.setOpEnabled, api.setParameter).
+import { h, section } from '../ui/dom.js';
+
+// The amounts of a transform an op's row offers, as [label, read, write].
+const AMOUNTS = [
+  ['Stretch along', (t) => t.scale?.[0] ?? t.scale, (t, v) => ({ scale: [v, t.scale?.[1] ?? 1] })],
+  ['Stretch across', (t) => t.scale?.[1], (t, v) => ({ scale: [t.scale?.[0] ?? t.scale ?? 1, v] })],
+  ['Thickness', (t) => t.thickness, (t, v) => ({ thickness: v })],
+  ['Shear', (t) => t.shear, (t, v) => ({ shear: v })],
+  ['Rotate (degrees)', (t) => t.rotate?.degrees, (t, v) => ({ rotate: { ...t.rotate, degrees: v } })],
+  ['Twist (degrees/unit)', (t) => t.twist?.degreesPerUnit, (t, v) => ({ twist: { ...t.twist, degreesPerUnit: v } })],
+];
+
+export function opsPanel({ api, editor }) {
+  const list = h('ol', { className: 'op-list', 'data-testid': 'op-list' });
+  const empty = h('p', { className: 'op-empty' }, 'No edits yet: each committed edit appears here.');
+  let selected = null;
+  // The editor reports failures itself (the banner); the rejected promise needs no second word.
+  const quietly = (promise) => promise.catch(() => {});
+
+  const amountFields = (entry) => {
+    const transform = entry.op.transform ?? {};
+    return AMOUNTS.filter(([, read]) => typeof read(transform) === 'number').map(([label, read, write]) =>
+      h('label', { className: 'field op-amount' }, label,
+        h('input', {
+          type: 'number',
+          step: 'any',
+          value: String(read(transform)),
+          'data-testid': `op-amount-${entry.id}-${label}`,
+          onchange: (event) => {
+            const value = Number(event.target.value);
+            quietly(api.setParameter(entry.id, { transform: write(transform, value) }));
+          },
+        })));
+  };
+
+  const row = (entry) => {
+    const isSelected = entry.id === selected;
+    return h('li', { className: `op-row${isSelected ? ' selected' : ''}${entry.enabled ? '' : ' disabled'}`, 'data-op': entry.id },
+      h('input', {
+        type: 'checkbox',
+        checked: entry.enabled,
+        title: entry.enabled ? 'Turn this edit off' : 'Turn this edit on',
+        'data-testid': `op-toggle-${entry.id}`,
+        onchange: (event) => quietly(api.setOpEnabled(entry.id, event.target.checked)),
+      }),
+      h('button', {
+        className: 'op-label',
+        'data-testid': `op-select-${entry.id}`,
+        onclick: () => {
+          selected = isSelected ? null : entry.id;
+          render();
+        },
+      }, entry.label || entry.id),
+      isSelected ? h('div', { className: 'op-amounts' }, amountFields(entry)) : null);
+  };
+
+  function render() {
+    const document = editor.ops.document;
+    const ops = document?.ops ?? [];
+    if (!ops.some((entry) => entry.id === selected)) selected = null;
+    list.replaceChildren(...ops.map(row));
+    empty.hidden = ops.length > 0;
+  }
+  editor.on('document', render);
+  editor.on('mesh', render);
+
+  return section('Edits', empty, list);
+}
