@@ -137,20 +137,6 @@ std::vector<char> selection_mask(const Mesh& mesh, const Region& region) {
   return mask;
 }
 
-std::string pattern_number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
-
-std::string pattern_note(const FlattenPlan& plan, const std::string& direction) {
-  const SessionFlatten& request = plan.request;
-  std::string note = request.method == FlattenMethod::UniformBaseline ? "uniform baseline" : "anisotropic";
-  note += ", su " + pattern_number(request.su) + " sv " + pattern_number(request.sv);
-  note += ", direction " + direction + "; grainline = mean compression direction";
-  return note;
-}
-
 nlohmann::json result_json(const FlattenArguments& args, const FlattenPlan& plan,
                            const std::string& direction, const std::vector<std::string>& warnings,
                            const FlattenResult& result) {
@@ -206,7 +192,7 @@ int run_flatten(const FlattenArguments& args) {
 
   PatternExportOptions pattern_options;
   pattern_options.mm_per_unit = plan.mm_per_unit;
-  pattern_options.note = pattern_note(plan, direction);
+  pattern_options.note = pattern_note(plan.request, direction);
   switch (plan.format) {
     case PatternFormat::Obj:
       write_file_atomically(args.output, write_obj_with_uv(flattened.patch.mesh, flattened.result.uv));

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -31,6 +32,15 @@ struct SessionFlatten {
 // resolve_flatten in op.h): the one place they are built, for the Session and
 // the CLI's one-shot flatten alike.
 FlattenOptions flatten_options(const SessionFlatten& request);
+
+// The pattern file's scale note for a request: the method, su and sv, where
+// the direction came from (`direction`, e.g. "global:0,0,1" or "field
+// (3 constraints)") and how the grainline is chosen. One wording for the
+// Session's patterns and the CLI's.
+std::string pattern_note(const SessionFlatten& request, const std::string& direction);
+// A request's directions as the note names them: "global:X,Y,Z" or
+// "field (N constraints)".
+std::string describe_directions(const FlattenDirections& directions);
 
 struct SessionFlattenResult {
   FlattenMetrics metrics;

@@ -15,16 +15,6 @@ Json matrix4_json(const Eigen::Matrix4d& m) {
   return out;
 }
 
-const char* method_key(Method method) {
-  switch (method) {
-    case Method::AnArap: return "anarap";
-    case Method::AnDefGrad: return "andefgrad";
-    case Method::Arap: return "arap";
-    case Method::Linear: return "linear";
-  }
-  return "anarap";
-}
-
 Json transform_json(const TransformSpec& t, bool origin_given) {
   Json out = Json::object();
   if (t.su != 1.0 || t.sv != 1.0) out["scale"] = Json::array({t.su, t.sv});
@@ -90,7 +80,7 @@ Json to_json(const DirectionSource& d) {
 
 Json to_json(const SessionEdit& edit) {
   const DeformRequest& r = edit.request;
-  Json op = {{"method", method_key(r.method)}};
+  Json op = {{"method", method_name(r.method)}};
   if (edit.direction_given) op["direction"] = to_json(r.direction);
   op["transform"] = transform_json(r.transform, edit.twist_origin_given);
   // Empty lists are "not given": ARAP then takes its handles and pins from

@@ -30,20 +30,6 @@ std::string short_number(double value) {
   return text;
 }
 
-// The scale note's text, worded as the CLI's.
-std::string pattern_note(const SessionFlatten& request) {
-  std::string note = request.method == FlattenMethod::UniformBaseline ? "uniform baseline" : "anisotropic";
-  note += ", su " + short_number(request.su) + " sv " + short_number(request.sv) + ", direction ";
-  const FlattenDirections& d = request.directions;
-  if (d.kind == FlattenDirections::Kind::Global) {
-    note += "global:" + short_number(d.global.x()) + "," + short_number(d.global.y()) + "," +
-            short_number(d.global.z());
-  } else {
-    note += "field (" + std::to_string(d.constraints.size()) + " constraints)";
-  }
-  return note + "; grainline = mean compression direction";
-}
-
 float relative_error(double achieved, double wanted) {
   const double error = std::abs(achieved / wanted - 1.0);
   return std::isfinite(error) ? static_cast<float>(error) : kNaN;
@@ -127,7 +113,7 @@ SessionFlattenResult Session::flatten(const SessionFlatten& given) {
   SessionFlattenResult out =
       reindex(flattener.patch(), flattener.charts(), result, deformer_->rest().num_vertices());
 
-  std::string note = pattern_note(request);
+  std::string note = pattern_note(request, describe_directions(request.directions));
   // Nothing below throws or allocates: moves only.
   if (built) {
     if (state.flattener) state.retired_factorizations += state.flattener->factorizations();
@@ -155,6 +141,20 @@ std::string Session::export_pattern(const std::string& format, double mm_per_uni
   options.note = state.note;
   const Pattern pattern = make_pattern(state.flattener->patch(), *state.last);
   return format == "svg" ? write_pattern_svg(pattern, options) : write_pattern_dxf(pattern, options);
+}
+
+std::string describe_directions(const FlattenDirections& directions) {
+  if (directions.kind == FlattenDirections::Kind::Global) {
+    return "global:" + short_number(directions.global.x()) + "," + short_number(directions.global.y()) + "," +
+           short_number(directions.global.z());
+  }
+  return "field (" + std::to_string(directions.constraints.size()) + " constraints)";
+}
+
+std::string pattern_note(const SessionFlatten& request, const std::string& direction) {
+  std::string note = request.method == FlattenMethod::UniformBaseline ? "uniform baseline" : "anisotropic";
+  note += ", su " + short_number(request.su) + " sv " + short_number(request.sv);
+  return note + ", direction " + direction + "; grainline = mean compression direction";
 }
 
 }  // namespace aniso

@@ -12,12 +12,14 @@ import type {
   CurvatureDirection,
   DeformOp as SessionDeformOp,
   DeformResult as SessionDeformResult,
+  EditDocument,
   FlattenOptions,
   FlattenResult as SessionFlattenResult,
   GlobalDirection,
   PatternOptions,
   Region,
   SelectOptions,
+  Transform,
   Vec3,
 } from '../wasm/anisoform-wasm';
 
@@ -87,7 +89,7 @@ export interface PositionsEvent {
  * ordered, resolved ops. Replaying it (api.open, Session.replay in Node,
  * `anisoform replay`) gives the same positions.
  */
-export type { EditDocument } from '../wasm/anisoform-wasm.js';
+export type { EditDocument } from '../wasm/anisoform-wasm';
 /**
  * Every refusal and failure, once: a rejected load, deform, flatten or export
  * (its promise rejects with the same message), and what the page's own
@@ -130,19 +132,19 @@ export interface Anisoform {
   /** Back to the mesh as loaded: the ops are cleared (undoable) and so is the autosave; false if there were none. */
   reset(): boolean;
   /** The edit document (a copy): the ops done so far. */
-  document(): import('../wasm/anisoform-wasm.js').EditDocument;
+  document(): EditDocument;
   /**
    * Replays a document on the current mesh, or on `meshBytes` (named document.mesh.name). Any error
    * (version, region, amounts, a mesh whose hash differs, bad JSON) rejects with its code, naming the
    * op or field, and the current work is kept.
    */
-  open(document: import('../wasm/anisoform-wasm.js').EditDocument, meshBytes?: ArrayBuffer | Uint8Array): Promise<void>;
+  open(document: EditDocument, meshBytes?: ArrayBuffer | Uint8Array): Promise<void>;
   /**
    * Merges `transform` into op `opId`'s and re-solves from that op's input, re-running the later ops.
    * {preview: true} on the last op: a live, warm-started preview only (a slider being dragged); call
    * again without it on release to commit the value.
    */
-  setParameter(opId: string, patch: { transform: import('../wasm/anisoform-wasm.js').Transform },
+  setParameter(opId: string, patch: { transform: Transform },
     options?: { preview?: boolean }): Promise<unknown>;
   /** Toggles an op off or on; the later ops re-run. */
   setOpEnabled(opId: string, enabled: boolean): Promise<void>;
