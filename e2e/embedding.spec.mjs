@@ -167,7 +167,7 @@ test('<anisoform-modeller>: src loads, events come out as DOM events, .api works
     await window.element.api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.2, 1] } });
     return window.events.filter((e) => e.type === 'change').map((e) => e.detail.reason);
   });
-  expect(edited).toEqual(['selection', 'positions']);
+  expect(edited).toEqual(['selection', 'positions', 'document']); // a committed edit is a new op in the document
 
   // Removed from the page: disposed.
   const afterRemoval = await page.evaluate(() => {

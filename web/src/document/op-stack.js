@@ -56,9 +56,11 @@ export class OpStack {
     this.#cache.clear();
     this.#cache.set(0, { positions, exact });
     this.restVersion++;
-    // A new mesh is new work: it replaces the autosaved one (not while that is being restored).
-    if (this.#restoring) this.#emitDocument();
-    else this.#changed();
+    // A new mesh is new work: it replaces the autosaved one (not while that is
+    // being restored). The load's own 'change' {reason: 'load'} follows, so
+    // the new document is announced without a 'change' of its own.
+    if (this.#restoring) this.#emitDocument({ change: false });
+    else this.#changed({ change: false });
   }
 
   /** The document as JSON (api.document()). */
@@ -366,13 +368,13 @@ export class OpStack {
     this.#editor.emit('change', { reason: 'positions' });
   }
 
-  #emitDocument() {
+  #emitDocument({ change = true } = {}) {
     this.#editor.emit('document', this.document);
-    this.#editor.emit('change', { reason: 'document' });
+    if (change) this.#editor.emit('change', { reason: 'document' });
   }
 
-  #changed() {
-    this.#emitDocument();
+  #changed({ change = true } = {}) {
+    this.#emitDocument({ change });
     const { name, bytes } = this.#mesh;
     this.#autosave.save({ document: this.document.toJSON(), meshName: name, meshBytes: bytes })
       .catch((error) => this.#editor.report(error, 'Autosave'));
