@@ -157,10 +157,10 @@ void parse_twist(const std::string& text, TransformSpec& spec) {
   spec.twist_degrees_per_unit = parse_number(parts.rest, "--twist");
 }
 
-DirectionChoice parse_direction(const std::string& text) {
+DirectionFlag parse_direction(const std::string& text) {
   const std::string form = "global:X,Y,Z | curvature:min | curvature:max | field:PATH";
   const Prefixed parts = split_prefixed(text, "--direction", form);
-  DirectionChoice choice;
+  DirectionFlag choice;
   choice.description = text;
   if (parts.kind == "global") {
     choice.kind = DirectionSource::Kind::Global;

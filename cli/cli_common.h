@@ -100,14 +100,14 @@ void parse_twist(const std::string& text, TransformSpec& spec);
 
 // Where the direction field comes from, as given by --direction (the mesh is
 // needed to finish it: curvature and constraint fields are built by the core).
-struct DirectionChoice {
+struct DirectionFlag {
   DirectionSource::Kind kind = DirectionSource::Kind::Global;
   Eigen::Vector3d vector = Eigen::Vector3d::UnitX();  // Global: unit
   std::string field_path;                             // Constraints: the file
   std::string description;                            // echoed in the JSON
 };
 // "global:X,Y,Z" | "curvature:min" | "curvature:max" | "field:PATH".
-DirectionChoice parse_direction(const std::string& text);
+DirectionFlag parse_direction(const std::string& text);
 // How the default direction (op.h longest_axis of `box`, the rule the core
 // applies) is echoed: "global:0,0,1 (longest axis)".
 std::string longest_axis_description(const BoundingBox& box);

@@ -1,7 +1,7 @@
 // `anisoform deform IN OUT [options]`: one anisotropic edit of a mesh, from the
 // command line to the core's Session (the browser's, too) and back to a file.
 // The edit comes from flags or, with --op FILE, as the public op (op.h); both
-// become the same SessionEdit, and the Session resolves what the mesh decides
+// become the same DeformOp, and the Session resolves what the mesh decides
 // (the default direction and twist origin, ARAP's handles).
 //
 // The order of the work follows the exit-status contract: first everything
@@ -48,7 +48,7 @@ struct DeformArguments {
 
 // What the command line alone decides, checked before the mesh is read.
 struct DeformPlan {
-  SessionEdit edit;  // pins and handles given as regions are filled in with the mesh
+  DeformOp edit;  // pins and handles given as regions are filled in with the mesh
   Region selection;
   double falloff = 0.0;
   std::string direction_description;  // empty: the mesh's longest axis
@@ -85,7 +85,7 @@ std::vector<std::pair<const char*, const std::string*>> op_flags(const DeformArg
 }
 
 // --op FILE: the public op, parsed by the core (op.h) as the browser's is.
-SessionEdit edit_from_op_file(const DeformArguments& args) {
+DeformOp edit_from_op_file(const DeformArguments& args) {
   for (const auto& [option, value] : op_flags(args)) {
     if (!value->empty()) {
       fail(ErrorCode::BadParameter, std::string(option) + " cannot be combined with --op: the op file " +
@@ -102,15 +102,15 @@ SessionEdit edit_from_op_file(const DeformArguments& args) {
   return naming_option("--op", [&] { return deform_op_from_json(op); });
 }
 
-// The flags as the same SessionEdit an op gives.
-SessionEdit edit_from_flags(const DeformArguments& args, DeformPlan& plan) {
-  SessionEdit edit;
+// The flags as the same DeformOp an op gives.
+DeformOp edit_from_flags(const DeformArguments& args, DeformPlan& plan) {
+  DeformOp edit;
   DeformRequest& request = edit.request;
   if (!args.method.empty()) request.method = naming_option("--method", [&] { return parse_method(args.method); });
   request.transform = parse_transform(args);
   edit.direction_given = !args.direction.empty();
   if (edit.direction_given) {
-    const DirectionChoice choice = parse_direction(args.direction);
+    const DirectionFlag choice = parse_direction(args.direction);
     plan.direction_description = choice.description;
     request.direction.kind = choice.kind;
     request.direction.vector = choice.vector;
@@ -218,7 +218,7 @@ int run_deform(const DeformArguments& args) {
   const int selected = naming_option(
       "--select", [&] { return session.select(plan.selection, plan.falloff, SelectionMode::Replace); });
   if (selected == 0) warnings.push_back("the selection holds no vertex: the mesh is left unchanged");
-  SessionEdit& edit = plan.edit;
+  DeformOp& edit = plan.edit;
   if (plan.pins) edit.request.pins = region_vertices(mesh, *plan.pins, "--pin");
   if (plan.handles) edit.request.handles = region_vertices(mesh, *plan.handles, "--handle");
   if (edit.request.method == Method::Arap && !edit.request.transform.is_identity()) {
@@ -227,7 +227,7 @@ int run_deform(const DeformArguments& args) {
   }
   // What the session will solve, for the counts echoed below.
   const DeformRequest resolved = resolve_edit(edit, mesh.V, info.report.bbox, session.selection());
-  const SessionEditResult result = session.deform(edit);
+  const DeformOpResult result = session.deform(edit);
 
   write_mesh(args.output, Mesh{session.positions(), mesh.F}, plan.write);
   std::string direction = plan.direction_description;

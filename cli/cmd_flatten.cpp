@@ -92,7 +92,7 @@ FlattenPlan plan_flatten(const FlattenArguments& args) {
   }
   plan.request.direction_given = !args.direction.empty();
   if (plan.request.direction_given) {
-    const DirectionChoice direction = parse_direction(args.direction);
+    const DirectionFlag direction = parse_direction(args.direction);
     plan.direction_description = direction.description;
     FlattenDirections& directions = plan.request.directions;
     if (direction.kind == DirectionSource::Kind::Constraints) {

@@ -67,7 +67,7 @@ std::string refusal_of_document(const Json& document, ErrorCode code) {
   Session session;
   load_spool(session);
   session.select(Region{}, 0.0, SelectionMode::Replace);
-  SessionEdit edit;
+  DeformOp edit;
   edit.request.transform.su = 1.1;
   session.deform(edit);  // an uncommitted edit: current != rest
   const Positions rest = session.rest().V;
@@ -84,9 +84,9 @@ std::string refusal_of_document(const Json& document, ErrorCode code) {
 // to_json(parse(text)) read back gives the same JSON: every value and every
 // "given" flag survives.
 void check_op_round_trip(const Json& op) {
-  const SessionEdit parsed = deform_op_from_json(op);
+  const DeformOp parsed = deform_op_from_json(op);
   const Json written = to_json(parsed);
-  const SessionEdit again = deform_op_from_json(written);
+  const DeformOp again = deform_op_from_json(written);
   CHECK(to_json(again) == written);
   CHECK(again.direction_given == parsed.direction_given);
   CHECK(again.request.handles == parsed.request.handles);
@@ -136,7 +136,7 @@ TEST_CASE("document: replay is deterministic and runs every enabled op", "[docum
       if (region.name != op.region) continue;
       for (const DocumentSelectStep& step : region.steps) by_hand.select(step.region, step.falloff, step.mode);
     }
-    SessionEdit edit = op.edit;
+    DeformOp edit = op.edit;
     edit.request.warm_start = false;
     by_hand.deform(edit);
     by_hand.commit();
@@ -176,11 +176,11 @@ TEST_CASE("document: a resolved screen drag replays as the solve it stands for",
   cap.center = Eigen::Vector3d(0, 0.4, 0);
   cap.radius = 0.3;
   session.select(cap, 0.05, SelectionMode::Replace);
-  const SessionEdit edit = deform_op_from_json(Json::parse(R"({"direction":{"type":"screen","from":[400,300],
+  const DeformOp edit = deform_op_from_json(Json::parse(R"({"direction":{"type":"screen","from":[400,300],
       "to":[400,200],"camera":{"view":[1,0,0,0,0,1,0,0,0,0,1,0,0,0,-3,1],
       "projection":[1.3,0,0,0,0,1.7,0,0,0,0,-1.002,-1,0,0,-0.2,0],"viewport":[0,0,800,600],"anchor":[0,0.4,0]}},
       "transform":{"scale":1.25,"twist":{"axis":[0,1,0],"degreesPerUnit":20}},"warmStart":false})"));
-  const SessionEdit resolved = resolve_for_document(session, edit);
+  const DeformOp resolved = resolve_for_document(session, edit);
   CHECK(resolved.request.direction.kind == DirectionSource::Kind::Global);
   CHECK(resolved.twist_origin_given);
   CHECK_FALSE(resolved.preview);

@@ -22,9 +22,9 @@ std::string refusal_of_op(const char* text) {
 }  // namespace
 
 TEST_CASE("op: an empty op has the structs' defaults and leaves the mesh's defaults open", "[op]") {
-  const SessionEdit edit = deform_op_from_json(Json::object());
+  const DeformOp edit = deform_op_from_json(Json::object());
   const DeformRequest defaults;
-  const SessionEdit edit_defaults;
+  const DeformOp edit_defaults;
   CHECK(edit.request.method == defaults.method);
   CHECK(edit.request.max_iterations == defaults.max_iterations);
   CHECK(edit.request.rotation_steps == defaults.rotation_steps);
@@ -51,7 +51,7 @@ TEST_CASE("op: an empty op has the structs' defaults and leaves the mesh's defau
 }
 
 TEST_CASE("op: every field is read into the request", "[op]") {
-  const SessionEdit edit = deform_op_from_json(Json::parse(R"({
+  const DeformOp edit = deform_op_from_json(Json::parse(R"({
     "method": "andefgrad", "direction": {"type": "curvature", "which": "max", "smoothing": 3},
     "transform": {"scale": [1.5, 0.5], "thickness": 2, "shear": 0.25, "rotate": {"axis": "u", "degrees": 30},
                   "twist": {"axis": [0, 0, 2], "degreesPerUnit": 45, "origin": [1, 2, 3]}},
@@ -208,7 +208,7 @@ TEST_CASE("op: the mesh's defaults are resolved by the session's rule", "[op]") 
   weights[0] = 1.0;
   weights[1] = 0.9995;
   weights[2] = 0.5;
-  const SessionEdit arap = deform_op_from_json(Json::parse(R"({"method":"arap","move":[0,0,1]})"));
+  const DeformOp arap = deform_op_from_json(Json::parse(R"({"method":"arap","move":[0,0,1]})"));
   const DeformRequest resolved = resolve_edit(arap, mesh.V, box, weights);
   CHECK(resolved.handles == std::vector<int>{0, 1});
   CHECK(static_cast<int>(resolved.pins.size()) == n - 3);
@@ -216,17 +216,17 @@ TEST_CASE("op: the mesh's defaults are resolved by the session's rule", "[op]") 
   CHECK(resolved.direction.vector == longest_axis(box));
 
   // Nothing selected: the whole mesh is the handle; given pins and handles are kept.
-  const SessionEdit pinned = deform_op_from_json(Json::parse(R"({"method":"arap","pins":[7]})"));
+  const DeformOp pinned = deform_op_from_json(Json::parse(R"({"method":"arap","pins":[7]})"));
   const DeformRequest all = resolve_edit(pinned, mesh.V, box, Eigen::VectorXd::Zero(n));
   CHECK(static_cast<int>(all.handles.size()) == n);
   CHECK(all.pins == std::vector<int>{7});
-  const SessionEdit handled = deform_op_from_json(Json::parse(R"({"method":"arap","handles":[5, 6]})"));
+  const DeformOp handled = deform_op_from_json(Json::parse(R"({"method":"arap","handles":[5, 6]})"));
   const DeformRequest kept = resolve_edit(handled, mesh.V, box, weights);
   CHECK(kept.handles == std::vector<int>{5, 6});
   CHECK(kept.pins.empty());
 
   // Preview caps the iterations; a twist without origin turns about the selection's centroid line.
-  const SessionEdit twist = deform_op_from_json(
+  const DeformOp twist = deform_op_from_json(
       Json::parse(R"({"preview":true,"transform":{"twist":{"axis":[0,0,1],"degreesPerUnit":10}}})"));
   const DeformRequest turned = resolve_edit(twist, mesh.V, box, weights);
   CHECK(turned.max_iterations == kPreviewIterations);
@@ -238,7 +238,7 @@ TEST_CASE("op: the mesh's defaults are resolved by the session's rule", "[op]") 
 }
 
 TEST_CASE("op: results as JSON and the schema", "[op]") {
-  SessionEditResult result;
+  DeformOpResult result;
   result.selected = 12;
   result.energy_history = {3.0, 2.0};
   result.total_ms = 1.5;

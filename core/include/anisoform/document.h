@@ -57,7 +57,7 @@ struct DocumentOp {
   std::string label;
   bool enabled = true;
   std::string region;  // a DocumentRegion's name
-  SessionEdit edit;
+  DeformOp edit;
 };
 
 struct EditDocument {
@@ -88,7 +88,7 @@ void check_document(const EditDocument& document, const Session& session);
 // resolve_edit on the session's rest pose and selection, a screen drag turned
 // into the global vector it produced, preview and warm start off, everything
 // "given". What the page stores when it commits an op.
-SessionEdit resolve_for_document(const Session& session, const SessionEdit& edit);
+DeformOp resolve_for_document(const Session& session, const DeformOp& edit);
 
 // Which ops replay runs: [from, to) of the document's list. from == 0 starts
 // from the mesh as loaded; from > 0 starts from the session's rest pose (the
@@ -104,7 +104,7 @@ ReplayRange replay_range_from_json(const Json& options);
 struct ReplaySummary {
   int replayed = 0;  // enabled ops solved
   int skipped = 0;   // disabled ops
-  SessionEditResult last;  // the last solve's (what a page reports after committing one op)
+  DeformOpResult last;  // the last solve's (what a page reports after committing one op)
 };
 
 // Checks the document (check_document), then replays the range on a scratch
@@ -121,7 +121,7 @@ int select_document_region(Session& session, const EditDocument& document, const
 // "document.op", "replay" (ReplayRange).
 Json document_schema();
 
-// {replayed, skipped, last: to_json(SessionEditResult) or null when nothing was solved}
+// {replayed, skipped, last: to_json(DeformOpResult) or null when nothing was solved}
 Json to_json(const ReplaySummary& summary);
 
 }  // namespace aniso

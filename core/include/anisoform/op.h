@@ -1,7 +1,7 @@
 // The public op: one edit, one flattening, one region, as JSON. This is the
 // one place its schema lives: the WASM module, the edit document and
 // `anisoform deform --op FILE` all hand their JSON here; the CLI's flags build
-// the same SessionEdit, and every host deforms through Session::deform.
+// the same DeformOp, and every host deforms through Session::deform.
 //
 // An op (every key optional):
 //   {method: 'anarap'|'andefgrad'|'arap'|'linear',
@@ -16,8 +16,8 @@
 //    maxIterations?, rotationSteps?, tolerance?, preview?, warmStart?}
 //
 // Defaults are the C++ structs' initializers (DeformRequest, TransformSpec,
-// SessionEdit, SessionFlatten). Defaults that depend on the mesh are left
-// "not given" in the parsed struct (SessionEdit::direction_given, ...) and
+// DeformOp, SessionFlatten). Defaults that depend on the mesh are left
+// "not given" in the parsed struct (DeformOp::direction_given, ...) and
 // resolved by resolve_edit / resolve_flatten, which the Session calls.
 //
 // JSON cannot hold NaN or infinities: JS callers send them as the strings
@@ -45,7 +45,7 @@ using Json = nlohmann::ordered_json;
 
 // ---- JSON -> request ------------------------------------------------------
 
-SessionEdit deform_op_from_json(const Json& op);
+DeformOp deform_op_from_json(const Json& op);
 // {compress?: su|[su]|[su,sv], direction?: global or constraints (as an op's),
 //  baseline?: 'uniform', patch?: 'mesh'|'selection', maxIterations?, tolerance?}
 SessionFlatten flatten_options_from_json(const Json& options);
@@ -100,7 +100,7 @@ Eigen::Vector3d longest_axis(const BoundingBox& box);
 //     given, pins those with weight 0 (the soft border in between deforms as
 //     rigidly as possible); nothing selected: every vertex is a handle;
 //   preview: max_iterations capped at kPreviewIterations.
-DeformRequest resolve_edit(const SessionEdit& edit, const Positions& rest, const BoundingBox& loaded_box,
+DeformRequest resolve_edit(const DeformOp& edit, const Positions& rest, const BoundingBox& loaded_box,
                            const Eigen::VectorXd& weights);
 
 // A flattening's default direction: longest_axis of the positions it flattens.
@@ -114,7 +114,7 @@ SessionFlatten resolve_flatten(const SessionFlatten& request, const Positions& p
 Json to_json(const SessionMeshInfo& info);
 // {selected, iterations, energy, energyHistory, converged, directionsFilled,
 //  inverted, factorizations, precomputeMs, solveMs, ms}
-Json to_json(const SessionEditResult& result);
+Json to_json(const DeformOpResult& result);
 // {triangles, vertices, components, boundaryLoops, flipped, compressionErrorMean,
 //  compressionErrorMax, crossErrorMean, crossErrorMax, areaDistortionMean,
 //  iterations, energy, converged, seconds, filledDirections, initialization, method}
@@ -126,7 +126,7 @@ Json to_json(const FlattenMetrics& metrics);
 // value and every "given" flag). Keys left out are the ones not given; a
 // screen direction stays a screen drag (resolve_for_document, document.h,
 // turns it into the global vector first).
-Json to_json(const SessionEdit& edit);
+Json to_json(const DeformOp& edit);
 // A direction source as an op's `direction`.
 Json to_json(const DirectionSource& direction);
 

@@ -49,9 +49,11 @@ struct SessionMeshInfo {
 // min(old, 1 - new).
 enum class SelectionMode { Replace, Add, Subtract };
 
-// One edit as the host asks for it. `request.selection` is ignored: the
+// The public op (op.h) in C++: one edit as a host asks for it, before the
+// session fills in what depends on the mesh (resolve_edit) and hands its
+// DeformRequest to the solver. `request.selection` is ignored: the
 // session's selection is used.
-struct SessionEdit {
+struct DeformOp {
   DeformRequest request;
   // A twist turns about `request.transform.twist_origin` when this is set;
   // otherwise about default_twist_origin (as the CLI does): the axis line
@@ -69,7 +71,7 @@ struct SessionEdit {
 
 constexpr int kPreviewIterations = 4;
 
-struct SessionEditResult {
+struct DeformOpResult {
   int selected = 0;
   int iterations = 0;
   double energy = 0.0;
@@ -132,7 +134,7 @@ class Session {
   const std::vector<float>& selection_f32() const { return weights_f32_; }
 
   // Deforms the rest pose; positions() then holds the result.
-  SessionEditResult deform(const SessionEdit& edit);
+  DeformOpResult deform(const DeformOp& edit);
   void commit();  // the current positions become the rest pose
   void cancel();  // the current positions go back to the rest pose
   // Restores positions (undo/redo; 3 numbers per vertex); they also become

@@ -1,4 +1,4 @@
-// to_json(SessionEdit) and to_json(DirectionSource) (op.h): the inverse of
+// to_json(DeformOp) and to_json(DirectionSource) (op.h): the inverse of
 // deform_op_from_json, so that the edit document stores exactly what was
 // solved. test_document.cpp checks parse(to_json(x)) == x.
 #include "anisoform/op.h"
@@ -78,7 +78,7 @@ Json to_json(const DirectionSource& d) {
   return Json::object();
 }
 
-Json to_json(const SessionEdit& edit) {
+Json to_json(const DeformOp& edit) {
   const DeformRequest& r = edit.request;
   Json op = {{"method", method_name(r.method)}};
   if (edit.direction_given) op["direction"] = to_json(r.direction);

@@ -72,10 +72,10 @@ void check_document(const EditDocument& document, const Session& session) {
   }
 }
 
-SessionEdit resolve_for_document(const Session& session, const SessionEdit& edit) {
-  SessionEdit full = edit;
+DeformOp resolve_for_document(const Session& session, const DeformOp& edit) {
+  DeformOp full = edit;
   full.preview = false;
-  SessionEdit out;
+  DeformOp out;
   out.request = resolve_edit(full, session.rest().V, session.info().report.bbox, session.selection());
   DeformRequest& request = out.request;
   request.selection.resize(0);  // the document's region holds them
@@ -116,7 +116,7 @@ ReplaySummary replay_document(Session& session, const EditDocument& document, co
       apply_document_region(scratch, document_region_named(document, op.region));
       // Always a full, cold solve: the result must not depend on what was
       // previewed before (or on whether anything was).
-      SessionEdit edit = op.edit;
+      DeformOp edit = op.edit;
       edit.preview = false;
       edit.request.warm_start = false;
       summary.last = scratch.deform(edit);

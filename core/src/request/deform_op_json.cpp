@@ -1,4 +1,4 @@
-// deform_op_from_json (op.h): the public op into a SessionEdit, its
+// deform_op_from_json (op.h): the public op into a DeformOp, its
 // transform checked by the core's own rule (transforms.h validate).
 #include <cmath>
 
@@ -62,11 +62,11 @@ Method method_from_json(const Json& value) {
 
 }  // namespace
 
-SessionEdit deform_op_from_json(const Json& op) {
+DeformOp deform_op_from_json(const Json& op) {
   using namespace json_fields;
   object(op, "op");
   reject_unknown_keys(op, op_keys::kOp, "op");
-  SessionEdit edit;
+  DeformOp edit;
   DeformRequest& request = edit.request;
   if (has(op, "method")) request.method = method_from_json(op["method"]);
   edit.direction_given = has(op, "direction");

@@ -40,7 +40,7 @@ void arap_handles_from_selection(const Eigen::VectorXd& weights, DeformRequest& 
 
 }  // namespace
 
-DeformRequest resolve_edit(const SessionEdit& edit, const Positions& rest, const BoundingBox& loaded_box,
+DeformRequest resolve_edit(const DeformOp& edit, const Positions& rest, const BoundingBox& loaded_box,
                            const Eigen::VectorXd& weights) {
   DeformRequest request = edit.request;
   request.selection = weights;

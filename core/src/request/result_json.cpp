@@ -34,7 +34,7 @@ Json to_json(const SessionMeshInfo& info) {
   };
 }
 
-Json to_json(const SessionEditResult& r) {
+Json to_json(const DeformOpResult& r) {
   return {
       {"selected", r.selected},
       {"iterations", r.iterations},

@@ -250,12 +250,12 @@ int Session::set_selection(const std::vector<float>& weights) {
   return count_selected(weights_);
 }
 
-SessionEditResult Session::deform(const SessionEdit& edit) {
+DeformOpResult Session::deform(const DeformOp& edit) {
   require_mesh();
   const auto start = std::chrono::steady_clock::now();
   DeformResult result = deformer_->deform(resolve_edit(edit, deformer_->rest().V, info_.report.bbox, weights_));
 
-  SessionEditResult summary;
+  DeformOpResult summary;
   summary.selected = result.selected;
   summary.iterations = result.iterations;
   summary.energy = result.energy;
