@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <ctime>
 #include <limits>
 #include <set>
 #include <string>
@@ -285,7 +284,7 @@ TEST_CASE("triangulate_polygon: a hole joined by a doubled bridge edge is left u
   CHECK(area == Approx(16 - 4));
 }
 
-TEST_CASE("triangulate_polygon: degenerate and self-intersecting polygons still give n-2 triangles, quickly", "[check]") {
+TEST_CASE("triangulate_polygon: degenerate and self-intersecting polygons still give n-2 triangles", "[check]") {
   // All corners on a line: no plane, a fan.
   CHECK(aniso::triangulate_polygon(planar({{0, 0}, {1, 0}, {2, 0}, {3, 0}}), iota(4)).size() == 2);
   // A bowtie crosses itself: no proper ears, still 2 triangles.
@@ -298,16 +297,15 @@ TEST_CASE("triangulate_polygon: degenerate and self-intersecting polygons still 
   aniso::Positions bent = planar({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
   bent(2, 2) = 0.3;
   CHECK(aniso::triangulate_polygon(bent, iota(4)).size() == 2);
-  // A 20000-corner star (every other corner reflex) within a second.
+  // A 20000-corner star (every other corner reflex). Its speed is the
+  // benchmarks' business; a quadratic ear search would hit ctest's timeout.
   std::vector<std::pair<double, double>> star;
   for (int i = 0; i < 20000; ++i) {
     const double angle = 2 * std::acos(-1.0) * i / 20000;
     const double radius = i % 2 ? 1.0 : 0.9;
     star.emplace_back(radius * std::cos(angle), radius * std::sin(angle));
   }
-  const std::clock_t start = std::clock();
   CHECK(aniso::triangulate_polygon(planar(star), iota(20000)).size() == 19998);
-  CHECK(static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC < 1.0);
 
   CHECK_THROWS_AS(aniso::triangulate_polygon(planar({{0, 0}, {1, 0}}), iota(2)), aniso::Error);
   CHECK_THROWS_AS(aniso::triangulate_polygon(planar({{0, 0}, {1, 0}, {0, 1}}), {0, 1, 3}), aniso::Error);
