@@ -4,8 +4,13 @@
 // capture phase, so it runs before OrbitControls and can keep it out of a
 // tool's drag. Pointer capture keeps the drag alive outside the canvas. A
 // double-click on the mesh moves the orbit target there.
+// A second finger turns a tool's stroke into a camera gesture (pinch, two-
+// finger pan): the stroke is cancelled as if it never started (no paint, no
+// edit, no undo step) and both touches go to the orbit controls, which are
+// told about the first one with a pointerdown at its latest position.
 export class PointerGestures {
   #active = null;
+  #handingOver = false;
 
   /**
    * @param {import('../viewer/viewer.js').Viewer} viewer
@@ -41,6 +46,11 @@ export class PointerGestures {
   }
 
   #down(event) {
+    if (this.#handingOver) return;
+    if (this.#active && event.pointerId !== this.#active.pointerId) {
+      this.#handOverToCamera();
+      return;
+    }
     if (event.button !== 0 || this.#active) return;
     const tool = this.activeTool();
     if (!tool) return;
@@ -51,7 +61,7 @@ export class PointerGestures {
     event.preventDefault();
     this.viewer.canvas.setPointerCapture(event.pointerId);
     this.viewer.canvas.focus({ preventScroll: true });
-    this.#active = { tool, pointerId: event.pointerId };
+    this.#active = { tool, pointerId: event.pointerId, last: event };
     tool.start({ x, y, hit, event });
   }
 
@@ -63,6 +73,7 @@ export class PointerGestures {
       return;
     }
     if (event.pointerId !== this.#active.pointerId) return;
+    this.#active.last = event;
     this.#active.tool.move({ x, y, event });
   }
 
@@ -72,6 +83,21 @@ export class PointerGestures {
     this.#active = null;
     this.viewer.canvas.releasePointerCapture(event.pointerId);
     tool.end({ ...this.#position(event), event });
+  }
+
+  #handOverToCamera() {
+    const { pointerId, last } = this.#active;
+    this.cancel();
+    const canvas = this.viewer.canvas;
+    if (canvas.hasPointerCapture(pointerId)) canvas.releasePointerCapture(pointerId);
+    const { clientX, clientY, screenX, screenY, pointerType, isPrimary } = last;
+    const init = { pointerId, pointerType, isPrimary, clientX, clientY, screenX, screenY, button: 0, buttons: 1, bubbles: true };
+    this.#handingOver = true;
+    try {
+      canvas.dispatchEvent(new PointerEvent('pointerdown', init));
+    } finally {
+      this.#handingOver = false;
+    }
   }
 
   /** Esc or a lost pointer: the tool drops its gesture. */
