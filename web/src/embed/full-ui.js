@@ -1,8 +1,10 @@
 // The full UI of a modeller (ui: 'full'): the side panel's sections, the
 // pattern pane, the status bar, the messages over the viewport, drag-and-drop
 // loading onto the modeller and the Frame button, all in its own layout
-// (modeller-layout.js). The styles: ui/styles.css (the package's style.css).
+// (modeller-layout.js); on narrow screens the panel is a bottom sheet. The
+// styles: ui/styles.css and ui/narrow-layout.css (the package's style.css).
 import '../ui/styles.css';
+import '../ui/narrow-layout.css';
 import { opsPanel } from '../document/ops-panel.js';
 import { directionPanel } from '../ui/direction-panel.js';
 import { displayPanel } from '../ui/display-panel.js';
@@ -15,6 +17,7 @@ import { historyButtons } from '../ui/history-panel.js';
 import { installMessages } from '../ui/messages.js';
 import { methodPanel } from '../ui/method-panel.js';
 import { modeSwitch } from '../ui/mode-switch.js';
+import { panelSheetToggle } from '../ui/panel-sheet.js';
 import { patternPane } from '../ui/pattern-pane.js';
 import { selectionPanel } from '../ui/selection-panel.js';
 import { statusBar } from '../ui/status-bar.js';
@@ -34,6 +37,7 @@ export function installFullUi(layout, { api, editor, settings, tools, viewer, re
     inMode('flatten', flattenPanel({ api, editor, settings, reportError })),
     displayPanel({ settings }),
   );
+  panelSheetToggle(layout.sidePanel);
   patternPane(layout.patternPane, { editor, settings, lifetime });
   statusBar(layout.statusBar, { editor, viewer, lifetime });
   installMessages(layout.viewport, { editor });

@@ -1,0 +1,117 @@
+// The modeller on a phone (390 × 844 and 320 wide, touch, mobile viewport):
+// in Deform and Flatten mode, before and after a solve and with every tool's
+// options open, nothing is wider than the window or cut off at its sides,
+// every control can be scrolled fully into view and is at least 44 × 44 px,
+// and the 3D view keeps a usable height. The side panel is a bottom sheet
+// that folds down to its header, giving the view the height.
+import { saveScreenshot } from './artifacts.mjs';
+import { expect, meshPath, openApp, test, uploadFile } from './support.mjs';
+
+const HEIGHT = 844;
+test.use({ viewport: { width: 390, height: HEIGHT }, hasTouch: true, isMobile: true });
+
+// What a finger taps: buttons, fields, the label of the hidden file input,
+// whole checkbox rows, the op list's own checkboxes, a notice's Details.
+const CONTROLS = 'button, select, input[type="number"], label.button, .field-checkbox, summary, .op-row input[type="checkbox"]';
+
+/** Everything that is wrong with the layout now (empty when fine), and the view sizes. */
+const audit = (page) => page.evaluate((controlsSelector) => {
+  const width = window.innerWidth;
+  const height = window.innerHeight;
+  const shown = (element) => element.getClientRects().length > 0 && element.checkVisibility({ visibilityProperty: true });
+  const name = (element) => element.dataset.testid || element.getAttribute('aria-label') || element.id
+    || element.textContent.trim().slice(0, 24) || element.className || element.tagName;
+  const problems = [];
+  const scrollWidth = document.documentElement.scrollWidth;
+  if (scrollWidth > width) problems.push(`the page is ${scrollWidth} px wide in a ${width} px window`);
+  for (const element of document.querySelectorAll('.app, .app *')) {
+    if (!shown(element)) continue;
+    const box = element.getBoundingClientRect();
+    if (box.width > 0 && (box.left < -0.5 || box.right > width + 0.5)) {
+      problems.push(`${name(element)} spans x ${box.left.toFixed(0)}..${box.right.toFixed(0)}`);
+    }
+    if (element.scrollWidth > element.clientWidth + 1 && ['auto', 'scroll'].includes(getComputedStyle(element).overflowX)) {
+      problems.push(`${name(element)} scrolls sideways (${element.scrollWidth} > ${element.clientWidth})`);
+    }
+  }
+  for (const control of document.querySelectorAll(controlsSelector)) {
+    if (!shown(control) || !control.closest('.app')) continue;
+    control.scrollIntoView({ block: 'nearest', inline: 'nearest' });
+    const box = control.getBoundingClientRect();
+    if (box.left < -0.5 || box.top < -0.5 || box.right > width + 0.5 || box.bottom > height + 0.5) {
+      problems.push(`${name(control)} cannot be scrolled fully into view (${box.left.toFixed(0)},${box.top.toFixed(0)} ${box.width.toFixed(0)}×${box.height.toFixed(0)})`);
+    }
+    if (box.width < 44 || box.height < 44) problems.push(`${name(control)} is ${box.width.toFixed(0)}×${box.height.toFixed(0)} px`);
+  }
+  if (window.scrollX !== 0 || window.scrollY !== 0) problems.push(`the page scrolled to ${window.scrollX},${window.scrollY}`);
+  const heightOf = (selector) => document.querySelector(selector)?.getBoundingClientRect().height ?? 0;
+  return { problems, view: heightOf('[data-testid=viewport]'), pattern: heightOf('[data-testid=pattern-canvas]') };
+}, CONTROLS);
+
+async function expectTidy(page, label) {
+  const result = await audit(page);
+  expect(result.problems, label).toEqual([]);
+  return result;
+}
+
+for (const width of [390, 320]) {
+  test(`${width} px, Deform: nothing cut off, 44 px targets, before and after a solve, sheet folds`, async ({ page }) => {
+    await page.setViewportSize({ width, height: HEIGHT });
+    const pageErrors = await openApp(page);
+    const fresh = await expectTidy(page, 'fresh page');
+    expect(fresh.view).toBeGreaterThan(0.35 * HEIGHT);
+
+    await page.evaluate(() => window.anisoform.deform({
+      method: 'anarap', direction: { type: 'global', vector: [1, 0, 0] }, transform: { scale: [1.3, 1] },
+    }));
+    await expect(page.getByTestId('status-solve')).toContainText(/^solve \d/);
+    await expect(page.getByTestId('status-fps')).not.toBeEmpty();
+    await expectTidy(page, 'after a solve');
+    for (const tool of ['select', 'stretch', 'thicken', 'shear', 'rotate', 'twist', 'arrows']) {
+      await page.getByTestId(`tool-${tool}`).tap();
+      await expectTidy(page, `${tool} options`);
+    }
+    // The op of the solve, opened in the Edits list, with its amount field.
+    await page.locator('.op-label').first().tap();
+    await expectTidy(page, 'an op opened in the edit list');
+    await page.getByTestId('tool-stretch').scrollIntoViewIfNeeded();
+    await saveScreenshot(page, `phone-${width}-deform`);
+
+    const toggle = page.getByTestId('sheet-toggle');
+    await expect(toggle).toHaveAttribute('aria-expanded', 'true');
+    await toggle.tap();
+    await expect(toggle).toHaveAttribute('aria-expanded', 'false');
+    await expect(page.getByTestId('tool-stretch')).toBeHidden();
+    const folded = await expectTidy(page, 'sheet folded');
+    expect(folded.view).toBeGreaterThan(0.75 * HEIGHT);
+    await saveScreenshot(page, `phone-${width}-deform-folded`);
+    await toggle.tap();
+    await expect(page.getByTestId('tool-stretch')).toBeVisible();
+    expect(pageErrors).toEqual([]);
+  });
+
+  test(`${width} px, Flatten: nothing cut off, 44 px targets, before and after flattening`, async ({ page }) => {
+    await page.setViewportSize({ width, height: HEIGHT });
+    const pageErrors = await openApp(page);
+    expect((await uploadFile(page, meshPath('open/human_woman_torso_front_patch.obj'))).ok).toBe(true);
+    await page.getByTestId('mode-flatten').tap();
+    await expect(page.getByTestId('pattern-view')).toBeVisible();
+    const before = await expectTidy(page, 'flatten mode');
+    console.log(`${width} px flatten: 3D view ${before.view} px, pattern ${before.pattern} px high`);
+    expect(before.view).toBeGreaterThan(0.2 * HEIGHT);
+    expect(before.pattern).toBeGreaterThan(0.2 * HEIGHT);
+
+    await page.getByTestId('flatten-run').tap();
+    await expect(page.getByTestId('metric-flipped')).toHaveText('0');
+    await expect(page.getByTestId('status-fps')).not.toBeEmpty();
+    await expectTidy(page, 'after flattening');
+    await saveScreenshot(page, `phone-${width}-flatten`);
+
+    await page.getByTestId('sheet-toggle').tap();
+    const folded = await expectTidy(page, 'sheet folded');
+    expect(folded.view).toBeGreaterThan(0.35 * HEIGHT);
+    expect(folded.pattern).toBeGreaterThan(0.35 * HEIGHT);
+    await saveScreenshot(page, `phone-${width}-flatten-folded`);
+    expect(pageErrors).toEqual([]);
+  });
+}
