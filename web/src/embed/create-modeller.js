@@ -7,6 +7,7 @@
 import { createAnisoformApi } from '../api/create-api.js';
 import { Editor } from '../editor/editor.js';
 import { BrushCursor } from '../interaction/brush-cursor.js';
+import { DragReadout } from '../interaction/drag-readout.js';
 import { installKeyboardShortcuts } from '../interaction/keyboard-shortcuts.js';
 import { Picker } from '../interaction/picker.js';
 import { PointerGestures } from '../interaction/pointer-gestures.js';
@@ -83,6 +84,7 @@ export function createModeller(container, options = {}) {
     settings,
     picker,
     brushCursor: new BrushCursor(viewer),
+    dragReadout: new DragReadout(viewer),
     reportError,
     arrowPreview: (arrows) => directionDisplay.showArrows(arrows),
   });
@@ -154,7 +156,11 @@ export function createModeller(container, options = {}) {
   // The panel's own form events stay inside: outside, 'change' is the api's
   // (the <anisoform-modeller> element relays it under that name).
   lifetime.listen(layout.root, 'change', (event) => event.stopPropagation());
-  if (ui === 'full') installFullUi(layout, { api, editor, settings, tools, viewer, reportError, lifetime });
+  // Arrow keys pan and Shift+arrows orbit while the 3D view has the focus
+  // (about 9° a press on a 400 px high view).
+  viewer.controls.listenToKeyEvents(viewer.canvas);
+  viewer.controls.keyRotateSpeed = 10;
+  if (ui === 'full') installFullUi(layout, { api, editor, settings, tools, viewer, picker, reportError, lifetime, keyTarget });
 
   /** Loads a URL as well as what api.load takes; failures are reported as 'error' events too. */
   async function load(source, name) {

@@ -1,11 +1,16 @@
 // The full UI of a modeller (ui: 'full'): the side panel's sections, the
 // pattern pane, the status bar, the messages over the viewport, drag-and-drop
-// loading onto the modeller and the Frame button, all in its own layout
+// loading onto the modeller, the Frame button, the editing keys and their
+// overlay (?), all in its own layout
 // (modeller-layout.js); on narrow screens the panel is a bottom sheet. The
-// styles: ui/styles.css and ui/narrow-layout.css (the package's style.css).
+// styles: ui/styles.css, ui/narrow-layout.css and ui/focus-and-overlays.css
+// (together the package's style.css).
 import '../ui/styles.css';
 import '../ui/narrow-layout.css';
+import '../ui/focus-and-overlays.css';
 import { opsPanel } from '../document/ops-panel.js';
+import { selectRegionAtViewCentre } from '../editor/region-at-view-centre.js';
+import { installEditingKeys } from '../interaction/editing-keys.js';
 import { directionPanel } from '../ui/direction-panel.js';
 import { displayPanel } from '../ui/display-panel.js';
 import { installDropZone } from '../ui/drop-zone.js';
@@ -20,17 +25,20 @@ import { modeSwitch } from '../ui/mode-switch.js';
 import { panelSheetToggle } from '../ui/panel-sheet.js';
 import { patternPane } from '../ui/pattern-pane.js';
 import { selectionPanel } from '../ui/selection-panel.js';
+import { shortcutDialog } from '../ui/shortcut-dialog.js';
 import { statusBar } from '../ui/status-bar.js';
 import { toolPanel } from '../ui/tool-panel.js';
 
-export function installFullUi(layout, { api, editor, settings, tools, viewer, reportError, lifetime }) {
+export function installFullUi(layout, { api, editor, settings, tools, viewer, picker, reportError, lifetime, keyTarget }) {
+  // The editor has reported a refused selection already (the banner).
+  const selectRegion = (options) => selectRegionAtViewCentre({ api, editor, viewer, picker, settings }, options)?.catch(() => {});
   const inMode = (mode, element) => showWhen(settings, 'mode', element, (current) => current === mode);
   layout.sidePanel.append(
     modeSwitch({ settings, app: layout.root }),
     filePanel({ api, editor, reportError }),
     historyButtons({ api, editor }),
     opsPanel({ api, editor }),
-    toolPanel({ settings, tools, reportError }),
+    toolPanel({ settings, tools, reportError, selectRegion }),
     selectionPanel({ api, editor }),
     inMode('deform', directionPanel({ settings })),
     inMode('deform', methodPanel({ settings })),
@@ -43,4 +51,6 @@ export function installFullUi(layout, { api, editor, settings, tools, viewer, re
   installMessages(layout.viewport, { editor });
   installDropZone(layout.root, layout.dropOverlay, { api, reportError, lifetime });
   frameButton(layout.viewport, { api });
+  const dialog = shortcutDialog(layout.root, { tools });
+  installEditingKeys(keyTarget, lifetime, { settings, dialog, selectRegion });
 }

@@ -16,7 +16,8 @@ export function defaultSettings() {
     arrows: [],
     // The last drag's screen direction, camera included, for "Apply" with the screen source.
     lastScreen: null,
-    brush: { radiusPercent: 8, softnessPercent: 50, mode: 'add' },
+    // region: the shape the C key selects at the view centre ('sphere' | 'box', the brush radius).
+    brush: { radiusPercent: 8, softnessPercent: 50, mode: 'add', region: 'sphere' },
     stretch: { along: 1.5, across: 1 },
     thicken: { factor: 1.3 },
     shear: { amount: 0.5 },

@@ -9,12 +9,14 @@
 //                        with the 'screen' direction source the drag is also
 //                        the direction; the op goes to the worker as a
 //                        coalesced, warm-started preview
+//                        and its amount is shown beside the pointer
 //   release            → the last op is solved fully and committed (one undo step)
 //   Esc                → the live edit is dropped
 //
 // With the method 'arap' (ARAP with handles) the drag moves the selection
 // instead: op.move = d.
 import { describeEdit } from '../editor/edit-wording.js';
+import { dragAmountText } from '../interaction/drag-readout.js';
 import { extentAlong, normalized, worldDragVector } from '../interaction/screen-drag.js';
 import { directionFromSettings } from './direction-source.js';
 
@@ -26,13 +28,15 @@ export class TransformTool {
 
   /**
    * @param {{editor: import('../editor/editor.js').Editor, viewer: import('../viewer/viewer.js').Viewer,
-   *          settings: import('../shared/settings.js').Settings, reportError: (error: Error) => void}} context
+   *          settings: import('../shared/settings.js').Settings, reportError: (error: Error) => void,
+   *          dragReadout: import('../interaction/drag-readout.js').DragReadout}} context
    */
   constructor(context) {
     this.editor = context.editor;
     this.viewer = context.viewer;
     this.settings = context.settings;
     this.reportError = context.reportError;
+    this.dragReadout = context.dragReadout;
   }
 
   wantsGesture(hit) {
@@ -51,6 +55,7 @@ export class TransformTool {
     try {
       gesture.op = this.#opForDrag(gesture, [x, y], event.shiftKey);
       this.editor.updateGesture(gesture.op);
+      this.dragReadout.show(x, y, dragAmountText(this.id, gesture.op));
     } catch (error) {
       this.cancel();
       this.reportError(error);
@@ -60,6 +65,7 @@ export class TransformTool {
   end() {
     const gesture = this.gesture;
     this.gesture = null;
+    this.dragReadout.hide();
     if (!gesture) return;
     if (!gesture.op) this.click?.(gesture.anchor);
     if (gesture.op?.direction?.type === 'screen') this.settings.update('lastScreen', gesture.op.direction);
@@ -69,6 +75,7 @@ export class TransformTool {
 
   cancel() {
     this.gesture = null;
+    this.dragReadout.hide();
     this.editor.cancelGesture();
   }
 

@@ -1,20 +1,23 @@
-// Tool buttons and the active tool's options: brush settings for Select,
-// numeric amounts with Apply for the transforms, the arrow list for Arrows.
+// Tool buttons and the active tool's options: brush settings and selecting
+// the brush region at the view centre (no painting) for Select, numeric
+// amounts with Apply for the transforms, the arrow list for Arrows.
+import { TOOL_KEYS } from '../interaction/shortcut-list.js';
 import { FLATTEN_MODE_TOOLS } from '../tools/tool-registry.js';
 import { h, section } from './dom.js';
 import { numberField, selectField, showWhen, vectorField } from './fields.js';
 
-export function toolPanel({ settings, tools, reportError }) {
+export function toolPanel({ settings, tools, reportError, selectRegion }) {
   const buttons = [...tools.values()].map((tool) =>
     h('button', {
       className: 'tool-button',
       'data-testid': `tool-${tool.id}`,
       'aria-pressed': 'false',
-      title: tool.hint,
+      'aria-keyshortcuts': TOOL_KEYS[tool.id].toUpperCase(),
+      title: `${tool.hint} (key ${TOOL_KEYS[tool.id].toUpperCase()})`,
       onclick: () => settings.update('tool', tool.id),
     }, tool.label),
   );
-  const options = new Map([...tools.values()].map((tool) => [tool.id, toolOptions(tool, settings, reportError)]));
+  const options = new Map([...tools.values()].map((tool) => [tool.id, toolOptions(tool, settings, reportError, selectRegion)]));
   const hint = h('p', { className: 'hint tool-hint' });
   const optionsHost = h('div', { className: 'tool-options' }, [...options.values()]);
 
@@ -34,12 +37,21 @@ export function toolPanel({ settings, tools, reportError }) {
   return section('Tool', h('div', { className: 'tool-grid' }, buttons), hint, optionsHost);
 }
 
-function toolOptions(tool, settings, reportError) {
+function toolOptions(tool, settings, reportError, selectRegion) {
   if (tool.id === 'select') {
     return h('div', {},
       numberField(settings, 'brush', { key: 'radiusPercent', label: 'Radius %', min: 0.5, max: 100, step: 0.5 }),
       numberField(settings, 'brush', { key: 'softnessPercent', label: 'Soft edge %', min: 0, max: 100, step: 5 }),
       selectField(settings, 'brush', { key: 'mode', label: 'Mode', options: [['add', 'Add'], ['subtract', 'Subtract']] }),
+      selectField(settings, 'brush', { key: 'region', label: 'Region', options: [['sphere', 'Sphere'], ['box', 'Box']] }),
+      h('div', { className: 'row' },
+        h('button', {
+          className: 'button',
+          'data-testid': 'select-region-centre',
+          'aria-keyshortcuts': 'C',
+          title: 'Select the region (radius as the brush) at the surface in the middle of the view, without painting (key C)',
+          onclick: () => selectRegion(),
+        }, 'Select at view centre')),
     );
   }
   if (tool.id === 'arrows') {

@@ -1,0 +1,129 @@
+// The modeller from the keyboard alone (page.keyboard only): "Open…" shows
+// the focus of its hidden file input; the 3D view takes the focus and the
+// keys (tool keys, [ and ] for the brush radius, arrows to pan); C selects
+// the brush's sphere at the surface in the middle of the view without
+// painting (Shift+C takes it away), the Select tool's button a box; ? opens
+// the shortcut overlay, an accessible dialog that Esc closes.
+import { saveScreenshot } from './artifacts.mjs';
+import { expect, openApp, test } from './support.mjs';
+
+/** Presses Tab until the focused element matches `selector` (at most 80 presses). */
+async function tabTo(page, selector) {
+  for (let press = 0; press < 80; press++) {
+    if (await page.evaluate((wanted) => document.activeElement?.matches(wanted) ?? false, selector)) return;
+    await page.keyboard.press('Tab');
+  }
+  throw new Error(`Tab never reached ${selector}`);
+}
+
+const outline = (page, selector) => page.evaluate((wanted) => {
+  const style = getComputedStyle(document.querySelector(wanted));
+  return `${style.outlineStyle} ${style.outlineWidth}`;
+}, selector);
+
+const pressedTool = (page) => page.locator('.tool-button[aria-pressed="true"]').getAttribute('data-testid');
+
+/** The selection the core's region rule should give: 1 inside `inside(point)`, 0 elsewhere. */
+const expectSelection = async (page, inside) => {
+  const { positions, selection } = await page.evaluate(() => ({
+    positions: Array.from(window.anisoform.positions()),
+    selection: Array.from(window.anisoform.selection()),
+  }));
+  const wanted = selection.map((_, v) => (inside(positions.slice(3 * v, 3 * v + 3)) ? 1 : 0));
+  const wrong = selection.filter((weight, v) => weight !== wanted[v]).length;
+  expect(wrong).toBe(0);
+  return wanted.filter((weight) => weight === 1).length;
+};
+
+test('Open… shows the focus ring of its hidden file input', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const label = 'label[for="file-input"]';
+  expect(await outline(page, label)).toMatch(/^none/);
+  await tabTo(page, '[data-testid=file-input]');
+  expect(await outline(page, label)).toBe('solid 2px');
+  await saveScreenshot(page, 'keyboard-open-focus');
+  expect(pageErrors).toEqual([]);
+});
+
+test('the 3D view takes the focus and the keys: tools, brush radius, pan, region by rule', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  await tabTo(page, '[data-testid=viewport]');
+  expect(await outline(page, '[data-testid=viewport]')).toBe('solid 2px');
+
+  for (const [key, tool] of [['s', 'stretch'], ['t', 'thicken'], ['h', 'shear'], ['r', 'rotate'], ['w', 'twist'], ['a', 'arrows'], ['b', 'select']]) {
+    await page.keyboard.press(key);
+    expect(await pressedTool(page)).toBe(`tool-${tool}`);
+  }
+  const radius = page.locator('#brush-radiusPercent');
+  await expect(radius).toHaveValue('8');
+  await page.keyboard.press(']');
+  await page.keyboard.press(']');
+  await expect(radius).toHaveValue('12.5');
+  await page.keyboard.press('[');
+  await expect(radius).toHaveValue('10');
+
+  // C: the brush sphere (10 % of the diagonal) at the surface in the middle of the view.
+  const { centre, diagonal } = await page.evaluate(() => {
+    const canvas = document.querySelector('[data-testid=viewport]');
+    const positions = window.anisoform.positions();
+    const min = [Infinity, Infinity, Infinity];
+    const max = [-Infinity, -Infinity, -Infinity];
+    positions.forEach((value, i) => {
+      min[i % 3] = Math.min(min[i % 3], value);
+      max[i % 3] = Math.max(max[i % 3], value);
+    });
+    const hit = window.anisoform.pick([canvas.clientWidth / 2, canvas.clientHeight / 2]);
+    return { centre: hit.point, diagonal: Math.hypot(...max.map((value, k) => value - min[k])) };
+  });
+  const r = 0.1 * diagonal;
+  await page.keyboard.press('c');
+  await expect.poll(() => page.evaluate(() => window.anisoform.selection().some((w) => w > 0))).toBe(true);
+  const inSphere = (p) => Math.hypot(p[0] - centre[0], p[1] - centre[1], p[2] - centre[2]) <= r;
+  const selected = await expectSelection(page, inSphere);
+  expect(selected).toBeGreaterThan(20);
+  await page.keyboard.press('Shift+C');
+  await expect.poll(() => page.evaluate(() => window.anisoform.selection().some((w) => w > 0))).toBe(false);
+
+  // The Select tool's region choice and button, by Tab, Arrow and Enter: a box.
+  await tabTo(page, '#brush-region');
+  await page.keyboard.press('ArrowDown');
+  await expect(page.locator('#brush-region')).toHaveValue('box');
+  await tabTo(page, '[data-testid=select-region-centre]');
+  await page.keyboard.press('Enter');
+  await expect.poll(() => page.evaluate(() => window.anisoform.selection().some((w) => w > 0))).toBe(true);
+  const inBox = (p) => p.every((value, k) => Math.abs(value - centre[k]) <= r);
+  expect(await expectSelection(page, inBox)).toBeGreaterThan(selected);
+
+  // Arrow keys pan the focused view, Shift+arrows orbit it.
+  await tabTo(page, '[data-testid=viewport]');
+  const before = await page.evaluate(() => window.anisoform.camera());
+  await page.keyboard.press('ArrowLeft');
+  const panned = await page.evaluate(() => window.anisoform.camera());
+  expect(panned.target).not.toEqual(before.target);
+  await page.keyboard.press('Shift+ArrowLeft');
+  const orbited = await page.evaluate(() => window.anisoform.camera());
+  expect(orbited.target).toEqual(panned.target.map((value) => expect.closeTo(value, 9)));
+  expect(orbited.position).not.toEqual(panned.position);
+  expect(pageErrors).toEqual([]);
+});
+
+test('? opens the shortcut overlay, an accessible dialog that Esc closes', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  await tabTo(page, '[data-testid=viewport]');
+  await page.keyboard.press('?');
+  const dialog = page.getByRole('dialog', { name: 'Keyboard shortcuts' });
+  await expect(dialog).toBeVisible();
+  await expect(dialog.getByRole('row', { name: /^S Stretch tool/ })).toBeVisible();
+  await expect(dialog.getByRole('row', { name: /^\[ and \]/ })).toBeVisible();
+  expect(await page.evaluate(() => document.activeElement.closest('dialog') !== null)).toBe(true);
+  await saveScreenshot(page, 'keyboard-shortcuts');
+  // Keys inside the overlay do not reach the modeller.
+  await page.keyboard.press('s');
+  expect(await pressedTool(page)).toBe('tool-select');
+  await page.keyboard.press('Escape');
+  await expect(dialog).toBeHidden();
+  // Back in the view, the keys work again.
+  await page.keyboard.press('s');
+  expect(await pressedTool(page)).toBe('tool-stretch');
+  expect(pageErrors).toEqual([]);
+});

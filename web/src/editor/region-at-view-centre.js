@@ -1,0 +1,22 @@
+// Selecting without painting (the C key, the Select tool's button): the
+// brush's region (a sphere, or an axis-aligned cube, of the brush radius)
+// centred on the surface point in the middle of the 3D view, or on the orbit
+// target when no surface is there. It is added or subtracted as the brush
+// mode says (Shift inverts it, as for a stroke); the core's select rule does
+// the selecting, as one undo step.
+
+/** @returns {Promise<number>|null} the number of selected vertices; null without a mesh */
+export function selectRegionAtViewCentre({ api, editor, viewer, picker, settings }, { invert = false } = {}) {
+  const document = editor.document;
+  if (!document) return null;
+  const canvas = viewer.canvas;
+  const hit = picker.pick(canvas.clientWidth / 2, canvas.clientHeight / 2);
+  const center = hit ? hit.point : viewer.controls.target.toArray();
+  const { radiusPercent, mode, region } = settings.values.brush;
+  const radius = (radiusPercent / 100) * document.bounds().diagonal;
+  const shape = region === 'box'
+    ? { box: { min: center.map((value) => value - radius), max: center.map((value) => value + radius) } }
+    : { sphere: { center, radius } };
+  const subtract = (mode === 'subtract') !== invert;
+  return api.select(shape, { mode: subtract ? 'subtract' : 'add' });
+}

@@ -1,0 +1,37 @@
+// The full UI's editing keys (the list: shortcut-list.js): a key per tool,
+// [ and ] for the brush radius, C / Shift+C to select the brush region at
+// the view centre, ? for the shortcut overlay. Like keyboard-shortcuts.js
+// they are ignored while typing in a field or with Ctrl/Cmd/Alt held, and
+// none acts while the overlay is open.
+import { FLATTEN_MODE_TOOLS } from '../tools/tool-registry.js';
+import { isTyping } from './keyboard-shortcuts.js';
+import { TOOL_KEYS } from './shortcut-list.js';
+
+// Each [ or ] press scales the radius by this; the field's limits and step.
+const RADIUS_FACTOR = 1.25;
+const RADIUS_MIN = 0.5;
+const RADIUS_MAX = 100;
+
+export function installEditingKeys(target, lifetime, { settings, dialog, selectRegion }) {
+  const toolOfKey = new Map(Object.entries(TOOL_KEYS).map(([id, key]) => [key, id]));
+  lifetime.listen(target, 'keydown', (event) => {
+    if (dialog.open || isTyping(event) || event.ctrlKey || event.metaKey || event.altKey) return;
+    const key = event.key.toLowerCase();
+    const tool = toolOfKey.get(key);
+    if (event.key === '?') {
+      dialog.showModal();
+    } else if (tool && !event.shiftKey) {
+      if (settings.values.mode === 'flatten' && !FLATTEN_MODE_TOOLS.includes(tool)) return;
+      settings.update('tool', tool);
+    } else if (event.key === '[' || event.key === ']') {
+      const radius = settings.values.brush.radiusPercent * (event.key === ']' ? RADIUS_FACTOR : 1 / RADIUS_FACTOR);
+      const rounded = Math.round(radius * 2) / 2;
+      settings.update('brush', { radiusPercent: Math.min(Math.max(rounded, RADIUS_MIN), RADIUS_MAX) });
+    } else if (key === 'c') {
+      selectRegion({ invert: event.shiftKey });
+    } else {
+      return;
+    }
+    event.preventDefault();
+  });
+}

@@ -1,0 +1,33 @@
+// Every key of the modeller, in one list: the tool keys (chosen as in
+// Blender where it has the same tool: S scale, R rotate), the brush radius
+// keys ([ and ] as in Blender and SculptGL) and the rest. The key handlers
+// (keyboard-shortcuts.js, editing-keys.js), the tool buttons' titles and the
+// shortcut overlay (ui/shortcut-dialog.js) all read it from here.
+
+/** Tool id → its key (event.key, lower case). */
+export const TOOL_KEYS = {
+  select: 'b',
+  stretch: 's',
+  thicken: 't',
+  shear: 'h',
+  rotate: 'r',
+  twist: 'w',
+  arrows: 'a',
+};
+
+/** [keys, what they do] for the overlay; the tools' rows come first, named by their labels. */
+export function shortcutRows(tools) {
+  const toolRows = [...tools.values()].map((tool) => [TOOL_KEYS[tool.id].toUpperCase(), `${tool.label} tool`]);
+  return [
+    ...toolRows,
+    ['[ and ]', 'Brush radius smaller / larger'],
+    ['C', 'Select the brush region (sphere or box) at the surface in the middle of the view'],
+    ['Shift+C', 'The same, with the brush mode inverted (add ↔ subtract)'],
+    ['F or Home', 'Frame the whole mesh'],
+    ['Arrow keys', 'Pan the view (3D view focused); Shift+arrows orbit'],
+    ['Ctrl+Z', 'Undo'],
+    ['Ctrl+Shift+Z or Ctrl+Y', 'Redo'],
+    ['Esc', 'Cancel the drag in progress; close this list'],
+    ['?', 'Show this list'],
+  ];
+}
