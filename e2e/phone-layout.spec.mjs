@@ -24,9 +24,21 @@ const audit = (page) => page.evaluate((controlsSelector) => {
   const problems = [];
   const scrollWidth = document.documentElement.scrollWidth;
   if (scrollWidth > width) problems.push(`the page is ${scrollWidth} px wide in a ${width} px window`);
+  // The part of an element its overflow: hidden ancestors let through (the
+  // progress bar's sliding fill is meant to be clipped by the bar).
+  const seenSpan = (element) => {
+    const box = element.getBoundingClientRect();
+    let [left, right] = [box.left, box.right];
+    for (let parent = element.parentElement; parent; parent = parent.parentElement) {
+      if (!['hidden', 'clip'].includes(getComputedStyle(parent).overflowX)) continue;
+      const clip = parent.getBoundingClientRect();
+      [left, right] = [Math.max(left, clip.left), Math.min(right, clip.right)];
+    }
+    return { left, right, width: box.width };
+  };
   for (const element of document.querySelectorAll('.app, .app *')) {
     if (!shown(element)) continue;
-    const box = element.getBoundingClientRect();
+    const box = seenSpan(element);
     if (box.width > 0 && (box.left < -0.5 || box.right > width + 0.5)) {
       problems.push(`${name(element)} spans x ${box.left.toFixed(0)}..${box.right.toFixed(0)}`);
     }
