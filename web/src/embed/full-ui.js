@@ -1,10 +1,10 @@
 // The full UI of a modeller (ui: 'full'): the side panel's sections, the
 // pattern pane, the status bar, the messages over the viewport, drag-and-drop
 // loading onto the modeller, the Frame button, the editing keys and their
-// overlay (?), all in its own layout
-// (modeller-layout.js); on narrow screens the panel is a bottom sheet. The
-// styles: ui/styles.css, ui/narrow-layout.css and ui/focus-and-overlays.css
-// (together the package's style.css).
+// overlay (?), all in its own layout (modeller-layout.js); on narrow screens
+// the panel is a bottom sheet. The styles: ui/styles.css,
+// ui/narrow-layout.css and ui/focus-and-overlays.css (together the package's
+// style.css).
 import '../ui/styles.css';
 import '../ui/narrow-layout.css';
 import '../ui/focus-and-overlays.css';
