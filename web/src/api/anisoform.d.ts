@@ -35,6 +35,8 @@ export interface MeshCounts {
 export interface MeshInfo extends MeshCounts {
   components: number;
   boundaryLoops: number;
+  /** The unit the coordinates are most likely in, guessed by the core from the mesh's size (the pattern files' default scale). */
+  unitGuess: { name: 'm' | 'cm' | 'mm'; mmPerUnit: number };
 }
 
 /** A drag on the canvas; the surface point under `from` (or `anchor`) fixes its depth. */

@@ -1,4 +1,5 @@
-// The 3D heat map's legend, over the viewport's top right corner: the
+// The 3D heat map's legend, over the viewport's bottom right corner (above the
+// Frame button, clear of the messages at the top): the
 // quantity's name, a colour bar drawn from the same palette as the surface,
 // the values at its ends and middle, and whether the range is fixed or
 // adapted to the data. Styled inline: an embedded viewer has no stylesheet.
@@ -25,7 +26,7 @@ export class HeatmapLegend {
     this.element.dataset.testid = 'heatmap-legend';
     this.element.setAttribute('role', 'img');
     Object.assign(this.element.style, {
-      position: 'absolute', top: '10px', right: '10px', width: '200px', padding: '6px 8px',
+      position: 'absolute', bottom: '52px', right: '10px', width: '200px', padding: '6px 8px',
       background: '#111419e6', color: '#e6e8eb', font: '12px system-ui, sans-serif', borderRadius: '4px',
       display: 'flex', flexDirection: 'column', pointerEvents: 'none',
     });
