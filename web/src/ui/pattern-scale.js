@@ -37,7 +37,7 @@ export function patternScale({ editor, settings }) {
   });
   const guessOption = unitField.querySelector('option[value=guess]');
   const custom = showWhen(settings, 'flatten',
-    numberField(settings, 'flatten', { key: 'mmPerUnit', label: 'mm per unit', min: 1e-6, max: 1e6, step: 1 }),
+    numberField(settings, 'flatten', { key: 'mmPerUnit', label: 'mm per unit', step: 1 }),
     (f) => f.unit === 'custom');
   const note = h('p', { className: 'hint', 'data-testid': 'pattern-unit-note' });
   const size = h('p', { className: 'hint', 'data-testid': 'pattern-size' });
