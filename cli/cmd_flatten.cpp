@@ -206,6 +206,8 @@ int run_flatten(const FlattenArguments& args) {
                  write_pattern_dxf(make_pattern(flattened.patch, flattened.result), pattern_options));
       break;
   }
+  const std::string problem = flatten_problem(flattened.result.metrics);
+  if (!problem.empty()) warnings.push_back(problem);
   print_json(result_json(args, plan, direction, warnings, flattened.result));
   return kExitSuccess;
 }

@@ -4,7 +4,7 @@ import { expect, litPixelCount, openApp, test } from './support.mjs';
 test('the default mesh is drawn and ready to edit', async ({ page }) => {
   const pageErrors = await openApp(page);
   const info = await page.evaluate(() => window.anisoform.info());
-  expect(info).toEqual({ vertices: 2930, triangles: 5856, components: 1, boundaryLoops: 0 });
+  expect(info).toEqual({ vertices: 2930, triangles: 5856, components: 1, boundaryLoops: 0, unitGuess: { name: 'm', mmPerUnit: 1000 } });
 
   const { lit, total } = await litPixelCount(page);
   expect(lit / total).toBeGreaterThan(0.05);

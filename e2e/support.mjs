@@ -112,3 +112,8 @@ export function extentAlong(positions, unit) {
   }
   return max - min;
 }
+
+/** Saves a screenshot of the page for review as e2e/artifacts/NAME.png (git-ignored; CI keeps it). */
+export async function saveScreenshot(page, name) {
+  await page.screenshot({ path: resolve(repoRoot, 'e2e', 'artifacts', `${name}.png`) });
+}

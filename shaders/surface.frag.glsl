@@ -14,7 +14,14 @@ varying float vSelectionWeight;
 varying float vDistortion;
 
 void main() {
+#ifdef FLAT_SHADED
+  // Flat shading (material.flatShading): one normal per triangle, from the
+  // screen-space derivatives of the position, so CAD edges stay sharp.
+  vec3 normal = normalize(cross(dFdx(vViewPosition), dFdy(vViewPosition)));
+  if (dot(normal, vViewNormal) < 0.0) normal = -normal;
+#else
   vec3 normal = normalize(vViewNormal);
+#endif
   // Back faces (open meshes, flipped faces) are lit as seen, not black.
   if (!gl_FrontFacing) normal = -normal;
   vec3 toEye = normalize(-vViewPosition);

@@ -237,6 +237,20 @@ TEST_CASE("op: the mesh's defaults are resolved by the session's rule", "[op]") 
   CHECK(flatten.directions.global == longest_axis(box));
 }
 
+TEST_CASE("op: the model unit is guessed from the largest side of the box", "[op]") {
+  // The SMPL torso panel is in metres (about 0.3 x 0.4 m).
+  const BoundingBox torso = bounding_box(test::load("open/human_woman_torso_front_patch.obj").V);
+  CHECK(guess_model_unit(torso).name == "m");
+  CHECK(guess_model_unit(torso).mm_per_unit == 1000.0);
+  const auto box_of_side = [](double side) { return BoundingBox{Eigen::Vector3d::Zero(), Eigen::Vector3d(side, 0.5 * side, 0.0)}; };
+  CHECK(guess_model_unit(box_of_side(4.99)).name == "m");
+  CHECK(guess_model_unit(box_of_side(5.0)).name == "cm");
+  CHECK(guess_model_unit(box_of_side(499.0)).mm_per_unit == 10.0);
+  CHECK(guess_model_unit(box_of_side(500.0)).name == "mm");
+  CHECK(guess_model_unit(box_of_side(1800.0)).mm_per_unit == 1.0);
+  CHECK(guess_model_unit(BoundingBox{}).name == "m");  // an empty mesh
+}
+
 TEST_CASE("op: results as JSON and the schema", "[op]") {
   DeformOpResult result;
   result.selected = 12;

@@ -238,3 +238,22 @@ TEST_CASE("pattern: the real torso panel gives one outline in SVG and DXF", "[pa
   CHECK(count_of(svg, "<path ") == 1);
   CHECK(count_of(dxf, "\nPOLYLINE\n") == 1);
 }
+
+TEST_CASE("pattern: a piece of a few millimetres keeps its note whole and 4 mm high", "[pattern]") {
+  const Mesh torso = test::load("open/human_woman_torso_front_patch.obj");
+  const FlattenOutput out = flattened(torso);
+  const Pattern pattern = make_pattern(out.patch, out.result);
+  PatternExportOptions options;
+  options.mm_per_unit = 10.0;  // metres read as centimetres: a piece of about 4 mm
+  options.note = "anisotropic, su 0.8 sv 1, direction global:0,1,0; grainline = mean compression direction";
+  const std::string svg = write_pattern_svg(pattern, options);
+  std::string problem;
+  CHECK(well_formed_xml(svg, problem));
+  INFO(problem);
+  CHECK(svg.find(".scale-note{font-family:sans-serif;font-size:4.000px}") != std::string::npos);
+  CHECK(count_of(svg, "<tspan ") == 2);
+  // The sheet holds the longest note line at 0.6 em (2.4 mm) per character, plus the margins.
+  const double width_mm = std::stod(svg.substr(svg.find("width=\"") + 7));
+  CHECK(width_mm >= 2.4 * static_cast<double>(options.note.size()) + 20.0);
+  CHECK(width_mm < 2.4 * static_cast<double>(options.note.size()) + 20.1);
+}

@@ -43,6 +43,8 @@ export interface MeshInfo {
   duplicateFaces: number;
   unreferencedVertices: number;
   bbox: { min: Vec3; max: Vec3 };
+  /** The unit the coordinates are most likely in (guess_model_unit, op.h): m, cm or mm. */
+  unitGuess: { name: 'm' | 'cm' | 'mm'; mmPerUnit: number };
   /** Problems the solver works through (the blocking ones make loading fail). */
   problems: MeshProblem[];
   /** What the reader and the session repaired (triangulated, welded...). */
@@ -260,6 +262,8 @@ export interface FlattenMetrics {
   filledDirections: number;
   initialization: 'lscm' | 'tutte';
   method: 'anisotropic' | 'uniform-baseline';
+  /** Empty when usable as one piece; otherwise why not and what to do (flatten_problem, flatten.h). */
+  problem: string;
 }
 
 /** All arrays are copies (JS-owned). */

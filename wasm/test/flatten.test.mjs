@@ -190,3 +190,20 @@ test('bad options name the field', () => withSession('open/plane.off', (session)
   const outside = session.selection().findIndex((w) => w === 0);
   expectError(() => session.flatten({ patch: 'selection', direction: { type: 'constraints', constraints: [{ vertex: outside, direction: [1, 0, 0] }] } }), 'bad-parameter', new RegExp(String(outside)));
 }));
+
+test('a patch that cannot be one piece says why and what to do; a garment panel has no problem; the unit is guessed', () => {
+  withSession('open/hand_lowres.obj', (session) => {
+    const { metrics } = session.flatten({ compress: [0.8, 1] });
+    assert.equal(metrics.converged, false);
+    assert.match(metrics.problem, /^the patch does not flatten as one piece \(the solver did not converge in \d+ iterations\): cut it along a seam or add darts/);
+  });
+  withSession('open/cube_no_bottom.obj', (session) => {
+    const { metrics } = session.flatten({ compress: [0.8, 1] });
+    assert.ok(metrics.areaDistortionMean > 0.25, String(metrics.areaDistortionMean));
+    assert.match(metrics.problem, new RegExp(`area is off by ${Math.round(100 * metrics.areaDistortionMean)} % on average`));
+  });
+  withSession('open/human_woman_torso_front_patch.obj', (session) => {
+    assert.deepEqual(session.info().unitGuess, { name: 'm', mmPerUnit: 1000 });
+    assert.equal(session.flatten({ compress: [0.8, 1] }).metrics.problem, '');
+  });
+});

@@ -119,6 +119,14 @@ struct FlattenMetrics {
   std::string method;                    // "anisotropic" or "uniform-baseline"
 };
 
+// Empty when the flattening is usable as one piece; otherwise why not and
+// what to do, in plain words for the user. Not one piece: the solver did not
+// converge, triangles folded over, or the area is off by more than
+// kMaxUsableAreaDistortion on average (a hemisphere, about the most curved
+// patch still cut whole, is 18 %; an open box or a hand is 36 % and more).
+constexpr double kMaxUsableAreaDistortion = 0.25;
+std::string flatten_problem(const FlattenMetrics& metrics);
+
 // ---- the Flattener ---------------------------------------------------------------
 
 enum class FlattenMethod {

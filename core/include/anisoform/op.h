@@ -91,6 +91,18 @@ MeshFormat mesh_format_from_name(const std::string& name);                    //
 // empty box gives x): the default direction wherever none is given.
 Eigen::Vector3d longest_axis(const BoundingBox& box);
 
+// The unit the mesh's coordinates are most likely in, for pattern files in
+// millimetres. Garments and the bodies they fit are 5 cm .. 5 m, so the
+// box's largest side L says: L < 5 -> metres (1000 mm per unit), L < 500 ->
+// centimetres (10), else millimetres (1); between 50 and 500 both cm and mm
+// fit, and cm (body-sized) wins. A guess: hosts say so and let the user
+// change it (mesh info "unitGuess"; the CLI's --mm-per-unit is explicit).
+struct ModelUnitGuess {
+  std::string name;  // "m" | "cm" | "mm"
+  double mm_per_unit = 1.0;
+};
+ModelUnitGuess guess_model_unit(const BoundingBox& box);
+
 // The DeformRequest an edit means on this mesh: `edit.request` with its
 // "not given" parts filled in and `weights` as the selection:
 //   direction not given: global along longest_axis(loaded_box), the mesh as loaded;
@@ -110,14 +122,16 @@ SessionFlatten resolve_flatten(const SessionFlatten& request, const Positions& p
 
 // {vertices, triangles, components, boundaryLoops, edgeManifold, vertexManifold,
 //  consistentlyOriented, degenerateTriangles, duplicateFaces, unreferencedVertices,
-//  bbox: {min, max}, problems: [{kind, element, message}], notes}
+//  bbox: {min, max}, unitGuess: {name, mmPerUnit} (guess_model_unit),
+//  problems: [{kind, element, message}], notes}
 Json to_json(const SessionMeshInfo& info);
 // {selected, iterations, energy, energyHistory, converged, directionsFilled,
 //  inverted, factorizations, precomputeMs, solveMs, ms}
 Json to_json(const DeformOpResult& result);
 // {triangles, vertices, components, boundaryLoops, flipped, compressionErrorMean,
 //  compressionErrorMax, crossErrorMean, crossErrorMax, areaDistortionMean,
-//  iterations, energy, converged, seconds, filledDirections, initialization, method}
+//  iterations, energy, converged, seconds, filledDirections, initialization, method,
+//  problem} (problem: flatten_problem, "" when usable as one piece)
 Json to_json(const FlattenMetrics& metrics);
 
 // ---- request -> JSON (the document stores what was solved) ----------------

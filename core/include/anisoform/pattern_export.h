@@ -40,7 +40,8 @@ struct PatternExportOptions {
 // millimetre and printing at 100 % gives the real size. Per outline one
 // <path class="outline">; per piece a grainline (<line class="grainline">
 // with arrowhead lines); a 100 mm (or 10 mm) <line class="scale-bar"> and a
-// <text class="scale-note">. The y axis is flipped (SVG's points down), so the
+// <text class="scale-note"> in 4 mm type at any scale, one <tspan> per line
+// (the scale, then `note`), the sheet widened to hold the longest line. The y axis is flipped (SVG's points down), so the
 // pattern is not mirrored. Throws Error(BadParameter) if mm_per_unit is not a
 // positive finite number.
 std::string write_pattern_svg(const Pattern& pattern, const PatternExportOptions& options);
@@ -48,7 +49,7 @@ std::string write_pattern_svg(const Pattern& pattern, const PatternExportOptions
 // ASCII DXF R12 (AC1009, the version garment CAD and cutters import; units
 // millimetres, also stated as $INSUNITS 4): one closed POLYLINE (VERTEX ...
 // SEQEND) per outline on layer OUTLINE, one LINE per piece on layer
-// GRAINLINE, and the scale note as TEXT on layer NOTE. Same errors as SVG.
+// GRAINLINE, and the scale note as 4 mm TEXT on layer NOTE. Same errors as SVG.
 std::string write_pattern_dxf(const Pattern& pattern, const PatternExportOptions& options);
 
 }  // namespace aniso

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include <Eigen/LU>
 
@@ -73,6 +74,23 @@ TriangleStretch measure_stretch(const Triangles& F, const TriangleCharts& charts
     stretch.area_ratio[t] = J.determinant();
   }
   return stretch;
+}
+
+std::string flatten_problem(const FlattenMetrics& metrics) {
+  std::string reason;
+  if (!metrics.converged) {
+    reason = "the solver did not converge in " + std::to_string(metrics.iterations) + " iterations";
+  } else if (metrics.flipped > 0) {
+    reason = std::to_string(metrics.flipped) + " triangle(s) folded over";
+  } else if (!(metrics.area_distortion_mean <= kMaxUsableAreaDistortion)) {
+    reason = "its area is off by " + std::to_string(static_cast<int>(std::lround(100.0 * metrics.area_distortion_mean))) +
+             " % on average";
+  } else {
+    return "";
+  }
+  return "the patch does not flatten as one piece (" + reason +
+         "): cut it along a seam or add darts where it curves most (select part of it and flatten the "
+         "Selection), then flatten each piece";
 }
 
 void summarize_stretch(const TriangleCharts& charts, const FlattenTargets& targets,

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "anisoform/error.h"
 
@@ -80,15 +82,30 @@ Segment grainline_segment(const PatternPiece& piece, double scale) {
   return {center + (lo + margin) * d, center + (hi - margin) * d};
 }
 
-// The scale note in plain ASCII on one line (DXF TEXT takes no line breaks).
-std::string scale_note(const PatternExportOptions& options) {
-  std::string note = "Anisoform pattern - outlines in mm, 1 model unit = " +
-                     number(options.mm_per_unit) + " mm";
-  if (!options.note.empty()) note += " - " + options.note;
+std::string printable_ascii(const std::string& text) {
   std::string clean;
-  for (char c : note) clean += (c >= 32 && c < 127) ? c : ' ';
+  for (char c : text) clean += (c >= 32 && c < 127) ? c : ' ';
   return clean;
 }
+
+std::string scale_heading(const PatternExportOptions& options) {
+  return "Anisoform pattern - outlines in mm, 1 model unit = " + number(options.mm_per_unit) + " mm";
+}
+
+// The scale note in plain ASCII on one line (DXF TEXT takes no line breaks).
+std::string scale_note(const PatternExportOptions& options) {
+  std::string note = scale_heading(options);
+  if (!options.note.empty()) note += " - " + options.note;
+  return printable_ascii(note);
+}
+
+// The SVG's note: a fixed 4 mm type whatever the pattern's size (a piece of a
+// few millimetres must not shrink or clip it), in lines of its own, and a
+// sheet wide enough for the longest line (0.6 em per character bounds the
+// width of a sans-serif ASCII line).
+constexpr double kNoteFontMm = 4.0;
+constexpr double kNoteLineMm = 5.0;
+double note_width_mm(const std::string& line) { return 0.6 * kNoteFontMm * static_cast<double>(line.size()); }
 
 std::string xml_escaped(const std::string& text) {
   std::string out;
@@ -132,9 +149,16 @@ Pattern make_pattern(const FlattenPatch& patch, const FlattenResult& result) {
 std::string write_pattern_svg(const Pattern& pattern, const PatternExportOptions& options) {
   require_scale(options);
   const double scale = options.mm_per_unit;
-  const double margin = 10.0, footer = 20.0;
   const Box box = pattern_box(pattern, scale);
-  const double width = box.max.x() - box.min.x() + 2.0 * margin;
+  const double bar = scale_bar_length(box.max.x() - box.min.x());
+  std::vector<std::string> note_lines{printable_ascii(scale_heading(options) + " - scale bar " + number(bar) + " mm")};
+  if (!options.note.empty()) note_lines.push_back(printable_ascii(options.note));
+  double note_width = 0.0;
+  for (const std::string& text : note_lines) note_width = std::max(note_width, note_width_mm(text));
+  // The scale bar 8 mm below the pattern, the note's first baseline 14 mm below it.
+  const double margin = 10.0;
+  const double footer = 20.0 + kNoteLineMm * static_cast<double>(note_lines.size() - 1);
+  const double width = std::max(box.max.x() - box.min.x(), note_width) + 2.0 * margin;
   const double height = box.max.y() - box.min.y() + 2.0 * margin + footer;
   // Pattern mm to SVG user units (mm), y pointing down.
   const auto x = [&](double u) { return number(u - box.min.x() + margin); };
@@ -152,7 +176,7 @@ std::string write_pattern_svg(const Pattern& pattern, const PatternExportOptions
       << "<title>Anisoform pattern</title>\n"
       << "<style>.outline{fill:none;stroke:#000;stroke-width:0.3}"
          ".grainline{stroke:#c00;stroke-width:0.3}.scale-bar{stroke:#000;stroke-width:0.5}"
-         ".scale-note{font-family:sans-serif;font-size:4px}</style>\n";
+         ".scale-note{font-family:sans-serif;font-size:" << number(kNoteFontMm) << "px}</style>\n";
   for (std::size_t p = 0; p < pattern.pieces.size(); ++p) {
     const PatternPiece& piece = pattern.pieces[p];
     svg << "<g class=\"piece\" id=\"piece-" << p << "\">\n";
@@ -178,12 +202,14 @@ std::string write_pattern_svg(const Pattern& pattern, const PatternExportOptions
     }
     svg << "</g>\n";
   }
-  const double bar = scale_bar_length(box.max.x() - box.min.x());
   const Eigen::Vector2d bar_start(box.min.x(), box.min.y() - 8.0);
   svg << line("scale-bar", bar_start, bar_start + Eigen::Vector2d(bar, 0.0));
-  svg << "<text class=\"scale-note\" x=\"" << x(box.min.x()) << "\" y=\"" << y(box.min.y() - 14.0)
-      << "\">" << xml_escaped(scale_note(options)) << " - scale bar " << number(bar)
-      << " mm</text>\n";
+  svg << "<text class=\"scale-note\" x=\"" << x(box.min.x()) << "\" y=\"" << y(box.min.y() - 14.0) << "\">";
+  for (std::size_t k = 0; k < note_lines.size(); ++k) {
+    svg << "<tspan x=\"" << x(box.min.x()) << "\" dy=\"" << number(k == 0 ? 0.0 : kNoteLineMm) << "\">"
+        << xml_escaped(note_lines[k]) << "</tspan>";
+  }
+  svg << "</text>\n";
   svg << "</svg>\n";
   return svg.str();
 }
@@ -241,7 +267,7 @@ std::string write_pattern_dxf(const Pattern& pattern, const PatternExportOptions
   group(0, "TEXT");
   group(8, "NOTE");
   point(10, Eigen::Vector2d(box.min.x(), box.min.y() - 10.0));
-  group(40, "4.0");
+  group(40, number(kNoteFontMm));
   group(1, scale_note(options));
   group(0, "ENDSEC");
   group(0, "EOF");

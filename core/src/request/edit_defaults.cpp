@@ -16,6 +16,13 @@ Eigen::Vector3d longest_axis(const BoundingBox& box) {
   return Eigen::Vector3d::Unit(axis);
 }
 
+ModelUnitGuess guess_model_unit(const BoundingBox& box) {
+  const double largest = (box.max - box.min).maxCoeff();
+  if (!(largest >= 5.0)) return {"m", 1000.0};  // an empty box (NaN) too
+  if (largest < 500.0) return {"cm", 10.0};
+  return {"mm", 1.0};
+}
+
 namespace {
 
 // ARAP with handles in the modelling sense (Sorkine & Alexa): the fully

@@ -17,6 +17,7 @@ Json to_json(const SessionMeshInfo& info) {
   for (const Problem& p : r.problems) {
     problems.push_back({{"kind", problem_kind_name(p.kind)}, {"element", p.element}, {"message", p.message}});
   }
+  const ModelUnitGuess unit = guess_model_unit(r.bbox);
   return {
       {"vertices", r.vertices},
       {"triangles", r.triangles},
@@ -29,6 +30,7 @@ Json to_json(const SessionMeshInfo& info) {
       {"duplicateFaces", r.duplicate_faces},
       {"unreferencedVertices", r.unreferenced_vertices},
       {"bbox", {{"min", vector3_json(r.bbox.min)}, {"max", vector3_json(r.bbox.max)}}},
+      {"unitGuess", {{"name", unit.name}, {"mmPerUnit", unit.mm_per_unit}}},
       {"problems", problems},
       {"notes", info.notes},
   };
@@ -69,6 +71,7 @@ Json to_json(const FlattenMetrics& m) {
       {"filledDirections", m.filled_directions},
       {"initialization", m.initialization},
       {"method", m.method},
+      {"problem", flatten_problem(m)},
   };
 }
 

@@ -35,6 +35,8 @@ export interface MeshCounts {
 export interface MeshInfo extends MeshCounts {
   components: number;
   boundaryLoops: number;
+  /** The unit the coordinates are most likely in, guessed by the core from the mesh's size (the pattern files' default scale). */
+  unitGuess: { name: 'm' | 'cm' | 'mm'; mmPerUnit: number };
 }
 
 /** A drag on the canvas; the surface point under `from` (or `anchor`) fixes its depth. */
@@ -151,7 +153,10 @@ export interface Anisoform {
   export(format: 'obj' | 'ply' | 'stl' | 'glb'): Promise<ArrayBuffer>;
   /** A garment pattern of the mesh or its selection; the mesh and history are untouched. */
   flatten(options?: FlattenOptions): Promise<FlattenResult>;
-  /** The last flattening as a pattern file in millimetres (SVG, or DXF R12); rejects if there is none. */
+  /**
+   * The last flattening as a pattern file in millimetres (SVG, or DXF R12); rejects if there is none.
+   * options.mmPerUnit defaults to the guessed unit of the mesh (info().unitGuess: m 1000, cm 10, mm 1).
+   */
   exportPattern(format: 'svg' | 'dxf', options?: PatternOptions): Promise<ArrayBuffer>;
   /** Returns a function that removes the listener. */
   on(event: 'change', callback: (event: ChangeEvent) => void): () => void;

@@ -30,6 +30,7 @@ export function createAnisoformApi({ editor, viewer, picker, ready }) {
         triangles: info.triangles,
         components: info.components,
         boundaryLoops: info.boundaryLoops,
+        unitGuess: { ...info.unitGuess },
       };
     },
 

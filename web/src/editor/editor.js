@@ -20,7 +20,10 @@
 //   'loading'    {name}: a load started; old messages no longer apply
 //   'notice'     {message, details}: what a load repaired or found (plain
 //                words; details: the full list, one sentence each)
-//   'warning'    {message}: a committed edit folded triangles over
+//   'warning'    {message, source}: a committed edit folded triangles over
+//                (source 'edit'), or the last flattening is not usable as
+//                one piece (source 'flatten'); a live preview's folds are
+//                its 'stats' {live, inverted}
 //   'pattern'    the last flattening (FlattenPayload plus its options), or null
 //                when the mesh, its positions or the flattened selection changed
 //   'document'   the edit document changed (document/op-stack.js: an op committed,

@@ -38,6 +38,8 @@ export class PatternState {
       if (editor.document !== document) return result;
       this.pattern = { ...result, options: { patch: 'mesh', ...options } };
       editor.emit('pattern', this.pattern);
+      // A patch that does not flatten as one piece says why and what to do (flatten_problem, flatten.h).
+      if (result.metrics.problem) editor.emit('warning', { message: `Flatten: ${result.metrics.problem}.`, source: 'flatten' });
       return result;
     } catch (error) {
       throw editor.report(error, 'Flatten failed');
@@ -47,11 +49,15 @@ export class PatternState {
     }
   }
 
-  /** The last flattening as an SVG or DXF file (bytes). */
+  /**
+   * The last flattening as an SVG or DXF file (bytes); options.mmPerUnit
+   * defaults to the core's guess of the mesh's unit (info.unitGuess).
+   */
   async export(format, options = {}) {
     try {
       if (!this.pattern) throw badParameter('there is no pattern: flatten the mesh first');
-      const { bytes } = await this.#client.request(Request.exportPattern, { format, mmPerUnit: options.mmPerUnit ?? 1 });
+      const mmPerUnit = options.mmPerUnit ?? this.#editor.document?.info.unitGuess?.mmPerUnit ?? 1;
+      const { bytes } = await this.#client.request(Request.exportPattern, { format, mmPerUnit });
       return bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength);
     } catch (error) {
       throw this.#editor.report(error, `Pattern export as ${String(format).toUpperCase()} failed`);

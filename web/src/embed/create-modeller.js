@@ -13,6 +13,7 @@ import { Picker } from '../interaction/picker.js';
 import { PointerGestures } from '../interaction/pointer-gestures.js';
 import { Settings } from '../shared/settings.js';
 import { createTools } from '../tools/tool-registry.js';
+import { AxisGizmo } from '../viewer/axis-gizmo.js';
 import { HeatmapDisplay } from '../viewer/heatmap-display.js';
 import { DirectionDisplay } from '../viewer/direction-display.js';
 import { MeshView } from '../viewer/mesh-view.js';
@@ -55,6 +56,7 @@ export function createModeller(container, options = {}) {
   const settings = new Settings();
   const viewer = new Viewer(layout.viewport, lifetime);
   const meshView = new MeshView(viewer);
+  new AxisGizmo(viewer, lifetime);
   const picker = new Picker(viewer, meshView);
   viewer.setBoundsSource(() => editor.document?.bounds() ?? null);
   editor.attachView({ cameraState: () => viewer.cameraState(), pick: (x, y) => picker.pick(x, y) });
@@ -71,13 +73,17 @@ export function createModeller(container, options = {}) {
   });
   editor.on('selection', ({ weights }) => meshView.showSelection(weights));
   settings.on('change', ({ section }) => {
-    if (section === 'display') meshView.setSelectionVisible(settings.values.display.selection);
+    if (section !== 'display') return;
+    const display = settings.values.display;
+    meshView.setSelectionVisible(display.selection);
+    meshView.setFlatShading(display.flatShading);
+    meshView.setWireframe(display.wireframe);
   });
 
   // Errors the editor has reported already are not shown twice.
   const reportError = (error, context) => editor.report(error, context);
   const directionDisplay = new DirectionDisplay({ editor, settings, viewer, meshView, lifetime });
-  new HeatmapDisplay({ editor, settings, meshView, reportError });
+  new HeatmapDisplay({ editor, settings, meshView, viewport: layout.viewport, reportError });
   const tools = createTools({
     editor,
     viewer,

@@ -25,12 +25,15 @@ export function defaultSettings() {
     // Origin 'centroid': the core's default (the axis line through the selection's
     // weighted centroid); 'point': the axis line through `point` (typed, or a click on the mesh).
     twist: { axis: 'y', custom: [0, 1, 0], degreesPerUnit: 90, origin: 'centroid', point: [0, 0, 0] },
-    display: { selection: true, glyphs: true, heatMap: 'off' },
+    // heatRange: 'adaptive' (95th percentile of the values shown) or 'fixed' (heat-palettes.js).
+    display: { selection: true, glyphs: true, heatMap: 'off', heatRange: 'adaptive', flatShading: false, wireframe: false },
     // Flattening: the patch, the wanted stretch along / across the direction
-    // (0.8 = 20 % shrinkage), the garment-CAD baseline, the pattern files' scale.
+    // (0.8 = 20 % shrinkage), the garment-CAD baseline, the pattern files' scale:
+    // the mesh's unit ('guess': the core's guess from the mesh's size; m, cm, mm,
+    // in; 'custom': mmPerUnit millimetres per unit).
     flatten: {
       patch: 'mesh', source: 'global', axis: 'auto', custom: [1, 0, 0],
-      along: 0.8, across: 1, baseline: false, mmPerUnit: 10, colorBy: 'compression',
+      along: 0.8, across: 1, baseline: false, unit: 'guess', mmPerUnit: 10, colorBy: 'compression',
     },
   };
 }

@@ -18,7 +18,7 @@ export class RotateTool extends TransformTool {
         ['v', 'Across direction (v)'],
       ],
     },
-    { key: 'degrees', label: 'Degrees', min: -360, max: 360, step: 1 },
+    { key: 'degrees', label: 'Degrees', step: 1 },
   ];
 
   transformForDrag(amount, invert) {

@@ -7,7 +7,7 @@ export class ShearTool extends TransformTool {
   id = 'shear';
   label = 'Shear';
   hint = 'Drag on the mesh: shear along the direction (Shift: the other way).';
-  fields = [{ key: 'amount', label: 'Shear h', min: -10, max: 10, step: 0.05 }];
+  fields = [{ key: 'amount', label: 'Shear h', step: 0.05 }];
 
   transformForDrag(amount, invert) {
     const shear = round(invert ? -amount : amount);

@@ -7,8 +7,8 @@ export class StretchTool extends TransformTool {
   label = 'Stretch';
   hint = 'Drag on the mesh: the selection stretches along the drag (Shift: squash).';
   fields = [
-    { key: 'along', label: 'Along ×', min: 0.05, max: 20, step: 0.05 },
-    { key: 'across', label: 'Across ×', min: 0.05, max: 20, step: 0.05 },
+    { key: 'along', label: 'Along ×', step: 0.05 },
+    { key: 'across', label: 'Across ×', step: 0.05 },
   ];
 
   transformForDrag(amount, invert) {

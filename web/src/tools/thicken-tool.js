@@ -8,7 +8,7 @@ export class ThickenTool extends TransformTool {
   id = 'thicken';
   label = 'Thicken';
   hint = 'Drag on the mesh: thicker across the direction (Shift: thinner).';
-  fields = [{ key: 'factor', label: 'Across ×', min: 0.05, max: 20, step: 0.05 }];
+  fields = [{ key: 'factor', label: 'Across ×', step: 0.05 }];
 
   transformForDrag(amount, invert) {
     const factor = round(invert ? 1 / (1 + amount) : 1 + amount);

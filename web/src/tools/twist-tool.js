@@ -33,7 +33,7 @@ export class TwistTool extends TransformTool {
       ],
     },
     { key: 'point', label: 'Origin point', vector: true, point: true, showWhen: (values) => values.origin === 'point' },
-    { key: 'degreesPerUnit', label: '° per unit', min: -36000, max: 36000, step: 1 },
+    { key: 'degreesPerUnit', label: '° per unit', step: 1 },
   ];
 
   #axis() {

@@ -17,5 +17,12 @@ export function displayPanel({ settings }) {
         ['compression', 'Compression error (flatten)'],
       ],
     }),
+    selectField(settings, 'display', {
+      key: 'heatRange',
+      label: 'Heat range',
+      options: [['adaptive', 'Adapted to the data'], ['fixed', 'Fixed (×2 / 10 %)']],
+    }),
+    checkboxField(settings, 'display', { key: 'flatShading', label: 'Flat shading' }),
+    checkboxField(settings, 'display', { key: 'wireframe', label: 'Wireframe' }),
   );
 }

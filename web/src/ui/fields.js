@@ -1,6 +1,13 @@
 // Form fields bound to a settings section: numbers, selects, checkboxes and
 // xyz vectors. A field shows the setting's current value (a drag writes its
-// amount there live) unless the user is typing in it.
+// amount there live) unless the user is typing in it; a typed value is
+// replaced at once by the value kept (a number field's min/max clamp it), so
+// the field never shows a number that is not the one used.
+//
+// A number field's min/max are the panel's own bounds (a brush radius in
+// percent). Amounts the core validates (limits.h: stretch, shear, angles,
+// the twist rate) get none here: the core refuses an out-of-range value with
+// a message naming the field and its range, and the field keeps showing it.
 import { h } from './dom.js';
 
 export function numberField(settings, sectionName, { key, label, min, max, step }) {
@@ -11,7 +18,7 @@ export function numberField(settings, sectionName, { key, label, min, max, step 
   input.addEventListener('change', () => {
     const value = Number(input.value);
     if (Number.isFinite(value)) settings.update(sectionName, { [key]: clamp(value, min, max) });
-    sync();
+    input.value = settings.values[sectionName][key];
   });
   settings.on('change', ({ section }) => section === sectionName && sync());
   sync();
@@ -55,7 +62,8 @@ export function vectorField(settings, sectionName, { key, label, point = false }
       if (vector.every(Number.isFinite) && (point || Math.hypot(...vector) > 0)) {
         settings.update(sectionName, { [key]: vector });
       }
-      sync();
+      const kept = settings.values[sectionName][key];
+      inputs.forEach((field, axis) => (field.value = kept[axis]));
     });
   }
   settings.on('change', ({ section }) => section === sectionName && sync());

@@ -2,11 +2,13 @@
 // selection), the wanted direction (global axis or arrows placed on the
 // surface, each arrow with its own compression if wanted), the wanted
 // stretch along / across it, the garment-CAD baseline for comparison, the
-// run button with the measured result, and SVG / DXF export of the pattern.
+// run button with the measured result, the pattern's unit and physical size
+// (pattern-scale.js), and SVG / DXF export of the pattern.
 import { downloadBytes } from '../io/download.js';
 import { flattenDirectionFromSettings } from '../tools/direction-source.js';
 import { formatPercent } from '../viewer/pattern-view.js';
 import { h, section } from './dom.js';
+import { mmPerUnitOf, patternScale } from './pattern-scale.js';
 import { checkboxField, numberField, selectField, showWhen, vectorField } from './fields.js';
 
 export function flattenPanel({ api, editor, settings, reportError }) {
@@ -25,7 +27,8 @@ export function flattenPanel({ api, editor, settings, reportError }) {
     'data-testid': `export-${format}`,
     disabled: true,
     onclick: async () => {
-      const bytes = await api.exportPattern(format, { mmPerUnit: settings.values.flatten.mmPerUnit }).catch((error) => {
+      const mmPerUnit = mmPerUnitOf(settings.values.flatten, editor.document?.info);
+      const bytes = await api.exportPattern(format, { mmPerUnit }).catch((error) => {
         reportError(error);
         return null;
       });
@@ -50,14 +53,14 @@ export function flattenPanel({ api, editor, settings, reportError }) {
       (f) => f.source === 'global'),
     showWhen(settings, 'flatten', vectorField(settings, 'flatten', { key: 'custom', label: 'Vector' }),
       (f) => f.source === 'global' && f.axis === 'custom'),
-    numberField(settings, 'flatten', { key: 'along', label: 'Stretch along', min: 0.05, max: 5, step: 0.01 }),
-    numberField(settings, 'flatten', { key: 'across', label: 'Stretch across', min: 0.05, max: 5, step: 0.01 }),
+    numberField(settings, 'flatten', { key: 'along', label: 'Stretch along', step: 0.01 }),
+    numberField(settings, 'flatten', { key: 'across', label: 'Stretch across', step: 0.01 }),
     showWhen(settings, 'flatten', arrowList(settings), (f) => f.source === 'arrows'),
     checkboxField(settings, 'flatten', { key: 'baseline', label: 'Industry baseline (uniform 2D scale)' }),
     h('p', { className: 'hint' }, 'Stretch 0.8 = the fabric is cut 20 % shorter along the direction.'),
     h('div', { className: 'row' }, run),
     metrics,
-    numberField(settings, 'flatten', { key: 'mmPerUnit', label: 'mm per unit', min: 1e-6, max: 1e6, step: 1 }),
+    patternScale({ editor, settings }),
     h('div', { className: 'row' }, h('span', { className: 'hint' }, 'Export pattern'), ...exports),
   );
 }
@@ -92,7 +95,7 @@ function arrowList(settings) {
   const amountInput = (index, key, label) => {
     const arrow = settings.values.arrows[index];
     const input = h('input', {
-      type: 'number', min: 0.05, max: 5, step: 0.01, placeholder: 'panel', value: arrow[key] ?? '',
+      type: 'number', step: 0.01, placeholder: 'panel', value: arrow[key] ?? '',
       'aria-label': `Arrow ${index + 1} ${label}`,
     });
     input.addEventListener('change', () => {

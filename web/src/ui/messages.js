@@ -1,8 +1,12 @@
 // The error, notice and warning banners over the viewport. Errors say in
 // plain words what went wrong and what to do (a load error also says the
 // current mesh was kept); notices say what a load repaired or found, with the
-// full list on demand; warnings say that the last edit folded triangles over,
-// until the positions change again. All can be dismissed.
+// full list on demand; warnings say that the last edit (or the live preview)
+// folded triangles over, until the positions change again, or that the last
+// flattening is not usable as one piece, until the pattern changes. All can be
+// dismissed.
+import { foldOverWarning } from '../editor/edit-wording.js';
+
 export function installMessages(root, { editor }) {
   const error = root.querySelector('[data-testid=error]');
   const notice = root.querySelector('[data-testid=notice]');
@@ -29,8 +33,25 @@ export function installMessages(root, { editor }) {
   editor.on('error', ({ message }) => show(error, message.replace(/\.?\s*$/, '.')));
   editor.on('notice', ({ message, details }) => show(notice, message, details));
   // An edit's warning comes after its 'change'; undo, redo and the next edit clear it.
+  // warning.dataset.source: 'edit', 'preview' or 'flatten', what put it there.
+  const warn = (message, source) => {
+    show(warning, message);
+    warning.dataset.source = source;
+  };
+  const clearWarning = (source) => {
+    if (warning.dataset.source === source) warning.hidden = true;
+  };
   editor.on('change', ({ reason }) => reason === 'positions' && (warning.hidden = true));
-  editor.on('warning', ({ message }) => show(warning, message));
+  editor.on('warning', ({ message, source = 'edit' }) => warn(message, source));
+  // The live preview warns while it folds; the commit's own warning follows its 'change'.
+  editor.on('stats', ({ live, inverted }) => {
+    if (!live) return;
+    if (inverted > 0) warn(foldOverWarning(inverted), 'preview');
+    else clearWarning('preview');
+  });
+  editor.on('gesture', (active) => !active && clearWarning('preview'));
+  // A new flattening (its own warning follows) or none: the last one's warning is moot.
+  editor.on('pattern', () => clearWarning('flatten'));
   // A new load makes the old messages moot, whether it succeeds (its notice
   // comes after) or fails (its error comes after).
   editor.on('loading', hideAll);

@@ -1,6 +1,6 @@
 // The pane beside the 3D view in flatten mode: a header (colour by the error
 // along or across the wanted direction, fit to view) over the PatternView.
-import { COMPRESSION_ERROR_RANGE } from '../viewer/heatmap-display.js';
+import { heatRange } from '../viewer/heat-palettes.js';
 import { PatternView } from '../viewer/pattern-view.js';
 import { h } from './dom.js';
 import { selectField } from './fields.js';
@@ -18,13 +18,21 @@ export function patternPane(container, { editor, settings, lifetime }) {
       fit),
     host,
   );
-  const syncColoring = () => view.setColoring(settings.values.flatten.colorBy, COMPRESSION_ERROR_RANGE);
-  settings.on('change', ({ section }) => section === 'flatten' && syncColoring());
+  // The 3D heat map's range rule (Display panel: fixed or adapted), on the errors coloured here.
+  let shown = null;
+  const syncColoring = () => {
+    const colorBy = settings.values.flatten.colorBy;
+    const errors = shown ? (colorBy === 'cross' ? shown.crossError : shown.compressionError) : [];
+    view.setColoring(colorBy, heatRange('compression', errors, settings.values.display.heatRange).value);
+  };
+  settings.on('change', ({ section }) => (section === 'flatten' || section === 'display') && syncColoring());
   syncColoring();
   // What the pane shows, for tests and assistive tools: pieces and triangles drawn.
   const show = (pattern) => {
     container.dataset.pieces = pattern ? String(pattern.grainlines.length) : '0';
     container.dataset.triangles = pattern ? String(pattern.triangles.length / 3) : '0';
+    shown = pattern;
+    syncColoring();
     view.show(pattern);
   };
   editor.on('pattern', show);

@@ -1,30 +1,29 @@
 // Keeps the heat map in step with what the view shows, when the Display panel
 // turns it on: the core's distortion against the mesh as loaded (live
 // previews included), or the compression error of the last flattening, on
-// the same vertices the 2D pattern view colours by triangle.
+// the same vertices the 2D pattern view colours by triangle, with its legend.
 //
 // The distortion is the core's (Session.distortion in the worker: the area
 // ratio, or the principal stretch farthest from 1); this file only maps it to
 // colours, through log2, so that twice and half look equally strong. Edits
 // bring the values along with their positions (editor.heatMapKind), so the
 // map follows every live-preview frame without a second request; other
-// changes (a load, undo, the panel) ask the worker.
+// changes (a load, undo, the panel) ask the worker. The range at full colour
+// is fixed or adapted to the values shown (Display panel; heat-palettes.js).
+import { HEAT_PALETTES, heatRange } from './heat-palettes.js';
+import { HeatmapLegend } from './heatmap-legend.js';
 
-// The compression error (|achieved / wanted - 1|) at full colour: 10 %, as
-// in the pattern view.
-export const COMPRESSION_ERROR_RANGE = 0.1;
-// log2 of the ratio at full colour for the distortion maps: twice / half.
-const DISTORTION_RANGE = 1.0;
 const DISTORTION_KINDS = ['area', 'stretch'];
 
 export class HeatmapDisplay {
   #latest = 0; // the newest refresh: older worker answers are dropped
 
-  constructor({ editor, settings, meshView, reportError }) {
+  constructor({ editor, settings, meshView, viewport, reportError }) {
     this.editor = editor;
     this.settings = settings;
     this.meshView = meshView;
     this.reportError = reportError;
+    this.legend = new HeatmapLegend(viewport);
     settings.on('change', ({ section }) => section === 'display' && this.refresh());
     editor.on('mesh', () => this.refresh());
     editor.on('positions', ({ distortion }) => this.refresh(distortion));
@@ -38,25 +37,43 @@ export class HeatmapDisplay {
     const refresh = ++this.#latest;
     this.editor.heatMapKind = DISTORTION_KINDS.includes(kind) ? kind : null;
     this.meshView.setHeatMapVisible(kind !== 'off');
-    if (kind === 'off' || !document) return;
-    if (kind === 'compression') {
-      this.meshView.setHeatRange(COMPRESSION_ERROR_RANGE);
-      this.meshView.showDistortion(compressionValues(this.editor.pattern, document.vertexCount));
+    if (kind === 'off' || !document) {
+      this.legend.hide();
       return;
     }
-    this.meshView.setHeatRange(DISTORTION_RANGE);
+    this.meshView.setHeatPalette(HEAT_PALETTES[kind]);
+    if (kind === 'compression') {
+      const pattern = this.editor.pattern;
+      this.#show(kind, compressionValues(pattern, document.vertexCount), pattern ? pattern.vertexError : []);
+      return;
+    }
     if (distortion) {
-      this.meshView.showDistortion(log2Values(distortion));
+      const values = log2Values(distortion);
+      this.#show(kind, values, values);
       return;
     }
     this.editor.distortion(kind).then(
-      (values) => {
-        if (values && refresh === this.#latest) this.meshView.showDistortion(log2Values(values));
+      (ratios) => {
+        if (!ratios || refresh !== this.#latest) return;
+        const values = log2Values(ratios);
+        this.#show(kind, values, values);
       },
       (error) => this.reportError(error, 'The heat map could not be computed'),
     );
   }
+
+  // `measured`: the values the range is taken from (for the compression
+  // error, the patch's vertices only, not the zeros drawn outside it).
+  #show(kind, values, measured) {
+    const range = heatRange(kind, measured, this.settings.values.display.heatRange);
+    this.meshView.setHeatRange(range.value);
+    this.meshView.showDistortion(values);
+    this.legend.show(HEAT_PALETTES[kind], range, kind === 'compression' ? formatError : formatRatio);
+  }
 }
+
+const formatError = (error) => `${(100 * error).toFixed(error < 0.1 ? 1 : 0)} %`;
+const formatRatio = (log2Ratio) => `×${(2 ** log2Ratio).toFixed(2)}`;
 
 // The colour scale is symmetric in log2: a ratio of 2 and of 1/2 get the
 // same strength of opposite colours; 1 (unchanged) is neutral.

@@ -1,8 +1,11 @@
 // The edited mesh on screen: a BufferGeometry with positions, normals,
 // selection weights and distortion values, drawn with the surface material.
 // The geometry keeps its own copies of the arrays (the editor's arrays are
-// immutable and shared with the undo history).
-import { BufferAttribute, BufferGeometry, DynamicDrawUsage, Mesh } from 'three';
+// immutable and shared with the undo history). Flat shading and a wireframe
+// overlay are display options; the canvas's data-flat-shading and
+// data-wireframe attributes say what the materials draw (for tests and
+// assistive tools).
+import { BufferAttribute, BufferGeometry, DynamicDrawUsage, Mesh, MeshBasicMaterial } from 'three';
 import { createSurfaceMaterial } from './surface-material.js';
 
 export class MeshView {
@@ -13,11 +16,40 @@ export class MeshView {
   constructor(viewer) {
     this.viewer = viewer;
     this.material = createSurfaceMaterial();
+    this.material.flatShading = false;
+    // The surface is pushed back a little so the wireframe's lines win the depth test.
+    this.material.polygonOffset = true;
+    this.material.polygonOffsetFactor = 1;
+    this.material.polygonOffsetUnits = 1;
+    this.wireframeMaterial = new MeshBasicMaterial({ color: 0x22262c, wireframe: true, transparent: true, opacity: 0.45 });
+    this.wireframeMaterial.visible = false;
+    this.wireframe = null;
+    this.#syncDataset();
+  }
+
+  setFlatShading(flat) {
+    if (this.material.flatShading === flat) return;
+    this.material.flatShading = flat;
+    this.material.needsUpdate = true; // a different program (FLAT_SHADED)
+    this.#syncDataset();
+    this.viewer.requestRender();
+  }
+
+  setWireframe(visible) {
+    this.wireframeMaterial.visible = visible;
+    this.#syncDataset();
+    this.viewer.requestRender();
+  }
+
+  #syncDataset() {
+    const canvas = this.viewer.canvas.dataset;
+    canvas.flatShading = String(this.material.flatShading);
+    canvas.wireframe = String(this.wireframeMaterial.visible && this.wireframe !== null);
   }
 
   setMesh(positions, triangles) {
     if (this.mesh) {
-      this.viewer.scene.remove(this.mesh);
+      this.viewer.scene.remove(this.mesh, this.wireframe);
       this.geometry.dispose();
     }
     const vertexCount = positions.length / 3;
@@ -31,7 +63,10 @@ export class MeshView {
     geometry.computeBoundingSphere();
     this.geometry = geometry;
     this.mesh = new Mesh(geometry, this.material);
-    this.viewer.scene.add(this.mesh);
+    this.wireframe = new Mesh(geometry, this.wireframeMaterial);
+    this.wireframe.renderOrder = 1;
+    this.viewer.scene.add(this.mesh, this.wireframe);
+    this.#syncDataset();
     this.viewer.requestRender();
   }
 
@@ -68,6 +103,17 @@ export class MeshView {
   /** The value drawn at full heat-map colour. */
   setHeatRange(range) {
     this.material.uniforms.uHeatRange.value = range;
+    this.viewer.requestRender();
+  }
+
+  /** A palette of heat-palettes.js. */
+  setHeatPalette(palette) {
+    const uniforms = this.material.uniforms;
+    uniforms.uHeatOneSided.value = palette.oneSided;
+    for (const [uniform, key] of [['uHeatNeutral', 'neutral'], ['uHeatShrunk', 'shrunk'], ['uHeatMiddle', 'middle'], ['uHeatGrown', 'grown']]) {
+      const rgb = palette[key] ?? palette.neutral;
+      uniforms[uniform].value.setRGB(rgb[0] / 255, rgb[1] / 255, rgb[2] / 255);
+    }
     this.viewer.requestRender();
   }
 

@@ -24,6 +24,11 @@ export function createSurfaceMaterial() {
       uShowSelection: { value: true },
       uShowHeatMap: { value: false },
       uHeatRange: { value: 1.0 },
+      uHeatOneSided: { value: false },
+      uHeatNeutral: { value: new Color() },
+      uHeatShrunk: { value: new Color() },
+      uHeatMiddle: { value: new Color() },
+      uHeatGrown: { value: new Color() },
     },
   });
 }

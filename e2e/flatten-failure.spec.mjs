@@ -1,0 +1,57 @@
+// Issue 9 item 7: a patch that cannot be flattened as one piece (a hand, an
+// open box) says so in the warning banner, with what to do; a garment panel
+// does not. The heat map's range adapts to the data (its legend says so) and
+// the fixed 10 % range is one choice away.
+import { expect, meshPath, openApp, saveScreenshot, test, uploadFile } from './support.mjs';
+
+async function flattenInPanel(page, mesh) {
+  const loaded = await uploadFile(page, meshPath(mesh));
+  expect(loaded.ok).toBe(true);
+  await page.getByTestId('mode-flatten').click();
+  await expect(page.getByTestId('export-svg')).toBeDisabled(); // the load dropped the last pattern
+  await page.getByTestId('flatten-run').click();
+  await expect(page.getByTestId('export-svg')).toBeEnabled();
+}
+
+for (const [mesh, reason] of [['open/hand_lowres.obj', /did not converge/], ['open/cube_no_bottom.obj', /area is off by \d+ %/]]) {
+  test(`${mesh} warns that it does not flatten as one piece, and what to do`, async ({ page }) => {
+    const pageErrors = await openApp(page);
+    await flattenInPanel(page, mesh);
+    const warning = page.getByTestId('warning');
+    await expect(warning).toBeVisible();
+    await expect(warning).toContainText(/^Flatten: the patch does not flatten as one piece/);
+    await expect(warning).toContainText(reason);
+    await expect(warning).toContainText('cut it along a seam or add darts');
+    await expect(page.getByTestId('error')).toBeHidden();
+    await saveScreenshot(page, `flatten-failure-${mesh.split('/')[1].replace(/\.\w+$/, '')}`);
+    expect(pageErrors).toEqual([]);
+  });
+}
+
+test('a garment panel flattens without a warning; the heat range adapts and can be fixed', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  await flattenInPanel(page, 'open/hand_lowres.obj');
+  const legend = page.getByTestId('heatmap-legend');
+  await expect(legend).toBeVisible();
+  await expect(page.getByTestId('heatmap-legend-title')).toHaveText('Compression error (flatten)');
+  await expect(page.getByTestId('heatmap-legend-range')).toHaveText('Range adapted to the data (95th percentile)');
+  // The hand is far off nearly everywhere: its adapted range is far above the fixed 10 %.
+  const handTop = await page.getByTestId('heatmap-legend-values').locator('span').last().textContent();
+  expect(Number.parseFloat(handTop)).toBeGreaterThan(50);
+  expect(Number.parseFloat(await page.getByTestId('metric-compression').textContent())).toBeGreaterThan(50);
+
+  await page.locator('#display-heatRange').selectOption('fixed');
+  await expect(page.getByTestId('heatmap-legend-range')).toHaveText('Fixed range');
+  await expect(page.getByTestId('heatmap-legend-values').locator('span')).toHaveText(['0.0 %', '5.0 %', '10 %']);
+  await page.locator('#display-heatRange').selectOption('adaptive');
+  await expect(page.getByTestId('heatmap-legend-values').locator('span').last()).toHaveText(handTop);
+
+  await flattenInPanel(page, 'open/human_woman_torso_front_patch.obj');
+  await expect(page.getByTestId('metric-flipped')).toHaveText('0');
+  await expect(page.getByTestId('warning')).toBeHidden();
+  await expect(page.getByTestId('heatmap-legend-range')).toHaveText('Range adapted to the data (95th percentile)');
+  const torsoTop = await page.getByTestId('heatmap-legend-values').locator('span').last().textContent();
+  expect(Number.parseFloat(torsoTop)).toBeLessThan(Number.parseFloat(handTop));
+  await saveScreenshot(page, 'flatten-torso-adaptive-range');
+  expect(pageErrors).toEqual([]);
+});

@@ -1,0 +1,64 @@
+// The 3D heat map's legend, over the viewport's bottom right corner (above the
+// Frame button, clear of the messages at the top): the
+// quantity's name, a colour bar drawn from the same palette as the surface,
+// the values at its ends and middle, and whether the range is fixed or
+// adapted to the data. Styled inline: an embedded viewer has no stylesheet.
+import { ADAPTIVE_PERCENTILE, paletteColor } from './heat-palettes.js';
+import { rgb } from './pattern-colors.js';
+
+const BAR_STOPS = 9;
+
+export class HeatmapLegend {
+  constructor(viewport) {
+    const text = (testId) => {
+      const span = document.createElement('span');
+      span.dataset.testid = testId;
+      return span;
+    };
+    this.title = text('heatmap-legend-title');
+    this.bar = document.createElement('div');
+    Object.assign(this.bar.style, { height: '10px', borderRadius: '2px', margin: '4px 0 2px' });
+    this.ends = document.createElement('div');
+    this.ends.dataset.testid = 'heatmap-legend-values';
+    Object.assign(this.ends.style, { display: 'flex', justifyContent: 'space-between', gap: '8px' });
+    this.range = text('heatmap-legend-range');
+    this.element = document.createElement('div');
+    this.element.dataset.testid = 'heatmap-legend';
+    this.element.setAttribute('role', 'img');
+    Object.assign(this.element.style, {
+      position: 'absolute', bottom: '52px', right: '10px', width: '200px', padding: '6px 8px',
+      background: '#111419e6', color: '#e6e8eb', font: '12px system-ui, sans-serif', borderRadius: '4px',
+      display: 'flex', flexDirection: 'column', pointerEvents: 'none',
+    });
+    this.element.append(this.title, this.bar, this.ends, this.range);
+    this.element.hidden = true;
+    viewport.append(this.element);
+  }
+
+  /**
+   * @param {object} palette  of heat-palettes.js
+   * @param {{value: number, adaptive: boolean}} range  the value at full colour
+   * @param {(value: number) => string} format  a shown value (log2 ratio or error) as text
+   */
+  show(palette, range, format) {
+    const low = palette.oneSided ? 0 : -1;
+    const stops = [];
+    for (let i = 0; i < BAR_STOPS; i++) {
+      const t = low + ((1 - low) * i) / (BAR_STOPS - 1);
+      stops.push(`${rgb(paletteColor(palette, t))} ${((100 * i) / (BAR_STOPS - 1)).toFixed(1)}%`);
+    }
+    this.bar.style.background = `linear-gradient(to right, ${stops.join(', ')})`;
+    this.title.textContent = palette.title;
+    const values = palette.oneSided ? [0, range.value / 2, range.value] : [-range.value, 0, range.value];
+    this.ends.replaceChildren(...values.map((value) => Object.assign(document.createElement('span'), { textContent: format(value) })));
+    this.range.textContent = range.adaptive
+      ? `Range adapted to the data (${Math.round(100 * ADAPTIVE_PERCENTILE)}th percentile)`
+      : 'Fixed range';
+    this.element.setAttribute('aria-label', `${palette.title}: ${values.map(format).join(' to ')}; ${this.range.textContent}`);
+    this.element.hidden = false;
+  }
+
+  hide() {
+    this.element.hidden = true;
+  }
+}
