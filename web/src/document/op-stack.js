@@ -7,10 +7,12 @@
 // ops are a cache (snapshot-cache.js). After every change the document and
 // the mesh bytes are autosaved (autosave.js).
 //
-// Live re-parameterisation of the LAST op (a slider): the worker's rest pose
-// is put at that op's input and its region selected once; each slider value
-// is then a warm-started one-iteration preview (no commit); the final value
-// is a full replay of the op.
+// Live re-parameterisation (a slider, setParameter with {preview: true}):
+// on the LAST op, the worker's rest pose is put at that op's input and its
+// region selected once; each slider value is then a warm-started
+// one-iteration preview (no commit). On an earlier op, each value replays
+// the ops from it on as previews, from its cached input (#previewReplay).
+// The release (no preview) re-runs the document from the op, as a replay would.
 //
 // Every operation runs after the previous one (#run), and the worker handles
 // requests in order, so the session's rest pose is always the state the page
@@ -30,7 +32,9 @@ export class OpStack {
   #cache = new SnapshotCache();
   #autosave = new Autosave();
   #chain = Promise.resolve();
-  #live = null; // {opId, index, ready: Promise}
+  #live = null; // {opId, index, ready: Promise} (the last op), or {opId, index, replay: true}
+  #waitingReplay = null; // the latest value of an earlier op's slider: {opId, index, op, resolve, reject}
+  #replaying = false;
   #mesh = null; // {name, bytes}
   #restoring = false;
   /** @type {EditDocument|null} */
@@ -114,6 +118,7 @@ export class OpStack {
   #step(change, context) {
     if (!change()) return;
     this.#live = null;
+    this.#dropWaitingPreviews();
     const n = this.document.ops.length;
     const cached = this.#cache.get(n);
     if (cached) {
@@ -195,7 +200,9 @@ export class OpStack {
     } catch (error) {
       return Promise.reject(error);
     }
-    if (preview && index === document.ops.length - 1 && document.ops[index].enabled) return this.#preview(opId, index, op);
+    if (preview && document.ops[index].enabled) {
+      return index === document.ops.length - 1 ? this.#preview(opId, index, op) : this.#previewReplay(opId, index, op);
+    }
     return this.#run(async () => {
       const entry = this.document.ops[this.document.indexOf(opId)];
       const before = entry.op;
@@ -231,6 +238,40 @@ export class OpStack {
     this.#editor.emit('positions', { positions: result.positions, live: true, distortion: result.distortion });
     this.#editor.emit('stats', { ...result.stats, live: true });
     return { iterations: result.stats.iterations, ms: result.stats.ms };
+  }
+
+  // A slider on an earlier op: the ops from it on are replayed from its input
+  // (cached) with the new amounts, each as a cold live preview (the core's
+  // replay option `preview`: a few iterations), without touching the
+  // document or the cache; the release commits the full replay. Only the
+  // latest value waits while one replays.
+  #previewReplay(opId, index, op) {
+    this.#waitingReplay?.resolve(null);
+    return new Promise((resolve, reject) => {
+      this.#waitingReplay = { opId, index, op, resolve, reject };
+      if (!this.#replaying) this.#replayWaiting();
+    });
+  }
+
+  async #replayWaiting() {
+    this.#replaying = true;
+    while (this.#waitingReplay) {
+      const { opId, index, op, resolve, reject } = this.#waitingReplay;
+      this.#waitingReplay = null;
+      await this.#run(async () => {
+        this.#live = { opId, index, replay: true };
+        await this.#restore(index, { show: false });
+        const json = this.document.toJSON();
+        json.ops[index].op = op;
+        return this.#client.request(Request.replay, { document: json, from: index, to: json.ops.length,
+          preview: true, distortion: this.#editor.heatMapKind });
+      }, { keepLive: this.#live?.opId === opId }).then((result) => {
+        if (this.#live?.opId !== opId) return resolve(null);
+        this.#editor.emit('positions', { positions: result.positions, live: true, distortion: result.distortion });
+        resolve({ replayed: result.summary.replayed });
+      }, reject);
+    }
+    this.#replaying = false;
   }
 
   // ---- opening and autosave ------------------------------------------------
@@ -314,12 +355,20 @@ export class OpStack {
     const done = this.#editor.beginBusy();
     const leavingLive = this.#live !== null && !keepLive;
     if (leavingLive) this.#live = null;
+    if (!keepLive) this.#dropWaitingPreviews();
     const running = this.#chain.then(async () => {
       if (leavingLive) await this.#restore(this.document.ops.length, { show: false });
       return work();
     }).finally(done);
     this.#chain = running.catch(() => {});
     return running;
+  }
+
+  // A change (or a commit) supersedes the slider values not solved yet.
+  #dropWaitingPreviews() {
+    this.#client.dropQueuedPreview();
+    this.#waitingReplay?.resolve(null);
+    this.#waitingReplay = null;
   }
 
   #replay(from, to) {

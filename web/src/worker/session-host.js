@@ -63,8 +63,8 @@ export class SessionHost {
 
   // The edit document's ops [from, to) through the core's replay; the result
   // is the session's rest pose, returned as float32 (to draw) and doubles (to cache).
-  replay({ document, from, to, distortion }) {
-    const summary = this.session.replay(document, { from, to });
+  replay({ document, from, to, preview = false, distortion }) {
+    const summary = this.session.replay(document, { from, to, preview });
     const positions = this.session.positions().slice();
     const exact = this.session.positionsExact();
     const result = { positions, exact, summary: { replayed: summary.replayed, skipped: summary.skipped,
