@@ -274,6 +274,41 @@ export class OpStack {
     this.#replaying = false;
   }
 
+  // ---- an op's region ------------------------------------------------------
+
+  /** The weights of op `opId`'s region on its input (where the op evaluates it), to show them. */
+  regionWeights(opId) {
+    return this.#run(async () => {
+      const index = this.#requireDocument().indexOf(opId);
+      await this.#restore(index, { show: false });
+      const { weights } = await this.#client.request(Request.selectDocumentRegion,
+        { document: this.document.toJSON(), opId });
+      this.#editor.selectionState.forget();
+      await this.#restore(this.document.ops.length, { show: false });
+      return weights;
+    });
+  }
+
+  /** The current selection (its rule, else its weights) becomes op `opId`'s region; it and the later ops re-run. */
+  useSelectionAsRegion(opId) {
+    return this.#run(async () => {
+      const index = this.#requireDocument().indexOf(opId);
+      const mesh = this.#editor.requireDocument();
+      const steps = regionSteps(this.#editor.selectionState.ruleFor(this.restVersion), mesh.selection, mesh.selectionCount);
+      const entry = this.document.ops[index];
+      const before = entry.region;
+      entry.region = this.document.regionFor(steps);
+      try {
+        await this.#rerunFrom(index);
+      } catch (error) {
+        entry.region = before;
+        await this.#restore(this.document.ops.length).catch(() => {});
+        throw error;
+      }
+      this.#changed();
+    });
+  }
+
   // ---- opening and autosave ------------------------------------------------
 
   /** Replays `json` on the current mesh, or on `meshBytes` (named json.mesh.name); on failure the current work stays. */

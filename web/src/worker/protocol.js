@@ -54,7 +54,10 @@ export const Request = Object.freeze({
    * live preview, a slider on an earlier op); the result is the rest pose.
    */
   replay: 'replay',
-  /** {document, opId} -> {count}: Session.selectDocumentRegion (a live re-parameterisation's selection). */
+  /**
+   * {document, opId} -> {count, weights: Float32Array}: Session.selectDocumentRegion on the rest
+   * pose (a live re-parameterisation's selection; an op's region shown on the mesh).
+   */
   selectDocumentRegion: 'selectDocumentRegion',
 });
 

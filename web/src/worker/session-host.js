@@ -27,10 +27,7 @@ export class SessionHost {
       [Request.exportPattern]: (payload) => this.exportPattern(payload),
       [Request.resolveOp]: ({ op }) => ({ result: { op: this.session.resolveOp(op) }, transfer: [] }),
       [Request.replay]: (payload) => this.replay(payload),
-      [Request.selectDocumentRegion]: ({ document, opId }) => ({
-        result: { count: this.session.selectDocumentRegion(document, opId) },
-        transfer: [],
-      }),
+      [Request.selectDocumentRegion]: (payload) => this.selectDocumentRegion(payload),
     };
   }
 
@@ -101,6 +98,12 @@ export class SessionHost {
 
   select({ region, options }) {
     const count = this.session.select(region, options);
+    const weights = this.session.selection().slice();
+    return { result: { count, weights }, transfer: [weights.buffer] };
+  }
+
+  selectDocumentRegion({ document, opId }) {
+    const count = this.session.selectDocumentRegion(document, opId);
     const weights = this.session.selection().slice();
     return { result: { count, weights }, transfer: [weights.buffer] };
   }
