@@ -87,9 +87,10 @@ test('an op toggled off is skipped and its amounts re-run the later ops', async 
   }, second.id);
   expect(bitwise(restored, afterThree)).toBe(true);
 
-  // Undo and redo move over the ops.
+  // Undo and redo move over the ops (selecting the op in the panel selected its region: one more step).
   const undone = await page.evaluate(() => {
     const api = window.anisoform;
+    api.undo(); // the second op's region, selected from the panel
     api.undo(); // the shear
     const one = { positions: Array.from(api.positions()), ops: api.document().ops.length };
     api.undo(); // the 'add' select
@@ -102,6 +103,50 @@ test('an op toggled off is skipped and its amounts re-run the later ops', async 
   expect(undone.two.ops).toBe(1);
   expect(bitwise(undone.two.positions, afterOne)).toBe(true);
   expect(pageErrors).toEqual([]);
+});
+
+test("an op's region shows on the mesh and the current selection replaces it; the result replays bitwise", async ({ page, browser }) => {
+  const pageErrors = await openApp(page);
+  // The first op's region as the core selects it on the mesh as loaded (its input).
+  const firstRegion = await page.evaluate(async () => {
+    await window.anisoform.select({ sphere: { center: [0, 0.3, 0.5], radius: 0.4 } }, { falloff: 0.2 });
+    return Array.from(window.anisoform.selection());
+  });
+  const { afterThree, document } = await editSpot(page);
+  const [first] = document.ops;
+
+  // Selecting the op selects its region on the mesh: bitwise those weights, though the mesh has moved since.
+  await page.getByTestId(`op-select-${first.id}`).click();
+  await expect(page.getByTestId(`op-region-${first.id}`)).toHaveText(`Region: ${first.region}`);
+  await expect.poll(async () => bitwise(await page.evaluate(() => Array.from(window.anisoform.selection())), firstRegion))
+    .toBe(true);
+
+  // Another selection becomes the op's region; the op and the later ones re-run.
+  const box = { min: [-1, 0, -1], max: [1, 1, 1] };
+  await page.evaluate((region) => window.anisoform.select({ box: region }, { falloff: 0.1 }), box);
+  const rerun = await armChange(page, 'document');
+  await page.getByTestId(`op-use-selection-${first.id}`).click();
+  await rerun();
+  const changed = await page.evaluate(() => ({ positions: Array.from(window.anisoform.positions()),
+    document: window.anisoform.document() }));
+  const region = changed.document.regions.find((r) => r.name === changed.document.ops[0].region);
+  expect(changed.document.ops[0].region).not.toBe(first.region);
+  expect(region.steps).toEqual([{ region: { box }, falloff: 0.1 }]);
+  expect(changed.document.ops.slice(1)).toEqual(document.ops.slice(1));
+  await expect(page.getByTestId(`op-region-${first.id}`)).toHaveText(`Region: ${region.name}`);
+  expect(bitwise(changed.positions, afterThree)).toBe(false);
+
+  // A fresh page replays the new document to bitwise the same positions.
+  const fresh = await browser.newPage();
+  const freshErrors = await openApp(fresh);
+  const replayed = await fresh.evaluate(async (json) => {
+    await window.anisoform.open(json);
+    return Array.from(window.anisoform.positions());
+  }, changed.document);
+  expect(bitwise(replayed, changed.positions)).toBe(true);
+  await fresh.close();
+  expect(pageErrors).toEqual([]);
+  expect(freshErrors).toEqual([]);
 });
 
 test('the work is autosaved and restored bitwise after a reload; reset clears it', async ({ page }) => {

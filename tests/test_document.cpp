@@ -160,6 +160,28 @@ TEST_CASE("document: replay is deterministic and runs every enabled op", "[docum
     replay_document(stepwise, doc, {1, 3});
     CHECK(positions_bitwise_equal(stepwise.positions(), first));
   }
+  SECTION("a preview replay runs each op as a cold live preview") {
+    Session previewing;
+    load_spool(previewing);
+    const ReplaySummary summary = replay_document(previewing, parsed, {0, parsed.ops.size(), /*preview=*/true});
+    CHECK(summary.last.iterations <= kPreviewIterations);
+    Session preview_by_hand;
+    load_spool(preview_by_hand);
+    for (const DocumentOp& op : parsed.ops) {
+      preview_by_hand.set_selection(std::vector<float>(static_cast<std::size_t>(preview_by_hand.rest().num_vertices()), 0.0f));
+      for (const DocumentRegion& region : parsed.regions) {
+        if (region.name != op.region) continue;
+        for (const DocumentSelectStep& step : region.steps) preview_by_hand.select(step.region, step.falloff, step.mode);
+      }
+      DeformOp edit = op.edit;
+      edit.preview = true;
+      edit.request.warm_start = false;
+      preview_by_hand.deform(edit);
+      preview_by_hand.commit();
+    }
+    CHECK(positions_bitwise_equal(previewing.positions(), preview_by_hand.positions()));
+    CHECK_FALSE(positions_bitwise_equal(previewing.positions(), first));
+  }
   SECTION("the op's region is selected on the rest pose") {
     Session selecting;
     load_spool(selecting);

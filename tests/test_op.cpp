@@ -230,6 +230,8 @@ TEST_CASE("op: the mesh's defaults are resolved by the session's rule", "[op]") 
       Json::parse(R"({"preview":true,"transform":{"twist":{"axis":[0,0,1],"degreesPerUnit":10}}})"));
   const DeformRequest turned = resolve_edit(twist, mesh.V, box, weights);
   CHECK(turned.max_iterations == kPreviewIterations);
+  CHECK_FALSE(turned.final_energy);
+  CHECK(resolve_edit(arap, mesh.V, box, weights).final_energy);
   CHECK(turned.transform.twist_origin == default_twist_origin(mesh.V, weights, Eigen::Vector3d::UnitZ()));
 
   const SessionFlatten flatten = resolve_flatten(flatten_options_from_json(Json::object()), mesh.V);

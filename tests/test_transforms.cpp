@@ -102,7 +102,11 @@ TEST_CASE("transforms: the polar positive part removes exactly the rotation", "[
   TransformSpec scale;
   scale.su = 0.7;
   const Eigen::Matrix3d S = element_transform(scale, cu, cv, n, 1.0, p0, {0.7, 1.0});
-  CHECK((polar_positive_part(S) - S).norm() < 1e-14);
+  CHECK(polar_positive_part(S) == S);
+  // A symmetric map that is not positive definite is not: its positive part is |T|.
+  const Eigen::Matrix3d flip = Eigen::Vector3d(2.0, -1.0, 0.5).asDiagonal();
+  const Eigen::Matrix3d unflipped = Eigen::Vector3d(2.0, 1.0, 0.5).asDiagonal();
+  CHECK((polar_positive_part(flip) - unflipped).norm() < 1e-14);
 }
 
 TEST_CASE("transforms: invalid amounts are refused with the field named", "[transforms]") {

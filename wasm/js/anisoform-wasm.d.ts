@@ -356,6 +356,8 @@ export interface ReplayOptions {
   from?: number;
   /** One past the last op to run (default: all). */
   to?: number;
+  /** Each op as a live preview (at most 4 iterations, cold): a quick look, never a commit (default false). */
+  preview?: boolean;
 }
 
 export interface ReplaySummary {

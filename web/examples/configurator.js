@@ -3,101 +3,101 @@
 // and three sliders set three edits of its upper part: height (stretch along
 // the spool's axis), twist (about the axis) and thickness (across it).
 //
-// Every change is solved again from the original spool: the page steps back
-// to the base mesh with api.undo() (which restores it exactly) and commits
-// the three edits anew with api.deform(). While a slider moves ('input') the
-// edits run a few iterations (a preview); when it is let go ('change') they
-// are solved fully, so a slider position always gives the same shape. Moves
-// that arrive while a solve runs are coalesced: only the latest is solved.
+// The three edits are made once, at the sliders' neutral values, and become
+// the ops of the modeller's edit document; a slider then only changes its
+// op's amount with api.setParameter: while it moves ('input') as a live
+// preview, and when it is let go ('change') committed, which re-solves the
+// op and the ones after it from the op's input. A slider position therefore
+// always gives the same shape (the document's replay), and the document
+// always holds exactly three ops.
 import 'anisoform';
 
 const AXIS = [1, 0, 0]; // the spool's axis of revolution (x in spool.off)
-const PREVIEW_ITERATIONS = 4; // as the modeller's own live drags
-const FULL_ITERATIONS = 50; // the api's default for a committed edit
 const form = document.querySelector('[data-testid=configurator]');
 const status = form.querySelector('[data-testid=status]');
 const sliders = { height: form.elements.height, twist: form.elements.twist, thickness: form.elements.thickness };
 const { api } = document.querySelector('anisoform-modeller');
 
-let applied = 0; // committed edits above the base mesh (and its selection)
-let solving = false;
-let wanted = null;
-let updates = 0;
-
 await api.ready;
 const [lowest, highest] = extentAlong(api.positions(), AXIS);
 const length = highest - lowest;
+
+// Each slider's edit: its transform at a slider value, given the op's
+// transform as the document stores it (the twist keeps its resolved origin).
+const EDITS = {
+  height: (stored, value) => ({ scale: [value, 1] }),
+  twist: (stored, value) => ({ twist: { axis: AXIS, ...stored.twist, degreesPerUnit: value / length } }),
+  thickness: (stored, value) => ({ scale: [1, value] }),
+};
+
 // The upper part: everything above the middle, blended over a fifth of the length.
 await api.select({ box: { min: [0, -10, -10], max: [10, 10, 10] } }, { falloff: 0.2 * length });
+const ops = {};
+for (const [name, transformAt] of Object.entries(EDITS)) {
+  await api.deform({ method: 'anarap', direction: { type: 'global', vector: AXIS },
+    transform: transformAt({}, Number(sliders[name].value)) });
+  const op = api.document().ops.at(-1);
+  ops[name] = { id: op.id, stored: op.op.transform };
+}
+
+let updates = 0;
+let committing = 0;
+// Every shape the modeller shows, preview or committed, is one update.
+api.on('positions', ({ live }) => {
+  updates++;
+  form.dataset.updates = String(updates);
+  form.dataset.solved = live ? 'preview' : 'full';
+});
 setState('idle', 'Ready');
 
-form.addEventListener('input', () => {
+form.addEventListener('input', (event) => {
   showValues();
-  request(PREVIEW_ITERATIONS);
+  if (event.target.name in EDITS) setAmount(event.target.name, { preview: true });
 });
-form.addEventListener('change', () => request(FULL_ITERATIONS));
+form.addEventListener('change', (event) => {
+  if (event.target.name in EDITS) setAmount(event.target.name);
+});
 form.addEventListener('reset', () => {
   // The form puts the default values back after this event.
   setTimeout(() => {
     showValues();
-    request(FULL_ITERATIONS);
+    for (const name of Object.keys(EDITS)) setAmount(name);
   });
 });
 form.querySelector('[data-testid=export-glb]').addEventListener('click', exportGlb);
 showValues();
 
-function values() {
-  return Object.fromEntries(Object.entries(sliders).map(([name, slider]) => [name, Number(slider.value)]));
-}
-
 function showValues() {
-  const { height, twist, thickness } = values();
-  form.querySelector('output[for=height]').value = `${height.toFixed(2)}×`;
-  form.querySelector('output[for=twist]').value = `${twist}°`;
-  form.querySelector('output[for=thickness]').value = `${thickness.toFixed(2)}×`;
+  const value = (name) => Number(sliders[name].value);
+  form.querySelector('output[for=height]').value = `${value('height').toFixed(2)}×`;
+  form.querySelector('output[for=twist]').value = `${value('twist')}°`;
+  form.querySelector('output[for=thickness]').value = `${value('thickness').toFixed(2)}×`;
 }
 
-// The edits for the slider values; one at its neutral value is left out, so
-// the defaults give the original spool exactly.
-function edits({ height, twist, thickness }, maxIterations) {
-  const edit = (transform) => ({ method: 'anarap', direction: { type: 'global', vector: AXIS }, transform, maxIterations });
-  const list = [];
-  if (height !== 1) list.push(edit({ scale: [height, 1] }));
-  if (twist !== 0) list.push(edit({ twist: { axis: AXIS, degreesPerUnit: twist / length } }));
-  if (thickness !== 1) list.push(edit({ scale: [1, thickness] }));
-  return list;
-}
-
-function request(maxIterations) {
-  wanted = { values: values(), maxIterations };
-  if (!solving) solveLatest();
-}
-
-async function solveLatest() {
-  solving = true;
-  setState('solving', 'Solving…');
-  try {
-    while (wanted) {
-      const target = wanted;
-      wanted = null;
-      const started = performance.now();
-      while (applied > 0 && api.undo()) applied--;
-      for (const op of edits(target.values, target.maxIterations)) {
-        await api.deform(op);
-        applied++;
-      }
-      updates++;
-      form.dataset.updates = String(updates);
-      const what = target.maxIterations === FULL_ITERATIONS ? 'Solved' : 'Preview';
-      status.textContent = `${what} in ${(performance.now() - started).toFixed(0)} ms`;
-      form.dataset.solved = what === 'Solved' ? 'full' : 'preview';
-    }
-    setState('idle');
-  } catch (error) {
-    setState('idle', `Could not apply the change: ${error.message}`);
-  } finally {
-    solving = false;
+// A preview that a newer value superseded resolves with null: nothing to say.
+async function setAmount(name, { preview = false } = {}) {
+  const { id, stored } = ops[name];
+  const transform = EDITS[name](stored, Number(sliders[name].value));
+  if (preview) {
+    api.setParameter(id, { transform }, { preview: true }).catch(showFailure);
+    return;
   }
+  committing++;
+  setState('solving', 'Solving…');
+  const started = performance.now();
+  try {
+    await api.setParameter(id, { transform });
+    if (committing === 1) setState('idle', `Solved in ${(performance.now() - started).toFixed(0)} ms`);
+  } catch (error) {
+    showFailure(error);
+  } finally {
+    committing--;
+  }
+}
+
+function showFailure(error) {
+  status.textContent = `Could not apply the change: ${error.message}`;
+  if (committing <= 1) form.dataset.state = 'idle';
 }
 
 async function exportGlb() {

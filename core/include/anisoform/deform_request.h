@@ -73,6 +73,11 @@ struct DeformRequest {
   // exactly this many steps instead of converging.
   int rotation_steps = 1;
   bool warm_start = true;    // start from the previous result of the same setup
+  // AnARAP / ARAP: false skips the local step after the last solve, which
+  // only measures the final energy (the positions are the same); the energy
+  // reported is then the one before the last solve, an upper bound. A live
+  // preview does not need it: the next preview refits the rotations first.
+  bool final_energy = true;
 };
 
 struct DeformResult {

@@ -93,12 +93,16 @@ DeformOp resolve_for_document(const Session& session, const DeformOp& edit);
 // Which ops replay runs: [from, to) of the document's list. from == 0 starts
 // from the mesh as loaded; from > 0 starts from the session's rest pose (the
 // caller has put op `from`'s input there, e.g. from its cache).
+// preview: each op runs as a live preview does (at most kPreviewIterations,
+// still cold): a quick look at the document while a slider on an earlier op
+// moves; never what a commit stores.
 struct ReplayRange {
   std::size_t from = 0;
   std::size_t to = static_cast<std::size_t>(-1);
+  bool preview = false;
 };
 
-// {from?, to?} (the hosts' replay options): integers >= 0.
+// {from?, to?, preview?} (the hosts' replay options): integers >= 0, a boolean.
 ReplayRange replay_range_from_json(const Json& options);
 
 struct ReplaySummary {

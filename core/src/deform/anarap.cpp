@@ -219,13 +219,17 @@ void AnArapSolver::global_rhs(Positions& b) const {
 }
 
 int AnArapSolver::run(const LaplacianSolver& solver, Positions& V, int max_iterations,
-                        double tolerance, std::vector<double>& history) {
+                        double tolerance, std::vector<double>& history, bool final_energy) {
   Positions b;
   double previous = local_step(V);
   int iterations = 0;
   for (int it = 0; it < max_iterations; ++it) {
     global_rhs(b);
     solver.solve(b, V);
+    if (!final_energy && it + 1 == max_iterations) {
+      history.push_back(previous);
+      return ++iterations;
+    }
     const double energy = local_step(V);
     history.push_back(energy);
     ++iterations;

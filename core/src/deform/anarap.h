@@ -45,8 +45,10 @@ class AnArapSolver {
   // stops when the relative energy change falls below `tolerance` (or never,
   // when tolerance < 0). Returns iterations run; history gets E after each
   // iteration's local step (E(V_k, R_k), non-increasing for symmetric T).
+  // Without `final_energy`, the local step after the last solve is skipped
+  // (V is the same): the last entry is then the energy before that solve.
   int run(const LaplacianSolver& solver, Positions& V, int max_iterations, double tolerance,
-          std::vector<double>& history);
+          std::vector<double>& history, bool final_energy = true);
 
  private:
   void covariance_spokes(const Positions& V, std::vector<Eigen::Matrix3d>& A,

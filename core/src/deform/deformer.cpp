@@ -284,7 +284,7 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
     for (int p : request.pins) result.V.row(p) = unit_.V.row(p);
     const int steps = rotational ? request.rotation_steps : request.max_iterations;
     result.iterations = iterations->run(solver, result.V, steps, rotational ? -1.0 : request.tolerance,
-                                        result.energy_history);
+                                        result.energy_history, request.final_energy);
     result.energy = result.energy_history.empty() ? 0.0 : result.energy_history.back();
     result.converged = rotational || result.iterations < steps;
     realign(unit_, gauge, affected, Alignment::Rigid, result.V);

@@ -16,7 +16,7 @@ const Keys kDocumentMeshKeys{"name", "vertices", "triangles", "hash"};
 const Keys kDocumentRegionKeys{"name", "steps"};
 const Keys kDocumentStepKeys{"region", "falloff", "mode"};
 const Keys kDocumentOpKeys{"id", "label", "enabled", "region", "op"};
-const Keys kReplayOptionKeys{"from", "to"};
+const Keys kReplayOptionKeys{"from", "to", "preview"};
 
 std::string text_field(const Json& value, const std::string& field) {
   if (!value.is_string()) json_fields::refuse(field, "must be a string, got " + json_fields::describe(value));
@@ -157,6 +157,7 @@ ReplayRange replay_range_from_json(const Json& options) {
   ReplayRange range;
   if (has(options, "from")) range.from = static_cast<std::size_t>(integer_at_least(options["from"], 0, "replay options.from"));
   if (has(options, "to")) range.to = static_cast<std::size_t>(integer_at_least(options["to"], 0, "replay options.to"));
+  if (has(options, "preview")) range.preview = flag(options["preview"], "replay options.preview");
   return range;
 }
 

@@ -114,10 +114,10 @@ ReplaySummary replay_document(Session& session, const EditDocument& document, co
     }
     naming_document_part(document_op_name(document, i), [&] {
       apply_document_region(scratch, document_region_named(document, op.region));
-      // Always a full, cold solve: the result must not depend on what was
-      // previewed before (or on whether anything was).
+      // Always a cold solve: the result must not depend on what was previewed
+      // before (or on whether anything was); a full one unless previewing.
       DeformOp edit = op.edit;
-      edit.preview = false;
+      edit.preview = range.preview;
       edit.request.warm_start = false;
       summary.last = scratch.deform(edit);
       scratch.commit();

@@ -59,7 +59,10 @@ DeformRequest resolve_edit(const DeformOp& edit, const Positions& rest, const Bo
     request.transform.twist_origin = default_twist_origin(rest, weights, request.transform.twist_axis);
   }
   if (request.method == Method::Arap && request.handles.empty()) arap_handles_from_selection(weights, request);
-  if (edit.preview) request.max_iterations = std::min(request.max_iterations, kPreviewIterations);
+  if (edit.preview) {
+    request.max_iterations = std::min(request.max_iterations, kPreviewIterations);
+    request.final_energy = false;
+  }
   return request;
 }
 

@@ -143,8 +143,10 @@ export interface Anisoform {
   open(document: EditDocument, meshBytes?: ArrayBuffer | Uint8Array): Promise<void>;
   /**
    * Merges `transform` into op `opId`'s and re-solves from that op's input, re-running the later ops.
-   * {preview: true} on the last op: a live, warm-started preview only (a slider being dragged); call
-   * again without it on release to commit the value.
+   * {preview: true}: a live preview only (a slider being dragged), the document unchanged; on the last
+   * op a warm-started solver iteration, on an earlier op a quick replay of the ops from it on (each a
+   * few-iteration preview). Call again without it on release to commit the value. A preview a newer
+   * value superseded resolves with null.
    */
   setParameter(opId: string, patch: { transform: Transform },
     options?: { preview?: boolean }): Promise<unknown>;

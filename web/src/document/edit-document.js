@@ -1,6 +1,6 @@
 // The page's edit document (core document.h, docs/document.schema.json): the
 // base mesh, named regions and the ordered ops, plus the ops undone (the redo
-// list). Plain data; the core checks and replays it (op-stack.js sends it).
+// list). Plain data; the core checks and replays it (op-runner.js sends it).
 // toJSON() is what api.document() returns and what autosave stores.
 export const DOCUMENT_FORMAT = 'anisoform-document';
 export const DOCUMENT_VERSION = 1;

@@ -1,6 +1,8 @@
 // The side panel's list of the edit document's ops (a non-destructive stack,
 // like Blender's modifiers): each op can be toggled off and on, selected, and
 // its amounts edited; the later ops re-run (api.setOpEnabled, api.setParameter).
+// Selecting an op selects its region on the mesh (as the op evaluates it, on
+// its input), and the current selection can replace that region.
 import { h, section } from '../ui/dom.js';
 
 // The amounts of a transform an op's row offers, as [label, read, write].
@@ -36,6 +38,23 @@ export function opsPanel({ api, editor }) {
         })));
   };
 
+  const regionControls = (entry) => h('div', { className: 'op-region' },
+    h('span', { 'data-testid': `op-region-${entry.id}` }, `Region: ${entry.region}`),
+    h('button', {
+      type: 'button',
+      'data-testid': `op-use-selection-${entry.id}`,
+      title: "The current selection replaces this edit's region; it and the later edits re-run",
+      onclick: () => editor.ops.useSelectionAsRegion(entry.id)
+        .catch((error) => editor.report(error, 'The region was not changed')),
+    }, "Use current selection as this op's region"));
+
+  // The op's region becomes the selection (one undoable step), so it shows on the mesh.
+  const showRegion = (entry) => editor.ops.regionWeights(entry.id)
+    .then((weights) => {
+      if (selected === entry.id) editor.setSelection(weights, `Select the region of ${entry.label || entry.id}`);
+    })
+    .catch((error) => editor.report(error, 'The region could not be shown'));
+
   const row = (entry) => {
     const isSelected = entry.id === selected;
     return h('li', { className: `op-row${isSelected ? ' selected' : ''}${entry.enabled ? '' : ' disabled'}`, 'data-op': entry.id },
@@ -52,9 +71,10 @@ export function opsPanel({ api, editor }) {
         onclick: () => {
           selected = isSelected ? null : entry.id;
           render();
+          if (selected) showRegion(entry);
         },
       }, entry.label || entry.id),
-      isSelected ? h('div', { className: 'op-amounts' }, amountFields(entry)) : null);
+      isSelected ? h('div', { className: 'op-amounts' }, amountFields(entry), regionControls(entry)) : null);
   };
 
   function render() {

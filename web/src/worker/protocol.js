@@ -49,11 +49,15 @@ export const Request = Object.freeze({
   /** {op} -> {op}: the op as the edit document stores it (Session.resolveOp: on the rest pose and selection). */
   resolveOp: 'resolveOp',
   /**
-   * {document, from, to, distortion?} -> {positions, exact: Float64Array, summary, distortion?}:
-   * Session.replay of ops [from, to) (from > 0: from the session's rest pose); the result is the rest pose.
+   * {document, from, to, preview?, distortion?} -> {positions, exact: Float64Array, summary, distortion?}:
+   * Session.replay of ops [from, to) (from > 0: from the session's rest pose; preview: each op as a
+   * live preview, a slider on an earlier op); the result is the rest pose.
    */
   replay: 'replay',
-  /** {document, opId} -> {count}: Session.selectDocumentRegion (a live re-parameterisation's selection). */
+  /**
+   * {document, opId} -> {count, weights: Float32Array}: Session.selectDocumentRegion on the rest
+   * pose (a live re-parameterisation's selection; an op's region shown on the mesh).
+   */
   selectDocumentRegion: 'selectDocumentRegion',
 });
 

@@ -27,10 +27,7 @@ export class SessionHost {
       [Request.exportPattern]: (payload) => this.exportPattern(payload),
       [Request.resolveOp]: ({ op }) => ({ result: { op: this.session.resolveOp(op) }, transfer: [] }),
       [Request.replay]: (payload) => this.replay(payload),
-      [Request.selectDocumentRegion]: ({ document, opId }) => ({
-        result: { count: this.session.selectDocumentRegion(document, opId) },
-        transfer: [],
-      }),
+      [Request.selectDocumentRegion]: (payload) => this.selectDocumentRegion(payload),
     };
   }
 
@@ -63,8 +60,8 @@ export class SessionHost {
 
   // The edit document's ops [from, to) through the core's replay; the result
   // is the session's rest pose, returned as float32 (to draw) and doubles (to cache).
-  replay({ document, from, to, distortion }) {
-    const summary = this.session.replay(document, { from, to });
+  replay({ document, from, to, preview = false, distortion }) {
+    const summary = this.session.replay(document, { from, to, preview });
     const positions = this.session.positions().slice();
     const exact = this.session.positionsExact();
     const result = { positions, exact, summary: { replayed: summary.replayed, skipped: summary.skipped,
@@ -101,6 +98,12 @@ export class SessionHost {
 
   select({ region, options }) {
     const count = this.session.select(region, options);
+    const weights = this.session.selection().slice();
+    return { result: { count, weights }, transfer: [weights.buffer] };
+  }
+
+  selectDocumentRegion({ document, opId }) {
+    const count = this.session.selectDocumentRegion(document, opId);
     const weights = this.session.selection().slice();
     return { result: { count, weights }, transfer: [weights.buffer] };
   }

@@ -1,0 +1,114 @@
+// The edit document in and out of the page: open() replays a document (on
+// the current mesh or on given mesh bytes) and makes it the stack's; after
+// every change the document is announced ('document') and autosaved with the
+// mesh bytes (autosave.js), and a reload restores that work.
+import { EditDocument } from './edit-document.js';
+import { Autosave } from './autosave.js';
+
+const badParameter = (message) => Object.assign(new Error(message), { code: 'bad-parameter' });
+
+export class DocumentPersistence {
+  #editor;
+  #runner;
+  #run;
+  #stack;
+  #historyEntry;
+  #autosave = new Autosave();
+  /** The base mesh as loaded: {name, bytes}. */
+  mesh = null;
+  /** True while the autosaved mesh is being loaded (its load must not replace the autosave). */
+  restoring = false;
+
+  /**
+   * stack: the OpStack (its `document` is read and replaced here); runner:
+   * its OpRunner; run(work): its one-at-a-time runner; historyEntry(label):
+   * the undo entry of an op.
+   */
+  constructor({ editor, stack, runner, run, historyEntry }) {
+    this.#editor = editor;
+    this.#stack = stack;
+    this.#runner = runner;
+    this.#run = run;
+    this.#historyEntry = historyEntry;
+  }
+
+  /** Replays `json` on the current mesh, or on `meshBytes` (named json.mesh.name); on failure the current work stays. */
+  open(json, meshBytes) {
+    const editor = this.#editor;
+    return this.#run(async () => {
+      if (!json || typeof json !== 'object') throw badParameter('open() needs an edit document object');
+      const current = this.#stack.document;
+      const previous = current && { json: current.toJSON(), mesh: this.mesh };
+      if (meshBytes !== undefined) await editor.load(meshBytes, json.mesh?.name);
+      else if (!this.#stack.document) throw badParameter('no mesh is loaded yet');
+      let result;
+      try {
+        result = await this.#runner.replay(0, json.ops?.length ?? 0, { json });
+      } catch (error) {
+        // The core's replay leaves the session as it was; only a mesh loaded for it is undone.
+        if (meshBytes !== undefined && previous) await this.#reopen(previous);
+        throw error;
+      }
+      this.#adopt(json, result);
+    });
+  }
+
+  async #reopen({ json, mesh }) {
+    await this.#editor.load(mesh.bytes, mesh.name);
+    this.#adopt(json, await this.#runner.replay(0, json.ops.length, { json, distortion: null }));
+  }
+
+  #adopt(json, result) {
+    const cache = this.#runner.cache;
+    const state0 = cache.get(0);
+    const document = EditDocument.fromJSON(json);
+    this.#stack.document = document;
+    cache.clear();
+    cache.set(0, state0);
+    this.#runner.show(document.ops.length, result);
+    const history = this.#editor.history;
+    history.clear();
+    for (const entry of document.ops) history.push(this.#historyEntry(entry.label));
+    this.changed();
+  }
+
+  /** Announces the document ('document', and a 'change' unless change is false). */
+  announce({ change = true } = {}) {
+    this.#editor.emit('document', this.#stack.document);
+    if (change) this.#editor.emit('change', { reason: 'document' });
+  }
+
+  /** Announces the document and autosaves it with the mesh bytes. */
+  changed({ change = true } = {}) {
+    this.announce({ change });
+    const { name, bytes } = this.mesh;
+    this.#autosave.save({ document: this.#stack.document.toJSON(), meshName: name, meshBytes: bytes })
+      .catch((error) => this.#editor.report(error, 'Autosave'));
+  }
+
+  /** From now on the work is autosaved (the standalone site; createModeller's `autosave`). */
+  enableAutosave() {
+    this.#autosave.enabled = true;
+  }
+
+  /** Restores the autosaved work, if any; resolves true when a saved mesh was loaded. */
+  async restoreAutosave() {
+    const record = await this.#autosave.load().catch((error) => {
+      this.#editor.report(error, 'Autosave');
+      return null;
+    });
+    if (!record) return false;
+    this.restoring = true;
+    try {
+      await this.#editor.load(record.meshBytes, record.meshName);
+    } finally {
+      this.restoring = false;
+    }
+    await this.open(record.document).catch((error) => this.#editor.report(error, 'The saved work could not be replayed'));
+    return true;
+  }
+
+  clearAutosave() {
+    return this.#autosave.clear();
+  }
+}

@@ -1,0 +1,91 @@
+// Runs the op stack's operations one at a time and puts the document's
+// states in the solver worker: state n is the positions after the first n
+// ops, taken from the snapshot cache when it has them, else replayed by the
+// core from the nearest cached state (Session.replay), so that every state
+// is bitwise what a replay of the document gives.
+//
+// Every operation runs after the previous one (run), and the worker handles
+// requests in order, so the session's rest pose is always the state the page
+// last put there.
+import { Request } from '../worker/protocol.js';
+import { SnapshotCache } from './snapshot-cache.js';
+
+export class OpRunner {
+  #editor;
+  #client;
+  #document;
+  #dropPattern;
+  #chain = Promise.resolve();
+  cache = new SnapshotCache();
+  /** Bumped whenever the rest pose changes: a selection rule holds for one rest pose only. */
+  restVersion = 0;
+
+  /** document: () => the EditDocument the states belong to. */
+  constructor({ editor, client, document, dropPattern }) {
+    this.#editor = editor;
+    this.#client = client;
+    this.#document = document;
+    this.#dropPattern = dropPattern;
+  }
+
+  /** Runs `work` after every operation before it; busy from the call on (undo, redo and gestures wait). */
+  run(work) {
+    const done = this.#editor.beginBusy();
+    const running = this.#chain.then(work).finally(done);
+    this.#chain = running.catch(() => {});
+    return running;
+  }
+
+  /**
+   * The core's replay of ops [from, to) of `json` (default: the document)
+   * from the worker's rest pose; `preview`: each op as a live preview;
+   * `distortion`: the heat map's kind to send back (default: the one shown).
+   */
+  replay(from, to, { json = this.#document().toJSON(), preview = false, distortion = this.#editor.heatMapKind } = {}) {
+    return this.#client.request(Request.replay, { document: json, from, to, preview, distortion });
+  }
+
+  /** Puts positions (a cached state) in the worker as its rest pose. */
+  setPositions({ exact }) {
+    const copy = exact.slice();
+    return this.#client.request(Request.setPositions, { positions: copy }, [copy.buffer]);
+  }
+
+  /** Puts state n in the worker (its rest pose) and, unless show is false, on screen. */
+  async restore(n, { show = true } = {}) {
+    const cached = this.cache.get(n);
+    if (cached) {
+      await this.setPositions(cached);
+      if (show) this.show(n, cached);
+      return;
+    }
+    const from = this.cache.nearest(n);
+    if (from > 0) await this.setPositions(this.cache.get(from));
+    const result = await this.replay(from, n);
+    this.cache.set(n, { positions: result.positions, exact: result.exact });
+    if (show) this.show(n, result);
+  }
+
+  /** Re-runs the document from op `index` on, op by op, so that every later state is cached again for undo. */
+  async rerunFrom(index) {
+    this.cache.dropAfter(index);
+    await this.restore(index, { show: false });
+    const n = this.#document().ops.length;
+    for (let state = index; state < n - 1; state++) {
+      const { positions, exact } = await this.replay(state, state + 1);
+      this.cache.set(state + 1, { positions, exact });
+    }
+    this.show(n, await this.replay(n - 1, n));
+  }
+
+  /** Shows state n (and caches it, given its exact positions): the mesh's positions are now those. */
+  show(n, { positions, exact, distortion }) {
+    if (exact) this.cache.set(n, { positions, exact });
+    this.restVersion++;
+    this.#dropPattern();
+    const mesh = this.#editor.requireDocument();
+    mesh.positions = positions;
+    this.#editor.emit('positions', { positions, live: false, distortion });
+    this.#editor.emit('change', { reason: 'positions' });
+  }
+}
