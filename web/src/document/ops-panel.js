@@ -42,6 +42,7 @@ export function opsPanel({ api, editor }) {
     h('span', { 'data-testid': `op-region-${entry.id}` }, `Region: ${entry.region}`),
     h('button', {
       type: 'button',
+      className: 'button',
       'data-testid': `op-use-selection-${entry.id}`,
       title: "The current selection replaces this edit's region; it and the later edits re-run",
       onclick: () => editor.ops.useSelectionAsRegion(entry.id)
