@@ -42,6 +42,8 @@ struct DeformArguments {
   std::string iterations;
   std::string tolerance;
   std::string elements;
+  std::string rotations;
+  std::string rotation_coupling;
   std::string op;
   bool ascii = false;
 };
@@ -81,7 +83,8 @@ std::vector<std::pair<const char*, const std::string*>> op_flags(const DeformArg
           {"--thicken", &args.thicken},     {"--shear", &args.shear},         {"--rotate", &args.rotate},
           {"--twist", &args.twist},         {"--pin", &args.pin},             {"--handle", &args.handle},
           {"--move", &args.move},           {"--iterations", &args.iterations},
-          {"--tolerance", &args.tolerance}, {"--elements", &args.elements}};
+          {"--tolerance", &args.tolerance}, {"--elements", &args.elements},
+          {"--rotations", &args.rotations}, {"--rotation-coupling", &args.rotation_coupling}};
 }
 
 // --op FILE: the public op, parsed by the core (op.h) as the browser's is.
@@ -130,9 +133,9 @@ DeformOp edit_from_flags(const DeformArguments& args, DeformPlan& plan) {
   if (!args.iterations.empty()) {
     const int iterations = parse_integer(args.iterations, "--iterations");
     if (iterations < 1) fail(ErrorCode::BadParameter, "--iterations: must be at least 1, got " + args.iterations);
-    // One count for both: AnARAP iterates to the tolerance (capped) unless T
-    // has a rotational part, which has no fixed point and runs exactly this
-    // many steps instead (DeformRequest::rotation_steps).
+    // One count for both: AnARAP iterates to the tolerance (capped), except
+    // that the paper's rotation scheme (--rotations steps), which has no fixed
+    // point, runs exactly this many steps (DeformRequest::rotation_steps).
     request.max_iterations = iterations;
     request.rotation_steps = iterations;
   }
@@ -141,6 +144,13 @@ DeformOp edit_from_flags(const DeformArguments& args, DeformPlan& plan) {
     if (request.tolerance < 0.0) fail(ErrorCode::BadParameter, "--tolerance: must be >= 0, got " + args.tolerance);
   }
   if (!args.elements.empty()) request.elements = parse_elements(args.elements);
+  if (!args.rotations.empty()) request.rotations = rotation_scheme_from_name(args.rotations, "--rotations");
+  if (!args.rotation_coupling.empty()) {
+    request.rotation_coupling = parse_number(args.rotation_coupling, "--rotation-coupling");
+    if (!(request.rotation_coupling > 0.0)) {
+      fail(ErrorCode::BadParameter, "--rotation-coupling: must be > 0, got " + args.rotation_coupling);
+    }
+  }
   return edit;
 }
 
@@ -320,8 +330,8 @@ void add_deform_options(CLI::App& deform, DeformArguments& args) {
       ->type_name("REGION");
   deform.add_option("--move", args.move, "Offset of the --handle vertices")->type_name("DX,DY,DZ");
   deform.add_option("--iterations", args.iterations,
-                    "AnARAP/ARAP iteration cap, >= 1 (default 50); with a rotation, twist or "
-                    "shear (AnARAP), the number of steps (default 1)")
+                    "AnARAP/ARAP iteration cap, >= 1 (default 50); with --rotations steps and a "
+                    "rotation, twist or shear, the number of steps")
       ->type_name("N");
   deform.add_option("--tolerance", args.tolerance,
                     "Relative energy change that ends the iterations, >= 0 (default 1e-6)")
@@ -329,6 +339,13 @@ void add_deform_options(CLI::App& deform, DeformArguments& args) {
   deform.add_option("--elements", args.elements,
                     "AnARAP/ARAP energy elements: spokes (default) | spokes-rims")
       ->type_name("KIND");
+  deform.add_option("--rotations", args.rotations,
+                    "AnARAP with a rotation, twist or shear: coupled (default: neighbouring rotations "
+                    "tied, converges) | steps (the paper's scheme: --iterations steps from the rest pose)")
+      ->type_name("SCHEME");
+  deform.add_option("--rotation-coupling", args.rotation_coupling,
+                    "coupled rotations: how strongly neighbours are tied, > 0 (default 1)")
+      ->type_name("ALPHA");
   deform.add_flag("--ascii", args.ascii, "Write PLY and STL as text instead of binary");
 }
 

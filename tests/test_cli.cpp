@@ -301,6 +301,9 @@ TEST_CASE("cli: bad command lines and parameters exit with status 2", "[cli]") {
       {"deform", in, out, "--iterations", "2.5"},
       {"deform", in, out, "--tolerance", "-1e-3"},
       {"deform", in, out, "--elements", "rims"},
+      {"deform", in, out, "--rotations", "spin"},
+      {"deform", in, out, "--rotation-coupling", "0"},
+      {"deform", in, out, "--rotation-coupling", "nan"},
       {"deform", in, temp_path("out.xyz")},                 // unknown output format
       {"deform", in, "/nonexistent-directory/out.obj"},     // unwritable output
       {"deform", in, out, "--scale", "1.2", "--scale", "1.3"},  // given twice

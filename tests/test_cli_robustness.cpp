@@ -219,3 +219,33 @@ TEST_CASE("cli robustness: --iterations sets the steps of a rotation and twist, 
   CHECK(converged.second["iterations"] < 300);
   CHECK(max_position_difference(converged.first, more.first) == 0.0);
 }
+
+TEST_CASE("cli robustness: --rotations coupled converges, --rotations steps turns again at every step",
+          "[cli][robustness]") {
+  CliScratch dir("rotations");
+  const std::string in = mesh_path("formats/spot_lowres.obj");
+  const auto deform_with = [&](const std::string& scheme, const std::string& iterations) {
+    const std::string out = dir.file("out_" + std::to_string(dir.entry_count()) + ".obj");
+    const nlohmann::json result = stdout_json(run_expecting(
+        {"deform", in, out, "--rotate", "n:20", "--select", "sphere:0,0.5,0.8,0.3", "--rotations", scheme,
+         "--iterations", iterations},
+        0));
+    return std::make_pair(out, result);
+  };
+  const double size = aniso::bounding_box(aniso::read_mesh(in).mesh.V).diagonal();
+  const auto coupled = deform_with("coupled", "400");
+  const auto coupled_more = deform_with("coupled", "800");
+  CHECK(coupled.second["converged"] == true);
+  CHECK(max_position_difference(coupled.first, coupled_more.first) == 0.0);
+  const auto steps = deform_with("steps", "20");
+  const auto more_steps = deform_with("steps", "40");
+  CHECK(steps.second["iterations"] == 20);
+  CHECK(max_position_difference(steps.first, more_steps.first) > 1e-4 * size);  // no fixed point
+  CHECK(max_position_difference(coupled.first, steps.first) > 1e-3 * size);
+  // The coupling is passed on: a much stronger one gives another shape.
+  const std::string stiff = dir.file("stiff.obj");
+  run_expecting({"deform", in, stiff, "--rotate", "n:20", "--select", "sphere:0,0.5,0.8,0.3",
+                 "--rotation-coupling", "50", "--iterations", "400"},
+                0);
+  CHECK(max_position_difference(coupled.first, stiff) > 1e-4 * size);
+}

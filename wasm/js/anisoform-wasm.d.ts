@@ -186,13 +186,18 @@ export interface DeformOp {
   /** AnARAP/ARAP iteration cap (default 50). */
   maxIterations?: number;
   /**
-   * AnARAP with a rotational part (rotate, twist, shear) has no fixed point (METHOD §5): it runs
-   * exactly this many steps from the rest pose instead of converging (default 1).
+   * AnARAP with a rotational part (rotate, twist, shear), METHOD §5. 'coupled' (default): neighbouring
+   * rotations are tied together, so the iterations converge to the requested turn like a stretch does.
+   * 'steps': the paper's scheme, which has no fixed point: exactly `rotationSteps` steps from the rest pose.
    */
+  rotations?: 'coupled' | 'steps';
+  /** 'coupled': how strongly neighbouring rotations are tied (default 1; larger keeps the turn more exactly). */
+  rotationCoupling?: number;
+  /** 'steps': the number of steps from the rest pose (default 1). */
   rotationSteps?: number;
   /** Relative energy change that ends the iterations (default 1e-6). */
   tolerance?: number;
-  /** Live preview: at most 4 iterations, warm-started (rotational edits run their rotationSteps). */
+  /** Live preview: at most 4 iterations, warm-started (the 'steps' scheme runs its rotationSteps). */
   preview?: boolean;
   /** Start from the previous result of the same setup (default true). */
   warmStart?: boolean;

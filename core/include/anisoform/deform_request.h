@@ -32,6 +32,12 @@ enum class ArapElements {
   SpokesAndRims,  // plus the fan's rim edges (Chao et al.; CGAL's default)
 };
 
+// How AnARAP treats a rotational part of T (rotate, twist, shear; METHOD §5).
+enum class RotationScheme {
+  Coupled,  // neighbouring rotations tied together: converges (ours, beyond the paper)
+  Steps,    // the paper's: no fixed point, `rotation_steps` steps from the rest pose
+};
+
 struct DirectionSource {
   enum class Kind {
     Global,        // `vector`, projected per element
@@ -68,9 +74,14 @@ struct DeformRequest {
   ArapElements elements = ArapElements::Spokes;
   int max_iterations = 50;   // AnARAP / ARAP: cap on local/global iterations
   double tolerance = 1e-6;   // relative energy change that ends the iterations
-  // AnARAP with a rotational part in T (rotate, twist, shear) has no fixed
-  // point (METHOD §5): each step turns the selected fans once more. It runs
-  // exactly this many steps instead of converging.
+  // AnARAP with a rotational part in T (rotate, twist, shear): the paper's
+  // scheme has no fixed point (METHOD §5): each step turns the selected fans
+  // once more, so it runs exactly `rotation_steps` steps. The coupled scheme
+  // converges like a stretch (max_iterations, tolerance); rotation_coupling
+  // is its alpha (anarap.h): larger keeps a region's rotation more exactly,
+  // smaller lets the rest of the mesh bend more freely.
+  RotationScheme rotations = RotationScheme::Coupled;
+  double rotation_coupling = 1.0;
   int rotation_steps = 1;
   bool warm_start = true;    // start from the previous result of the same setup
   // AnARAP / ARAP: false skips the local step after the last solve, which

@@ -84,6 +84,8 @@ PatternOptions pattern_options_from_json(const Json& options);
 DistortionKind distortion_kind_from_name(const std::string& name);            // "area" | "stretch"
 DistortionReference distortion_reference_from_name(const std::string& name);  // "rest" | "loaded"
 MeshFormat mesh_format_from_name(const std::string& name);                    // "obj" | "off" | "ply" | "stl"
+// "coupled" | "steps" (op.rotations); `field` names the option in the message.
+RotationScheme rotation_scheme_from_name(const std::string& name, const std::string& field);
 
 // ---- defaults that depend on the mesh --------------------------------------
 

@@ -64,8 +64,8 @@ struct DeformOp {
   // without handles takes its handles from the selection: resolve_edit too.)
   bool direction_given = true;
   // Live preview: at most kPreviewIterations iterations, warm-started from the
-  // previous preview. Rotational edits (rotate, twist, shear) are not capped:
-  // they run request.rotation_steps steps from the rest pose (METHOD §5).
+  // previous preview. The paper's rotation scheme (RotationScheme::Steps) is
+  // not capped: it runs request.rotation_steps steps from the rest pose.
   bool preview = false;
 };
 

@@ -115,6 +115,16 @@ AnArapSolver::AnArapSolver(const Mesh& rest, const CotanWeights& weights,
   target_energy_.resize(n_);
   for (int i = 0; i < n_; ++i) target_energy_[i] = rest_covariance_[i].trace();
   rotation_.assign(n_, Eigen::Quaterniond::Identity());
+  spoke_coupling_.resize(neighbors_.size());
+  auto fan_size = [&](int i) {
+    const int degree = offsets_[i + 1] - offsets_[i];
+    return degree > 0 ? std::abs(rest_covariance_[i].trace()) / degree : 0.0;
+  };
+  for (int i = 0; i < n_; ++i) {
+    for (int q = offsets_[i]; q < offsets_[i + 1]; ++q) {
+      spoke_coupling_[q] = 0.5 * (fan_size(i) + fan_size(neighbors_[q]));
+    }
+  }
 }
 
 void AnArapSolver::set_targets(const std::vector<Eigen::Matrix3d>& T) {
@@ -183,6 +193,11 @@ double AnArapSolver::local_step(const Positions& V) {
     covariance_spokes_rims(V, A, edge_energy);
   }
   double energy = 0.0;
+  if (coupling_ > 0.0) {
+    energy += coupled_rotations(A);
+    for (int i = 0; i < n_; ++i) energy += cell_energy(edge_energy[i], A[i], B_[i], target_energy_[i]);
+    return energy;
+  }
   for (int i = 0; i < n_; ++i) {
     // S = sum w e' (P e)^T = A P^T; P is symmetric.
     fit_rotation(A[i] * P_[i], rotation_[i]);
@@ -191,6 +206,28 @@ double AnArapSolver::local_step(const Positions& V) {
   }
   // Negative cotangent weights (obtuse triangles) can make this sum slightly
   // negative near the optimum: it is reported as it is.
+  return energy;
+}
+
+double AnArapSolver::coupled_rotations(const std::vector<Eigen::Matrix3d>& A) {
+  // In index order, each R_i against its neighbours' latest rotations.
+  for (int i = 0; i < n_; ++i) {
+    Eigen::Matrix3d S = A[i] * T_[i].transpose();
+    for (int q = offsets_[i]; q < offsets_[i + 1]; ++q) {
+      S.noalias() += (2.0 * coupling_ * spoke_coupling_[q]) * rotation_[neighbors_[q]].toRotationMatrix();
+    }
+    fit_rotation(S, rotation_[i]);
+    B_[i].noalias() = rotation_[i].toRotationMatrix() * T_[i];
+  }
+  double energy = 0.0;
+  for (int i = 0; i < n_; ++i) {
+    for (int q = offsets_[i]; q < offsets_[i + 1]; ++q) {
+      // |R_i - R_j|^2 = 6 - 2 tr(R_i^T R_j); tr of a rotation = 4 w^2 - 1 of
+      // the quaternion q_i^-1 q_j.
+      const double w = rotation_[i].dot(rotation_[neighbors_[q]]);
+      energy += coupling_ * spoke_coupling_[q] * (6.0 - 2.0 * (4.0 * w * w - 1.0));
+    }
+  }
   return energy;
 }
 

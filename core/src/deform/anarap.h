@@ -14,6 +14,20 @@
 // solved with the shared prefactored LaplacianSolver.
 // Spokes-and-rims: every triangle's three edges count in each of its corners'
 // cells; the same L results, with b assembled per triangle.
+//
+// Rotational targets (T_i = Q_i P_i with Q_i a rotation) have two schemes
+// (METHOD §5):
+// - the paper's: R_i is fitted to P_i only, so each step turns the fans by
+//   Q_i once more; run a stated number of steps (no fixed point);
+// - coupled rotations (beyond the paper): R_i is fitted to the whole T_i,
+//   as ARAP would, but neighbouring R_i are tied together by
+//     E_s = sum_i sum_{j in N(i)} k_ij || R_i - R_j ||_F^2,
+//   k_ij = alpha (|tr C_i| / deg_i + |tr C_j| / deg_j) / 2 (the fans' size),
+//   so that ARAP cannot absorb a region's rotation without paying at its
+//   border: the energy has a minimum, the iterations a fixed point. The
+//   local step is then a Gauss-Seidel sweep,
+//     R_i = argmax tr(R^T (A_i T_i^T + 2 sum_j k_ij R_j)),
+//   each update exact given the others, so the energy never increases.
 #pragma once
 
 #include <vector>
@@ -34,6 +48,8 @@ class AnArapSolver {
 
   // Per-vertex targets (#V). Keeps the current rotations (warm start).
   void set_targets(const std::vector<Eigen::Matrix3d>& T);
+  // alpha > 0: coupled rotations (see above); 0: the paper's scheme.
+  void set_rotation_coupling(double alpha) { coupling_ = alpha; }
   void reset_rotations();
 
   // Fits the rotations to `V` and returns the energy E(V, R) with the new R.
@@ -55,6 +71,8 @@ class AnArapSolver {
                          Eigen::VectorXd& edge_energy) const;
   void covariance_spokes_rims(const Positions& V, std::vector<Eigen::Matrix3d>& A,
                               Eigen::VectorXd& edge_energy) const;
+  // The coupled local step's sweep; returns E_s after it.
+  double coupled_rotations(const std::vector<Eigen::Matrix3d>& A);
 
   const Mesh& rest_;
   const CotanWeights& weights_;
@@ -75,6 +93,8 @@ class AnArapSolver {
   std::vector<Eigen::Matrix3d> covariance_;
   Eigen::VectorXd edge_energy_;
   bool symmetric_targets_ = true;
+  double coupling_ = 0.0;                // alpha; 0: the paper's scheme
+  std::vector<double> spoke_coupling_;   // k_ij / alpha per spoke
   double energy_scale_ = 0.0;  // sum of |tr C_i|: the size of the rest fans
 };
 

@@ -110,6 +110,9 @@ void validate_request(const DeformRequest& request, int n) {
   if (request.rotation_steps < 1) {
     fail(ErrorCode::BadParameter, "rotation steps must be at least 1, got " + std::to_string(request.rotation_steps));
   }
+  if (!(request.rotation_coupling > 0.0) || !std::isfinite(request.rotation_coupling)) {
+    fail(ErrorCode::BadParameter, "the rotation coupling must be a finite number > 0");
+  }
   if (!(request.tolerance >= 0.0) || !std::isfinite(request.tolerance)) {
     fail(ErrorCode::BadParameter, "tolerance must be a finite number >= 0");
   }
@@ -274,19 +277,22 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
     std::string key = std::string(method_name(request.method)) + ":" +
                       std::to_string(static_cast<int>(request.elements));
     for (int p : gauge.pins) key += "," + std::to_string(p);
-    // A rotation is applied incrementally, so it always starts from the rest pose.
-    const bool warm = request.warm_start && !rotational && key == ws.last_key && ws.last_V.rows() == n;
+    // The paper's scheme applies a rotation incrementally, so it always starts
+    // from the rest pose; the coupled scheme converges from anywhere.
+    const bool stepped = rotational && request.rotations == RotationScheme::Steps;
+    iterations->set_rotation_coupling(rotational && !stepped ? request.rotation_coupling : 0.0);
+    const bool warm = request.warm_start && !stepped && key == ws.last_key && ws.last_V.rows() == n;
     result.V = warm ? ws.last_V : unit_.V;
     if (!warm) iterations->reset_rotations();
     if (isotropic) {
       for (int h : request.handles) result.V.row(h) = unit_.V.row(h) + request.handle_offset.transpose();
     }
     for (int p : request.pins) result.V.row(p) = unit_.V.row(p);
-    const int steps = rotational ? request.rotation_steps : request.max_iterations;
-    result.iterations = iterations->run(solver, result.V, steps, rotational ? -1.0 : request.tolerance,
+    const int steps = stepped ? request.rotation_steps : request.max_iterations;
+    result.iterations = iterations->run(solver, result.V, steps, stepped ? -1.0 : request.tolerance,
                                         result.energy_history, request.final_energy);
     result.energy = result.energy_history.empty() ? 0.0 : result.energy_history.back();
-    result.converged = rotational || result.iterations < steps;
+    result.converged = stepped || result.iterations < steps;
     realign(unit_, gauge, affected, Alignment::Rigid, result.V);
     ws.last_key = key;
     ws.last_V = result.V;

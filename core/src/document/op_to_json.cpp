@@ -90,6 +90,8 @@ Json to_json(const DeformOp& edit) {
   op["move"] = xyz_json(r.handle_offset);
   op["elements"] = r.elements == ArapElements::Spokes ? "spokes" : "spokes-rims";
   op["maxIterations"] = r.max_iterations;
+  op["rotations"] = r.rotations == RotationScheme::Coupled ? "coupled" : "steps";
+  op["rotationCoupling"] = r.rotation_coupling;
   op["rotationSteps"] = r.rotation_steps;
   op["tolerance"] = r.tolerance;
   op["preview"] = edit.preview;

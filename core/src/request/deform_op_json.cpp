@@ -60,7 +60,16 @@ Method method_from_json(const Json& value) {
   return parse_method(one_of(value, {"anarap", "andefgrad", "arap", "linear"}, "op.method"));
 }
 
+RotationScheme rotation_scheme_from_json(const Json& value, const std::string& field) {
+  return json_fields::one_of(value, op_keys::kRotationSchemes, field) == "coupled" ? RotationScheme::Coupled
+                                                                                   : RotationScheme::Steps;
+}
+
 }  // namespace
+
+RotationScheme rotation_scheme_from_name(const std::string& name, const std::string& field) {
+  return rotation_scheme_from_json(Json(name), field);
+}
 
 DeformOp deform_op_from_json(const Json& op) {
   using namespace json_fields;
@@ -81,6 +90,13 @@ DeformOp deform_op_from_json(const Json& op) {
                            : ArapElements::SpokesAndRims;
   }
   if (has(op, "maxIterations")) request.max_iterations = integer_at_least(op["maxIterations"], 1, "op.maxIterations");
+  if (has(op, "rotations")) request.rotations = rotation_scheme_from_json(op["rotations"], "op.rotations");
+  if (has(op, "rotationCoupling")) {
+    request.rotation_coupling = finite_number(op["rotationCoupling"], "op.rotationCoupling");
+    if (!(request.rotation_coupling > 0.0)) {
+      refuse("op.rotationCoupling", "must be > 0, got " + describe(op["rotationCoupling"]));
+    }
+  }
   if (has(op, "rotationSteps")) request.rotation_steps = integer_at_least(op["rotationSteps"], 1, "op.rotationSteps");
   if (has(op, "tolerance")) {
     request.tolerance = finite_number(op["tolerance"], "op.tolerance");
