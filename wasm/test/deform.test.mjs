@@ -151,12 +151,20 @@ test('distortion: 1 for the identity; area ratio and stretch su after a plane st
   assert.ok(session.distortion('area', 'loaded').every((value) => Math.abs(value - 1.5) < 1e-5));
 }));
 
-test('an AnARAP twist runs exactly rotationSteps steps, in preview too', () => withSession('closed/spool.off', (session) => {
-  session.select({ all: true });
-  const twist = { method: 'anarap', transform: { twist: { axis: [0, 1, 0], degreesPerUnit: 30 } } };
-  assert.equal(session.deform(twist).iterations, 1);
-  assert.equal(session.deform({ ...twist, rotationSteps: 3, preview: true }).iterations, 3);
-}));
+test("an AnARAP twist converges (coupled rotations); rotations 'steps' runs exactly rotationSteps steps, in preview too",
+  () => withSession('closed/spool.off', (session) => {
+    session.select({ all: true });
+    const twist = { method: 'anarap', transform: { twist: { axis: [1, 0, 0], degreesPerUnit: 30 } }, warmStart: false };
+    const coupled = session.deform({ ...twist, maxIterations: 400 });
+    assert.equal(coupled.converged, true);
+    assert.ok(coupled.iterations > 1 && coupled.iterations < 400, `${coupled.iterations} iterations`);
+    // A preview caps the iterations, the rotations' scheme as any other.
+    assert.equal(session.deform({ ...twist, preview: true }).iterations, 4);
+    const steps = { ...twist, rotations: 'steps' };
+    assert.equal(session.deform(steps).iterations, 1);
+    assert.equal(session.deform({ ...steps, rotationSteps: 3, preview: true }).iterations, 3);
+    assert.throws(() => session.deform({ ...twist, rotations: 'spin' }), /op.rotations must be one of coupled, steps/);
+  }));
 
 // The twist origin: the default is the selection's centroid line (at its lowest
 // point along the axis); an explicit origin is used as given.
