@@ -33,7 +33,7 @@ test('an extreme twist warns that triangles folded over; undo clears it', async 
   await committed();
   await expect(warning).toBeHidden();
 
-  await page.locator('#twist-degreesPerUnit').fill('13000');  // near the largest valid twist on Spot (limits.h)
+  await page.locator('#twist-degreesPerUnit').fill('12000');  // near the largest valid twist on Spot (limits.h: 36000 degrees over the diagonal)
   await page.locator('#twist-degreesPerUnit').press('Enter');
   committed = await armChange(page, 'positions');
   await page.getByTestId('apply-twist').click();
