@@ -5,27 +5,10 @@
 // selection; direction glyphs thinned to a screen-space spacing. State is
 // read from the DOM (legend text, the canvas's data attributes, the gizmo's
 // SVG); screenshots go to e2e/artifacts/.
-import { armChange, canvasCentre, expect, openApp, saveScreenshot, test } from './support.mjs';
+import { armChange, canvasCentre, countPixels, expect, openApp, saveScreenshot, test } from './support.mjs';
 
 // Viewport pixels matching `kind`: 'red' (the stretch palette's grown), 'blue' (the arrows).
-async function pixelsOf(page, kind) {
-  const png = await page.getByTestId('viewport').screenshot();
-  return page.evaluate(async ({ base64, kind }) => {
-    const image = new Image();
-    image.src = `data:image/png;base64,${base64}`;
-    await image.decode();
-    const canvas = new OffscreenCanvas(image.width, image.height);
-    const context = canvas.getContext('2d');
-    context.drawImage(image, 0, 0);
-    const { data } = context.getImageData(0, 0, image.width, image.height);
-    let count = 0;
-    for (let i = 0; i < data.length; i += 4) {
-      const [r, g, b] = [data[i], data[i + 1], data[i + 2]];
-      if (kind === 'red' ? r > g + 60 && r > b + 60 : b > r + 80 && b > g + 60) count++;
-    }
-    return count;
-  }, { base64: png.toString('base64'), kind });
-}
+const pixelsOf = async (page, kind) => (await countPixels(page, 'viewport', { [kind]: true })).lit;
 
 test('Stretch and Area change have their own legends and palettes; the range is adaptive or fixed', async ({ page }) => {
   const pageErrors = await openApp(page);

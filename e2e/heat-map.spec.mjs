@@ -1,24 +1,10 @@
 // The distortion heat map shows the core's numbers (Session.distortion in the
 // worker) and follows the mesh: live-preview frames bring their values along,
 // a commit too, and undo asks the worker again. Red = grown (distortion_heatmap.glsl).
-import { armChange, canvasCentre, expect, openApp, test } from './support.mjs';
+import { armChange, canvasCentre, countPixels, expect, openApp, test } from './support.mjs';
 
 // Pixels of the viewport that are clearly red (the heat map's "grown").
-async function redPixels(page) {
-  const png = await page.getByTestId('viewport').screenshot();
-  return page.evaluate(async (base64) => {
-    const image = new Image();
-    image.src = `data:image/png;base64,${base64}`;
-    await image.decode();
-    const canvas = new OffscreenCanvas(image.width, image.height);
-    const context = canvas.getContext('2d');
-    context.drawImage(image, 0, 0);
-    const { data } = context.getImageData(0, 0, image.width, image.height);
-    let red = 0;
-    for (let i = 0; i < data.length; i += 4) if (data[i] > data[i + 1] + 60 && data[i] > data[i + 2] + 60) red++;
-    return red;
-  }, png.toString('base64'));
-}
+const redPixels = async (page) => (await countPixels(page, 'viewport', { red: true })).lit;
 
 test('the stretch heat map colours a live drag, its commit, and clears on undo', async ({ page }) => {
   const pageErrors = await openApp(page);

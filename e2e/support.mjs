@@ -72,8 +72,17 @@ export async function litPixelCount(page) {
 
 /** {lit, total}: pixels of the element `testId` that differ clearly from `background` (rgb). */
 export async function differingPixelCount(page, testId, background) {
+  return countPixels(page, testId, { differsFrom: background });
+}
+
+/**
+ * {lit, total}: pixels of the element `testId`'s screenshot that match `rule`:
+ * {differsFrom: [r, g, b]} (summed difference over 30), {red: true} (red over
+ * green and blue by 60) or {blue: true} (blue over red by 80, over green by 60).
+ */
+export async function countPixels(page, testId, rule) {
   const png = await page.getByTestId(testId).screenshot();
-  return page.evaluate(async ({ base64, background }) => {
+  return page.evaluate(async ({ base64, rule }) => {
     const image = new Image();
     image.src = `data:image/png;base64,${base64}`;
     await image.decode();
@@ -81,14 +90,15 @@ export async function differingPixelCount(page, testId, background) {
     const context = canvas.getContext('2d');
     context.drawImage(image, 0, 0);
     const { data } = context.getImageData(0, 0, image.width, image.height);
+    const matches = rule.differsFrom
+      ? (r, g, b) => Math.abs(r - rule.differsFrom[0]) + Math.abs(g - rule.differsFrom[1]) + Math.abs(b - rule.differsFrom[2]) > 30
+      : rule.red
+        ? (r, g, b) => r > g + 60 && r > b + 60
+        : (r, g, b) => b > r + 80 && b > g + 60;
     let lit = 0;
-    for (let i = 0; i < data.length; i += 4) {
-      const difference =
-        Math.abs(data[i] - background[0]) + Math.abs(data[i + 1] - background[1]) + Math.abs(data[i + 2] - background[2]);
-      if (difference > 30) lit++;
-    }
+    for (let i = 0; i < data.length; i += 4) if (matches(data[i], data[i + 1], data[i + 2])) lit++;
     return { lit, total: image.width * image.height };
-  }, { base64: png.toString('base64'), background });
+  }, { base64: png.toString('base64'), rule });
 }
 
 /** Centre of the viewport canvas in page coordinates and canvas coordinates. */
