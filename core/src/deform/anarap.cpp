@@ -210,14 +210,19 @@ double AnArapSolver::local_step(const Positions& V) {
 }
 
 double AnArapSolver::coupled_rotations(const std::vector<Eigen::Matrix3d>& A) {
-  // In index order, each R_i against its neighbours' latest rotations.
+  // In index order, each R_i against its neighbours' latest rotations (as
+  // matrices, each converted once per sweep and again when it changes).
+  std::vector<Eigen::Matrix3d>& R = rotation_matrices_;
+  R.resize(n_);
+  for (int i = 0; i < n_; ++i) R[i] = rotation_[i].toRotationMatrix();
   for (int i = 0; i < n_; ++i) {
     Eigen::Matrix3d S = A[i] * T_[i].transpose();
     for (int q = offsets_[i]; q < offsets_[i + 1]; ++q) {
-      S.noalias() += (2.0 * coupling_ * spoke_coupling_[q]) * rotation_[neighbors_[q]].toRotationMatrix();
+      S.noalias() += (2.0 * coupling_ * spoke_coupling_[q]) * R[neighbors_[q]];
     }
     fit_rotation(S, rotation_[i]);
-    B_[i].noalias() = rotation_[i].toRotationMatrix() * T_[i];
+    R[i] = rotation_[i].toRotationMatrix();
+    B_[i].noalias() = R[i] * T_[i];
   }
   double energy = 0.0;
   for (int i = 0; i < n_; ++i) {

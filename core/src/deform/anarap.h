@@ -95,6 +95,7 @@ class AnArapSolver {
   bool symmetric_targets_ = true;
   double coupling_ = 0.0;                // alpha; 0: the paper's scheme
   std::vector<double> spoke_coupling_;   // k_ij / alpha per spoke
+  std::vector<Eigen::Matrix3d> rotation_matrices_;  // scratch of the coupled sweep
   double energy_scale_ = 0.0;  // sum of |tr C_i|: the size of the rest fans
 };
 

@@ -31,6 +31,7 @@ import { toolPanel } from '../ui/tool-panel.js';
 
 export function installFullUi(layout, { api, editor, settings, tools, viewer, picker, reportError, lifetime, keyTarget }) {
   // The editor has reported a refused selection already (the banner).
+  // api.select reports a refusal itself (the banner and the 'error' event); the rejection needs no second word.
   const selectRegion = (options) => selectRegionAtViewCentre({ api, editor, viewer, picker, settings }, options)?.catch(() => {});
   const inMode = (mode, element) => showWhen(settings, 'mode', element, (current) => current === mode);
   layout.sidePanel.append(
