@@ -59,4 +59,13 @@ ElementTargets vertex_targets(TargetContext& context, const DirectionSource& sou
 ElementTargets triangle_targets(TargetContext& context, const DirectionSource& source,
                                 const TransformSpec& spec, const Eigen::VectorXd& weights);
 
+// Per-side targets (3 per triangle, T[3t + k] for the side opposite corner k):
+// the triangle's frame, with the side's own weight (the mean of its two
+// vertices'), midpoint and amounts. AnARAP transforms each rest edge by the
+// mean of its sides' maps: an edge inside a flat part takes that part's map,
+// and the spokes of a vertex on a crease are each transformed by the faces
+// they lie on, not by one map of the vertex's averaged normal.
+ElementTargets side_targets(TargetContext& context, const DirectionSource& source,
+                            const TransformSpec& spec, const Eigen::VectorXd& weights);
+
 }  // namespace aniso
