@@ -1,6 +1,6 @@
 // From a selection, a direction source and a transform to the per-element
-// target matrices T the solvers consume (METHOD §3–4): per vertex (AnARAP fans,
-// the linear baseline) or per triangle (AnDefGrad).
+// target matrices T the solvers consume (METHOD §3–4): per vertex (the linear
+// baseline), per triangle (AnDefGrad) or per triangle side (AnARAP's spokes).
 #pragma once
 
 #include <memory>
@@ -49,7 +49,8 @@ struct ElementTargets {
   int filled = 0;                  // degenerate directions filled (METHOD §3)
 };
 
-// Per-vertex targets: vertex normals, the source's per-vertex directions.
+// Per-vertex targets: vertex normals, the source's per-vertex directions (the
+// linear baseline, which moves each vertex by its own map).
 ElementTargets vertex_targets(TargetContext& context, const DirectionSource& source,
                               const TransformSpec& spec, const Eigen::VectorXd& weights);
 
