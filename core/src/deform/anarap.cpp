@@ -151,7 +151,11 @@ void AnArapSolver::set_targets(const std::vector<Eigen::Matrix3d>& T) {
   // The polar parts, once per side; P of a mean is taken as the mean of the
   // P's (equal where the sides' maps are, which is everywhere but at creases).
   std::vector<Eigen::Matrix3d> P(T.size());
-  for (std::size_t s = 0; s < T.size(); ++s) P[s] = polar_positive_part(T[s]);
+  polar_differs_ = false;
+  for (std::size_t s = 0; s < T.size(); ++s) {
+    P[s] = polar_positive_part(T[s]);
+    if ((P[s] - T[s]).cwiseAbs().maxCoeff() > 1e-12 * (1.0 + T[s].cwiseAbs().maxCoeff())) polar_differs_ = true;
+  }
   target_energy_.setZero();
   if (elements_ == ArapElements::Spokes) {
     for (int i = 0; i < n_; ++i) {
@@ -192,26 +196,27 @@ void AnArapSolver::reset_rotations() {
   rotation_.assign(n_, Eigen::Quaterniond::Identity());
 }
 
-void AnArapSolver::covariance_spokes(const Positions& V, Eigen::VectorXd& edge_energy) {
+void AnArapSolver::covariance_spokes(const Positions& V, bool with_polar, Eigen::VectorXd& edge_energy) {
   for (int i = 0; i < n_; ++i) {
     Eigen::Matrix3d full = Eigen::Matrix3d::Zero(), polar = Eigen::Matrix3d::Zero();
     double energy = 0.0;
     const Eigen::RowVector3d vi = V.row(i);
     for (int q = offsets_[i]; q < offsets_[i + 1]; ++q) {
-      const Eigen::Vector3d deformed = spoke_weight_[q] * (V.row(neighbors_[q]) - vi).transpose();
-      full.noalias() += deformed * spoke_target_.row(q);
-      polar.noalias() += deformed * spoke_polar_.row(q);
-      energy += deformed.dot((V.row(neighbors_[q]) - vi).transpose());
+      const Eigen::Vector3d deformed = (V.row(neighbors_[q]) - vi).transpose();
+      const Eigen::Vector3d weighted = spoke_weight_[q] * deformed;
+      full.noalias() += weighted * spoke_target_.row(q);
+      if (with_polar) polar.noalias() += weighted * spoke_polar_.row(q);
+      energy += weighted.dot(deformed);
     }
     target_covariance_[i] = full;
-    polar_covariance_[i] = polar;
+    if (with_polar) polar_covariance_[i] = polar;
     edge_energy[i] = energy;
   }
 }
 
-void AnArapSolver::covariance_spokes_rims(const Positions& V, Eigen::VectorXd& edge_energy) {
+void AnArapSolver::covariance_spokes_rims(const Positions& V, bool with_polar, Eigen::VectorXd& edge_energy) {
   std::fill(target_covariance_.begin(), target_covariance_.end(), Eigen::Matrix3d::Zero());
-  std::fill(polar_covariance_.begin(), polar_covariance_.end(), Eigen::Matrix3d::Zero());
+  if (with_polar) std::fill(polar_covariance_.begin(), polar_covariance_.end(), Eigen::Matrix3d::Zero());
   edge_energy.setZero();
   for (int t = 0; t < rest_.num_triangles(); ++t) {
     Eigen::Matrix3d full = Eigen::Matrix3d::Zero(), polar = Eigen::Matrix3d::Zero();
@@ -221,12 +226,12 @@ void AnArapSolver::covariance_spokes_rims(const Positions& V, Eigen::VectorXd& e
       const Eigen::Vector3d deformed = (V.row(b) - V.row(a)).transpose();
       const double w = weights_.weight(t, k);
       full.noalias() += (w * deformed) * side_target_.row(3 * t + k);
-      polar.noalias() += (w * deformed) * side_polar_.row(3 * t + k);
+      if (with_polar) polar.noalias() += (w * deformed) * side_polar_.row(3 * t + k);
       energy += w * deformed.squaredNorm();
     }
     for (int k = 0; k < 3; ++k) {
       target_covariance_[rest_.F(t, k)] += full;
-      polar_covariance_[rest_.F(t, k)] += polar;
+      if (with_polar) polar_covariance_[rest_.F(t, k)] += polar;
       edge_energy[rest_.F(t, k)] += energy;
     }
   }
@@ -237,17 +242,22 @@ double AnArapSolver::local_step(const Positions& V) {
   target_covariance_.resize(n_);
   polar_covariance_.resize(n_);
   edge_energy.resize(n_);
+  // The paper's scheme fits the rotations to the polar targets; where those
+  // are the targets (no rotational part), or with coupled rotations (fitted
+  // to the whole targets), the polar covariance is not needed.
+  const bool with_polar = coupling_ == 0.0 && polar_differs_;
   if (elements_ == ArapElements::Spokes) {
-    covariance_spokes(V, edge_energy);
+    covariance_spokes(V, with_polar, edge_energy);
   } else {
-    covariance_spokes_rims(V, edge_energy);
+    covariance_spokes_rims(V, with_polar, edge_energy);
   }
   double energy = 0.0;
   if (coupling_ > 0.0) {
     energy += coupled_rotations();
   } else {
+    const std::vector<Eigen::Matrix3d>& fitted = with_polar ? polar_covariance_ : target_covariance_;
     for (int i = 0; i < n_; ++i) {
-      fit_rotation(polar_covariance_[i], rotation_[i]);
+      fit_rotation(fitted[i], rotation_[i]);
       rotation_matrices_[i] = rotation_[i].toRotationMatrix();
     }
   }

@@ -79,8 +79,9 @@ class AnArapSolver {
 
  private:
   // S_i = sum w e' t^T (full targets) and with the polar targets, per cell.
-  void covariance_spokes(const Positions& V, Eigen::VectorXd& edge_energy);
-  void covariance_spokes_rims(const Positions& V, Eigen::VectorXd& edge_energy);
+  // The polar covariance only `with_polar`.
+  void covariance_spokes(const Positions& V, bool with_polar, Eigen::VectorXd& edge_energy);
+  void covariance_spokes_rims(const Positions& V, bool with_polar, Eigen::VectorXd& edge_energy);
   // The coupled local step's sweep; returns E_s after it.
   double coupled_rotations();
 
@@ -106,6 +107,7 @@ class AnArapSolver {
   // Scratch of the local step, kept to avoid reallocating every iteration.
   std::vector<Eigen::Matrix3d> target_covariance_, polar_covariance_;
   Eigen::VectorXd edge_energy_;
+  bool polar_differs_ = false;  // some target has a rotational part (P != T)
   double coupling_ = 0.0;                // alpha; 0: the paper's scheme
   std::vector<double> spoke_coupling_;   // k_ij / alpha per spoke
   double energy_scale_ = 0.0;  // sum of |tr C_i|: the size of the rest fans
