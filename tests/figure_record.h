@@ -26,7 +26,8 @@ inline std::string figures_dir() {
 // positions (#V by 2 or 3; a 2D pattern lies in z = 0), the triangles, the
 // selection weights (empty: none shown) and a per-vertex heat value of the
 // app's palette `heat_kind` ("area", "stretch": log2 ratios; "compression":
-// errors; empty: no heat map).
+// errors), or "marker" (1 draws a line in the gallery's marker colour; empty:
+// no heat map).
 inline void record_figure_mesh(const std::string& name, const Eigen::MatrixXd& V, const Triangles& F,
                                const Eigen::VectorXd& selection = Eigen::VectorXd(),
                                const Eigen::VectorXd& heat = Eigen::VectorXd(),

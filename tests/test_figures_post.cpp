@@ -297,6 +297,27 @@ RingTurns spool_ring_turns(const Mesh& mesh, const Positions& V, const std::vect
   return out;
 }
 
+// For the gallery's pictures of a twist: 1 on one meridian (per ring of
+// constant x and radius, the vertex nearest to the +z direction), 0
+// elsewhere; drawn as a line that the twist turns into a helix.
+Eigen::VectorXd spool_meridian(const Mesh& mesh) {
+  const Eigen::RowVector3d c = spool_center(mesh.V);
+  std::map<std::pair<long, long>, int> nearest;  // (x, radius) -> vertex
+  auto off_z = [&](int i) { return std::abs(std::atan2(mesh.V(i, 1) - c[1], mesh.V(i, 2) - c[2])); };
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    const double radius = std::hypot(mesh.V(i, 1) - c[1], mesh.V(i, 2) - c[2]);
+    if (radius < 0.05) continue;
+    const auto key = std::make_pair(std::lround(mesh.V(i, kSpoolAxis) * 1e4), std::lround(radius * 1e2));
+    const auto it = nearest.find(key);
+    if (it == nearest.end() || off_z(i) < off_z(it->second)) nearest[key] = i;
+  }
+  Eigen::VectorXd line = Eigen::VectorXd::Zero(mesh.num_vertices());
+  for (const auto& entry : nearest) {
+    if (off_z(entry.second) < 10.0 * M_PI / 180.0) line[entry.second] = 1.0;
+  }
+  return line;
+}
+
 DeformRequest spool_twist(Method method, const Mesh& mesh, double rate, double origin_x) {
   DeformRequest request;
   request.method = method;
@@ -319,7 +340,8 @@ TEST_CASE("fig. 6: twisting the whole spool about x turns each ring by k per uni
   const double lo = mesh.V.col(kSpoolAxis).minCoeff();
   const double k = 60.0;  // degrees per unit: 31 degrees over the spool's 0.52
   test::record_figure_value("6.rate", k);
-  test::record_figure_mesh("6-rest", mesh.V, mesh.F);
+  const Eigen::VectorXd meridian = spool_meridian(mesh);
+  test::record_figure_mesh("6-rest", mesh.V, mesh.F, Eigen::VectorXd(), meridian, "marker");
   Deformer deformer(mesh);
   for (Method method : {Method::AnDefGrad, Method::AnArap}) {
     const DeformResult r = deformer.deform(spool_twist(method, mesh, k, lo));
@@ -334,7 +356,8 @@ TEST_CASE("fig. 6: twisting the whole spool about x turns each ring by k per uni
     INFO(method_name(method));
     test::record_figure_value(std::string("6.") + method_name(method) + ".whole_rate", slope);
     test::record_figure_value(std::string("6.") + method_name(method) + ".whole_worst_ring", worst);
-    test::record_figure_mesh(std::string("6-") + method_name(method) + "-whole", r.V, mesh.F);
+    test::record_figure_mesh(std::string("6-") + method_name(method) + "-whole", r.V, mesh.F, Eigen::VectorXd(), meridian,
+                             "marker");
     WARN("fig6 " << method_name(method) << ": fitted twist " << slope << " deg/unit for k = " << k
                  << ", worst ring off the line " << worst << " deg over " << t.heights.size() << " rings");
     if (method == Method::AnDefGrad) {
@@ -379,7 +402,8 @@ TEST_CASE("fig. 6: a twist of the spool's top with a geodesic falloff: k per uni
     const std::string key = std::string("6.") + method_name(method);
     test::record_figure_value(key + ".falloff_rate", slope);
     test::record_figure_value(key + ".falloff_unselected_turn", still);
-    test::record_figure_mesh(std::string("6-") + method_name(method) + "-falloff", r.V, mesh.F, w);
+    test::record_figure_mesh(std::string("6-") + method_name(method) + "-falloff", r.V, mesh.F, w, spool_meridian(mesh),
+                             "marker");
     WARN("fig6 falloff " << method_name(method) << ": twist on the selection " << slope << " deg/unit for k = " << k
                          << " (" << full.heights.size() << " rings); largest unselected ring turn " << still
                          << " deg; soft rings:" << soft.str());

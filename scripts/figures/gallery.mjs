@@ -15,6 +15,7 @@ const SPOOL = { direction: [0.35, 0.25, 1], up: [1, 0, 0], flat: true, frame: 'a
 
 /** v(key) reads a measured value; fixed(x, digits) formats it. */
 const fixed = (x, digits) => x.toFixed(digits);
+const METHOD_NAMES = { linear: 'linear', arap: 'ARAP', anarap: 'AnARAP', andefgrad: 'AnDefGrad' };
 const pct = (ratio, target) => `${ratio > target ? '+' : ''}${((ratio / target - 1) * 100).toFixed(1)} %`;
 
 export const FIGURES = [
@@ -79,7 +80,8 @@ export const FIGURES = [
     measured: (v) => `the upper flange's rim tilts ${fixed(v('5.anarap.top_tilt'), 1)}° (AnARAP) / ` +
       `${fixed(v('5.andefgrad.top_tilt'), 1)}° (AnDefGrad) towards +y, the base rim ` +
       `${fixed(v('5.anarap.base_tilt'), 2)}° / ${fixed(v('5.andefgrad.base_tilt'), 2)}°; the top moves ` +
-      `${fixed(v('5.anarap.top_shift_y'), 3)} / ${fixed(v('5.andefgrad.top_shift_y'), 3)} of the height along +y. ` +
+      `${fixed(v('5.anarap.top_shift_y'), 3)} / ${fixed(v('5.andefgrad.top_shift_y'), 3)} of the height along +y ` +
+      `(along z: ${fixed(v('5.anarap.top_shift_z'), 3)} / ${fixed(v('5.andefgrad.top_shift_z'), 3)}). ` +
       `Mean edge strain below the selection (how far the edit reaches): AnARAP ` +
       `${fixed(v('5.anarap.strain_below'), 4)}, AnDefGrad ${fixed(v('5.andefgrad.strain_below'), 4)}` +
       (v('5.andefgrad.strain_below') < v('5.anarap.strain_below')
@@ -97,7 +99,7 @@ export const FIGURES = [
     title: 'Twist of the spool: the angle grows with height',
     test: 'tests/test_figures_post.cpp, "fig. 6: ..." (two scenes)',
     scene: 'closed/spool.off; a twist about x at k = 60°/unit: the whole spool, and the part above x = 0.1 with a ' +
-      '0.35 geodesic falloff (origin on the axis at x = 0.1). The wireframe shows the turn of the rings.',
+      '0.35 geodesic falloff (origin on the axis at x = 0.1). The blue line is one meridian of the rest spool, carried along by the twist.',
     claim: 'Fig. 6: "The selected (orange) vertices of the post are twisted using anisotropic deformation gradients ' +
       'along a global direction. The twist angle increases with height."',
     measured: (v) => `rate fitted over the rings, for k = ${fixed(v('6.rate'), 0)}°/unit: whole spool ` +
@@ -107,7 +109,7 @@ export const FIGURES = [
       `falloff, on the fully selected rings: AnDefGrad ${fixed(v('6.andefgrad.falloff_rate'), 1)}, AnARAP ` +
       `${fixed(v('6.anarap.falloff_rate'), 1)}; unselected rings turn at most ` +
       `${fixed(v('6.andefgrad.falloff_unselected_turn'), 2)}° / ${fixed(v('6.anarap.falloff_unselected_turn'), 2)}°.`,
-    view: { ...SPOOL, wireframe: true },
+    view: SPOOL,
     pictures: [
       { mesh: '6-rest', caption: 'rest' },
       { mesh: '6-andefgrad-whole', caption: 'AnDefGrad, whole spool' },
@@ -124,14 +126,16 @@ export const FIGURES = [
       'Bottom: a local rotation of the surface elements is performed for two different rotation axes. The blue ' +
       'regions remain unaffected and, therefore, act as deformation constraints." Text: "The deformation is shown ' +
       'to follow the desired direction while the features are preserved."',
-    measured: (v) => `stretch: the top rim ×${fixed(v('7.andefgrad.stretch_along'), 3)} along y, ` +
-      `×${fixed(v('7.andefgrad.stretch_across'), 3)} across (AnDefGrad; AnARAP ×${fixed(v('7.anarap.stretch_along'), 3)} ` +
-      `/ ×${fixed(v('7.anarap.stretch_across'), 3)}), the base rim ×${fixed(v('7.andefgrad.stretch_base'), 3)} / ` +
-      `×${fixed(v('7.anarap.stretch_base'), 3)}; the selected rims' dihedral angles change ` +
-      `${fixed(v('7.andefgrad.stretch_rim_change'), 2)}° / ${fixed(v('7.anarap.stretch_rim_change'), 2)}°. Rotation: ` +
-      `the top rim's normal tilts ${fixed(v('7.andefgrad.rotate_z_tilt'), 1)}° about z ` +
-      `(${fixed(v('7.andefgrad.rotate_z_off'), 3)}° off-axis) and ${fixed(v('7.andefgrad.rotate_y_tilt'), 1)}° about y ` +
-      `(AnDefGrad; AnARAP ${fixed(v('7.anarap.rotate_z_tilt'), 1)}° / ${fixed(v('7.anarap.rotate_y_tilt'), 1)}°).`,
+    measured: (v) => `stretch (AnDefGrad / AnARAP): the top rim ×${fixed(v('7.andefgrad.stretch_along'), 3)} / ` +
+      `×${fixed(v('7.anarap.stretch_along'), 3)} along y, ×${fixed(v('7.andefgrad.stretch_across'), 3)} / ` +
+      `×${fixed(v('7.anarap.stretch_across'), 3)} across; the base rim ×${fixed(v('7.andefgrad.stretch_base'), 3)} / ` +
+      `×${fixed(v('7.anarap.stretch_base'), 3)} along y; the selected rims' dihedral angles change ` +
+      `${fixed(v('7.andefgrad.stretch_rim_change'), 2)}° / ${fixed(v('7.anarap.stretch_rim_change'), 2)}°. ` +
+      `Rotation by 30° (AnDefGrad / AnARAP): the top rim's normal tilts ${fixed(v('7.andefgrad.rotate_z_tilt'), 1)}° / ` +
+      `${fixed(v('7.anarap.rotate_z_tilt'), 1)}° about z and ${fixed(v('7.andefgrad.rotate_y_tilt'), 1)}° / ` +
+      `${fixed(v('7.anarap.rotate_y_tilt'), 1)}° about y, at most ` +
+      `${fixed(Math.max(v('7.andefgrad.rotate_z_off'), v('7.anarap.rotate_z_off'), v('7.andefgrad.rotate_y_off'),
+        v('7.anarap.rotate_y_off')), 3)}° about the other axis.`,
     view: SPOOL,
     pictures: [
       { mesh: '7-rest', caption: 'rest, selection' },
@@ -174,11 +178,13 @@ export const FIGURES = [
       `${fixed(v('9.linear.rim_change'), 1)}°, ARAP ${fixed(v('9.arap.rim_change'), 1)}°, AnARAP ` +
       `${fixed(v('9.anarap.rim_change'), 1)}°, AnDefGrad ${fixed(v('9.andefgrad.rim_change'), 1)}°; height ` +
       `×${fixed(v('9.linear.height_ratio'), 2)} / ×${fixed(v('9.arap.height_ratio'), 2)} / ` +
-      `×${fixed(v('9.anarap.height_ratio'), 2)} / ×${fixed(v('9.andefgrad.height_ratio'), 2)}.`,
+      `×${fixed(v('9.anarap.height_ratio'), 2)} / ×${fixed(v('9.andefgrad.height_ratio'), 2)} (same order). Rims ` +
+      `kept best first: ${['linear', 'arap', 'anarap', 'andefgrad']
+        .sort((a, b) => v(`9.${a}.rim_change`) - v(`9.${b}.rim_change`)).map((m) => METHOD_NAMES[m]).join(', ')}.`,
     view: SPOOL,
     pictures: [
       { mesh: '9-rest', caption: 'rest' },
-      { mesh: '9-linear', caption: 'linear (cage-like)' },
+      { mesh: '9-linear', caption: 'linear (each vertex its own map)' },
       { mesh: '9-arap', caption: 'ARAP, by handles' },
       { mesh: '9-anarap', caption: 'AnARAP' },
       { mesh: '9-andefgrad', caption: 'AnDefGrad' },
@@ -217,8 +223,8 @@ export const FIGURES = [
       `${fixed(v('11.ours.compression_error_max'), 3)}, baseline ${fixed(v('11.baseline.compression_error_mean'), 4)} / ` +
       `${fixed(v('11.baseline.compression_error_max'), 3)}; cross error mean ` +
       `${fixed(v('11.ours.cross_error_mean'), 4)} / ${fixed(v('11.baseline.cross_error_mean'), 4)}; ` +
-      `${v('11.ours.flipped')} / ${v('11.baseline.flipped')} folded triangles; ours in ${v('11.ours.iterations')} ` +
-      `iterations.`,
+      `${v('11.ours.flipped')} / ${v('11.baseline.flipped')} folded triangles; ${v('11.ours.iterations')} / ` +
+      `${v('11.baseline.iterations')} iterations.`,
     view: { direction: [0, 0, 1], up: [0, 1, 0], frame: 'own' },
     pictures: [
       { mesh: '11-rest', caption: 'the panel, arrow vertices marked' },

@@ -107,16 +107,15 @@ function checkEveryFigureScene() {
   }
 }
 
-// Per picture, the sphere the camera fits: around every picture's mesh of the
+// Per picture, the box the camera fits: around every picture's mesh of the
 // figure ('all', so that sizes compare), the first picture's selected
-// vertices ('selection', with as much again around them) or its own mesh ('own').
+// vertices ('selection', twice their size: some of the surface around them)
+// or its own mesh ('own').
 function framesOf(figure) {
-  const sphere = (boxes) => {
-    const lo = [0, 1, 2].map((k) => Math.min(...boxes.map((b) => b.lo[k])));
-    const hi = [0, 1, 2].map((k) => Math.max(...boxes.map((b) => b.hi[k])));
-    const center = lo.map((x, k) => (x + hi[k]) / 2);
-    return { center, radius: Math.hypot(...hi.map((x, k) => x - lo[k])) / 2 };
-  };
+  const union = (boxes) => ({
+    lo: [0, 1, 2].map((k) => Math.min(...boxes.map((b) => b.lo[k]))),
+    hi: [0, 1, 2].map((k) => Math.max(...boxes.map((b) => b.hi[k]))),
+  });
   const box = (m, only) => {
     const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
     for (let i = 0; i < m.positions.length / 3; i++) {
@@ -131,16 +130,15 @@ function framesOf(figure) {
   const pictures = figure.pictures.map((p) => mesh(p.mesh));
   switch (figure.view.frame) {
     case 'all': {
-      const frame = sphere(pictures.map((m) => box(m)));
+      const frame = union(pictures.map((m) => box(m)));
       return pictures.map(() => frame);
     }
     case 'selection': {
-      const first = pictures[0];
-      const frame = sphere([box(first, first.selection)]);
-      frame.radius *= 2; // some of the face around it
+      const { lo, hi } = box(pictures[0], pictures[0].selection);
+      const frame = { lo: lo.map((x, k) => x - (hi[k] - x) / 2), hi: hi.map((x, k) => x + (x - lo[k]) / 2) };
       return pictures.map(() => frame);
     }
-    case 'own': return pictures.map((m) => sphere([box(m)]));
+    case 'own': return pictures.map((m) => box(m));
     default: throw new Error(`figure ${figure.id}: unknown frame ${figure.view.frame}`);
   }
 }
