@@ -251,9 +251,10 @@ TEST_CASE("fig. 10: a stretch along a field bent upwards at its ends lifts the e
     rise[bend] = band_end_rise(mesh, result.V, w, c[0], r) / r;
     const std::string name = bend > 0 ? "bent" : "straight";
     test::record_figure_value("10.anarap." + name + "_rise", rise[bend]);
-    test::record_figure_mesh("10-anarap-" + name, result.V, mesh.F, w,
-                             vertex_distortion(mesh, result.V, DistortionKind::Stretch).array().log() / std::log(2.0),
-                             "stretch");
+    if (!test::figures_dir().empty()) {
+      const Eigen::VectorXd stretch = vertex_distortion(mesh, result.V, DistortionKind::Stretch);
+      test::record_figure_mesh("10-anarap-" + name, result.V, mesh.F, w, stretch.array().log() / std::log(2.0), "stretch");
+    }
     WARN("fig10 bend " << bend << ": band ends rise " << rise[bend] << " of the radius relative to the middle");
   }
   // The bent field lifts the ends; the straight one does not.
