@@ -14,6 +14,7 @@
 #include <Eigen/SVD>
 
 #include "anisoform/selection.h"
+#include "figure_record.h"
 #include "mesh/topology.h"
 #include "solver_test_support.h"
 #include "test_support.h"
@@ -152,6 +153,7 @@ TEST_CASE("fig. 4: shearing the top of the spool along y moves it along the shea
   const int up = kSpoolAxis, side = 1;
   const double lo = mesh.V.col(up).minCoeff(), hi = mesh.V.col(up).maxCoeff();
   const Eigen::VectorXd w = spool_above(mesh, lo + 0.5 * (hi - lo));
+  test::record_figure_mesh("4-rest", mesh.V, mesh.F, w);
   Deformer deformer(mesh);
   for (Method method : {Method::AnDefGrad, Method::AnArap}) {
     for (double h : {0.5, -0.5}) {
@@ -172,6 +174,12 @@ TEST_CASE("fig. 4: shearing the top of the spool along y moves it along the shea
       INFO(method_name(method) << " h=" << h);
       WARN("fig4 " << method_name(method) << " h=" << h << ": top shift " << top_shift / (hi - lo)
                    << " of the height, bottom motion " << bottom_motion / (hi - lo));
+      if (h > 0) {
+        const std::string key = std::string("4.") + method_name(method);
+        test::record_figure_value(key + ".top_shift", top_shift / (hi - lo));
+        test::record_figure_value(key + ".bottom_motion", bottom_motion / (hi - lo));
+        test::record_figure_mesh(std::string("4-") + method_name(method), r.V, mesh.F, w);
+      }
       CHECK(top_shift * h > 0.05 * (hi - lo));           // visible shear, in the shear's sense
       CHECK(bottom_motion < 0.15 * std::abs(top_shift));  // unselected part unaffected
     }
@@ -226,6 +234,7 @@ TEST_CASE("fig. 5: rotating the spool's top elements about z bends it into a hoo
   const SpoolRing& base = spool_ring_at(rings, -0.26);   // the bottom face's rim (not selected)
   REQUIRE(w[top.ids[0]] == 1.0);
   REQUIRE(w[base.ids[0]] == 0.0);
+  test::record_figure_mesh("5-rest", mesh.V, mesh.F, w);
   auto below = [&](int i) { return mesh.V(i, kSpoolAxis) < lo + 0.45 * (hi - lo); };
   std::vector<int> below_ids;
   for (int i = 0; i < mesh.num_vertices(); ++i) {
@@ -259,6 +268,14 @@ TEST_CASE("fig. 5: rotating the spool's top elements about z bends it into a hoo
                    << " z " << shift[2] / height << " of the height");
       // Hook: the top turns in the rotation's sense by a good part of theta,
       // the base stays upright ...
+      if (theta > 0) {
+        const std::string key = std::string("5.") + method_name(method);
+        test::record_figure_value(key + ".top_tilt", top_tilt);
+        test::record_figure_value(key + ".base_tilt", base_tilt);
+        test::record_figure_value(key + ".top_shift_y", shift[1] / height);
+        test::record_figure_value(key + ".top_shift_z", shift[2] / height);
+        test::record_figure_mesh(std::string("5-") + method_name(method), r.V, mesh.F, w);
+      }
       CHECK(top_tilt / theta > 0.3);
       CHECK(top_tilt / theta < 1.2);
       CHECK(std::abs(base_tilt) < 0.1 * std::abs(top_tilt));
@@ -283,6 +300,10 @@ TEST_CASE("fig. 5: rotating the spool's top elements about z bends it into a hoo
         WARN("fig5 " << method_name(method) << ": below the selection, mean edge strain " << strain_below[method]
                      << ", change of shape (RMS off the best rigid motion) " << reshape_below[method]
                      << " of the height, mean dihedral change " << bend_below[method] << " deg");
+        const std::string key = std::string("5.") + method_name(method);
+        test::record_figure_value(key + ".strain_below", strain_below[method]);
+        test::record_figure_value(key + ".reshape_below", reshape_below[method]);
+        test::record_figure_value(key + ".bend_below", bend_below[method]);
       }
     }
   }
@@ -318,6 +339,27 @@ RingTurns spool_ring_turns(const Mesh& mesh, const Positions& V, const std::vect
   return out;
 }
 
+// For the gallery's pictures of a twist: 1 on one meridian (per ring of
+// constant x and radius, the vertex nearest to the +z direction), 0
+// elsewhere; drawn as a line that the twist turns into a helix.
+Eigen::VectorXd spool_meridian(const Mesh& mesh) {
+  const Eigen::RowVector3d c = spool_center(mesh.V);
+  std::map<std::pair<long, long>, int> nearest;  // (x, radius) -> vertex
+  auto off_z = [&](int i) { return std::abs(std::atan2(mesh.V(i, 1) - c[1], mesh.V(i, 2) - c[2])); };
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    const double radius = std::hypot(mesh.V(i, 1) - c[1], mesh.V(i, 2) - c[2]);
+    if (radius < 0.05) continue;
+    const auto key = std::make_pair(std::lround(mesh.V(i, kSpoolAxis) * 1e4), std::lround(radius * 1e2));
+    const auto it = nearest.find(key);
+    if (it == nearest.end() || off_z(i) < off_z(it->second)) nearest[key] = i;
+  }
+  Eigen::VectorXd line = Eigen::VectorXd::Zero(mesh.num_vertices());
+  for (const auto& entry : nearest) {
+    if (off_z(entry.second) < 10.0 * M_PI / 180.0) line[entry.second] = 1.0;
+  }
+  return line;
+}
+
 DeformRequest spool_twist(Method method, const Mesh& mesh, double rate, double origin_x) {
   DeformRequest request;
   request.method = method;
@@ -339,6 +381,9 @@ TEST_CASE("fig. 6: twisting the whole spool about x turns each ring by k per uni
   REQUIRE(rings.size() >= 10);
   const double lo = mesh.V.col(kSpoolAxis).minCoeff();
   const double k = 60.0;  // degrees per unit: 31 degrees over the spool's 0.52
+  test::record_figure_value("6.rate", k);
+  const Eigen::VectorXd meridian = spool_meridian(mesh);
+  test::record_figure_mesh("6-rest", mesh.V, mesh.F, Eigen::VectorXd(), meridian, "marker");
   Deformer deformer(mesh);
   for (Method method : {Method::AnDefGrad, Method::AnArap}) {
     const DeformResult r = deformer.deform(spool_twist(method, mesh, k, lo));
@@ -351,6 +396,10 @@ TEST_CASE("fig. 6: twisting the whole spool about x turns each ring by k per uni
       worst = std::max(worst, std::abs(t.turns[j] - (mean_t + slope * (t.heights[j] - mean_h))));
     }
     INFO(method_name(method));
+    test::record_figure_value(std::string("6.") + method_name(method) + ".whole_rate", slope);
+    test::record_figure_value(std::string("6.") + method_name(method) + ".whole_worst_ring", worst);
+    test::record_figure_mesh(std::string("6-") + method_name(method) + "-whole", r.V, mesh.F, Eigen::VectorXd(), meridian,
+                             "marker");
     WARN("fig6 " << method_name(method) << ": fitted twist " << slope << " deg/unit for k = " << k
                  << ", worst ring off the line " << worst << " deg over " << t.heights.size() << " rings");
     if (method == Method::AnDefGrad) {
@@ -392,6 +441,11 @@ TEST_CASE("fig. 6: a twist of the spool's top with a geodesic falloff: k per uni
     REQUIRE(full.heights.size() >= 8);
     const double slope = fitted_slope(full.heights, full.turns);
     INFO(method_name(method));
+    const std::string key = std::string("6.") + method_name(method);
+    test::record_figure_value(key + ".falloff_rate", slope);
+    test::record_figure_value(key + ".falloff_unselected_turn", still);
+    test::record_figure_mesh(std::string("6-") + method_name(method) + "-falloff", r.V, mesh.F, w, spool_meridian(mesh),
+                             "marker");
     WARN("fig6 falloff " << method_name(method) << ": twist on the selection " << slope << " deg/unit for k = " << k
                          << " (" << full.heights.size() << " rings); largest unselected ring turn " << still
                          << " deg; soft rings:" << soft.str());
@@ -423,6 +477,7 @@ TEST_CASE("fig. 7: a local stretch of the spool's top follows its direction and 
   const SpoolRing& top = spool_ring_at(rings, 0.1439);  // upper flange rim, selected
   const SpoolRing& base = spool_ring_at(rings, -0.26);  // bottom rim, not selected
   const auto rims = spool_rims(mesh, 40.0 * M_PI / 180.0);
+  test::record_figure_mesh("7-rest", mesh.V, mesh.F, w);
   Deformer deformer(mesh);
   for (Method method : {Method::AnDefGrad, Method::AnArap}) {
     DeformRequest request = test::stretch_request(method, Eigen::Vector3d::UnitY(), 1.4);
@@ -433,6 +488,12 @@ TEST_CASE("fig. 7: a local stretch of the spool's top follows its direction and 
     const double base_along = ring_extent(r.V, base, 1) / ring_extent(mesh.V, base, 1);
     const double rim_change = rim_change_degrees(mesh, r.V, rims, w);
     INFO(method_name(method));
+    const std::string key = std::string("7.") + method_name(method);
+    test::record_figure_value(key + ".stretch_along", along);
+    test::record_figure_value(key + ".stretch_across", across);
+    test::record_figure_value(key + ".stretch_base", base_along);
+    test::record_figure_value(key + ".stretch_rim_change", rim_change);
+    test::record_figure_mesh(std::string("7-") + method_name(method) + "-stretch", r.V, mesh.F, w);
     WARN("fig7 stretch " << method_name(method) << " su=1.4 along y: top rim y x" << along << ", z x" << across
                          << ", base rim y x" << base_along << "; selected rims' dihedral change " << rim_change
                          << " deg");
@@ -466,6 +527,10 @@ TEST_CASE("fig. 7: a local rotation of the spool's top turns it about the chosen
       const double tilt = std::asin(std::min(1.0, std::abs(n[toward]))) * 180.0 / M_PI;
       const double off = std::asin(std::min(1.0, std::abs(n[axis]))) * 180.0 / M_PI;
       INFO(method_name(method) << " about axis " << axis);
+      const std::string about = std::string(1, "xyz"[axis]);
+      test::record_figure_value(std::string("7.") + method_name(method) + ".rotate_" + about + "_tilt", tilt);
+      test::record_figure_value(std::string("7.") + method_name(method) + ".rotate_" + about + "_off", off);
+      test::record_figure_mesh(std::string("7-") + method_name(method) + "-rotate-" + about, r.V, mesh.F, w);
       WARN("fig7 rotate " << method_name(method) << " 30 deg about " << "xyz"[axis] << ": top rim normal tilts "
                           << tilt << " deg towards " << "xyz"[toward] << ", " << off << " deg towards "
                           << "xyz"[axis]);
@@ -482,6 +547,7 @@ TEST_CASE("fig. 9: elongating the spool along x, AnDefGrad keeps the rims best, 
   const int axis = kSpoolAxis;
   const auto rims = spool_rims(mesh, 40.0 * M_PI / 180.0);
   REQUIRE(rims.size() > 20);
+  test::record_figure_mesh("9-rest", mesh.V, mesh.F);
   const double lo = mesh.V.col(axis).minCoeff(), hi = mesh.V.col(axis).maxCoeff();
   const double height = hi - lo;
   // The core: the cylinder between the flanges, the part whose surface runs
@@ -506,6 +572,10 @@ TEST_CASE("fig. 9: elongating the spool along x, AnDefGrad keeps the rims best, 
     change[method] = rim_change_degrees(mesh, r.V, rims);
     const double new_height = r.V.col(axis).maxCoeff() - r.V.col(axis).minCoeff();
     const double new_core = ring_mean(r.V, core_top)[axis] - ring_mean(r.V, core_bottom)[axis];
+    test::record_figure_value(std::string("9.") + method_name(method) + ".rim_change", change[method]);
+    test::record_figure_value(std::string("9.") + method_name(method) + ".height_ratio", new_height / height);
+    test::record_figure_value(std::string("9.") + method_name(method) + ".core_ratio", new_core / core);
+    test::record_figure_mesh(std::string("9-") + method_name(method), r.V, mesh.F);
     WARN("fig9 " << method_name(method) << ": mean rim dihedral change " << change[method] << " deg, height x"
                  << new_height / height << ", core x" << new_core / core);
     INFO(method_name(method));

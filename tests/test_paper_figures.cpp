@@ -5,7 +5,9 @@
 #include <cmath>
 #include <map>
 
+#include "anisoform/distortion.h"
 #include "directions/curvature.h"
+#include "figure_record.h"
 #include "geometry/frames.h"
 #include "anisoform/selection.h"
 #include "mesh/topology.h"
@@ -73,6 +75,15 @@ TEST_CASE("fig. 2: on a torus AnARAP spreads an elongation over the selection bo
   const double jump_defgrad = border_area_jump(mesh, defgrad.V, w);
   WARN("fig2 border log-area jump: anarap " << jump_arap << ", andefgrad " << jump_defgrad);
   CHECK(jump_arap < jump_defgrad);
+  test::record_figure_value("2.anarap.border_jump", jump_arap);
+  test::record_figure_value("2.andefgrad.border_jump", jump_defgrad);
+  if (!test::figures_dir().empty()) {
+    test::record_figure_mesh("2-rest", mesh.V, mesh.F, w);
+    for (const auto& [name, result] : {std::pair{"2-andefgrad", &defgrad}, std::pair{"2-anarap", &arap}}) {
+      const Eigen::VectorXd area = vertex_distortion(mesh, result->V, DistortionKind::AreaRatio);
+      test::record_figure_mesh(name, result->V, mesh.F, w, area.array().log() / std::log(2.0), "area");
+    }
+  }
   // Both really elongated the part.
   const Eigen::VectorXd rest_area = test::triangle_areas(mesh.V, mesh.F);
   CHECK(test::triangle_areas(arap.V, mesh.F).sum() > 1.05 * rest_area.sum());
@@ -124,6 +135,16 @@ TEST_CASE("fig. 8: scaling a tube along its curvature field lengthens it, across
     WARN("fig8 " << method_name(method) << ": parallel along " << p_along << " across " << p_across
                  << "; perpendicular along " << q_along << " across " << q_across);
     INFO(method_name(method));
+    const std::string key = std::string("8.") + method_name(method);
+    test::record_figure_value(key + ".parallel_along", p_along);
+    test::record_figure_value(key + ".parallel_across", p_across);
+    test::record_figure_value(key + ".perpendicular_along", q_along);
+    test::record_figure_value(key + ".perpendicular_across", q_across);
+    if (method == Method::AnDefGrad) {
+      test::record_figure_mesh("8-rest", mesh.V, mesh.F);
+      test::record_figure_mesh("8-andefgrad-parallel", parallel.V, mesh.F);
+      test::record_figure_mesh("8-andefgrad-perpendicular", perpendicular.V, mesh.F);
+    }
     CHECK(p_along == Approx(1.3).epsilon(0.06));   // longer ...
     CHECK(p_across == Approx(1.0).epsilon(0.05));  // ... diameter kept
     CHECK(q_along == Approx(1.0).epsilon(0.05));   // length kept ...
@@ -166,6 +187,10 @@ TEST_CASE("fig. 1: a quadruped's leg is elongated along its direction and the bo
   }
   WARN("fig1 leg height x" << (new_hi - new_lo) / (rest_hi - rest_lo) << ", body mean motion "
                            << body_motion / body / diagonal(mesh.V) << " of the diagonal");
+  test::record_figure_value("1.anarap.leg_height_ratio", (new_hi - new_lo) / (rest_hi - rest_lo));
+  test::record_figure_value("1.anarap.body_motion", body_motion / body / diagonal(mesh.V));
+  test::record_figure_mesh("1-rest", mesh.V, mesh.F, w);
+  test::record_figure_mesh("1-anarap", r.V, mesh.F, w);
   CHECK((new_hi - new_lo) > 1.2 * (rest_hi - rest_lo));
   // ... while the upper body stays where it was (the rigid re-alignment holds it).
   CHECK(body_motion / body < 0.02 * diagonal(mesh.V));
@@ -207,6 +232,7 @@ TEST_CASE("fig. 10: a stretch along a field bent upwards at its ends lifts the e
   region.radius = r;
   const Eigen::VectorXd w = selection_weights(mesh, region, 0.05);
   REQUIRE(w.sum() > 50);
+  test::record_figure_mesh("10-rest", mesh.V, mesh.F, w);
   Deformer deformer(mesh);
   std::map<double, double> rise;
   for (double bend : {0.0, 1.0}) {
@@ -223,6 +249,12 @@ TEST_CASE("fig. 10: a stretch along a field bent upwards at its ends lifts the e
     request.transform.su = 1.3;
     const DeformResult result = deformer.deform(request);
     rise[bend] = band_end_rise(mesh, result.V, w, c[0], r) / r;
+    const std::string name = bend > 0 ? "bent" : "straight";
+    test::record_figure_value("10.anarap." + name + "_rise", rise[bend]);
+    if (!test::figures_dir().empty()) {
+      const Eigen::VectorXd stretch = vertex_distortion(mesh, result.V, DistortionKind::Stretch);
+      test::record_figure_mesh("10-anarap-" + name, result.V, mesh.F, w, stretch.array().log() / std::log(2.0), "stretch");
+    }
     WARN("fig10 bend " << bend << ": band ends rise " << rise[bend] << " of the radius relative to the middle");
   }
   // The bent field lifts the ends; the straight one does not.
