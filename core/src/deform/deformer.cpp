@@ -297,7 +297,8 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
     for (int p : request.pins) result.V.row(p) = unit_.V.row(p);
     const int steps = stepped ? request.rotation_steps : request.max_iterations;
     result.iterations = iterations->run(solver, result.V, steps, stepped ? -1.0 : request.tolerance,
-                                        result.energy_history, request.final_energy);
+                                        result.energy_history, request.final_energy,
+                                        !stepped && request.acceleration == Acceleration::Anderson);
     result.energy = result.energy_history.empty() ? 0.0 : result.energy_history.back();
     result.converged = stepped || result.iterations < steps;
     realign(unit_, gauge, affected, Alignment::Rigid, result.V);
