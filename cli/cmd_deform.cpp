@@ -43,6 +43,7 @@ struct DeformArguments {
   std::string tolerance;
   std::string elements;
   std::string rotations;
+  std::string acceleration;
   std::string rotation_coupling;
   std::string op;
   bool ascii = false;
@@ -84,7 +85,8 @@ std::vector<std::pair<const char*, const std::string*>> op_flags(const DeformArg
           {"--twist", &args.twist},         {"--pin", &args.pin},             {"--handle", &args.handle},
           {"--move", &args.move},           {"--iterations", &args.iterations},
           {"--tolerance", &args.tolerance}, {"--elements", &args.elements},
-          {"--rotations", &args.rotations}, {"--rotation-coupling", &args.rotation_coupling}};
+          {"--rotations", &args.rotations}, {"--rotation-coupling", &args.rotation_coupling},
+          {"--acceleration", &args.acceleration}};
 }
 
 // --op FILE: the public op, parsed by the core (op.h) as the browser's is.
@@ -145,6 +147,7 @@ DeformOp edit_from_flags(const DeformArguments& args, DeformPlan& plan) {
   }
   if (!args.elements.empty()) request.elements = parse_elements(args.elements);
   if (!args.rotations.empty()) request.rotations = rotation_scheme_from_name(args.rotations, "--rotations");
+  if (!args.acceleration.empty()) request.acceleration = acceleration_from_name(args.acceleration, "--acceleration");
   if (!args.rotation_coupling.empty()) {
     request.rotation_coupling = parse_number(args.rotation_coupling, "--rotation-coupling");
     if (!(request.rotation_coupling > 0.0)) {
@@ -346,6 +349,10 @@ void add_deform_options(CLI::App& deform, DeformArguments& args) {
   deform.add_option("--rotation-coupling", args.rotation_coupling,
                     "coupled rotations: how strongly neighbours are tied, > 0 (default 1)")
       ->type_name("ALPHA");
+  deform.add_option("--acceleration", args.acceleration,
+                    "AnARAP/ARAP iterations: anderson (default: Anderson acceleration, same result in "
+                    "fewer iterations) | none (plain local/global)")
+      ->type_name("KIND");
   deform.add_flag("--ascii", args.ascii, "Write PLY and STL as text instead of binary");
 }
 

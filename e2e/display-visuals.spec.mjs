@@ -4,7 +4,8 @@
 // arrows drawn solid with heads in a colour that stands out on the orange
 // selection; direction glyphs thinned to a screen-space spacing. State is
 // read from the DOM (legend text, the canvas's data attributes, the gizmo's
-// SVG); screenshots go to e2e/artifacts/.
+// SVG); screenshots go to e2e/artifacts/. A CPU rasteriser draws without
+// multisampling (viewer/software-rendering.js).
 import { armChange, canvasCentre, countPixels, expect, openApp, saveScreenshot, test } from './support.mjs';
 
 // Viewport pixels matching `kind`: 'red' (the stretch palette's grown), 'blue' (the arrows).
@@ -67,6 +68,21 @@ test('flat shading and the wireframe change what is drawn, and say so on the can
   await saveScreenshot(page, 'wireframe');
   await page.getByLabel('Wireframe').uncheck();
   await expect(canvas).toHaveAttribute('data-wireframe', 'false');
+  expect(pageErrors).toEqual([]);
+});
+
+test('on a CPU rasteriser (SwiftShader here) the viewport draws without multisampling, and says so', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const canvas = page.getByTestId('viewport');
+  // The context itself, not only the attribute: getContext returns the viewer's.
+  const drawn = await canvas.evaluate((element) => {
+    const gl = element.getContext('webgl2');
+    const info = gl.getExtension('WEBGL_debug_renderer_info');
+    return { antialias: gl.getContextAttributes().antialias, renderer: gl.getParameter(info.UNMASKED_RENDERER_WEBGL) };
+  });
+  expect(drawn.renderer).toMatch(/swiftshader/i);
+  expect(drawn.antialias).toBe(false);
+  await expect(canvas).toHaveAttribute('data-antialias', 'false');
   expect(pageErrors).toEqual([]);
 });
 

@@ -56,8 +56,8 @@ TEST_CASE("op: every field is read into the request", "[op]") {
     "transform": {"scale": [1.5, 0.5], "thickness": 2, "shear": 0.25, "rotate": {"axis": "u", "degrees": 30},
                   "twist": {"axis": [0, 0, 2], "degreesPerUnit": 45, "origin": [1, 2, 3]}},
     "pins": [4, 5], "move": [0, 0, 1], "elements": "spokes-rims", "maxIterations": 7,
-    "rotations": "steps", "rotationCoupling": 2.5, "rotationSteps": 3, "tolerance": 0.001, "preview": true,
-    "warmStart": false})"));
+    "rotations": "steps", "rotationCoupling": 2.5, "rotationSteps": 3, "tolerance": 0.001, "acceleration": "none",
+    "preview": true, "warmStart": false})"));
   const DeformRequest& r = edit.request;
   CHECK(r.method == Method::AnDefGrad);
   CHECK(r.direction.kind == DirectionSource::Kind::CurvatureMax);
@@ -81,6 +81,7 @@ TEST_CASE("op: every field is read into the request", "[op]") {
   CHECK(r.rotation_coupling == 2.5);
   CHECK(r.rotation_steps == 3);
   CHECK(r.tolerance == 0.001);
+  CHECK(r.acceleration == Acceleration::None);
   CHECK(edit.preview);
   CHECK_FALSE(r.warm_start);
   CHECK(edit.direction_given);
@@ -133,7 +134,7 @@ TEST_CASE("op: refusals name the field and quote the value", "[op]") {
         "op.method must be one of anarap, andefgrad, arap, linear, got 'rigid'");
   CHECK(refusal_of_op(R"({"speed":1})") ==
         "op has an unknown field 'speed' (allowed: method, direction, transform, pins, handles, move, elements, "
-        "maxIterations, rotations, rotationCoupling, rotationSteps, tolerance, preview, warmStart)");
+        "maxIterations, rotations, rotationCoupling, rotationSteps, tolerance, acceleration, preview, warmStart)");
   CHECK(refusal_of_op(R"({"direction":{"type":"global","vector":[0,0,0]}})") ==
         "op.direction.vector must not be the zero vector");
   CHECK(refusal_of_op(R"({"direction":{"type":"global","vector":[1,"NaN",0]}})") ==
@@ -147,6 +148,7 @@ TEST_CASE("op: refusals name the field and quote the value", "[op]") {
   CHECK(refusal_of_op(R"({"rotationSteps":1.5})") == "op.rotationSteps must be an integer >= 1, got 1.5");
   CHECK(refusal_of_op(R"({"rotations":"spin"})") == "op.rotations must be one of coupled, steps, got 'spin'");
   CHECK(refusal_of_op(R"({"rotationCoupling":0})") == "op.rotationCoupling must be > 0, got 0");
+  CHECK(refusal_of_op(R"({"acceleration":"fast"})") == "op.acceleration must be one of anderson, none, got 'fast'");
   CHECK(refusal_of_op(R"({"preview":"yes"})") == "op.preview must be true or false, got 'yes'");
   CHECK(refusal_of_op(R"({"pins":[1,"3"]})") == "op.pins element 1 must be a number, got '3'");
   CHECK(refusal_of_op(R"({"handles":[4294967297]})") ==

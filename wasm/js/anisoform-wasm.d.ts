@@ -197,6 +197,12 @@ export interface DeformOp {
   rotationSteps?: number;
   /** Relative energy change that ends the iterations (default 1e-6). */
   tolerance?: number;
+  /**
+   * AnARAP/ARAP: 'anderson' (default) accelerates the converging iterations (Anderson acceleration, each
+   * proposal kept only if it lowers the energy): the same result in several times fewer iterations.
+   * 'none': plain local/global. The paper's rotation 'steps' are never accelerated.
+   */
+  acceleration?: 'anderson' | 'none';
   /** Live preview: at most 4 iterations, warm-started (the 'steps' scheme runs its rotationSteps). */
   preview?: boolean;
   /** Start from the previous result of the same setup (default true). */

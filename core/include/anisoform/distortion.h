@@ -3,6 +3,8 @@
 // and the count of triangles a deformation folded over.
 #pragma once
 
+#include <vector>
+
 #include "anisoform/mesh.h"
 
 namespace aniso {
@@ -31,5 +33,18 @@ Eigen::VectorXd vertex_distortion(const Mesh& rest, const Positions& deformed,
 // would count as folded everywhere. Zero-area rest triangles are skipped.
 // Throws Error(BadParameter) if the vertex counts differ.
 int count_inverted(const Mesh& rest, const Positions& deformed);
+
+// count_inverted for many deformations of one rest mesh: its normals and which
+// of its triangles have area are found once (a live preview asks every frame).
+class InversionCounter {
+ public:
+  explicit InversionCounter(const Mesh& rest);
+  // `rest` must be the mesh this counter was made for.
+  int count(const Mesh& rest, const Positions& deformed) const;
+
+ private:
+  Positions rest_normals_;
+  std::vector<char> has_area_;  // per rest triangle
+};
 
 }  // namespace aniso

@@ -5,9 +5,14 @@
 #include <utility>
 
 #include "anisoform/transforms.h"
+#include "deform/anderson.h"
 
 namespace aniso {
+
 namespace {
+// Differences kept by Anderson acceleration: Peng et al. use 5-6; more costs
+// memory (2 position arrays each) for little gain.
+constexpr int kAndersonWindow = 5;
 
 // Rotation maximizing f(R) = tr(R^T S), warm-started from q. Each step
 // perturbs on the right, R = R0 exp([d]x), with M = R0^T S:
@@ -322,18 +327,41 @@ void AnArapSolver::global_rhs(Positions& b) const {
 }
 
 int AnArapSolver::run(const LaplacianSolver& solver, Positions& V, int max_iterations,
-                        double tolerance, std::vector<double>& history, bool final_energy) {
-  Positions b;
+                        double tolerance, std::vector<double>& history, bool final_energy,
+                        bool accelerate) {
+  Positions b, g, proposal;
+  AndersonMixer mixer(kAndersonWindow);
+  std::vector<Eigen::Quaterniond> kept_rotations;
   double previous = local_step(V);
   int iterations = 0;
   for (int it = 0; it < max_iterations; ++it) {
     global_rhs(b);
-    solver.solve(b, V);
+    g = V;
+    solver.solve(b, g);  // G(V): the plain iteration's next positions
     if (!final_energy && it + 1 == max_iterations) {
+      V = g;
       history.push_back(previous);
       return ++iterations;
     }
-    const double energy = local_step(V);
+    double energy = 0.0;
+    if (accelerate && mixer.propose(V, g, proposal)) {
+      // The safeguard: the proposal's energy (with rotations fitted to it)
+      // must be below the last accepted one, else the plain step is taken
+      // from the rotations as they were.
+      kept_rotations = rotation_;
+      energy = local_step(proposal);
+      if (energy < previous) {
+        V.swap(proposal);
+      } else {
+        rotation_ = kept_rotations;
+        mixer.reset();
+        V.swap(g);
+        energy = local_step(V);
+      }
+    } else {
+      V.swap(g);
+      energy = local_step(V);
+    }
     history.push_back(energy);
     ++iterations;
     // Relative change, measured against the energy's own size but never

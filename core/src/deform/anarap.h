@@ -74,8 +74,11 @@ class AnArapSolver {
   // iteration's local step (E(V_k, R_k), non-increasing for symmetric T).
   // Without `final_energy`, the local step after the last solve is skipped
   // (V is the same): the last entry is then the energy before that solve.
+  // `accelerate`: Anderson acceleration of the positions (anderson.h), each
+  // proposal kept only if it lowers the energy, so the history still never
+  // increases; for converging iterations only (not the paper's rotation steps).
   int run(const LaplacianSolver& solver, Positions& V, int max_iterations, double tolerance,
-          std::vector<double>& history, bool final_energy = true);
+          std::vector<double>& history, bool final_energy = true, bool accelerate = false);
 
  private:
   // S_i = sum w e' t^T (full targets) and with the polar targets, per cell.

@@ -13,6 +13,7 @@
 #include "anisoform/error.h"
 #include "deform/gauge.h"
 #include "anisoform/mesh_check.h"
+#include "mesh/topology.h"
 
 namespace aniso {
 
@@ -133,8 +134,14 @@ Eigen::Vector3d linear_center(const Mesh& mesh, const Eigen::VectorXd& w) {
 }  // namespace
 
 struct Deformer::Workspace {
-  explicit Workspace(const Mesh& rest) : targets(rest) {}
+  // `unit`: the rest pose at unit size, which the solves run on; `rest`: as given.
+  Workspace(const Mesh& unit, const Mesh& rest) : targets(unit), inversions(rest) {
+    component = vertex_components(unit.F, unit.num_vertices(), &components);
+  }
   TargetContext targets;
+  InversionCounter inversions;  // of the rest pose as given
+  std::vector<int> component;   // vertex_components, for make_gauge
+  int components = 0;
   std::map<ArapElements, std::unique_ptr<AnArapSolver>> arap;
   // Warm start: the last result of a setup (method, elements, pins).
   std::string last_key;
@@ -199,7 +206,7 @@ DeformResult Deformer::deform(const DeformRequest& request) {
     if (!std::isfinite(energy)) fail(ErrorCode::Numerical, "the solve produced a non-finite energy");
   }
   if (!std::isfinite(result.energy)) fail(ErrorCode::Numerical, "the solve produced a non-finite energy");
-  result.inverted = count_inverted(rest_, result.V);
+  result.inverted = workspace_->inversions.count(rest_, result.V);
   result.solve_ms = ms_since(start) - result.precompute_ms;
   return result;
 }
@@ -214,7 +221,7 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
   double precompute_ms = 0.0;
   if (!workspace_) {
     const auto t0 = Clock::now();
-    workspace_ = std::make_unique<Workspace>(unit_);
+    workspace_ = std::make_unique<Workspace>(unit_, rest_);
     precompute_ms += ms_since(t0);
   }
   Workspace& ws = *workspace_;
@@ -236,7 +243,7 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
     for (int p : request.pins) result.V.row(p) = unit_.V.row(p);
     result.directions_filled = targets.filled;
   } else if (request.method == Method::AnDefGrad) {
-    const Gauge gauge = make_gauge(unit_, request.pins);
+    const Gauge gauge = make_gauge(ws.component, ws.components, request.pins);
     const LaplacianSolver& solver = solver_for(gauge.pins, &precompute_ms);
     const ElementTargets targets = triangle_targets(ws.targets, request.direction, request.transform, w);
     Positions b;
@@ -257,7 +264,7 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
       affected.setZero();
       for (int h : request.handles) affected[h] = 1.0;
     }
-    const Gauge gauge = make_gauge(unit_, user_pins);
+    const Gauge gauge = make_gauge(ws.component, ws.components, user_pins);
     const LaplacianSolver& solver = solver_for(gauge.pins, &precompute_ms);
     auto& iterations = ws.arap[request.elements];
     if (!iterations) {
@@ -291,7 +298,8 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
     for (int p : request.pins) result.V.row(p) = unit_.V.row(p);
     const int steps = stepped ? request.rotation_steps : request.max_iterations;
     result.iterations = iterations->run(solver, result.V, steps, stepped ? -1.0 : request.tolerance,
-                                        result.energy_history, request.final_energy);
+                                        result.energy_history, request.final_energy,
+                                        !stepped && request.acceleration == Acceleration::Anderson);
     result.energy = result.energy_history.empty() ? 0.0 : result.energy_history.back();
     result.converged = stepped || result.iterations < steps;
     realign(unit_, gauge, affected, Alignment::Rigid, result.V);

@@ -8,8 +8,15 @@
 namespace aniso {
 
 Gauge make_gauge(const Mesh& mesh, const std::vector<int>& user_pins) {
+  int components = 0;
+  std::vector<int> component = vertex_components(mesh.F, mesh.num_vertices(), &components);
+  return make_gauge(std::move(component), components, user_pins);
+}
+
+Gauge make_gauge(std::vector<int> component, int components, const std::vector<int>& user_pins) {
   Gauge gauge;
-  gauge.component = vertex_components(mesh.F, mesh.num_vertices(), &gauge.components);
+  gauge.component = std::move(component);
+  gauge.components = components;
   gauge.realign.assign(gauge.components, 1);
   for (int p : user_pins) gauge.realign[gauge.component[p]] = 0;
   gauge.pins = user_pins;
@@ -17,9 +24,9 @@ Gauge make_gauge(const Mesh& mesh, const std::vector<int>& user_pins) {
   // so any vertex serves, and one independent of the selection keeps the pin
   // set (and so the factorization) the same across selections.
   std::vector<int> first(gauge.components, -1);
-  for (int i = 0; i < mesh.num_vertices(); ++i) {
+  for (std::size_t i = 0; i < gauge.component.size(); ++i) {
     const int c = gauge.component[i];
-    if (gauge.realign[c] && first[c] < 0) first[c] = i;
+    if (gauge.realign[c] && first[c] < 0) first[c] = static_cast<int>(i);
   }
   for (int c = 0; c < gauge.components; ++c) {
     if (first[c] >= 0) gauge.pins.push_back(first[c]);

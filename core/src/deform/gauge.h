@@ -21,6 +21,10 @@ struct Gauge {
 // the pin set and never refactors.
 Gauge make_gauge(const Mesh& mesh, const std::vector<int>& user_pins);
 
+// The same from the mesh's vertex_components labels (topology.h), which do not
+// change with the pins: a Deformer finds them once per rest pose.
+Gauge make_gauge(std::vector<int> component, int components, const std::vector<int>& user_pins);
+
 enum class Alignment { Rigid, Translation };
 
 // Moves each re-aligned component of V so that its unaffected vertices

@@ -73,19 +73,27 @@ Eigen::Matrix3d one_ring_rotation(const Mesh& rest, const Positions& deformed,
 
 }  // namespace
 
+InversionCounter::InversionCounter(const Mesh& rest) : rest_normals_(triangle_normals(rest)) {
+  has_area_.resize(static_cast<std::size_t>(rest.num_triangles()));
+  for (int t = 0; t < rest.num_triangles(); ++t) {
+    has_area_[t] = rest_triangle_has_area(rest.V.row(rest.F(t, 0)), rest.V.row(rest.F(t, 1)),
+                                          rest.V.row(rest.F(t, 2)));
+  }
+}
+
 int count_inverted(const Mesh& rest, const Positions& deformed) {
+  return InversionCounter(rest).count(rest, deformed);
+}
+
+int InversionCounter::count(const Mesh& rest, const Positions& deformed) const {
   require_same_vertex_count(rest, deformed, "inverted count");
-  const Positions rest_normals = triangle_normals(rest);
+  const Positions& rest_normals = rest_normals_;
   const Positions normals = triangle_normals(Mesh{deformed, rest.F});
   // Only a triangle whose normal turned past 90 deg in world space can be
   // folded; most edits have none, and then no rotation is fitted at all.
   std::vector<int> candidates;
   for (int t = 0; t < rest.num_triangles(); ++t) {
-    const Eigen::Vector3d a = rest.V.row(rest.F(t, 0)), b = rest.V.row(rest.F(t, 1)),
-                          c = rest.V.row(rest.F(t, 2));
-    if (rest_triangle_has_area(a, b, c) && rest_normals.row(t).dot(normals.row(t)) < 0.0) {
-      candidates.push_back(t);
-    }
+    if (has_area_[t] && rest_normals.row(t).dot(normals.row(t)) < 0.0) candidates.push_back(t);
   }
   if (candidates.empty()) return 0;
   const VertexAdjacency adjacency = vertex_adjacency(rest.F, rest.num_vertices());

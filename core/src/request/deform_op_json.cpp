@@ -60,6 +60,11 @@ Method method_from_json(const Json& value) {
   return parse_method(one_of(value, {"anarap", "andefgrad", "arap", "linear"}, "op.method"));
 }
 
+Acceleration acceleration_from_json(const Json& value, const std::string& field) {
+  return json_fields::one_of(value, op_keys::kAccelerations, field) == "anderson" ? Acceleration::Anderson
+                                                                                  : Acceleration::None;
+}
+
 RotationScheme rotation_scheme_from_json(const Json& value, const std::string& field) {
   return json_fields::one_of(value, op_keys::kRotationSchemes, field) == "coupled" ? RotationScheme::Coupled
                                                                                    : RotationScheme::Steps;
@@ -69,6 +74,10 @@ RotationScheme rotation_scheme_from_json(const Json& value, const std::string& f
 
 RotationScheme rotation_scheme_from_name(const std::string& name, const std::string& field) {
   return rotation_scheme_from_json(Json(name), field);
+}
+
+Acceleration acceleration_from_name(const std::string& name, const std::string& field) {
+  return acceleration_from_json(Json(name), field);
 }
 
 DeformOp deform_op_from_json(const Json& op) {
@@ -97,6 +106,7 @@ DeformOp deform_op_from_json(const Json& op) {
       refuse("op.rotationCoupling", "must be > 0, got " + describe(op["rotationCoupling"]));
     }
   }
+  if (has(op, "acceleration")) request.acceleration = acceleration_from_json(op["acceleration"], "op.acceleration");
   if (has(op, "rotationSteps")) request.rotation_steps = integer_at_least(op["rotationSteps"], 1, "op.rotationSteps");
   if (has(op, "tolerance")) {
     request.tolerance = finite_number(op["tolerance"], "op.tolerance");

@@ -10,8 +10,9 @@ namespace aniso::op_keys {
 using json_fields::Keys;
 
 inline const Keys kOp{"method", "direction", "transform", "pins", "handles", "move", "elements",
-                      "maxIterations", "rotations", "rotationCoupling", "rotationSteps", "tolerance", "preview", "warmStart"};
+                      "maxIterations", "rotations", "rotationCoupling", "rotationSteps", "tolerance", "acceleration", "preview", "warmStart"};
 inline const Keys kRotationSchemes{"coupled", "steps"};
+inline const Keys kAccelerations{"anderson", "none"};
 inline const Keys kTransform{"scale", "thickness", "shear", "rotate", "twist"};
 inline const Keys kRotate{"axis", "degrees"};
 inline const Keys kTwist{"axis", "degreesPerUnit", "origin"};

@@ -4,6 +4,7 @@
 import { Color, PerspectiveCamera, Scene, Vector3, WebGLRenderer } from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { EventEmitter } from '../shared/event-emitter.js';
+import { rendersInSoftware } from './software-rendering.js';
 
 // A three-quarter view from the front right, slightly above.
 const DEFAULT_VIEW_DIRECTION = new Vector3(0.8, 0.35, -1).normalize();
@@ -25,11 +26,14 @@ export class Viewer extends EventEmitter {
   constructor(container, lifetime) {
     super();
     this.container = container;
-    this.renderer = new WebGLRenderer({ antialias: true });
+    // A CPU rasteriser draws without multisampling (software-rendering.js).
+    const antialias = !rendersInSoftware();
+    this.renderer = new WebGLRenderer({ antialias });
     this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
     this.renderer.setClearColor(new Color(0x1d2127));
     this.canvas = this.renderer.domElement;
     this.canvas.dataset.testid = 'viewport';
+    this.canvas.dataset.antialias = String(antialias);
     this.canvas.setAttribute('aria-label', '3D viewport: drag on the mesh to use the tool, elsewhere to orbit');
     this.canvas.tabIndex = 0;
     container.prepend(this.canvas);
