@@ -143,6 +143,14 @@ nlohmann::json result_json(const FlattenArguments& args, const FlattenPlan& plan
   const FlattenMetrics& m = result.metrics;
   nlohmann::json grainlines = nlohmann::json::array();
   for (const Eigen::Vector2d& g : result.grainline) grainlines.push_back({g.x(), g.y()});
+  nlohmann::json suggested_cuts = nlohmann::json::array();
+  for (const FlattenRegion& r : m.suggested_cuts) {
+    suggested_cuts.push_back({{"vertices", r.vertices},
+                              {"vertex", r.vertex},
+                              {"centroid", {r.centroid.x(), r.centroid.y(), r.centroid.z()}},
+                              {"error_mean", r.error_mean},
+                              {"triangles", r.triangles}});
+  }
   return {
       {"method", m.method},
       {"input", args.input},
@@ -168,6 +176,7 @@ nlohmann::json result_json(const FlattenArguments& args, const FlattenPlan& plan
       {"grainline", grainlines},
       {"mm_per_unit", plan.mm_per_unit},
       {"seconds", m.seconds},
+      {"suggested_cuts", suggested_cuts},
       {"warnings", warnings},
   };
 }
@@ -220,7 +229,10 @@ constexpr const char* kFlattenHelp =
     "boundary_loops, flipped, su, sv, direction, compression_error_mean, compression_error_max "
     "(|achieved along / su - 1| per triangle: area-weighted mean, max), cross_error_mean, "
     "cross_error_max (the same across, with sv), area_distortion_mean, iterations, converged, "
-    "energy, initialization, directions_filled, grainline, mm_per_unit, seconds, warnings.\n"
+    "energy, initialization, directions_filled, grainline, mm_per_unit, seconds, suggested_cuts "
+    "(the regions that miss su or sv by too much, where a dart or a cut is needed; each: vertices, "
+    "vertex (nearest the centroid), centroid, error_mean of max(|along/su - 1|, |across/sv - 1|), "
+    "triangles; largest first), warnings.\n"
     "The patch is the faces whose vertices are all in --select; every component must have a "
     "boundary: a closed mesh or patch exits 3. Several boundary loops and several pieces are "
     "fine (pieces are laid out side by side).";

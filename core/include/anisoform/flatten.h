@@ -99,6 +99,24 @@ struct TriangleStretch {
                                        // above, and left out of means and maxima
 };
 
+// A connected part of the patch (triangles sharing edges) whose error is
+// above kCutRegionError: where the patch needs a dart or a cut.
+struct FlattenRegion {
+  std::vector<int> vertices;  // input-mesh vertex indices, ascending
+  int vertex = -1;            // representative: the region's vertex nearest its centroid
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  // area-weighted, of its triangles (3D)
+  double error_mean = 0.0;    // area-weighted mean of its triangles' error (cut_region_error)
+  int triangles = 0;
+};
+
+// A triangle is part of a region when the larger of |along/su - 1| and
+// |across/sv - 1| exceeds this (the same bound as the usable mean area
+// distortion: a quarter off is more than fabric eases in), and a region is
+// named when it covers at least kCutRegionMinArea of the patch's 3D area
+// (single stray triangles are noise, not a place to cut).
+constexpr double kCutRegionError = 0.25;
+constexpr double kCutRegionMinArea = 0.01;
+
 struct FlattenMetrics {
   int triangles = 0;
   int vertices = 0;
@@ -117,10 +135,13 @@ struct FlattenMetrics {
   int filled_directions = 0;
   std::string initialization;            // "lscm" or "tutte"
   std::string method;                    // "anisotropic" or "uniform-baseline"
+  std::vector<FlattenRegion> suggested_cuts;  // largest first; empty when no region's
+                                              // error is above kCutRegionError
 };
 
 // Empty when the flattening is usable as one piece; otherwise why not and
-// what to do, in plain words for the user. Not one piece: the solver did not
+// what to do, in plain words for the user (naming the worst region of
+// suggested_cuts, if any, by a vertex). Not one piece: the solver did not
 // converge, triangles folded over, or the area is off by more than
 // kMaxUsableAreaDistortion on average (a hemisphere, about the most curved
 // patch still cut whole, is 18 %; an open box or a hand is 36 % and more).

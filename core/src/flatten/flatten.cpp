@@ -115,6 +115,7 @@ FlattenResult Flattener::flatten(const FlattenOptions& options) {
   metrics.filled_directions = result.targets.filled_directions;
   metrics.initialization = solved.initialization;
   metrics.method = baseline ? "uniform-baseline" : "anisotropic";
+  metrics.suggested_cuts = find_cut_regions(patch, im.charts, result.targets, result.stretch);
   metrics.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return result;

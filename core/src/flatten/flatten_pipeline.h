@@ -156,6 +156,16 @@ int count_folded(const Triangles& F, const TriangleCharts& charts, const Eigen::
 void summarize_stretch(const TriangleCharts& charts, const FlattenTargets& targets,
                        const TriangleStretch& stretch, FlattenMetrics& metrics);
 
+// The error of one triangle that decides whether it needs a cut: the larger
+// of |along/su - 1| and |across/sv - 1| (NaN for a degenerate triangle).
+double cut_region_error(const FlattenTargets& targets, const TriangleStretch& stretch, int t);
+
+// The regions of the patch that need a dart or a cut (FlattenRegion, flatten.h),
+// in input-mesh vertex indices, largest (by 3D area) first.
+std::vector<FlattenRegion> find_cut_regions(const FlattenPatch& patch, const TriangleCharts& charts,
+                                            const FlattenTargets& targets,
+                                            const TriangleStretch& stretch);
+
 // Area-weighted mean line direction (doubled-angle average, METHOD §4.4: the
 // sign of a line does not matter) of the triangles of each component:
 // #components unit 2D vectors.

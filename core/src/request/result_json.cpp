@@ -52,6 +52,23 @@ Json to_json(const DeformOpResult& r) {
   };
 }
 
+namespace {
+
+// The regions that need a dart or a cut (FlattenRegion, flatten.h).
+Json suggested_cuts_json(const std::vector<FlattenRegion>& regions) {
+  Json out = Json::array();
+  for (const FlattenRegion& r : regions) {
+    out.push_back({{"vertices", r.vertices},
+                   {"vertex", r.vertex},
+                   {"centroid", {r.centroid.x(), r.centroid.y(), r.centroid.z()}},
+                   {"errorMean", r.error_mean},
+                   {"triangles", r.triangles}});
+  }
+  return out;
+}
+
+}  // namespace
+
 Json to_json(const FlattenMetrics& m) {
   return {
       {"triangles", m.triangles},
@@ -72,6 +89,7 @@ Json to_json(const FlattenMetrics& m) {
       {"initialization", m.initialization},
       {"method", m.method},
       {"problem", flatten_problem(m)},
+      {"suggestedCuts", suggested_cuts_json(m.suggested_cuts)},
   };
 }
 
