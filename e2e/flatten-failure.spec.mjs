@@ -22,6 +22,9 @@ for (const [mesh, reason] of [['open/hand_lowres.obj', /did not converge/], ['op
     await expect(warning).toContainText(/^Flatten: the patch does not flatten as one piece/);
     await expect(warning).toContainText(reason);
     await expect(warning).toContainText('cut it along a seam or add darts');
+    // Where: the regions above the core's error threshold (metrics.suggestedCuts).
+    await expect(warning).toContainText(/This patch needs a dart or a cut here: (one region misses|\d+ regions miss) the wanted stretch/);
+    await expect(warning).toContainText(/around vertex \d+, by \d+ % on average/);
     await expect(page.getByTestId('error')).toBeHidden();
     await saveScreenshot(page, `flatten-failure-${mesh.split('/')[1].replace(/\.\w+$/, '')}`);
     expect(pageErrors).toEqual([]);

@@ -248,6 +248,19 @@ export interface FlattenOptions {
   tolerance?: number;
 }
 
+/** A part of the patch that needs a dart or a cut (FlattenRegion, flatten.h). */
+export interface SuggestedCut {
+  /** Its vertices (mesh vertex indices, ascending). */
+  vertices: number[];
+  /** The region's vertex nearest its centroid: where to point at it. */
+  vertex: number;
+  /** Area-weighted centroid of its triangles (3D, model units). */
+  centroid: [number, number, number];
+  /** Area-weighted mean of max(|along / su - 1|, |across / sv - 1|) over its triangles. */
+  errorMean: number;
+  triangles: number;
+}
+
 export interface FlattenMetrics {
   /** Patch triangles and vertices. */
   triangles: number;
@@ -275,6 +288,12 @@ export interface FlattenMetrics {
   method: 'anisotropic' | 'uniform-baseline';
   /** Empty when usable as one piece; otherwise why not and what to do (flatten_problem, flatten.h). */
   problem: string;
+  /**
+   * The edge-connected regions whose triangles miss the wanted stretch by more
+   * than the core's threshold (kCutRegionError, flatten.h), largest first;
+   * empty when none does.
+   */
+  suggestedCuts: SuggestedCut[];
 }
 
 /** All arrays are copies (JS-owned). */

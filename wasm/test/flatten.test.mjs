@@ -59,6 +59,9 @@ function assertSameMetrics(t, metrics, report) {
   for (const [js, json] of Object.entries(COUNTS)) assert.equal(metrics[js], report[json], js);
   assert.equal(metrics.method, report.method);
   assert.equal(metrics.initialization, report.initialization);
+  // The regions that need a cut: the same in both (the core's one rule).
+  const regions = (cuts, error) => cuts.map((c) => [c.vertex, c.vertices.length, c.triangles, Math.round(1e4 * c[error])]);
+  assert.deepEqual(regions(metrics.suggestedCuts, 'errorMean'), regions(report.suggested_cuts, 'error_mean'));
   for (const [js, json] of Object.entries(MEASURES)) {
     const relative = Math.abs(metrics[js] - report[json]) / Math.max(Math.abs(report[json]), 1e-12);
     t.diagnostic(`${js}: wasm ${metrics[js]}, native ${report[json]}, relative ${relative.toExponential(1)}`);

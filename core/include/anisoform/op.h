@@ -135,7 +135,8 @@ Json to_json(const DeformOpResult& result);
 // {triangles, vertices, components, boundaryLoops, flipped, compressionErrorMean,
 //  compressionErrorMax, crossErrorMean, crossErrorMax, areaDistortionMean,
 //  iterations, energy, converged, seconds, filledDirections, initialization, method,
-//  problem} (problem: flatten_problem, "" when usable as one piece)
+//  problem, suggestedCuts} (problem: flatten_problem, "" when usable as one piece;
+//  suggestedCuts: [{vertices, vertex, centroid, errorMean, triangles}], FlattenRegion)
 Json to_json(const FlattenMetrics& metrics);
 
 // ---- request -> JSON (the document stores what was solved) ----------------

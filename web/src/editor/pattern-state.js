@@ -38,8 +38,10 @@ export class PatternState {
       if (editor.document !== document) return result;
       this.pattern = { ...result, options: { patch: 'mesh', ...options } };
       editor.emit('pattern', this.pattern);
-      // A patch that does not flatten as one piece says why and what to do (flatten_problem, flatten.h).
-      if (result.metrics.problem) editor.emit('warning', { message: `Flatten: ${result.metrics.problem}.`, source: 'flatten' });
+      // A patch that does not flatten as one piece says why and what to do
+      // (flatten_problem, flatten.h), and where it needs a dart or a cut.
+      const warning = flattenWarning(result.metrics);
+      if (warning) editor.emit('warning', { message: warning, source: 'flatten' });
       return result;
     } catch (error) {
       throw editor.report(error, 'Flatten failed');
@@ -75,6 +77,25 @@ export class PatternState {
   selectionChanged() {
     if (this.pattern?.options.patch === 'selection') this.drop();
   }
+}
+
+/**
+ * The banner for a flattening: metrics.problem (why it is not one piece) and
+ * metrics.suggestedCuts (the regions above the core's error threshold,
+ * largest first), or null when there is nothing to say.
+ */
+export function flattenWarning(metrics) {
+  const sentences = [];
+  if (metrics.problem) sentences.push(`${metrics.problem}.`);
+  const cuts = metrics.suggestedCuts ?? [];
+  if (cuts.length > 0) {
+    const largest = cuts[0];
+    const where = cuts.length === 1 ? 'one region misses' : `${cuts.length} regions miss`;
+    sentences.push(`This patch needs a dart or a cut here: ${where} the wanted stretch by more than the fabric eases `
+      + `(the largest, ${largest.vertices.length} vertices around vertex ${largest.vertex}, by ${Math.round(100 * largest.errorMean)} % on average; `
+      + 'the heat map shows where).');
+  }
+  return sentences.length > 0 ? `Flatten: ${sentences.join(' ')}` : null;
 }
 
 function badParameter(message) {
