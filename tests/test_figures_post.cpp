@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
 
 #include "anisoform/selection.h"
 #include "mesh/topology.h"
@@ -188,6 +189,25 @@ const SpoolRing& spool_ring_at(const std::vector<SpoolRing>& rings, double x) {
   return rings[best];
 }
 
+// RMS distance of the vertices `ids` from the best rigid motion of their rest
+// positions (Kabsch): how much that part changed shape, whatever it moved as a
+// whole (so the methods' gauges do not count).
+double non_rigid_residual(const Positions& rest, const Positions& V, const std::vector<int>& ids) {
+  Eigen::RowVector3d cp = Eigen::RowVector3d::Zero(), cq = Eigen::RowVector3d::Zero();
+  for (int i : ids) { cp += rest.row(i); cq += V.row(i); }
+  cp /= static_cast<double>(ids.size());
+  cq /= static_cast<double>(ids.size());
+  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+  for (int i : ids) H += (rest.row(i) - cp).transpose() * (V.row(i) - cq);
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(H, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d flip = Eigen::Matrix3d::Identity();
+  flip(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1.0 : 1.0;
+  const Eigen::Matrix3d R = svd.matrixV() * flip * svd.matrixU().transpose();
+  double sum = 0.0;
+  for (int i : ids) sum += ((V.row(i) - cq).transpose() - R * (rest.row(i) - cp).transpose()).squaredNorm();
+  return std::sqrt(sum / static_cast<double>(ids.size()));
+}
+
 // Tilt (degrees) of a ring's plane about z: + turns its normal from +x to +y.
 double ring_tilt_about_z(const Positions& V, const SpoolRing& ring) {
   const Eigen::Vector3d n = ring_plane_normal(V, ring);
@@ -207,8 +227,18 @@ TEST_CASE("fig. 5: rotating the spool's top elements about z bends it into a hoo
   REQUIRE(w[top.ids[0]] == 1.0);
   REQUIRE(w[base.ids[0]] == 0.0);
   auto below = [&](int i) { return mesh.V(i, kSpoolAxis) < lo + 0.45 * (hi - lo); };
+  std::vector<int> below_ids;
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    if (below(i)) below_ids.push_back(i);
+  }
+  // The rest dihedral angle of every interior edge whose four vertices lie below.
+  std::vector<std::array<int, 4>> below_edges;
+  for (const auto& q : spool_rims(mesh, -1.0)) {
+    if (below(q[0]) && below(q[1]) && below(q[2]) && below(q[3])) below_edges.push_back(q);
+  }
+  REQUIRE(below_edges.size() > 100);
   Deformer deformer(mesh);
-  std::map<Method, double> strain_below;
+  std::map<Method, double> strain_below, reshape_below, bend_below;
   for (Method method : {Method::AnDefGrad, Method::AnArap}) {
     for (double theta : {30.0, -30.0}) {
       // Each selected element turns about the global z (projected on it):
@@ -248,15 +278,24 @@ TEST_CASE("fig. 5: rotating the spool's top elements about z bends it into a hoo
           }
         }
         strain_below[method] = strain / edges;
-        WARN("fig5 " << method_name(method) << ": mean edge strain below the selection " << strain_below[method]);
+        reshape_below[method] = non_rigid_residual(mesh.V, r.V, below_ids) / height;
+        bend_below[method] = rim_change_degrees(mesh, r.V, below_edges);
+        WARN("fig5 " << method_name(method) << ": below the selection, mean edge strain " << strain_below[method]
+                     << ", change of shape (RMS off the best rigid motion) " << reshape_below[method]
+                     << " of the height, mean dihedral change " << bend_below[method] << " deg");
       }
     }
   }
-  // The paper's "AnDefGrad more local than AnARAP" does not hold on the spool
-  // by this measure (FIGURES-measured.md): reported, not gated.
   CHECK(strain_below[Method::AnDefGrad] < 0.015);
   CHECK(strain_below[Method::AnArap] < 0.015);
-  CHECK_NOFAIL(strain_below[Method::AnDefGrad] < strain_below[Method::AnArap]);
+  // The paper's Fig. 5: "AnARAP exhibits more global deformation while
+  // AnDefGrad has more local control", the organic bend of ARAP reaching past
+  // the selection. ARAP bends by rotating its fans, which stretches no edge:
+  // the edge strain above cannot show it (AnARAP's is the smaller). The part
+  // below the selection changes shape more under AnARAP: it leaves its best
+  // rigid motion further, and its dihedral angles turn more.
+  CHECK(reshape_below[Method::AnDefGrad] < reshape_below[Method::AnArap]);
+  CHECK(bend_below[Method::AnDefGrad] < bend_below[Method::AnArap]);
 }
 
 namespace {
@@ -436,7 +475,8 @@ TEST_CASE("fig. 7: a local rotation of the spool's top turns it about the chosen
   }
 }
 
-TEST_CASE("fig. 9: elongating the spool along x, AnDefGrad keeps the rims best, the linear map blunts them most",
+TEST_CASE("fig. 9: elongating the spool along x, AnDefGrad keeps the rims best, isotropic ARAP worst of the solvers, "
+          "the linear map blunts them most",
           "[figures]") {
   const Mesh mesh = test::load("closed/spool.off");
   const int axis = kSpoolAxis;
@@ -444,6 +484,12 @@ TEST_CASE("fig. 9: elongating the spool along x, AnDefGrad keeps the rims best, 
   REQUIRE(rims.size() > 20);
   const double lo = mesh.V.col(axis).minCoeff(), hi = mesh.V.col(axis).maxCoeff();
   const double height = hi - lo;
+  // The core: the cylinder between the flanges, the part whose surface runs
+  // along x (its wall's direction is x itself, nowhere projected).
+  const std::vector<SpoolRing> rings = spool_rings(mesh);
+  const SpoolRing& core_bottom = spool_ring_at(rings, -0.1637);
+  const SpoolRing& core_top = spool_ring_at(rings, 0.1252);
+  const double core = core_top.height - core_bottom.height;
   Deformer deformer(mesh);
   std::map<Method, double> change;
   for (Method method : {Method::Linear, Method::Arap, Method::AnArap, Method::AnDefGrad}) {
@@ -459,17 +505,30 @@ TEST_CASE("fig. 9: elongating the spool along x, AnDefGrad keeps the rims best, 
     const DeformResult r = deformer.deform(request);
     change[method] = rim_change_degrees(mesh, r.V, rims);
     const double new_height = r.V.col(axis).maxCoeff() - r.V.col(axis).minCoeff();
-    WARN("fig9 " << method_name(method) << ": mean rim dihedral change " << change[method]
-                 << " deg, height x" << new_height / height);
+    const double new_core = ring_mean(r.V, core_top)[axis] - ring_mean(r.V, core_bottom)[axis];
+    WARN("fig9 " << method_name(method) << ": mean rim dihedral change " << change[method] << " deg, height x"
+                 << new_height / height << ", core x" << new_core / core);
+    INFO(method_name(method));
     CHECK(new_height > 1.25 * height);
-    // AnARAP overshoots (x2.2 for su = 1.5 along x; FIGURES-measured.md): reported, not gated.
-    CHECK_NOFAIL(new_height < 1.6 * height);
+    if (method == Method::AnArap || method == Method::AnDefGrad) {
+      // Where the surface contains the direction, the elongation is su.
+      CHECK(new_core / core == Approx(1.5).epsilon(0.03));
+    }
+    // AnARAP's whole height overshoots (x1.96): its targets are AnDefGrad's,
+    // su = 1.5 along the direction projected on each face (paper eq. 5-6),
+    // also on the flanges and the top face, which are nearly perpendicular to
+    // x: their meridians are asked to grow by half with their circumferences
+    // kept, and ARAP, free to rotate its fans, turns them up into cones (the
+    // gradient domain cannot rotate them, and widens them instead). Measured
+    // and explained in FIGURES-measured.md; the paper claims nothing about the
+    // height, only the rims.
   }
   CHECK(change[Method::AnDefGrad] < 5.0);
   CHECK(change[Method::AnDefGrad] < change[Method::AnArap]);
   CHECK(change[Method::AnDefGrad] < change[Method::Arap]);
-  // The paper has isotropic ARAP worst; on the spool AnARAP is (its overshoot): reported, not gated.
-  CHECK_NOFAIL(change[Method::AnArap] < change[Method::Arap]);
+  // "Feature sharpness is lost using an isotropic energy formulation": AnARAP
+  // keeps the rims better than isotropic ARAP with handles.
+  CHECK(change[Method::AnArap] < change[Method::Arap]);
   // The cage-like linear map stretches uniformly: the rims lose sharpness.
   CHECK(change[Method::Linear] > 2.0 * change[Method::AnDefGrad]);
 }

@@ -1,6 +1,8 @@
 #include "deform/anarap.h"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "anisoform/transforms.h"
 #include "deform/anderson.h"
@@ -61,15 +63,11 @@ void fit_rotation(const Eigen::Matrix3d& S, Eigen::Quaterniond& q) {
   }
 }
 
-// Energy of one cell: sum w|e'|^2 - 2 tr(B^T A) + tr(B^T B C), the last
-// term precomputed (target_energy_).
-inline double cell_energy(double edge_energy, const Eigen::Matrix3d& A, const Eigen::Matrix3d& B,
+// Energy of one cell: sum w|e'|^2 - 2 tr(R^T S) + sum w|t|^2, S = sum w e' t^T
+// (t the target edges), the last term precomputed (target_energy_).
+inline double cell_energy(double edge_energy, const Eigen::Matrix3d& S, const Eigen::Matrix3d& R,
                           double target_energy) {
-  return edge_energy - 2.0 * (B.array() * A.array()).sum() + target_energy;
-}
-
-double target_term(const Eigen::Matrix3d& T, const Eigen::Matrix3d& C) {
-  return ((T.transpose() * T).array() * C.array()).sum();
+  return edge_energy - 2.0 * (R.array() * S.array()).sum() + target_energy;
 }
 
 }  // namespace
@@ -89,57 +87,112 @@ AnArapSolver::AnArapSolver(const Mesh& rest, const CotanWeights& weights,
     }
     offsets_[i + 1] = static_cast<int>(neighbors_.size());
   }
+  const int m = rest.num_triangles();
   spoke_edge_.resize(static_cast<Eigen::Index>(neighbors_.size()), 3);
-  weighted_edge_sum_ = Positions::Zero(n_, 3);
-  rest_covariance_.assign(n_, Eigen::Matrix3d::Zero());
+  std::vector<double> fan_size(n_, 0.0);  // |tr C_i|, C_i = sum w e e^T over the cell
   for (int i = 0; i < n_; ++i) {
     for (int q = offsets_[i]; q < offsets_[i + 1]; ++q) {
       const Eigen::RowVector3d e = rest.V.row(neighbors_[q]) - rest.V.row(i);
       spoke_edge_.row(q) = e;
-      weighted_edge_sum_.row(i) += spoke_weight_[q] * e;
-      if (elements_ == ArapElements::Spokes) {
-        rest_covariance_[i] += spoke_weight_[q] * e.transpose() * e;
-      }
+      if (elements_ == ArapElements::Spokes) fan_size[i] += spoke_weight_[q] * e.squaredNorm();
     }
   }
-  if (elements_ == ArapElements::SpokesAndRims) {
-    for (int t = 0; t < rest.num_triangles(); ++t) {
-      Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+  if (elements_ == ArapElements::Spokes) {
+    // The triangle sides each spoke lies on (CSR, side 3t + k opposite
+    // corner k): a spoke's target map is the mean of theirs.
+    std::vector<std::pair<std::pair<int, int>, int>> sides;
+    sides.reserve(static_cast<std::size_t>(m) * 3);
+    for (int t = 0; t < m; ++t) {
       for (int k = 0; k < 3; ++k) {
-        const Eigen::Vector3d e = (rest.V.row(rest.F(t, (k + 2) % 3)) - rest.V.row(rest.F(t, (k + 1) % 3))).transpose();
-        C += weights.weight(t, k) * e * e.transpose();
+        const int a = rest.F(t, (k + 1) % 3), b = rest.F(t, (k + 2) % 3);
+        if (a != b) sides.push_back({{std::min(a, b), std::max(a, b)}, 3 * t + k});
       }
-      for (int k = 0; k < 3; ++k) rest_covariance_[rest.F(t, k)] += C;
     }
+    std::sort(sides.begin(), sides.end());
+    spoke_side_offsets_.assign(neighbors_.size() + 1, 0);
+    spoke_sides_.clear();
+    for (int i = 0; i < n_; ++i) {
+      for (int q = offsets_[i]; q < offsets_[i + 1]; ++q) {
+        const std::pair<int, int> key(std::min(i, neighbors_[q]), std::max(i, neighbors_[q]));
+        auto it = std::lower_bound(sides.begin(), sides.end(), std::make_pair(key, -1));
+        for (; it != sides.end() && it->first == key; ++it) spoke_sides_.push_back(it->second);
+        spoke_side_offsets_[q + 1] = static_cast<int>(spoke_sides_.size());
+      }
+    }
+    spoke_target_ = spoke_edge_;
+    spoke_polar_ = spoke_edge_;
+  } else {
+    side_edge_.resize(3 * static_cast<Eigen::Index>(m), 3);
+    for (int t = 0; t < m; ++t) {
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::RowVector3d e = rest.V.row(rest.F(t, (k + 2) % 3)) - rest.V.row(rest.F(t, (k + 1) % 3));
+        side_edge_.row(3 * t + k) = e;
+        const double energy = weights.weight(t, k) * e.squaredNorm();
+        for (int c = 0; c < 3; ++c) fan_size[rest.F(t, c)] += energy;
+      }
+    }
+    side_target_ = side_edge_;
+    side_polar_ = side_edge_;
   }
   energy_scale_ = 0.0;
-  for (int i = 0; i < n_; ++i) energy_scale_ += std::abs(rest_covariance_[i].trace());
-  T_.assign(n_, Eigen::Matrix3d::Identity());
-  P_ = T_;
-  B_ = T_;
+  for (int i = 0; i < n_; ++i) energy_scale_ += std::abs(fan_size[i]);
   target_energy_.resize(n_);
-  for (int i = 0; i < n_; ++i) target_energy_[i] = rest_covariance_[i].trace();
+  for (int i = 0; i < n_; ++i) target_energy_[i] = fan_size[i];
   rotation_.assign(n_, Eigen::Quaterniond::Identity());
+  rotation_matrices_.assign(n_, Eigen::Matrix3d::Identity());
   spoke_coupling_.resize(neighbors_.size());
-  auto fan_size = [&](int i) {
+  auto coupling_size = [&](int i) {
     const int degree = offsets_[i + 1] - offsets_[i];
-    return degree > 0 ? std::abs(rest_covariance_[i].trace()) / degree : 0.0;
+    return degree > 0 ? std::abs(fan_size[i]) / degree : 0.0;
   };
   for (int i = 0; i < n_; ++i) {
     for (int q = offsets_[i]; q < offsets_[i + 1]; ++q) {
-      spoke_coupling_[q] = 0.5 * (fan_size(i) + fan_size(neighbors_[q]));
+      spoke_coupling_[q] = 0.5 * (coupling_size(i) + coupling_size(neighbors_[q]));
     }
   }
 }
 
 void AnArapSolver::set_targets(const std::vector<Eigen::Matrix3d>& T) {
-  T_ = T;
-  symmetric_targets_ = true;
-  for (int i = 0; i < n_; ++i) {
-    P_[i] = polar_positive_part(T_[i]);
-    target_energy_[i] = target_term(T_[i], rest_covariance_[i]);
-    if ((P_[i] - T_[i]).cwiseAbs().maxCoeff() > 1e-12 * (1.0 + T_[i].cwiseAbs().maxCoeff())) {
-      symmetric_targets_ = false;
+  // The polar parts, once per side; P of a mean is taken as the mean of the
+  // P's (equal where the sides' maps are, which is everywhere but at creases).
+  std::vector<Eigen::Matrix3d> P(T.size());
+  polar_differs_ = false;
+  for (std::size_t s = 0; s < T.size(); ++s) {
+    P[s] = polar_positive_part(T[s]);
+    if ((P[s] - T[s]).cwiseAbs().maxCoeff() > 1e-12 * (1.0 + T[s].cwiseAbs().maxCoeff())) polar_differs_ = true;
+  }
+  target_energy_.setZero();
+  if (elements_ == ArapElements::Spokes) {
+    for (int i = 0; i < n_; ++i) {
+      for (int q = offsets_[i]; q < offsets_[i + 1]; ++q) {
+        const int begin = spoke_side_offsets_[q], end = spoke_side_offsets_[q + 1];
+        Eigen::Matrix3d mean_T = Eigen::Matrix3d::Identity(), mean_P = Eigen::Matrix3d::Identity();
+        if (end > begin) {
+          mean_T.setZero();
+          mean_P.setZero();
+          for (int k = begin; k < end; ++k) {
+            mean_T += T[spoke_sides_[k]];
+            mean_P += P[spoke_sides_[k]];
+          }
+          mean_T /= end - begin;
+          mean_P /= end - begin;
+        }
+        const Eigen::Vector3d e = spoke_edge_.row(q).transpose();
+        spoke_target_.row(q) = (mean_T * e).transpose();
+        spoke_polar_.row(q) = (mean_P * e).transpose();
+        target_energy_[i] += spoke_weight_[q] * spoke_target_.row(q).squaredNorm();
+      }
+    }
+    return;
+  }
+  for (int t = 0; t < rest_.num_triangles(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const int s = 3 * t + k;
+      const Eigen::Vector3d e = side_edge_.row(s).transpose();
+      side_target_.row(s) = (T[s] * e).transpose();
+      side_polar_.row(s) = (P[s] * e).transpose();
+      const double energy = weights_.weight(t, k) * side_target_.row(s).squaredNorm();
+      for (int c = 0; c < 3; ++c) target_energy_[rest_.F(t, c)] += energy;
     }
   }
 }
@@ -148,86 +201,91 @@ void AnArapSolver::reset_rotations() {
   rotation_.assign(n_, Eigen::Quaterniond::Identity());
 }
 
-void AnArapSolver::covariance_spokes(const Positions& V, std::vector<Eigen::Matrix3d>& A,
-                                       Eigen::VectorXd& edge_energy) const {
+void AnArapSolver::covariance_spokes(const Positions& V, bool with_polar, Eigen::VectorXd& edge_energy) {
   for (int i = 0; i < n_; ++i) {
-    Eigen::Matrix3d acc = Eigen::Matrix3d::Zero();
+    Eigen::Matrix3d full = Eigen::Matrix3d::Zero(), polar = Eigen::Matrix3d::Zero();
     double energy = 0.0;
     const Eigen::RowVector3d vi = V.row(i);
     for (int q = offsets_[i]; q < offsets_[i + 1]; ++q) {
       const Eigen::Vector3d deformed = (V.row(neighbors_[q]) - vi).transpose();
-      const double w = spoke_weight_[q];
-      acc.noalias() += (w * deformed) * spoke_edge_.row(q);
-      energy += w * deformed.squaredNorm();
+      const Eigen::Vector3d weighted = spoke_weight_[q] * deformed;
+      full.noalias() += weighted * spoke_target_.row(q);
+      if (with_polar) polar.noalias() += weighted * spoke_polar_.row(q);
+      energy += weighted.dot(deformed);
     }
-    A[i] = acc;
+    target_covariance_[i] = full;
+    if (with_polar) polar_covariance_[i] = polar;
     edge_energy[i] = energy;
   }
 }
 
-void AnArapSolver::covariance_spokes_rims(const Positions& V, std::vector<Eigen::Matrix3d>& A,
-                                            Eigen::VectorXd& edge_energy) const {
-  std::fill(A.begin(), A.end(), Eigen::Matrix3d::Zero());
+void AnArapSolver::covariance_spokes_rims(const Positions& V, bool with_polar, Eigen::VectorXd& edge_energy) {
+  std::fill(target_covariance_.begin(), target_covariance_.end(), Eigen::Matrix3d::Zero());
+  if (with_polar) std::fill(polar_covariance_.begin(), polar_covariance_.end(), Eigen::Matrix3d::Zero());
   edge_energy.setZero();
   for (int t = 0; t < rest_.num_triangles(); ++t) {
-    Eigen::Matrix3d acc = Eigen::Matrix3d::Zero();
+    Eigen::Matrix3d full = Eigen::Matrix3d::Zero(), polar = Eigen::Matrix3d::Zero();
     double energy = 0.0;
     for (int k = 0; k < 3; ++k) {
       const int a = rest_.F(t, (k + 1) % 3), b = rest_.F(t, (k + 2) % 3);
       const Eigen::Vector3d deformed = (V.row(b) - V.row(a)).transpose();
-      const Eigen::RowVector3d e = rest_.V.row(b) - rest_.V.row(a);
       const double w = weights_.weight(t, k);
-      acc.noalias() += (w * deformed) * e;
+      full.noalias() += (w * deformed) * side_target_.row(3 * t + k);
+      if (with_polar) polar.noalias() += (w * deformed) * side_polar_.row(3 * t + k);
       energy += w * deformed.squaredNorm();
     }
     for (int k = 0; k < 3; ++k) {
-      A[rest_.F(t, k)] += acc;
+      target_covariance_[rest_.F(t, k)] += full;
+      if (with_polar) polar_covariance_[rest_.F(t, k)] += polar;
       edge_energy[rest_.F(t, k)] += energy;
     }
   }
 }
 
 double AnArapSolver::local_step(const Positions& V) {
-  std::vector<Eigen::Matrix3d>& A = covariance_;
   Eigen::VectorXd& edge_energy = edge_energy_;
-  A.resize(n_);
+  target_covariance_.resize(n_);
+  polar_covariance_.resize(n_);
   edge_energy.resize(n_);
+  // The paper's scheme fits the rotations to the polar targets; where those
+  // are the targets (no rotational part), or with coupled rotations (fitted
+  // to the whole targets), the polar covariance is not needed.
+  const bool with_polar = coupling_ == 0.0 && polar_differs_;
   if (elements_ == ArapElements::Spokes) {
-    covariance_spokes(V, A, edge_energy);
+    covariance_spokes(V, with_polar, edge_energy);
   } else {
-    covariance_spokes_rims(V, A, edge_energy);
+    covariance_spokes_rims(V, with_polar, edge_energy);
   }
   double energy = 0.0;
   if (coupling_ > 0.0) {
-    energy += coupled_rotations(A);
-    for (int i = 0; i < n_; ++i) energy += cell_energy(edge_energy[i], A[i], B_[i], target_energy_[i]);
-    return energy;
-  }
-  for (int i = 0; i < n_; ++i) {
-    // S = sum w e' (P e)^T = A P^T; P is symmetric.
-    fit_rotation(A[i] * P_[i], rotation_[i]);
-    B_[i].noalias() = rotation_[i].toRotationMatrix() * T_[i];
-    energy += cell_energy(edge_energy[i], A[i], B_[i], target_energy_[i]);
+    energy += coupled_rotations();
+  } else {
+    const std::vector<Eigen::Matrix3d>& fitted = with_polar ? polar_covariance_ : target_covariance_;
+    for (int i = 0; i < n_; ++i) {
+      fit_rotation(fitted[i], rotation_[i]);
+      rotation_matrices_[i] = rotation_[i].toRotationMatrix();
+    }
   }
   // Negative cotangent weights (obtuse triangles) can make this sum slightly
   // negative near the optimum: it is reported as it is.
+  for (int i = 0; i < n_; ++i) {
+    energy += cell_energy(edge_energy[i], target_covariance_[i], rotation_matrices_[i], target_energy_[i]);
+  }
   return energy;
 }
 
-double AnArapSolver::coupled_rotations(const std::vector<Eigen::Matrix3d>& A) {
+double AnArapSolver::coupled_rotations() {
   // In index order, each R_i against its neighbours' latest rotations (as
   // matrices, each converted once per sweep and again when it changes).
   std::vector<Eigen::Matrix3d>& R = rotation_matrices_;
-  R.resize(n_);
   for (int i = 0; i < n_; ++i) R[i] = rotation_[i].toRotationMatrix();
   for (int i = 0; i < n_; ++i) {
-    Eigen::Matrix3d S = A[i] * T_[i].transpose();
+    Eigen::Matrix3d S = target_covariance_[i];
     for (int q = offsets_[i]; q < offsets_[i + 1]; ++q) {
       S.noalias() += (2.0 * coupling_ * spoke_coupling_[q]) * R[neighbors_[q]];
     }
     fit_rotation(S, rotation_[i]);
     R[i] = rotation_[i].toRotationMatrix();
-    B_[i].noalias() = R[i] * T_[i];
   }
   double energy = 0.0;
   for (int i = 0; i < n_; ++i) {
@@ -243,22 +301,25 @@ double AnArapSolver::coupled_rotations(const std::vector<Eigen::Matrix3d>& A) {
 
 void AnArapSolver::global_rhs(Positions& b) const {
   b.setZero(n_, 3);
+  const std::vector<Eigen::Matrix3d>& R = rotation_matrices_;
   if (elements_ == ArapElements::Spokes) {
-    // b_i = -1/2 (B_i g_i + sum_j w_ij B_j e_ij), with g_i = sum_j w_ij e_ij.
+    // b_i = -1/2 sum_j w_ij (R_i + R_j) t_ij: a spoke's target t_ij = T_ij e_ij
+    // is the same map seen from both ends (t_ji = -t_ij).
     for (int i = 0; i < n_; ++i) {
-      Eigen::Vector3d acc = B_[i] * weighted_edge_sum_.row(i).transpose();
+      Eigen::Vector3d acc = Eigen::Vector3d::Zero();
       for (int q = offsets_[i]; q < offsets_[i + 1]; ++q) {
-        acc.noalias() += B_[neighbors_[q]] * (spoke_weight_[q] * spoke_edge_.row(q).transpose());
+        acc.noalias() += (R[i] + R[neighbors_[q]]) * (spoke_weight_[q] * spoke_target_.row(q).transpose());
       }
       b.row(i) = -0.5 * acc.transpose();
     }
     return;
   }
   for (int t = 0; t < rest_.num_triangles(); ++t) {
-    const Eigen::Matrix3d M = (B_[rest_.F(t, 0)] + B_[rest_.F(t, 1)] + B_[rest_.F(t, 2)]) / 3.0;
+    const Eigen::Matrix3d M = (R[rest_.F(t, 0)] + R[rest_.F(t, 1)] + R[rest_.F(t, 2)]) / 3.0;
     for (int k = 0; k < 3; ++k) {
       const int a = rest_.F(t, (k + 1) % 3), c = rest_.F(t, (k + 2) % 3);
-      const Eigen::Vector3d d = weights_.weight(t, k) * (M * (rest_.V.row(a) - rest_.V.row(c)).transpose());
+      // The side's rest edge runs a -> c; v_a - v_c is its negative.
+      const Eigen::Vector3d d = -weights_.weight(t, k) * (M * side_target_.row(3 * t + k).transpose());
       b.row(a) += d.transpose();
       b.row(c) -= d.transpose();
     }

@@ -1,32 +1,42 @@
 // The AnARAP solver: local/global iterations (METHOD §5) on a fixed rest mesh,
 // with the isotropic ARAP of Sorkine & Alexa as the case T = I.
 //
-//   E(v', R) = sum_i sum_{j in N(i)} w_ij || e'_ij - R_i T_i e_ij ||^2
+//   E(v', R) = sum_i sum_{j in N(i)} w_ij || e'_ij - R_i T_ij e_ij ||^2
 //
-// Local step: R_i = argmax_{R in SO(3)} tr(R^T S_i), S_i = sum_j w_ij e'_ij (P_i e_ij)^T
-// with P_i the polar positive part of T_i, found by iterative rotation
+// T_ij, the target map of the spoke ij, is the mean of the maps of the
+// triangle sides the spoke lies on (side_targets, element_targets.h: each
+// triangle's own frame). METHOD §5 writes one T_i per fan, built on the vertex
+// normal; on a vertex of a crease (the spool's rims, where every vertex of its
+// flanges and core lies) that normal averages the faces' normals, the
+// projected direction tilts between them, and the flanges fold (Fig. 9: height
+// x2.22 for su = 1.5, rims worse than isotropic ARAP). Where a fan's faces
+// share one map, T_ij = T_i: the two agree.
+//
+// Local step: R_i = argmax_{R in SO(3)} tr(R^T S_i), S_i = sum_j w_ij e'_ij (P_ij e_ij)^T
+// with P_ij the polar positive part of T_ij, found by iterative rotation
 // extraction warm-started from the previous rotation: Newton steps on SO(3)
 // (quadratic convergence, usually one or two steps), with the scaled-gradient
 // step of Müller et al. 2016 ("A robust method to extract the rotational part
 // of deformations") where Newton's Hessian is not definite. No SVD, no sign
 // fix-up, robust for flat (rank-2) fans.
-// Global step: L v' = b, b_i = sum_j (w_ij / 2)(R_i T_i + R_j T_j)(v_i - v_j),
+// Global step: L v' = b, b_i = sum_j (w_ij / 2)(R_i + R_j) T_ij (v_i - v_j),
 // solved with the shared prefactored LaplacianSolver.
 // Spokes-and-rims: every triangle's three edges count in each of its corners'
-// cells; the same L results, with b assembled per triangle.
+// cells, each edge with its side's map; the same L results, with b assembled
+// per triangle.
 //
-// Rotational targets (T_i = Q_i P_i with Q_i a rotation) have two schemes
+// Rotational targets (T = Q P with Q a rotation) have two schemes
 // (METHOD §5):
-// - the paper's: R_i is fitted to P_i only, so each step turns the fans by
-//   Q_i once more; run a stated number of steps (no fixed point);
-// - coupled rotations (beyond the paper): R_i is fitted to the whole T_i,
+// - the paper's: R_i is fitted to the P's only, so each step turns the fans by
+//   Q once more; run a stated number of steps (no fixed point);
+// - coupled rotations (beyond the paper): R_i is fitted to the whole T's,
 //   as ARAP would, but neighbouring R_i are tied together by
 //     E_s = sum_i sum_{j in N(i)} k_ij || R_i - R_j ||_F^2,
 //   k_ij = alpha (|tr C_i| / deg_i + |tr C_j| / deg_j) / 2 (the fans' size),
 //   so that ARAP cannot absorb a region's rotation without paying at its
 //   border: the energy has a minimum, the iterations a fixed point. The
 //   local step is then a Gauss-Seidel sweep,
-//     R_i = argmax tr(R^T (A_i T_i^T + 2 sum_j k_ij R_j)),
+//     R_i = argmax tr(R^T (sum_j w_ij e'_ij (T_ij e_ij)^T + 2 sum_j k_ij R_j)),
 //   each update exact given the others, so the energy never increases.
 #pragma once
 
@@ -46,7 +56,8 @@ class AnArapSolver {
   AnArapSolver(const Mesh& rest, const CotanWeights& weights,
                  const Eigen::SparseMatrix<double>& laplacian, ArapElements elements);
 
-  // Per-vertex targets (#V). Keeps the current rotations (warm start).
+  // Per-side targets (3 #F, side_targets in element_targets.h). Keeps the
+  // current rotations (warm start).
   void set_targets(const std::vector<Eigen::Matrix3d>& T);
   // alpha > 0: coupled rotations (see above); 0: the paper's scheme.
   void set_rotation_coupling(double alpha) { coupling_ = alpha; }
@@ -70,12 +81,12 @@ class AnArapSolver {
           std::vector<double>& history, bool final_energy = true, bool accelerate = false);
 
  private:
-  void covariance_spokes(const Positions& V, std::vector<Eigen::Matrix3d>& A,
-                         Eigen::VectorXd& edge_energy) const;
-  void covariance_spokes_rims(const Positions& V, std::vector<Eigen::Matrix3d>& A,
-                              Eigen::VectorXd& edge_energy) const;
+  // S_i = sum w e' t^T (full targets) and with the polar targets, per cell.
+  // The polar covariance only `with_polar`.
+  void covariance_spokes(const Positions& V, bool with_polar, Eigen::VectorXd& edge_energy);
+  void covariance_spokes_rims(const Positions& V, bool with_polar, Eigen::VectorXd& edge_energy);
   // The coupled local step's sweep; returns E_s after it.
-  double coupled_rotations(const std::vector<Eigen::Matrix3d>& A);
+  double coupled_rotations();
 
   const Mesh& rest_;
   const CotanWeights& weights_;
@@ -85,20 +96,23 @@ class AnArapSolver {
   std::vector<int> offsets_, neighbors_;
   std::vector<double> spoke_weight_;
   Positions spoke_edge_;
-  Positions weighted_edge_sum_;         // g_i = sum_j w_ij e_ij
-  std::vector<Eigen::Matrix3d> rest_covariance_;  // C_i = sum w e e^T (for the energy)
-  std::vector<Eigen::Matrix3d> T_, P_, B_;        // targets, their polar parts, R_i T_i
-  // tr(B_i^T B_i C_i) = tr(T_i^T T_i C_i): R_i is orthonormal, so this part of
-  // the energy depends on the targets only and is computed once per target set.
+  // Spokes: the triangle sides each spoke lies on (CSR over spokes), and its
+  // target edges t_ij = T_ij e_ij and P_ij e_ij, T_ij the mean of their maps.
+  std::vector<int> spoke_side_offsets_, spoke_sides_;
+  Positions spoke_target_, spoke_polar_;
+  // Spokes and rims: each triangle side's rest edge (3t + k, opposite corner
+  // k, from corner k+1 to k+2) and its targets T e and P e.
+  Positions side_edge_, side_target_, side_polar_;
+  // sum w |t|^2 per cell: depends on the targets only, computed once per target set.
   Eigen::VectorXd target_energy_;
   std::vector<Eigen::Quaterniond> rotation_;
+  std::vector<Eigen::Matrix3d> rotation_matrices_;  // R_i as matrices, after each local step
   // Scratch of the local step, kept to avoid reallocating every iteration.
-  std::vector<Eigen::Matrix3d> covariance_;
+  std::vector<Eigen::Matrix3d> target_covariance_, polar_covariance_;
   Eigen::VectorXd edge_energy_;
-  bool symmetric_targets_ = true;
+  bool polar_differs_ = false;  // some target has a rotational part (P != T)
   double coupling_ = 0.0;                // alpha; 0: the paper's scheme
   std::vector<double> spoke_coupling_;   // k_ij / alpha per spoke
-  std::vector<Eigen::Matrix3d> rotation_matrices_;  // scratch of the coupled sweep
   double energy_scale_ = 0.0;  // sum of |tr C_i|: the size of the rest fans
 };
 

@@ -274,9 +274,10 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
     }
     bool rotational = false;
     if (isotropic) {
-      iterations->set_targets(std::vector<Eigen::Matrix3d>(n, Eigen::Matrix3d::Identity()));
+      iterations->set_targets(std::vector<Eigen::Matrix3d>(3 * static_cast<std::size_t>(unit_.num_triangles()),
+                                                           Eigen::Matrix3d::Identity()));
     } else {
-      const ElementTargets targets = vertex_targets(ws.targets, request.direction, request.transform, w);
+      const ElementTargets targets = side_targets(ws.targets, request.direction, request.transform, w);
       iterations->set_targets(targets.T);
       result.directions_filled = targets.filled;
       rotational = request.transform.has_rotational_part();

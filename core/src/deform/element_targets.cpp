@@ -156,6 +156,38 @@ ElementTargets vertex_targets(TargetContext& context, const DirectionSource& sou
   return out;
 }
 
+namespace {
+
+// Per-triangle frames (METHOD §3): triangle normals, directions averaged from
+// the triangle's vertices as a line field (signs aligned), degenerate ones
+// filled from the neighbouring triangles.
+Frames triangle_frames(TargetContext& context, const DirectionSource& source, const Positions& vdir) {
+  const Mesh& mesh = context.rest();
+  const int m = mesh.num_triangles();
+  const bool constant_direction = source.kind == DirectionSource::Kind::Global ||
+                                  source.kind == DirectionSource::Kind::Screen;
+  Positions directions(m, 3);
+  for (int t = 0; t < m; ++t) {
+    if (constant_direction) {
+      directions.row(t) = vdir.row(mesh.F(t, 0));
+      continue;
+    }
+    // Line-field mean: align the corners' signs to the first non-zero one.
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    Eigen::Vector3d ref = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) {
+      Eigen::Vector3d d = vdir.row(mesh.F(t, k)).transpose();
+      if (ref.squaredNorm() == 0.0) ref = d;
+      sum += d.dot(ref) < 0.0 ? Eigen::Vector3d(-d) : d;
+    }
+    directions.row(t) = sum.transpose();
+  }
+  return build_frames(context.triangle_normals(), directions, context.triangle_offsets(),
+                      context.triangle_neighbors());
+}
+
+}  // namespace
+
 ElementTargets triangle_targets(TargetContext& context, const DirectionSource& source,
                                 const TransformSpec& spec, const Eigen::VectorXd& weights) {
   const Mesh& mesh = context.rest();
@@ -163,36 +195,7 @@ ElementTargets triangle_targets(TargetContext& context, const DirectionSource& s
   Positions vdir;
   Eigen::VectorXd su, sv;
   context.vertex_directions(source, vdir, su, sv);
-  const bool constant_direction = source.kind == DirectionSource::Kind::Global ||
-                                  source.kind == DirectionSource::Kind::Screen;
-  Positions directions(m, 3);
-  Eigen::VectorXd tri_su, tri_sv;
-  if (su.size() > 0) {
-    tri_su.resize(m);
-    tri_sv.resize(m);
-  }
-  for (int t = 0; t < m; ++t) {
-    const int a = mesh.F(t, 0), b = mesh.F(t, 1), c = mesh.F(t, 2);
-    if (constant_direction) {
-      directions.row(t) = vdir.row(a);
-    } else {
-      // Line-field mean: align the corners' signs to the first non-zero one.
-      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-      Eigen::Vector3d ref = Eigen::Vector3d::Zero();
-      for (int k = 0; k < 3; ++k) {
-        Eigen::Vector3d d = vdir.row(mesh.F(t, k)).transpose();
-        if (ref.squaredNorm() == 0.0) ref = d;
-        sum += d.dot(ref) < 0.0 ? Eigen::Vector3d(-d) : d;
-      }
-      directions.row(t) = sum.transpose();
-    }
-    if (su.size() > 0) {
-      tri_su[t] = (su[a] + su[b] + su[c]) / 3.0;
-      tri_sv[t] = (sv[a] + sv[b] + sv[c]) / 3.0;
-    }
-  }
-  const Frames frames = build_frames(context.triangle_normals(), directions, context.triangle_offsets(),
-                                     context.triangle_neighbors());
+  const Frames frames = triangle_frames(context, source, vdir);
   ElementTargets out;
   out.filled = frames.filled;
   out.T.resize(m);
@@ -202,8 +205,37 @@ ElementTargets triangle_targets(TargetContext& context, const DirectionSource& s
     const int a = mesh.F(t, 0), b = mesh.F(t, 1), c = mesh.F(t, 2);
     const double w = (weights[a] + weights[b] + weights[c]) / 3.0;
     const Eigen::Vector3d centroid = (mesh.V.row(a) + mesh.V.row(b) + mesh.V.row(c)).transpose() / 3.0;
+    Amounts amounts{spec.su, spec.sv};
+    if (su.size() > 0) amounts = {(su[a] + su[b] + su[c]) / 3.0, (sv[a] + sv[b] + sv[c]) / 3.0};
     oriented_frame(frames, t, orientation, u, v, normal);
-    out.T[t] = element_transform(spec, u, v, normal, w, centroid, amounts_at(spec, tri_su, tri_sv, t));
+    out.T[t] = element_transform(spec, u, v, normal, w, centroid, amounts);
+  }
+  return out;
+}
+
+ElementTargets side_targets(TargetContext& context, const DirectionSource& source, const TransformSpec& spec,
+                            const Eigen::VectorXd& weights) {
+  const Mesh& mesh = context.rest();
+  const int m = mesh.num_triangles();
+  Positions vdir;
+  Eigen::VectorXd su, sv;
+  context.vertex_directions(source, vdir, su, sv);
+  const Frames frames = triangle_frames(context, source, vdir);
+  ElementTargets out;
+  out.filled = frames.filled;
+  out.T.resize(3 * static_cast<std::size_t>(m));
+  const Eigen::Vector3d orientation = shear_orientation(mesh, spec, weights);
+  Eigen::Vector3d u, v, normal;
+  for (int t = 0; t < m; ++t) {
+    oriented_frame(frames, t, orientation, u, v, normal);
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.F(t, (k + 1) % 3), b = mesh.F(t, (k + 2) % 3);
+      const double w = 0.5 * (weights[a] + weights[b]);
+      const Eigen::Vector3d midpoint = 0.5 * (mesh.V.row(a) + mesh.V.row(b)).transpose();
+      Amounts amounts{spec.su, spec.sv};
+      if (su.size() > 0) amounts = {0.5 * (su[a] + su[b]), 0.5 * (sv[a] + sv[b])};
+      out.T[3 * static_cast<std::size_t>(t) + k] = element_transform(spec, u, v, normal, w, midpoint, amounts);
+    }
   }
   return out;
 }

@@ -1,6 +1,6 @@
 // From a selection, a direction source and a transform to the per-element
-// target matrices T the solvers consume (METHOD §3–4): per vertex (AnARAP fans,
-// the linear baseline) or per triangle (AnDefGrad).
+// target matrices T the solvers consume (METHOD §3–4): per vertex (the linear
+// baseline), per triangle (AnDefGrad) or per triangle side (AnARAP's spokes).
 #pragma once
 
 #include <memory>
@@ -49,7 +49,8 @@ struct ElementTargets {
   int filled = 0;                  // degenerate directions filled (METHOD §3)
 };
 
-// Per-vertex targets: vertex normals, the source's per-vertex directions.
+// Per-vertex targets: vertex normals, the source's per-vertex directions (the
+// linear baseline, which moves each vertex by its own map).
 ElementTargets vertex_targets(TargetContext& context, const DirectionSource& source,
                               const TransformSpec& spec, const Eigen::VectorXd& weights);
 
@@ -58,5 +59,14 @@ ElementTargets vertex_targets(TargetContext& context, const DirectionSource& sou
 // vertices' weights, position = centroid.
 ElementTargets triangle_targets(TargetContext& context, const DirectionSource& source,
                                 const TransformSpec& spec, const Eigen::VectorXd& weights);
+
+// Per-side targets (3 per triangle, T[3t + k] for the side opposite corner k):
+// the triangle's frame, with the side's own weight (the mean of its two
+// vertices'), midpoint and amounts. AnARAP transforms each rest edge by the
+// mean of its sides' maps: an edge inside a flat part takes that part's map,
+// and the spokes of a vertex on a crease are each transformed by the faces
+// they lie on, not by one map of the vertex's averaged normal.
+ElementTargets side_targets(TargetContext& context, const DirectionSource& source,
+                            const TransformSpec& spec, const Eigen::VectorXd& weights);
 
 }  // namespace aniso
