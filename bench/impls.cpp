@@ -87,6 +87,9 @@ Sample run_iterative(const Problem& problem, const aniso::DeformRequest& request
   return sample;
 }
 
+
+}  // namespace
+
 aniso::DeformRequest stretch_request(const Problem& problem, aniso::Method method) {
   aniso::DeformRequest request;
   request.method = method;
@@ -97,7 +100,14 @@ aniso::DeformRequest stretch_request(const Problem& problem, aniso::Method metho
   return request;
 }
 
-}  // namespace
+aniso::DeformRequest arap_handles_request(const Problem& problem) {
+  aniso::DeformRequest request;
+  request.method = aniso::Method::Arap;
+  request.pins = problem.fixed;
+  request.handles = problem.moved;
+  request.handle_offset = problem.offset;
+  return request;
+}
 
 Sample run_eigen_ldlt(const Problem& problem, int solves) {
   const aniso::Mesh& mesh = problem.mesh;
@@ -148,11 +158,7 @@ Sample run_eigen_ldlt(const Problem& problem, int solves) {
 }
 
 Sample run_anisoform_arap(const Problem& problem, int iterations) {
-  aniso::DeformRequest request;
-  request.method = aniso::Method::Arap;
-  request.pins = problem.fixed;
-  request.handles = problem.moved;
-  request.handle_offset = problem.offset;
+  aniso::DeformRequest request = arap_handles_request(problem);
   request.max_iterations = iterations;
   request.tolerance = 0.0;
   return run_iterative(problem, request);

@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "anisoform/deformer.h"
 #include "problems.h"
 
 namespace aniso_bench {
@@ -27,6 +28,11 @@ struct Sample {
   int iterations = 0;          // iterations in the timed call
   double mean_displacement = 0.0;  // mean |v' - v| after the timed call
 };
+
+// The standard edits: AnARAP/AnDefGrad stretch the top half by 1.5 along the
+// long axis; ARAP moves the top 5 % by `offset` with the bottom 5 % held.
+aniso::DeformRequest stretch_request(const Problem& problem, aniso::Method method);
+aniso::DeformRequest arap_handles_request(const Problem& problem);
 
 Sample run_eigen_ldlt(const Problem& problem, int solves);
 Sample run_anisoform_arap(const Problem& problem, int iterations);

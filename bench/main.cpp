@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "anisoform/error.h"
+#include "converge.h"
 #include "impls.h"
 #include "problems.h"
 
@@ -32,7 +33,7 @@ using aniso_bench::Sample;
 const char* kUsage =
     "usage: anisoform_bench --mesh cyl1k|cyl10k|cyl50k|cyl200k|PATH [--runs N]\n"
     "                       [--iterations N] [--only IMPL[,IMPL...]] [--clock wall|cpu]\n"
-    "                       [--verbose]\n"
+    "                       [--verbose] [--converge TOL [--max-iterations N]]\n"
     "  --runs N        runs per implementation (medians); default 5, 3 above 100k vertices\n"
     "  --iterations N  ARAP/AnARAP/CGAL iterations per timed call (default 10)\n"
     "  --only LIST     eigen-ldlt, anisoform-arap, anisoform-anarap,\n"
@@ -40,6 +41,9 @@ const char* kUsage =
     "  --clock KIND    wall (default) or cpu: this thread's CPU time, robust on a\n"
     "                  loaded machine (see bench/README.md for what changes)\n"
     "  --verbose       per-run details on stderr\n"
+    "  --converge TOL  instead: ARAP and AnARAP solved to the relative energy change\n"
+    "                  TOL, plain local/global and Anderson-accelerated: iterations,\n"
+    "                  ms and energy per row (cap --max-iterations, default 5000)\n"
     "Run natively with GLIBC_TUNABLES=glibc.malloc.mmap_max=0:glibc.malloc.trim_threshold=68719476736\n"
     "(without it, the equivalent mallopt() settings are applied at start-up).\n";
 
@@ -108,6 +112,8 @@ int main(int argc, char** argv) {
   std::string mesh_name;
   int runs = 0, iterations = 10;
   bool verbose = false;
+  double converge_tolerance = -1.0;
+  int max_iterations = 5000;
   std::set<std::string> only;
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
@@ -134,6 +140,15 @@ int main(int argc, char** argv) {
       } else {
         usage_error("--clock needs wall or cpu, got '" + kind + "'");
       }
+    } else if (arg == "--converge") {
+      const std::string text = value();
+      char* end = nullptr;
+      converge_tolerance = std::strtod(text.c_str(), &end);
+      if (text.empty() || *end != '\0' || !(converge_tolerance > 0.0) || converge_tolerance >= 1.0) {
+        usage_error("--converge needs a tolerance in (0, 1), got '" + text + "'");
+      }
+    } else if (arg == "--max-iterations") {
+      max_iterations = parse_positive(arg, value());
     } else if (arg == "--verbose") {
       verbose = true;
     } else if (arg == "--help" || arg == "-h") {
@@ -157,6 +172,8 @@ int main(int argc, char** argv) {
   }
   const int n = problem.mesh.num_vertices();
   if (runs == 0) runs = n > 100000 ? 3 : 5;
+
+  if (converge_tolerance > 0.0) return aniso_bench::run_convergence(problem, converge_tolerance, runs, max_iterations);
 
   const int solves = 5;   // eigen-ldlt solves per run (median)
   const int changes = 4;  // andefgrad changes of amount per run (median)

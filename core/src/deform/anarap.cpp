@@ -13,6 +13,9 @@ namespace {
 // Differences kept by Anderson acceleration: Peng et al. use 5-6; more costs
 // memory (2 position arrays each) for little gain.
 constexpr int kAndersonWindow = 5;
+// Accelerated iterations stop after this many energy changes below the
+// tolerance in a row (plain ones after one).
+constexpr int kAndersonSmallSteps = 3;
 
 // Rotation maximizing f(R) = tr(R^T S), warm-started from q. Each step
 // perturbs on the right, R = R0 exp([d]x), with M = R0^T S:
@@ -333,7 +336,7 @@ int AnArapSolver::run(const LaplacianSolver& solver, Positions& V, int max_itera
   AndersonMixer mixer(kAndersonWindow);
   std::vector<Eigen::Quaterniond> kept_rotations;
   double previous = local_step(V);
-  int iterations = 0;
+  int iterations = 0, small_steps = 0;
   for (int it = 0; it < max_iterations; ++it) {
     global_rhs(b);
     g = V;
@@ -368,7 +371,12 @@ int AnArapSolver::run(const LaplacianSolver& solver, Positions& V, int max_itera
     // against less than a 1e-12 part of the fans' rest size, so that an exact
     // solution (energy ~ 0) stops too.
     const double reference = std::max(std::abs(previous), 1e-12 * energy_scale_);
-    if (tolerance >= 0.0 && std::abs(previous - energy) <= tolerance * reference) break;
+    // An accelerated step that happened to gain little is no sign of
+    // convergence by itself: with acceleration the change must stay below
+    // the tolerance over several iterations in a row.
+    const bool small = std::abs(previous - energy) <= tolerance * reference;
+    small_steps = small ? small_steps + 1 : 0;
+    if (tolerance >= 0.0 && small_steps >= (accelerate ? kAndersonSmallSteps : 1)) break;
     previous = energy;
   }
   return iterations;

@@ -1,0 +1,91 @@
+#include "converge.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <exception>
+#include <vector>
+
+#include "anisoform/deformer.h"
+#include "impls.h"
+
+namespace aniso_bench {
+namespace {
+
+double median_value(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t m = v.size() / 2;
+  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+struct Converged {
+  std::vector<double> iterations, ms;
+  double energy = 0.0;
+  bool converged = true;
+};
+
+// One cold solve to `tolerance` on a Deformer whose factorization is done
+// already: only the iterations are timed.
+void solve_once(aniso::Deformer& deformer, aniso::DeformRequest request, Converged& out) {
+  request.warm_start = false;
+  const double start = now_ms();
+  const aniso::DeformResult result = deformer.deform(request);
+  out.ms.push_back(now_ms() - start - result.precompute_ms);
+  out.iterations.push_back(result.iterations);
+  out.energy = result.energy;
+  out.converged = out.converged && result.converged;
+}
+
+}  // namespace
+
+int run_convergence(const Problem& problem, double tolerance, int runs, int max_iterations) {
+  const int n = problem.mesh.num_vertices();
+  struct Row {
+    const char* impl;
+    aniso::DeformRequest request;
+  };
+  const std::vector<Row> rows = {{"anisoform-arap", arap_handles_request(problem)},
+                                 {"anisoform-anarap", stretch_request(problem, aniso::Method::AnArap)}};
+  for (const Row& row : rows) {
+    aniso::DeformRequest request = row.request;
+    request.tolerance = tolerance;
+    request.max_iterations = max_iterations;
+    aniso::Deformer deformer(problem.mesh);
+    {
+      // Factorize and build the solver once, outside the timed solves.
+      aniso::DeformRequest warmup = request;
+      warmup.max_iterations = 1;
+      deformer.deform(warmup);
+    }
+    Converged plain, accelerated;
+    std::vector<double> ratio_ms;
+    try {
+      for (int r = 0; r < runs; ++r) {  // interleaved, as the main benchmark
+        request.acceleration = aniso::Acceleration::None;
+        solve_once(deformer, request, plain);
+        request.acceleration = aniso::Acceleration::Anderson;
+        solve_once(deformer, request, accelerated);
+        ratio_ms.push_back(plain.ms.back() / accelerated.ms.back());
+      }
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "anisoform_bench: %s failed on %s: %s\n", row.impl, problem.name.c_str(), e.what());
+      return 3;
+    }
+    for (const auto& [name, c] : {std::pair<const char*, const Converged&>{"none", plain},
+                                  std::pair<const char*, const Converged&>{"anderson", accelerated}}) {
+      std::printf("{\"mesh\":\"%s\",\"vertices\":%d,\"impl\":\"%s\",\"acceleration\":\"%s\",\"tolerance\":%g,"
+                  "\"iterations\":%.0f,\"converged\":%s,\"ms\":%.1f,\"energy\":%.10g}\n",
+                  problem.name.c_str(), n, row.impl, name, tolerance, median_value(c.iterations),
+                  c.converged ? "true" : "false", median_value(c.ms), c.energy);
+    }
+    std::fflush(stdout);
+    std::fprintf(stderr,
+                 "converge %s %s (%d vertices, tolerance %g, %d runs): iterations %.0f -> %.0f, time plain/anderson "
+                 "%.2f (goal >= 5), energy anderson/plain - 1 = %.2e\n",
+                 problem.name.c_str(), row.impl, n, tolerance, runs, median_value(plain.iterations),
+                 median_value(accelerated.iterations), median_value(ratio_ms),
+                 accelerated.energy / plain.energy - 1.0);
+  }
+  return 0;
+}
+
+}  // namespace aniso_bench
