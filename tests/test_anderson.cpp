@@ -35,7 +35,7 @@ void check_accelerated(const Compared& c, const char* what) {
   WARN(what << ": plain " << c.plain.iterations << " iterations, Anderson " << c.accelerated.iterations);
   REQUIRE(c.plain.converged);
   REQUIRE(c.accelerated.converged);
-  CHECK(4 * c.accelerated.iterations <= c.plain.iterations);
+  CHECK(3 * c.accelerated.iterations <= c.plain.iterations);
   CHECK(c.accelerated.energy <= c.plain.energy * (1.0 + 1e-9));
   const std::vector<double>& history = c.accelerated.energy_history;
   for (std::size_t k = 1; k < history.size(); ++k) CHECK(history[k] <= history[k - 1]);
@@ -43,7 +43,7 @@ void check_accelerated(const Compared& c, const char* what) {
 
 }  // namespace
 
-TEST_CASE("anderson: an AnARAP stretch on spot converges in a quarter of the iterations, no higher energy",
+TEST_CASE("anderson: an AnARAP stretch on spot converges in a third of the iterations, no higher energy",
           "[anarap][anderson]") {
   const Mesh mesh = test::load("closed/spot_triangulated.obj");
   DeformRequest request = test::stretch_request(Method::AnArap, Eigen::Vector3d::UnitZ(), 1.4);
@@ -51,7 +51,7 @@ TEST_CASE("anderson: an AnARAP stretch on spot converges in a quarter of the ite
   check_accelerated(solve_both(mesh, request), "AnARAP stretch");
 }
 
-TEST_CASE("anderson: ARAP with handles on spot converges in a quarter of the iterations, no higher energy",
+TEST_CASE("anderson: ARAP with handles on spot converges in a third of the iterations, no higher energy",
           "[anarap][anderson]") {
   const Mesh mesh = test::load("closed/spot_triangulated.obj");
   DeformRequest request;
