@@ -276,7 +276,7 @@ TEST_CASE("op: results as JSON and the schema", "[op]") {
   CHECK(to_json(metrics)["method"] == "anisotropic");
 
   const Json schema = op_schema();
-  CHECK(schema["op"].size() == 14);
+  CHECK(schema["op"].size() == 15);
   CHECK(schema["op.transform"] == Json::array({"scale", "thickness", "shear", "rotate", "twist"}));
   CHECK(schema["flatten"].size() == 6);
 }
