@@ -373,8 +373,11 @@ int AnArapSolver::run(const LaplacianSolver& solver, Positions& V, int max_itera
     const double reference = std::max(std::abs(previous), 1e-12 * energy_scale_);
     // An accelerated step that happened to gain little is no sign of
     // convergence by itself: with acceleration the change must stay below
-    // the tolerance over several iterations in a row.
-    const bool small = std::abs(previous - energy) <= tolerance * reference;
+    // the tolerance over several iterations in a row. At an exact solution
+    // (energy at the floor: nothing to do, an identity edit) the mixed
+    // steps only stir rounding noise, so that counts as small too.
+    const bool at_floor = accelerate && std::abs(energy) <= 1e-12 * energy_scale_;
+    const bool small = std::abs(previous - energy) <= tolerance * reference || at_floor;
     small_steps = small ? small_steps + 1 : 0;
     if (tolerance >= 0.0 && small_steps >= (accelerate ? kAndersonSmallSteps : 1)) break;
     previous = energy;
