@@ -11,12 +11,6 @@
 namespace aniso_bench {
 namespace {
 
-double median_value(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-}
-
 struct Converged {
   std::vector<double> iterations, ms;
   double energy = 0.0;
@@ -74,15 +68,15 @@ int run_convergence(const Problem& problem, double tolerance, int runs, int max_
                                   std::pair<const char*, const Converged&>{"anderson", accelerated}}) {
       std::printf("{\"mesh\":\"%s\",\"vertices\":%d,\"impl\":\"%s\",\"acceleration\":\"%s\",\"tolerance\":%g,"
                   "\"iterations\":%.0f,\"converged\":%s,\"ms\":%.1f,\"energy\":%.10g}\n",
-                  problem.name.c_str(), n, row.impl, name, tolerance, median_value(c.iterations),
-                  c.converged ? "true" : "false", median_value(c.ms), c.energy);
+                  problem.name.c_str(), n, row.impl, name, tolerance, median_of(c.iterations),
+                  c.converged ? "true" : "false", median_of(c.ms), c.energy);
     }
     std::fflush(stdout);
     std::fprintf(stderr,
                  "converge %s %s (%d vertices, tolerance %g, %d runs): iterations %.0f -> %.0f, time plain/anderson "
                  "%.2f (goal >= 5), energy anderson/plain - 1 = %.2e\n",
-                 problem.name.c_str(), row.impl, n, tolerance, runs, median_value(plain.iterations),
-                 median_value(accelerated.iterations), median_value(ratio_ms),
+                 problem.name.c_str(), row.impl, n, tolerance, runs, median_of(plain.iterations),
+                 median_of(accelerated.iterations), median_of(ratio_ms),
                  accelerated.energy / plain.energy - 1.0);
   }
   return 0;

@@ -38,12 +38,6 @@ using Stamp = double;
 Stamp stamp() { return now_ms(); }
 double ms_since(Stamp start) { return now_ms() - start; }
 
-double median_of(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-}
-
 double mean_displacement(const aniso::Mesh& rest, const aniso::Positions& V) {
   return (V - rest.V).rowwise().norm().mean();
 }
@@ -89,6 +83,13 @@ Sample run_iterative(const Problem& problem, const aniso::DeformRequest& request
 
 
 }  // namespace
+
+double median_of(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const std::size_t m = v.size() / 2;
+  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
 
 aniso::DeformRequest stretch_request(const Problem& problem, aniso::Method method) {
   aniso::DeformRequest request;

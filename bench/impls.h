@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "anisoform/deformer.h"
 #include "problems.h"
@@ -28,6 +29,9 @@ struct Sample {
   int iterations = 0;          // iterations in the timed call
   double mean_displacement = 0.0;  // mean |v' - v| after the timed call
 };
+
+// The median (0 for none): every row of the benchmark reports medians.
+double median_of(std::vector<double> v);
 
 // The standard edits: AnARAP/AnDefGrad stretch the top half by 1.5 along the
 // long axis; ARAP moves the top 5 % by `offset` with the bottom 5 % held.

@@ -27,6 +27,7 @@
 
 namespace {
 
+using aniso_bench::median_of;
 using aniso_bench::Problem;
 using aniso_bench::Sample;
 
@@ -77,13 +78,6 @@ std::string json_string(const std::string& s) {
     }
   }
   return out + "\"";
-}
-
-double median_of(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const std::size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
 }
 
 // GLIBC_TUNABLES is read by the loader; when it is missing, the same two
