@@ -7,7 +7,8 @@
 //   {"mesh":..., "vertices":..., "impl":..., "precompute_ms":..., "iteration_ms":...}
 // (medians over the runs; implementations interleaved run by run), and the
 // same-run ratios on stderr. Rows: eigen-ldlt, anisoform-arap,
-// anisoform-anarap, anisoform-andefgrad (CGAL has no WASM build).
+// anisoform-anarap, anisoform-andefgrad, anisoform-preview (CGAL has no WASM
+// build).
 //
 // Timings are taken in JS around the JS-layer calls, so they include what a
 // browser caller pays: the layer's argument checks, the copy of the result
@@ -20,6 +21,12 @@
 //                        precompute; iteration: a second, warm-started
 //                        deform() divided by its iterations (AnDefGrad: one
 //                        change of amount, su 1.6/1.5, median of 4)
+//   anisoform-preview    a slider's live preview (document/live-preview.js):
+//                        precompute: a fresh Deformer + the first preview
+//                        (factorization, the scale steps); iteration: one
+//                        preview of a new amount (one warm-started AnARAP
+//                        iteration) with the copy into the float32 buffer the
+//                        worker transfers to the page (median of 9)
 // Environment: ANISO_WASM_DIR (default web/src/wasm), as the tests.
 import { readFileSync } from 'node:fs';
 import path from 'node:path';
@@ -30,13 +37,15 @@ const USAGE = `usage: node bench/wasm-bench.mjs --mesh cyl1k|cyl10k|cyl50k|cyl20
                                  [--iterations N] [--only IMPL[,IMPL...]] [--verbose]
   --runs N        runs per implementation (medians); default 5, 3 above 100k vertices
   --iterations N  ARAP/AnARAP iterations per timed call (default 10)
-  --only LIST     eigen-ldlt, anisoform-arap, anisoform-anarap, anisoform-andefgrad (default: all)
+  --only LIST     eigen-ldlt, anisoform-arap, anisoform-anarap, anisoform-andefgrad,
+                  anisoform-preview (default: all)
   --verbose       per-run details on stderr
 `;
-const IMPLS = ['eigen-ldlt', 'anisoform-arap', 'anisoform-anarap', 'anisoform-andefgrad'];
+const IMPLS = ['eigen-ldlt', 'anisoform-arap', 'anisoform-anarap', 'anisoform-andefgrad', 'anisoform-preview'];
 const CYLINDERS = { cyl1k: 1000, cyl10k: 10000, cyl50k: 50000, cyl200k: 200000 };
 const LDLT_SOLVES = 5;
 const ANDEFGRAD_CHANGES = 4;
+const PREVIEW_VALUES = 9;
 
 function usageError(message) {
   process.stderr.write(`wasm-bench: ${message}\n${USAGE}`);
@@ -190,6 +199,19 @@ function runAndefgrad(session, problem) {
   return { precompute: setup + first.precomputeMs, iteration: median(times), detail: `setup ${setup.toFixed(3)} ms` };
 }
 
+function runPreview(session, problem) {
+  const [setup] = timed(() => session.setPositions(problem.positions));
+  session.setSelection(problem.topHalf);
+  const preview = (su) => {
+    session.deform({ ...stretchOp(problem, 'anarap'), transform: { scale: su }, warmStart: true, maxIterations: 1, preview: true });
+    return session.positions().slice();
+  };
+  const [first] = timed(() => preview(1.5));
+  const times = [];
+  for (let k = 1; k <= PREVIEW_VALUES; ++k) times.push(timed(() => preview(1.5 + 0.01 * k))[0]);
+  return { precompute: setup + first, iteration: median(times), detail: `first preview ${first.toFixed(3)} ms` };
+}
+
 async function main() {
   const options = parseArguments(process.argv.slice(2));
   const { wasm } = await loadAnisoform({ bench: true });
@@ -202,6 +224,7 @@ async function main() {
       'anisoform-arap': () => runArap(session, problem, options.iterations),
       'anisoform-anarap': () => runAnarap(session, problem, options.iterations),
       'anisoform-andefgrad': () => runAndefgrad(session, problem),
+      'anisoform-preview': () => runPreview(session, problem),
     };
     const active = IMPLS.filter((name) => options.only.size === 0 || options.only.has(name));
     if (options.verbose) {
@@ -242,6 +265,11 @@ async function main() {
       + `precompute arap/ldlt ${ratio('anisoform-arap', 'eigen-ldlt', 'precompute')} (goal <= 1.5), `
       + `anarap/ldlt ${ratio('anisoform-anarap', 'eigen-ldlt', 'precompute')}, `
       + `andefgrad/ldlt ${ratio('anisoform-andefgrad', 'eigen-ldlt', 'precompute')}\n`);
+    if (samples['anisoform-preview']) {
+      const ms = median(samples['anisoform-preview'].map((s) => s.iteration));
+      process.stderr.write(`preview ${problem.name}: ${ms.toFixed(1)} ms per slider value = ${(1000 / ms).toFixed(1)} updates/s `
+        + '(issue 11 goal 3: >= 30 at 50k vertices)\n');
+    }
   } finally {
     session.delete();
   }

@@ -1,5 +1,7 @@
 // The exact properties of METHOD §9, one test each, on real meshes where a
 // real mesh has the needed shape.
+#include <algorithm>
+
 #include <catch2/catch.hpp>
 
 #include "deform/andefgrad.h"
@@ -167,6 +169,48 @@ TEST_CASE("anarap: without the final energy, the same positions; the energy is t
     CHECK(quick.energy >= full.energy);
     for (int k = 0; k + 1 < iterations; ++k) CHECK(quick.energy_history[k] == full.energy_history[k]);
     if (iterations > 1) CHECK(quick.energy == full.energy_history[iterations - 2]);
+  }
+}
+
+TEST_CASE("anarap: a live preview's scale targets are the direct ones, for every amount, selection and direction",
+          "[solver][anarap]") {
+  // A preview takes scale-only targets from steps kept across calls
+  // (AnArapSolver::set_scale_targets). Each preview must match the same
+  // request solved with the targets computed directly, whatever ran before.
+  const Mesh mesh = test::load("closed/spot_triangulated.obj");
+  const double size = diagonal(mesh.V);
+  Eigen::VectorXd upper(mesh.num_vertices()), lower(mesh.num_vertices());
+  const double middle = 0.5 * (mesh.V.col(1).minCoeff() + mesh.V.col(1).maxCoeff());
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    // Soft weights, so that sides within a spoke's fan differ.
+    upper[i] = std::clamp((mesh.V(i, 1) - middle) / (0.2 * size) + 0.5, 0.0, 1.0);
+    lower[i] = 1.0 - upper[i];
+  }
+  for (const ArapElements elements : {ArapElements::Spokes, ArapElements::SpokesAndRims}) {
+    Deformer live(mesh);
+    struct Step { Eigen::VectorXd weights; Eigen::Vector3d direction; double su, sv, sn; };
+    const std::vector<Step> steps = {
+        {upper, Eigen::Vector3d::UnitY(), 1.3, 1.0, 1.0}, {upper, Eigen::Vector3d::UnitY(), 1.6, 0.9, 1.2},
+        {lower, Eigen::Vector3d::UnitY(), 1.6, 0.9, 1.2},  // a new selection
+        {lower, Eigen::Vector3d(1, 1, 0), 0.7, 1.1, 1.4},  // a new direction
+        {upper, Eigen::Vector3d(1, 1, 0), 1.2, 1.2, 0.8}};
+    for (std::size_t k = 0; k < steps.size(); ++k) {
+      DeformRequest request = test::stretch_request(Method::AnArap, steps[k].direction, steps[k].su, steps[k].sv);
+      request.transform.sn = steps[k].sn;
+      request.selection = steps[k].weights;
+      request.elements = elements;
+      request.warm_start = false;
+      request.max_iterations = 2;
+      request.final_energy = false;
+      request.preview = true;
+      const DeformResult preview = live.deform(request);
+      request.preview = false;
+      const DeformResult direct = Deformer(mesh).deform(request);
+      INFO("elements " << static_cast<int>(elements) << ", step " << k);
+      CHECK((preview.V - direct.V).rowwise().norm().maxCoeff() < 1e-12 * size);
+      // The edit does move the mesh: the comparison is not of two rest poses.
+      CHECK((direct.V - mesh.V).rowwise().norm().maxCoeff() > 1e-2 * size);
+    }
   }
 }
 

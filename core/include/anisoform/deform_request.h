@@ -98,6 +98,12 @@ struct DeformRequest {
   // reported is then the one before the last solve, an upper bound. A live
   // preview does not need it: the next preview refits the rotations first.
   bool final_energy = true;
+  // A live preview (resolve_edit sets it for an op with preview: true). AnARAP
+  // then takes scale-only targets from a basis kept across calls (see
+  // AnArapSolver::set_scale_targets): a slider's next amount costs one pass
+  // over the spokes. Equal to the direct targets up to rounding, and always
+  // chosen by this flag alone, so a result never depends on what ran before.
+  bool preview = false;
 };
 
 struct DeformResult {

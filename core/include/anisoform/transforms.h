@@ -43,6 +43,9 @@ struct TransformSpec {
   // polar decomposition has a rotation in it). AnARAP then runs a fixed number
   // of steps instead of converging (METHOD §5).
   bool has_rotational_part() const;
+  // Only the scales su, sv, sn: the element maps are then
+  // I + w ((su - 1) cu cu^T + (sv - 1) cv cv^T + (sn - 1) n n^T), affine in them.
+  bool scales_only() const { return !has_rotational_part(); }
   bool is_identity() const;
 };
 

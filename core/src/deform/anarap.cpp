@@ -112,16 +112,30 @@ AnArapSolver::AnArapSolver(const Mesh& rest, const CotanWeights& weights,
       }
     }
     std::sort(sides.begin(), sides.end());
-    spoke_side_offsets_.assign(neighbors_.size() + 1, 0);
-    spoke_sides_.clear();
+    // Inverted to sides -> spokes (CSR over sides), so that set_targets reads
+    // the maps in order: gathering them per spoke was a random read of 72
+    // bytes per side and spoke, a third of a live preview's time at 26k
+    // vertices.
+    std::vector<std::pair<int, int>> side_spoke;  // (side, spoke)
+    side_spoke.reserve(sides.size() * 2);
+    spoke_share_.assign(neighbors_.size(), 0.0);
     for (int i = 0; i < n_; ++i) {
       for (int q = offsets_[i]; q < offsets_[i + 1]; ++q) {
         const std::pair<int, int> key(std::min(i, neighbors_[q]), std::max(i, neighbors_[q]));
         auto it = std::lower_bound(sides.begin(), sides.end(), std::make_pair(key, -1));
-        for (; it != sides.end() && it->first == key; ++it) spoke_sides_.push_back(it->second);
-        spoke_side_offsets_[q + 1] = static_cast<int>(spoke_sides_.size());
+        int count = 0;
+        for (; it != sides.end() && it->first == key; ++it, ++count) side_spoke.emplace_back(it->second, q);
+        if (count > 0) spoke_share_[q] = 1.0 / count;
       }
     }
+    std::sort(side_spoke.begin(), side_spoke.end());
+    side_spoke_offsets_.assign(3 * static_cast<std::size_t>(m) + 1, 0);
+    side_spokes_.resize(side_spoke.size());
+    for (std::size_t k = 0; k < side_spoke.size(); ++k) {
+      side_spokes_[k] = side_spoke[k].second;
+      ++side_spoke_offsets_[side_spoke[k].first + 1];
+    }
+    for (int s = 0; s < 3 * m; ++s) side_spoke_offsets_[s + 1] += side_spoke_offsets_[s];
     spoke_target_ = spoke_edge_;
     spoke_polar_ = spoke_edge_;
   } else {
@@ -158,31 +172,65 @@ AnArapSolver::AnArapSolver(const Mesh& rest, const CotanWeights& weights,
 void AnArapSolver::set_targets(const std::vector<Eigen::Matrix3d>& T) {
   // The polar parts, once per side; P of a mean is taken as the mean of the
   // P's (equal where the sides' maps are, which is everywhere but at creases).
-  std::vector<Eigen::Matrix3d> P(T.size());
   polar_differs_ = false;
-  for (std::size_t s = 0; s < T.size(); ++s) {
-    P[s] = polar_positive_part(T[s]);
-    if ((P[s] - T[s]).cwiseAbs().maxCoeff() > 1e-12 * (1.0 + T[s].cwiseAbs().maxCoeff())) polar_differs_ = true;
+  const auto polar_of = [this](const Eigen::Matrix3d& Ts) {
+    const Eigen::Matrix3d P = polar_positive_part(Ts);
+    if ((P - Ts).cwiseAbs().maxCoeff() > 1e-12 * (1.0 + Ts.cwiseAbs().maxCoeff())) polar_differs_ = true;
+    return P;
+  };
+  if (elements_ == ArapElements::Spokes) {
+    // A spoke's map is the mean of its sides' maps: each side adds its share
+    // of T e (a spoke on no side keeps the identity). In side order: the
+    // maps are read in order, the spoke rows written nearly so (gathering
+    // the maps per spoke read them at random, a third of a live preview's
+    // time at 26k vertices).
+    spoke_target_.setZero();
+    spoke_polar_.setZero();
+    for (std::size_t s = 0; s < T.size(); ++s) {
+      const Eigen::Matrix3d P = polar_of(T[s]);
+      for (int k = side_spoke_offsets_[s]; k < side_spoke_offsets_[s + 1]; ++k) {
+        const int q = side_spokes_[k];
+        const Eigen::Vector3d e = spoke_share_[q] * spoke_edge_.row(q).transpose();
+        spoke_target_.row(q) += (T[s] * e).transpose();
+        spoke_polar_.row(q) += (P * e).transpose();
+      }
+    }
+    for (std::size_t q = 0; q < spoke_share_.size(); ++q) {
+      if (spoke_share_[q] != 0.0) continue;
+      spoke_target_.row(q) = spoke_edge_.row(q);
+      spoke_polar_.row(q) = spoke_edge_.row(q);
+    }
+  } else {
+    for (int s = 0; s < 3 * rest_.num_triangles(); ++s) {
+      const Eigen::Vector3d e = side_edge_.row(s).transpose();
+      side_target_.row(s) = (T[s] * e).transpose();
+      side_polar_.row(s) = (polar_of(T[s]) * e).transpose();
+    }
   }
+  update_target_energy();
+}
+
+void AnArapSolver::keep_scale_step(int amount) {
+  const bool spokes = elements_ == ArapElements::Spokes;
+  scale_step_[amount] = spokes ? Positions(spoke_target_ - spoke_edge_) : Positions(side_target_ - side_edge_);
+}
+
+void AnArapSolver::set_scale_targets(double su, double sv, double sn) {
+  const bool spokes = elements_ == ArapElements::Spokes;
+  Positions& target = spokes ? spoke_target_ : side_target_;
+  const Positions& edge = spokes ? spoke_edge_ : side_edge_;
+  target = edge + (su - 1.0) * scale_step_[0] + (sv - 1.0) * scale_step_[1] + (sn - 1.0) * scale_step_[2];
+  // Symmetric positive definite maps are their own polar parts: the polar
+  // targets are not used (with_polar is false) until set_targets sets them.
+  polar_differs_ = false;
+  update_target_energy();
+}
+
+void AnArapSolver::update_target_energy() {
   target_energy_.setZero();
   if (elements_ == ArapElements::Spokes) {
     for (int i = 0; i < n_; ++i) {
       for (int q = offsets_[i]; q < offsets_[i + 1]; ++q) {
-        const int begin = spoke_side_offsets_[q], end = spoke_side_offsets_[q + 1];
-        Eigen::Matrix3d mean_T = Eigen::Matrix3d::Identity(), mean_P = Eigen::Matrix3d::Identity();
-        if (end > begin) {
-          mean_T.setZero();
-          mean_P.setZero();
-          for (int k = begin; k < end; ++k) {
-            mean_T += T[spoke_sides_[k]];
-            mean_P += P[spoke_sides_[k]];
-          }
-          mean_T /= end - begin;
-          mean_P /= end - begin;
-        }
-        const Eigen::Vector3d e = spoke_edge_.row(q).transpose();
-        spoke_target_.row(q) = (mean_T * e).transpose();
-        spoke_polar_.row(q) = (mean_P * e).transpose();
         target_energy_[i] += spoke_weight_[q] * spoke_target_.row(q).squaredNorm();
       }
     }
@@ -190,11 +238,7 @@ void AnArapSolver::set_targets(const std::vector<Eigen::Matrix3d>& T) {
   }
   for (int t = 0; t < rest_.num_triangles(); ++t) {
     for (int k = 0; k < 3; ++k) {
-      const int s = 3 * t + k;
-      const Eigen::Vector3d e = side_edge_.row(s).transpose();
-      side_target_.row(s) = (T[s] * e).transpose();
-      side_polar_.row(s) = (P[s] * e).transpose();
-      const double energy = weights_.weight(t, k) * side_target_.row(s).squaredNorm();
+      const double energy = weights_.weight(t, k) * side_target_.row(3 * t + k).squaredNorm();
       for (int c = 0; c < 3; ++c) target_energy_[rest_.F(t, c)] += energy;
     }
   }

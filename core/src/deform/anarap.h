@@ -59,6 +59,14 @@ class AnArapSolver {
   // Per-side targets (3 #F, side_targets in element_targets.h). Keeps the
   // current rotations (warm start).
   void set_targets(const std::vector<Eigen::Matrix3d>& T);
+  // Scale-only targets (TransformSpec::scales_only, the same amounts on every
+  // side) are affine in the amounts: per spoke (or side)
+  // t = e + (su - 1) U + (sv - 1) V + (sn - 1) N. After set_targets with the
+  // maps of a unit step of amount k (0: su, 1: sv, 2: sn at 2, the others at
+  // 1), keep_scale_step(k) keeps t - e as that amount's step;
+  // set_scale_targets then sets the targets of any amounts from the three.
+  void keep_scale_step(int amount);
+  void set_scale_targets(double su, double sv, double sn);
   // alpha > 0: coupled rotations (see above); 0: the paper's scheme.
   void set_rotation_coupling(double alpha) { coupling_ = alpha; }
   void reset_rotations();
@@ -83,6 +91,7 @@ class AnArapSolver {
  private:
   // S_i = sum w e' t^T (full targets) and with the polar targets, per cell.
   // The polar covariance only `with_polar`.
+  void update_target_energy();
   void covariance_spokes(const Positions& V, bool with_polar, Eigen::VectorXd& edge_energy);
   void covariance_spokes_rims(const Positions& V, bool with_polar, Eigen::VectorXd& edge_energy);
   // The coupled local step's sweep; returns E_s after it.
@@ -96,13 +105,16 @@ class AnArapSolver {
   std::vector<int> offsets_, neighbors_;
   std::vector<double> spoke_weight_;
   Positions spoke_edge_;
-  // Spokes: the triangle sides each spoke lies on (CSR over spokes), and its
-  // target edges t_ij = T_ij e_ij and P_ij e_ij, T_ij the mean of their maps.
-  std::vector<int> spoke_side_offsets_, spoke_sides_;
+  // Spokes: the spokes each triangle side lies on (CSR over sides), 1 / the
+  // number of sides per spoke (0: on none), and the target edges
+  // t_ij = T_ij e_ij and P_ij e_ij, T_ij the mean of its sides' maps.
+  std::vector<int> side_spoke_offsets_, side_spokes_;
+  std::vector<double> spoke_share_;
   Positions spoke_target_, spoke_polar_;
   // Spokes and rims: each triangle side's rest edge (3t + k, opposite corner
   // k, from corner k+1 to k+2) and its targets T e and P e.
   Positions side_edge_, side_target_, side_polar_;
+  Positions scale_step_[3];  // keep_scale_step: U, V, N in the layout of the targets
   // sum w |t|^2 per cell: depends on the targets only, computed once per target set.
   Eigen::VectorXd target_energy_;
   std::vector<Eigen::Quaterniond> rotation_;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "deform/anarap.h"
@@ -146,7 +147,27 @@ struct Deformer::Workspace {
   // Warm start: the last result of a setup (method, elements, pins).
   std::string last_key;
   Positions last_V;
+  // What the AnARAP solver's scale steps (set_scale_targets) were built
+  // from: valid while the frames and the weights are these.
+  struct ScaleSteps {
+    ArapElements elements;
+    Frames frames;
+    Eigen::VectorXd weights;
+  };
+  std::optional<ScaleSteps> scale_steps;
 };
+
+namespace {
+
+bool same_rows(const Positions& a, const Positions& b) {
+  return a.rows() == b.rows() && (a.array() == b.array()).all();
+}
+
+bool same_frames(const Frames& a, const Frames& b) {
+  return a.filled == b.filled && same_rows(a.u, b.u) && same_rows(a.v, b.v) && same_rows(a.n, b.n);
+}
+
+}  // namespace
 
 namespace {
 
@@ -277,10 +298,28 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
       iterations->set_targets(std::vector<Eigen::Matrix3d>(3 * static_cast<std::size_t>(unit_.num_triangles()),
                                                            Eigen::Matrix3d::Identity()));
     } else {
-      const ElementTargets targets = side_targets(ws.targets, request.direction, request.transform, w);
-      iterations->set_targets(targets.T);
-      result.directions_filled = targets.filled;
+      SideFrames frames = side_frames(ws.targets, request.direction);
+      result.directions_filled = frames.frames.filled;
       rotational = request.transform.has_rotational_part();
+      if (request.preview && request.transform.scales_only() && frames.su.size() == 0) {
+        // A live preview of a scale: the targets from the solver's scale
+        // steps, built once for these frames and weights.
+        const bool valid = ws.scale_steps && ws.scale_steps->elements == request.elements &&
+                           ws.scale_steps->weights.size() == w.size() && ws.scale_steps->weights == w &&
+                           same_frames(ws.scale_steps->frames, frames.frames);
+        if (!valid) {
+          for (int amount = 0; amount < 3; ++amount) {
+            TransformSpec step;
+            (amount == 0 ? step.su : amount == 1 ? step.sv : step.sn) = 2.0;
+            iterations->set_targets(side_targets(unit_, frames, step, w).T);
+            iterations->keep_scale_step(amount);
+          }
+          ws.scale_steps = Workspace::ScaleSteps{request.elements, std::move(frames.frames), w};
+        }
+        iterations->set_scale_targets(request.transform.su, request.transform.sv, request.transform.sn);
+      } else {
+        iterations->set_targets(side_targets(unit_, frames, request.transform, w).T);
+      }
     }
     std::string key = std::string(method_name(request.method)) + ":" +
                       std::to_string(static_cast<int>(request.elements));

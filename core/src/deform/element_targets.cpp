@@ -213,21 +213,26 @@ ElementTargets triangle_targets(TargetContext& context, const DirectionSource& s
   return out;
 }
 
-ElementTargets side_targets(TargetContext& context, const DirectionSource& source, const TransformSpec& spec,
-                            const Eigen::VectorXd& weights) {
-  const Mesh& mesh = context.rest();
-  const int m = mesh.num_triangles();
+SideFrames side_frames(TargetContext& context, const DirectionSource& source) {
+  SideFrames out;
   Positions vdir;
-  Eigen::VectorXd su, sv;
-  context.vertex_directions(source, vdir, su, sv);
-  const Frames frames = triangle_frames(context, source, vdir);
+  context.vertex_directions(source, vdir, out.su, out.sv);
+  out.frames = triangle_frames(context, source, vdir);
+  return out;
+}
+
+ElementTargets side_targets(const Mesh& mesh, const SideFrames& frames, const TransformSpec& spec,
+                            const Eigen::VectorXd& weights) {
+  const int m = mesh.num_triangles();
   ElementTargets out;
-  out.filled = frames.filled;
+  out.filled = frames.frames.filled;
   out.T.resize(3 * static_cast<std::size_t>(m));
   const Eigen::Vector3d orientation = shear_orientation(mesh, spec, weights);
+  const Eigen::VectorXd& su = frames.su;
+  const Eigen::VectorXd& sv = frames.sv;
   Eigen::Vector3d u, v, normal;
   for (int t = 0; t < m; ++t) {
-    oriented_frame(frames, t, orientation, u, v, normal);
+    oriented_frame(frames.frames, t, orientation, u, v, normal);
     for (int k = 0; k < 3; ++k) {
       const int a = mesh.F(t, (k + 1) % 3), b = mesh.F(t, (k + 2) % 3);
       const double w = 0.5 * (weights[a] + weights[b]);

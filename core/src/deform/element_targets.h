@@ -8,6 +8,7 @@
 
 #include "anisoform/deform_request.h"
 #include "anisoform/mesh.h"
+#include "geometry/frames.h"
 
 namespace aniso {
 
@@ -60,13 +61,22 @@ ElementTargets vertex_targets(TargetContext& context, const DirectionSource& sou
 ElementTargets triangle_targets(TargetContext& context, const DirectionSource& source,
                                 const TransformSpec& spec, const Eigen::VectorXd& weights);
 
+// What per-side targets need besides the transform and the weights: the
+// triangles' frames (METHOD §3) and the per-vertex amounts, when the source
+// carries them (else empty).
+struct SideFrames {
+  Frames frames;
+  Eigen::VectorXd su, sv;
+};
+SideFrames side_frames(TargetContext& context, const DirectionSource& source);
+
 // Per-side targets (3 per triangle, T[3t + k] for the side opposite corner k):
 // the triangle's frame, with the side's own weight (the mean of its two
 // vertices'), midpoint and amounts. AnARAP transforms each rest edge by the
 // mean of its sides' maps: an edge inside a flat part takes that part's map,
 // and the spokes of a vertex on a crease are each transformed by the faces
 // they lie on, not by one map of the vertex's averaged normal.
-ElementTargets side_targets(TargetContext& context, const DirectionSource& source,
-                            const TransformSpec& spec, const Eigen::VectorXd& weights);
+ElementTargets side_targets(const Mesh& rest, const SideFrames& frames, const TransformSpec& spec,
+                            const Eigen::VectorXd& weights);
 
 }  // namespace aniso

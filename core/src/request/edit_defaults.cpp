@@ -62,6 +62,7 @@ DeformRequest resolve_edit(const DeformOp& edit, const Positions& rest, const Bo
   if (edit.preview) {
     request.max_iterations = std::min(request.max_iterations, kPreviewIterations);
     request.final_energy = false;
+    request.preview = true;
   }
   return request;
 }

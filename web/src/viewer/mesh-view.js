@@ -7,6 +7,7 @@
 // assistive tools).
 import { BufferAttribute, BufferGeometry, DynamicDrawUsage, Mesh, MeshBasicMaterial } from 'three';
 import { createSurfaceMaterial } from './surface-material.js';
+import { writeVertexNormals } from './vertex-normals.js';
 
 export class MeshView {
   /** @type {BufferGeometry|null} */
@@ -64,6 +65,10 @@ export class MeshView {
     this.geometry = geometry;
     this.mesh = new Mesh(geometry, this.material);
     this.wireframe = new Mesh(geometry, this.wireframeMaterial);
+    // The edited mesh is what the camera is framed on: culling it would only
+    // cost a bounding sphere per new shape (every frame of a live preview).
+    this.mesh.frustumCulled = false;
+    this.wireframe.frustumCulled = false;
     this.wireframe.renderOrder = 1;
     this.viewer.scene.add(this.mesh, this.wireframe);
     this.#syncDataset();
@@ -74,8 +79,13 @@ export class MeshView {
     const attribute = this.geometry.getAttribute('position');
     attribute.array.set(positions);
     attribute.needsUpdate = true;
-    this.geometry.computeVertexNormals();
-    this.geometry.computeBoundingSphere();
+    const normals = this.geometry.getAttribute('normal');
+    writeVertexNormals(attribute.array, this.geometry.index.array, normals.array);
+    normals.needsUpdate = true;
+    // Stale: computed again by whatever asks for it (the views are never
+    // culled, and picking has its own bounding volumes).
+    this.geometry.boundingSphere = null;
+    this.geometry.boundingBox = null;
     this.viewer.requestRender();
   }
 
