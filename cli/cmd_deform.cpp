@@ -313,7 +313,8 @@ void add_deform_options(CLI::App& deform, DeformArguments& args) {
   deform.add_option("--scale", args.scale,
                     "Scale SU along the direction and SV across it (default 1,1)")
       ->type_name("SU[,SV]");
-  deform.add_option("--thicken", args.thicken, "Scale SN along the normal (default 1)")
+  deform.add_option("--thicken", args.thicken,
+                    "Scale SN along the normal (default 1; the linear method only: AnARAP and AnDefGrad refuse it)")
       ->type_name("SN");
   deform.add_option("--shear", args.shear, "Shear H of the direction over the cross direction")
       ->type_name("H");

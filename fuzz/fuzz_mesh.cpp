@@ -28,7 +28,7 @@ void deform_a_little(const aniso::Mesh& mesh) {
   request.method = aniso::Method::AnDefGrad;
   request.direction.vector = Eigen::Vector3d(0.3, 1.0, 0.2).normalized();
   request.transform.su = 1.5;
-  request.transform.sn = 0.8;
+  request.transform.sv = 0.8;
   deformer.deform(request);
   request.method = aniso::Method::AnArap;
   request.max_iterations = 2;

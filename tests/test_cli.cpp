@@ -471,7 +471,7 @@ TEST_CASE("cli: deform runs every method and direction source", "[cli]") {
       {"--method", "linear", "--scale", "1.5", "--direction", "curvature:max"},
       {"--method", "andefgrad", "--scale", "0.8", "--direction", "curvature:min"},
       {"--method", "andefgrad", "--scale", "1.2", "--direction", "field:" + field},
-      {"--method", "anarap", "--thicken", "1.3", "--select", "file:" + selection,
+      {"--method", "anarap", "--scale", "1,1.3", "--select", "file:" + selection,
        "--falloff", "0.05", "--tolerance", "1e-4"},
       {"--method", "arap"},  // no handles: the mesh stays as it is
   };

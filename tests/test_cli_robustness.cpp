@@ -252,3 +252,22 @@ TEST_CASE("cli robustness: --rotations coupled converges, --rotations steps turn
                 0);
   CHECK(max_position_difference(coupled.first, stiff) > 1e-4 * size);
 }
+
+TEST_CASE("cli robustness: --thicken is refused by the surface methods, which it cannot move, and moves the linear map",
+          "[cli][robustness]") {
+  // A scale along the normal leaves every edge lying in the surface as it
+  // is: AnARAP and AnDefGrad would return the mesh unchanged, silently.
+  const std::string in = mesh_path("closed/spot_triangulated.obj");
+  for (const char* method : {"anarap", "andefgrad"}) {
+    const CliRun run = run_expecting({"deform", in, temp_path("thick.obj"), "--method", method, "--thicken", "1.3"}, 2);
+    INFO(method << ": " << run.err);
+    CHECK(contains(run.err, "thickness (scale along the normal) = 1.3 has no effect with"));
+    CHECK(contains(run.err, "scale across the direction"));
+  }
+  const std::string thick_path = temp_path("thick-linear.obj"), flat_path = temp_path("flat-linear.obj");
+  run_expecting({"deform", in, thick_path, "--method", "linear", "--thicken", "1.3"}, 0);
+  run_expecting({"deform", in, flat_path, "--method", "linear"}, 0);
+  const aniso::Mesh thick = aniso::read_mesh(thick_path).mesh;
+  const aniso::Mesh flat = aniso::read_mesh(flat_path).mesh;
+  CHECK((thick.V - flat.V).rowwise().norm().maxCoeff() > 0.01);
+}

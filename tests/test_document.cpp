@@ -42,7 +42,7 @@ Json spool_document(const Session& session) {
       {"id": "twist", "label": "Twist the middle", "enabled": true, "region": "middle",
        "op": {"transform": {"twist": {"axis": [0, 1, 0], "degreesPerUnit": 40}}, "rotationSteps": 2}},
       {"id": "thicken", "label": "Thicken", "enabled": true, "region": "everything",
-       "op": {"method": "andefgrad", "transform": {"thickness": 1.2}}}]})");
+       "op": {"method": "andefgrad", "transform": {"scale": [1, 1.2]}}}]})");
   document["mesh"]["vertices"] = session.rest().num_vertices();
   document["mesh"]["triangles"] = session.rest().num_triangles();
   document["mesh"]["hash"] = mesh_hash_text(session.mesh_hash());

@@ -43,8 +43,8 @@ TEST_CASE("andefgrad: a constant linear map is reproduced exactly", "[solver][me
 TEST_CASE("anarap: a uniform scale s on every fan gives s times a rotation, energy 0", "[solver][method9]") {
   const Mesh mesh = test::load("closed/spot_triangulated.obj");
   Deformer deformer(mesh);
+  // (A scale along the normal is refused: the fans' spokes lie in the surface.)
   DeformRequest request = test::stretch_request(Method::AnArap, Eigen::Vector3d::UnitY(), 1.4, 1.4);
-  request.transform.sn = 1.4;
   request.tolerance = 1e-12;
   request.max_iterations = 100;
   const DeformResult result = deformer.deform(request);
@@ -188,15 +188,14 @@ TEST_CASE("anarap: a live preview's scale targets are the direct ones, for every
   }
   for (const ArapElements elements : {ArapElements::Spokes, ArapElements::SpokesAndRims}) {
     Deformer live(mesh);
-    struct Step { Eigen::VectorXd weights; Eigen::Vector3d direction; double su, sv, sn; };
+    struct Step { Eigen::VectorXd weights; Eigen::Vector3d direction; double su, sv; };
     const std::vector<Step> steps = {
-        {upper, Eigen::Vector3d::UnitY(), 1.3, 1.0, 1.0}, {upper, Eigen::Vector3d::UnitY(), 1.6, 0.9, 1.2},
-        {lower, Eigen::Vector3d::UnitY(), 1.6, 0.9, 1.2},  // a new selection
-        {lower, Eigen::Vector3d(1, 1, 0), 0.7, 1.1, 1.4},  // a new direction
-        {upper, Eigen::Vector3d(1, 1, 0), 1.2, 1.2, 0.8}};
+        {upper, Eigen::Vector3d::UnitY(), 1.3, 1.0}, {upper, Eigen::Vector3d::UnitY(), 1.6, 0.9},
+        {lower, Eigen::Vector3d::UnitY(), 1.6, 0.9},  // a new selection
+        {lower, Eigen::Vector3d(1, 1, 0), 0.7, 1.1},  // a new direction
+        {upper, Eigen::Vector3d(1, 1, 0), 1.2, 1.2}};
     for (std::size_t k = 0; k < steps.size(); ++k) {
       DeformRequest request = test::stretch_request(Method::AnArap, steps[k].direction, steps[k].su, steps[k].sv);
-      request.transform.sn = steps[k].sn;
       request.selection = steps[k].weights;
       request.elements = elements;
       request.warm_start = false;

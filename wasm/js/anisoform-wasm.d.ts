@@ -162,7 +162,11 @@ export interface Twist {
 export interface Transform {
   /** su, or [su, sv]: scale along the direction and across it (default 1). */
   scale?: number | [number] | [number, number];
-  /** sn: scale along the normal (default 1). */
+  /**
+   * sn: scale along the normal (default 1). The linear method only: AnARAP and
+   * AnDefGrad refuse it (their elements' edges lie in the surface, which it
+   * leaves as it is); scale across (sv) makes a part thicker.
+   */
   thickness?: number;
   shear?: number;
   rotate?: Rotate;

@@ -38,7 +38,7 @@ const REGIONS = [
 const OPS = [
   { id: 'stretch', region: 'top', op: { direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: 1.3 } } },
   { id: 'twist', region: 'middle', op: { transform: { twist: { axis: [0, 1, 0], degreesPerUnit: 40 } }, rotationSteps: 2 } },
-  { id: 'thicken', region: 'everything', op: { method: 'andefgrad', transform: { thickness: 1.2 } } },
+  { id: 'thicken', region: 'everything', op: { method: 'andefgrad', transform: { scale: [1, 1.2] } } },
 ];
 
 // As the page does: select, resolve the op on the rest pose, solve, commit.

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <optional>
+#include <sstream>
 #include <string>
 
 #include "deform/anarap.h"
@@ -99,6 +100,18 @@ Eigen::VectorXd checked_weights(const DeformRequest& request, int n) {
 
 void validate_request(const DeformRequest& request, int n) {
   validate(request.transform);
+  // The surface methods' elements (AnARAP's triangle sides, AnDefGrad's
+  // triangles) have their edges in the surface, which a scale along the
+  // normal leaves as they are: sn would silently do nothing. A part gets
+  // thicker by scaling across the direction (sv), as the paper's Fig. 8 does.
+  if (request.transform.sn != 1.0 && (request.method == Method::AnArap || request.method == Method::AnDefGrad)) {
+    std::ostringstream text;
+    text << "thickness (scale along the normal) = " << request.transform.sn << " has no effect with "
+         << method_name(request.method)
+         << ": its elements' edges lie in the surface. To make a part thicker, scale across the direction "
+            "(scale sv, the Thicken tool), or use the linear method";
+    fail(ErrorCode::BadParameter, text.str());
+  }
   if (request.method != Method::Arap) validate_direction_source(request.direction, n);
   check_indices(request.pins, n, "pinned");
   check_indices(request.handles, n, "handle");
