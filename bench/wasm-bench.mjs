@@ -132,15 +132,22 @@ function makeProblem(name, positions) {
   return { name, positions, vertices: n, axis, moveAxis, height: extent[axis], offset, direction, fixed, moved, topHalf };
 }
 
-function loadProblem(wasm, session, name) {
-  if (name in CYLINDERS) {
-    const { positions, triangles } = wasm.cappedCylinder(CYLINDERS[name], 1, 4);
-    session.setMesh(positions, triangles);
-    return makeProblem(name, positions);
+// The problem, and `load(session)`, which puts its mesh in a session.
+function loadProblem(wasm, name) {
+  const session = new wasm.Session();
+  try {
+    if (name in CYLINDERS) {
+      const { positions, triangles } = wasm.cappedCylinder(CYLINDERS[name], 1, 4);
+      return { ...makeProblem(name, positions), load: (target) => target.setMesh(positions, triangles) };
+    }
+    const bytes = readFileSync(name);
+    const load = (target) => target.loadMesh(bytes, path.basename(name));
+    load(session);
+    // Mesh files: the session's float32 positions (the reader's doubles are not exposed).
+    return { ...makeProblem(name, Float64Array.from(session.positions())), load };
+  } finally {
+    session.delete();
   }
-  session.loadMesh(readFileSync(name), path.basename(name));
-  // Mesh files: the session's float32 positions (the reader's doubles are not exposed).
-  return makeProblem(name, Float64Array.from(session.positions()));
 }
 
 function runEigenLdlt(wasm, session, problem) {
@@ -215,63 +222,70 @@ function runPreview(session, problem) {
 async function main() {
   const options = parseArguments(process.argv.slice(2));
   const { wasm } = await loadAnisoform({ bench: true });
-  const session = new wasm.Session();
-  try {
-    const problem = loadProblem(wasm, session, options.mesh);
-    const runs = options.runs || (problem.vertices > 100000 ? 3 : 5);
-    const impls = {
-      'eigen-ldlt': () => runEigenLdlt(wasm, session, problem),
-      'anisoform-arap': () => runArap(session, problem, options.iterations),
-      'anisoform-anarap': () => runAnarap(session, problem, options.iterations),
-      'anisoform-andefgrad': () => runAndefgrad(session, problem),
-      'anisoform-preview': () => runPreview(session, problem),
-    };
-    const active = IMPLS.filter((name) => options.only.size === 0 || options.only.has(name));
-    if (options.verbose) {
-      process.stderr.write(`mesh ${problem.name}: ${problem.vertices} vertices; long axis ${'xyz'[problem.axis]} `
-        + `(height ${problem.height}), move along ${'xyz'[problem.moveAxis]} by ${problem.offset[problem.moveAxis]}; `
-        + `${problem.fixed.length} fixed, ${problem.moved.length} moved; ${runs} runs, ${options.iterations} iterations per call\n`);
+  const problem = loadProblem(wasm, options.mesh);
+  // Every sample in a session of its own: a session keeps its previous rest
+  // pose's Deformer (undo), so setPositions of positions it had before would
+  // reuse that factorization and time no precompute.
+  const inFreshSession = (run) => {
+    const session = new wasm.Session();
+    try {
+      problem.load(session);
+      return run(session);
+    } finally {
+      session.delete();
     }
-    // Interleaved, as the native bench: a slow phase of the machine hits every row alike.
-    const samples = Object.fromEntries(active.map((name) => [name, []]));
-    for (let r = 0; r < runs; ++r) {
-      for (const name of active) {
-        const sample = impls[name]();
-        samples[name].push(sample);
-        if (options.verbose) {
-          process.stderr.write(`  run ${r} ${name.padEnd(20)} precompute ${sample.precompute.toFixed(3).padStart(9)} ms  `
-            + `iteration ${sample.iteration.toFixed(3).padStart(8)} ms  (${sample.detail})\n`);
-        }
+  };
+  const runs = options.runs || (problem.vertices > 100000 ? 3 : 5);
+  const impls = {
+    'eigen-ldlt': () => inFreshSession((session) => runEigenLdlt(wasm, session, problem)),
+    'anisoform-arap': () => inFreshSession((session) => runArap(session, problem, options.iterations)),
+    'anisoform-anarap': () => inFreshSession((session) => runAnarap(session, problem, options.iterations)),
+    'anisoform-andefgrad': () => inFreshSession((session) => runAndefgrad(session, problem)),
+    'anisoform-preview': () => inFreshSession((session) => runPreview(session, problem)),
+  };
+  const active = IMPLS.filter((name) => options.only.size === 0 || options.only.has(name));
+  if (options.verbose) {
+    process.stderr.write(`mesh ${problem.name}: ${problem.vertices} vertices; long axis ${'xyz'[problem.axis]} `
+      + `(height ${problem.height}), move along ${'xyz'[problem.moveAxis]} by ${problem.offset[problem.moveAxis]}; `
+      + `${problem.fixed.length} fixed, ${problem.moved.length} moved; ${runs} runs, ${options.iterations} iterations per call\n`);
+  }
+  // Interleaved, as the native bench: a slow phase of the machine hits every row alike.
+  const samples = Object.fromEntries(active.map((name) => [name, []]));
+  for (let r = 0; r < runs; ++r) {
+    for (const name of active) {
+      const sample = impls[name]();
+      samples[name].push(sample);
+      if (options.verbose) {
+        process.stderr.write(`  run ${r} ${name.padEnd(20)} precompute ${sample.precompute.toFixed(3).padStart(9)} ms  `
+          + `iteration ${sample.iteration.toFixed(3).padStart(8)} ms  (${sample.detail})\n`);
       }
     }
-    for (const name of active) {
-      const row = {
-        mesh: problem.name,
-        vertices: problem.vertices,
-        impl: name,
-        precompute_ms: Number(median(samples[name].map((s) => s.precompute)).toFixed(3)),
-        iteration_ms: Number(median(samples[name].map((s) => s.iteration)).toFixed(3)),
-      };
-      process.stdout.write(`${JSON.stringify(row)}\n`);
-    }
-    const ratio = (a, b, field) => {
-      if (!samples[a] || !samples[b]) return 'n/a';
-      return median(samples[a].map((s, k) => s[field] / samples[b][k][field])).toFixed(2);
+  }
+  for (const name of active) {
+    const row = {
+      mesh: problem.name,
+      vertices: problem.vertices,
+      impl: name,
+      precompute_ms: Number(median(samples[name].map((s) => s.precompute)).toFixed(3)),
+      iteration_ms: Number(median(samples[name].map((s) => s.iteration)).toFixed(3)),
     };
-    process.stderr.write(`summary ${problem.name} WASM (${problem.vertices} vertices, ${runs} runs, same-run ratios, median): `
-      + `arap/ldlt ${ratio('anisoform-arap', 'eigen-ldlt', 'iteration')} (goal <= 2.5), `
-      + `anarap/ldlt ${ratio('anisoform-anarap', 'eigen-ldlt', 'iteration')} (goal <= 2.5), `
-      + `andefgrad/ldlt ${ratio('anisoform-andefgrad', 'eigen-ldlt', 'iteration')} (goal <= 1.3), `
-      + `precompute arap/ldlt ${ratio('anisoform-arap', 'eigen-ldlt', 'precompute')} (goal <= 1.5), `
-      + `anarap/ldlt ${ratio('anisoform-anarap', 'eigen-ldlt', 'precompute')}, `
-      + `andefgrad/ldlt ${ratio('anisoform-andefgrad', 'eigen-ldlt', 'precompute')}\n`);
-    if (samples['anisoform-preview']) {
-      const ms = median(samples['anisoform-preview'].map((s) => s.iteration));
-      process.stderr.write(`preview ${problem.name}: ${ms.toFixed(1)} ms per slider value = ${(1000 / ms).toFixed(1)} updates/s `
-        + '(issue 11 goal 3: >= 30 at 50k vertices)\n');
-    }
-  } finally {
-    session.delete();
+    process.stdout.write(`${JSON.stringify(row)}\n`);
+  }
+  const ratio = (a, b, field) => {
+    if (!samples[a] || !samples[b]) return 'n/a';
+    return median(samples[a].map((s, k) => s[field] / samples[b][k][field])).toFixed(2);
+  };
+  process.stderr.write(`summary ${problem.name} WASM (${problem.vertices} vertices, ${runs} runs, same-run ratios, median): `
+    + `arap/ldlt ${ratio('anisoform-arap', 'eigen-ldlt', 'iteration')} (goal <= 2.5), `
+    + `anarap/ldlt ${ratio('anisoform-anarap', 'eigen-ldlt', 'iteration')} (goal <= 2.5), `
+    + `andefgrad/ldlt ${ratio('anisoform-andefgrad', 'eigen-ldlt', 'iteration')} (goal <= 1.3), `
+    + `precompute arap/ldlt ${ratio('anisoform-arap', 'eigen-ldlt', 'precompute')} (goal <= 1.5), `
+    + `anarap/ldlt ${ratio('anisoform-anarap', 'eigen-ldlt', 'precompute')}, `
+    + `andefgrad/ldlt ${ratio('anisoform-andefgrad', 'eigen-ldlt', 'precompute')}\n`);
+  if (samples['anisoform-preview']) {
+    const ms = median(samples['anisoform-preview'].map((s) => s.iteration));
+    process.stderr.write(`preview ${problem.name}: ${ms.toFixed(1)} ms per slider value = ${(1000 / ms).toFixed(1)} updates/s `
+      + '(issue 11 goal 3: >= 30 at 50k vertices)\n');
   }
 }
 
