@@ -2,7 +2,7 @@
 // screen drag yet for the 'Screen drag' direction, no arrows for 'Arrows',
 // 'ARAP with handles', which has no amount), the error banner and the API's
 // 'error' event say why and what to do, and the mesh and history stay.
-import { expect, openApp, test } from './support.mjs';
+import { expect, meshPath, openApp, test, uploadFile } from './support.mjs';
 
 async function recordErrors(page) {
   await page.evaluate(() => {
@@ -87,4 +87,22 @@ test('an edit the solver refuses is reported once', async ({ page }) => {
   expect(rejection).toContain('failed');
   await expect(page.getByTestId('error')).toBeVisible();
   expect(await page.evaluate(() => window.__errors.map((event) => event.message))).toEqual([rejection]);
+});
+
+test('Apply is disabled while its edit solves: clicks meanwhile stack no second edit', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  // A 26k-vertex mesh, so that the commit lasts long enough to click into.
+  expect((await uploadFile(page, meshPath('closed/armadillo.off'))).ok).toBe(true);
+  await page.evaluate(() => window.anisoform.select({ all: true }));
+  await page.getByTestId('tool-stretch').click();
+  await page.locator('#direction-source').selectOption('global');
+  const apply = page.getByTestId('apply-stretch');
+  await apply.click();
+  await expect(apply).toBeDisabled();
+  // The browser sends no click to a disabled button: these do nothing.
+  await apply.click({ force: true });
+  await apply.click({ force: true });
+  await expect(apply).toBeEnabled({ timeout: 60_000 });
+  expect(await page.evaluate(() => window.anisoform.document().ops.length)).toBe(1);
+  expect(pageErrors).toEqual([]);
 });

@@ -39,7 +39,7 @@ export function installFullUi(layout, { api, editor, settings, tools, viewer, pi
     filePanel({ api, editor, reportError }),
     historyButtons({ api, editor }),
     opsPanel({ api, editor }),
-    toolPanel({ settings, tools, reportError, selectRegion }),
+    toolPanel({ editor, settings, tools, reportError, selectRegion }),
     selectionPanel({ api, editor }),
     inMode('deform', directionPanel({ settings })),
     inMode('deform', methodPanel({ settings })),

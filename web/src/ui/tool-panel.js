@@ -6,7 +6,7 @@ import { FLATTEN_MODE_TOOLS } from '../tools/tool-registry.js';
 import { h, section } from './dom.js';
 import { numberField, selectField, showWhen, vectorField } from './fields.js';
 
-export function toolPanel({ settings, tools, reportError, selectRegion }) {
+export function toolPanel({ editor, settings, tools, reportError, selectRegion }) {
   const buttons = [...tools.values()].map((tool) =>
     h('button', {
       className: 'tool-button',
@@ -17,7 +17,7 @@ export function toolPanel({ settings, tools, reportError, selectRegion }) {
       onclick: () => settings.update('tool', tool.id),
     }, tool.label),
   );
-  const options = new Map([...tools.values()].map((tool) => [tool.id, toolOptions(tool, settings, reportError, selectRegion)]));
+  const options = new Map([...tools.values()].map((tool) => [tool.id, toolOptions(tool, { editor, settings, reportError, selectRegion })]));
   const hint = h('p', { className: 'hint tool-hint' });
   const optionsHost = h('div', { className: 'tool-options' }, [...options.values()]);
 
@@ -37,7 +37,7 @@ export function toolPanel({ settings, tools, reportError, selectRegion }) {
   return section('Tool', h('div', { className: 'tool-grid' }, buttons), hint, optionsHost);
 }
 
-function toolOptions(tool, settings, reportError, selectRegion) {
+function toolOptions(tool, { editor, settings, reportError, selectRegion }) {
   if (tool.id === 'select') {
     return h('div', {},
       numberField(settings, 'brush', { key: 'radiusPercent', label: 'Radius %', min: 0.5, max: 100, step: 0.5 }),
@@ -78,5 +78,8 @@ function toolOptions(tool, settings, reportError, selectRegion) {
       .then(() => tool.apply())
       .catch((error) => reportError(error, `${tool.label} was not applied`)),
   }, 'Apply');
+  // One commit at a time: clicks during a solve would stack edits the user
+  // did not see the first of.
+  editor.on('busy', (busy) => (apply.disabled = busy));
   return h('div', {}, fields, h('div', { className: 'row' }, apply));
 }
