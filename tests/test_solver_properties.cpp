@@ -127,7 +127,9 @@ TEST_CASE("solvers: rotating and translating the input rotates and translates th
 }
 
 TEST_CASE("anarap: the energy decreases monotonically over the iterations", "[solver][method9]") {
-  const Mesh mesh = test::load("closed/cat-low-resolution.obj");
+  // Spot, not the 2.7x larger cat: descent is a property of every iteration
+  // on any mesh, and Spot keeps all 30 of them.
+  const Mesh mesh = test::load("closed/spot_triangulated.obj");
   Deformer deformer(mesh);
   DeformRequest request = test::stretch_request(Method::AnArap, Eigen::Vector3d::UnitZ(), 1.8, 0.8);
   Eigen::VectorXd w = Eigen::VectorXd::Zero(mesh.num_vertices());
