@@ -129,7 +129,9 @@ TEST_CASE("solvers: rotating and translating the input rotates and translates th
 }
 
 TEST_CASE("anarap: the energy decreases monotonically over the iterations", "[solver][method9]") {
-  const Mesh mesh = test::load("closed/cat-low-resolution.obj");
+  // Spot, not the 2.7x larger cat: descent is a property of every iteration
+  // on any mesh, and Spot keeps all 30 of them.
+  const Mesh mesh = test::load("closed/spot_triangulated.obj");
   Deformer deformer(mesh);
   DeformRequest request = test::stretch_request(Method::AnArap, Eigen::Vector3d::UnitZ(), 1.8, 0.8);
   Eigen::VectorXd w = Eigen::VectorXd::Zero(mesh.num_vertices());
@@ -234,6 +236,9 @@ TEST_CASE("solvers: a new selection does not refactor", "[solver][method9]") {
   const Mesh mesh = test::load("closed/torus.obj");
   Deformer deformer(mesh);
   DeformRequest request = test::stretch_request(Method::AnArap, Eigen::Vector3d::UnitX(), 1.3);
+  // The factorization is made before the first iteration: one iteration per
+  // solve shows it as well as a converged solve.
+  request.max_iterations = 1;
   for (int part = 0; part < 3; ++part) {
     request.selection = Eigen::VectorXd::Zero(mesh.num_vertices());
     for (int i = part * 500; i < part * 500 + 400; ++i) request.selection[i] = 1.0;
