@@ -98,6 +98,15 @@ void check_op_round_trip(const Json& op) {
   CHECK(again.request.direction.vector == parsed.request.direction.vector);
 }
 
+// Selects op's region by hand, step by step, as the replay does.
+void select_op_region(Session& session, const EditDocument& document, const DocumentOp& op) {
+  session.set_selection(std::vector<float>(static_cast<std::size_t>(session.rest().num_vertices()), 0.0f));
+  for (const DocumentRegion& region : document.regions) {
+    if (region.name != op.region) continue;
+    for (const DocumentSelectStep& step : region.steps) session.select(step.region, step.falloff, step.mode);
+  }
+}
+
 }  // namespace
 
 TEST_CASE("document: an op round-trips through to_json", "[document]") {
@@ -156,11 +165,7 @@ TEST_CASE("document: replay is deterministic and runs every enabled op", "[docum
     Session by_hand;
     load_spool(by_hand);
     for (const DocumentOp& op : parsed.ops) {
-      by_hand.set_selection(std::vector<float>(static_cast<std::size_t>(by_hand.rest().num_vertices()), 0.0f));
-      for (const DocumentRegion& region : parsed.regions) {
-        if (region.name != op.region) continue;
-        for (const DocumentSelectStep& step : region.steps) by_hand.select(step.region, step.falloff, step.mode);
-      }
+      select_op_region(by_hand, parsed, op);
       DeformOp edit = op.edit;
       edit.request.warm_start = false;
       by_hand.deform(edit);
@@ -193,11 +198,7 @@ TEST_CASE("document: replay is deterministic and runs every enabled op", "[docum
     Session preview_by_hand;
     load_spool(preview_by_hand);
     for (const DocumentOp& op : parsed.ops) {
-      preview_by_hand.set_selection(std::vector<float>(static_cast<std::size_t>(preview_by_hand.rest().num_vertices()), 0.0f));
-      for (const DocumentRegion& region : parsed.regions) {
-        if (region.name != op.region) continue;
-        for (const DocumentSelectStep& step : region.steps) preview_by_hand.select(step.region, step.falloff, step.mode);
-      }
+      select_op_region(preview_by_hand, parsed, op);
       DeformOp edit = op.edit;
       edit.preview = true;
       edit.request.warm_start = false;

@@ -180,10 +180,6 @@ bool same_frames(const Frames& a, const Frames& b) {
   return a.filled == b.filled && same_rows(a.u, b.u) && same_rows(a.v, b.v) && same_rows(a.n, b.n);
 }
 
-}  // namespace
-
-namespace {
-
 // The power of two nearest below the mesh's bounding-box diagonal (1 for a
 // mesh without extent): dividing by it is exact in floating point, so the
 // unit-size copy is the mesh itself in other units, and scaling back is exact.
