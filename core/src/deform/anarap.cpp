@@ -215,11 +215,11 @@ void AnArapSolver::keep_scale_step(int amount) {
   scale_step_[amount] = spokes ? Positions(spoke_target_ - spoke_edge_) : Positions(side_target_ - side_edge_);
 }
 
-void AnArapSolver::set_scale_targets(double su, double sv, double sn) {
+void AnArapSolver::set_scale_targets(double su, double sv) {
   const bool spokes = elements_ == ArapElements::Spokes;
   Positions& target = spokes ? spoke_target_ : side_target_;
   const Positions& edge = spokes ? spoke_edge_ : side_edge_;
-  target = edge + (su - 1.0) * scale_step_[0] + (sv - 1.0) * scale_step_[1] + (sn - 1.0) * scale_step_[2];
+  target = edge + (su - 1.0) * scale_step_[0] + (sv - 1.0) * scale_step_[1];
   // Symmetric positive definite maps are their own polar parts: the polar
   // targets are not used (with_polar is false) until set_targets sets them.
   polar_differs_ = false;

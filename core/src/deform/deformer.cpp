@@ -317,15 +317,15 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
                            ws.scale_steps->weights.size() == w.size() && ws.scale_steps->weights == w &&
                            same_frames(ws.scale_steps->frames, frames.frames);
         if (!valid) {
-          for (int amount = 0; amount < 3; ++amount) {
+          for (int amount = 0; amount < 2; ++amount) {
             TransformSpec step;
-            (amount == 0 ? step.su : amount == 1 ? step.sv : step.sn) = 2.0;
+            (amount == 0 ? step.su : step.sv) = 2.0;
             iterations->set_targets(side_targets(unit_, frames, step, w).T);
             iterations->keep_scale_step(amount);
           }
           ws.scale_steps = Workspace::ScaleSteps{request.elements, std::move(frames.frames), w};
         }
-        iterations->set_scale_targets(request.transform.su, request.transform.sv, request.transform.sn);
+        iterations->set_scale_targets(request.transform.su, request.transform.sv);
       } else {
         iterations->set_targets(side_targets(unit_, frames, request.transform, w).T);
       }
