@@ -99,10 +99,11 @@ struct DeformRequest {
   // preview does not need it: the next preview refits the rotations first.
   bool final_energy = true;
   // A live preview (resolve_edit sets it for an op with preview: true). AnARAP
-  // then takes scale-only targets from a basis kept across calls (see
-  // AnArapSolver::set_scale_targets): a slider's next amount costs one pass
-  // over the spokes. Equal to the direct targets up to rounding, and always
-  // chosen by this flag alone, so a result never depends on what ran before.
+  // then takes scale-only targets from steps kept across calls (see
+  // AnArapSolver::set_scale_targets; not for a screen drag, whose direction
+  // changes with every value): a slider's next amount costs one pass over
+  // the spokes. Equal to the direct targets up to rounding, and chosen by the
+  // request alone, so a result never depends on what ran before.
   bool preview = false;
 };
 

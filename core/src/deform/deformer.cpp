@@ -310,9 +310,13 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
       SideFrames frames = side_frames(ws.targets, request.direction);
       result.directions_filled = frames.frames.filled;
       rotational = request.transform.has_rotational_part();
-      if (request.preview && request.transform.scales_only() && frames.su.size() == 0) {
-        // A live preview of a scale: the targets from the solver's scale
-        // steps, built once for these frames and weights.
+      // A live preview of a scale: the targets from the solver's scale steps,
+      // built once for these frames and weights and reused while a slider
+      // or a typed amount changes. A screen drag's direction follows the
+      // pointer, so its frames change with every value: it takes the direct
+      // targets (one pass, where new steps would cost two).
+      if (request.preview && request.transform.scales_only() && frames.su.size() == 0 &&
+          request.direction.kind != DirectionSource::Kind::Screen) {
         const bool valid = ws.scale_steps && ws.scale_steps->elements == request.elements &&
                            ws.scale_steps->weights.size() == w.size() && ws.scale_steps->weights == w &&
                            same_frames(ws.scale_steps->frames, frames.frames);
