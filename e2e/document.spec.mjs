@@ -293,6 +293,9 @@ test('a slider on the last op updates the shape live at 20k vertices', async ({ 
     });
     let seen = 0;
     let changedFrames = 0;
+    // What the viewport draws while the slider moves (viewer/interaction-proxy.js).
+    const canvas = document.querySelector('canvas[data-testid="viewport"]');
+    const details = new Set();
     const start = performance.now();
     await new Promise((resolve) => {
       const frame = () => {
@@ -301,6 +304,7 @@ test('a slider on the last op updates the shape live at 20k vertices', async ({ 
           changedFrames++;
           seen = arrived;
         }
+        details.add(canvas.dataset.detail);
         if (t >= 1) {
           resolve();
           return;
@@ -313,14 +317,20 @@ test('a slider on the last op updates the shape live at 20k vertices', async ({ 
     const seconds = (performance.now() - start) / 1000;
     off();
     await api.setParameter(opId, { transform: { scale: [1.6, 1] } });
+    const detailAfterRelease = canvas.dataset.detail;
     // After the first preview (which puts the rest pose back at the op's input).
     const steady = arrivals.length > 1 ? (arrivals.length - 1) / ((arrivals.at(-1) - arrivals[0]) / 1000) : 0;
     return { rate: changedFrames / seconds, changedFrames, seconds, firstMs: arrivals[0] - start, steady,
-      final: api.document().ops[0].op.transform.scale };
+      final: api.document().ops[0].op.transform.scale, details: [...details], detailAfterRelease,
+      software: canvas.dataset.antialias === 'false' };
   });
   console.log(`slider: ${measured.changedFrames} frames with new positions in ${measured.seconds.toFixed(2)} s = `
     + `${measured.rate.toFixed(1)} updates/s (first after ${measured.firstMs.toFixed(0)} ms; then ${measured.steady.toFixed(1)}/s)`);
   expect(measured.final).toEqual([1.6, 1]);
+  // On a CPU rasteriser (this headless Chromium) a 52k-triangle mesh is drawn
+  // simplified while it moves, and in full as soon as the value is released.
+  if (measured.software) expect(measured.details).toContain('proxy');
+  expect(measured.detailAfterRelease).toBe('full');
   // The slider re-solves live: several distinct shapes arrive during the drag.
   // Its rate is measured and printed, not asserted (speed belongs to the
   // benchmarks; on the 2 shared cores of CI it swings 2x); issue 8 asks for 20/s

@@ -56,6 +56,7 @@ export function createModeller(container, options = {}) {
   const settings = new Settings();
   const viewer = new Viewer(layout.viewport, lifetime);
   const meshView = new MeshView(viewer);
+  lifetime.defer(() => meshView.proxy.dispose());
   new AxisGizmo(viewer, lifetime);
   const picker = new Picker(viewer, meshView);
   viewer.setBoundsSource(() => editor.document?.bounds() ?? null);
@@ -67,8 +68,8 @@ export function createModeller(container, options = {}) {
     picker.rebuild();
     viewer.frame({ defaultDirection: true });
   });
-  editor.on('positions', ({ positions }) => {
-    meshView.showPositions(positions);
+  editor.on('positions', ({ positions, live }) => {
+    meshView.showPositions(positions, { live });
     picker.markStale();
   });
   editor.on('selection', ({ weights }) => meshView.showSelection(weights));

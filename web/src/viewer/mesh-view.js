@@ -8,11 +8,14 @@
 import { BufferAttribute, BufferGeometry, DynamicDrawUsage, Mesh, MeshBasicMaterial } from 'three';
 import { createSurfaceMaterial } from './surface-material.js';
 import { writeVertexNormals } from './vertex-normals.js';
+import { InteractionProxy } from './interaction-proxy.js';
 
 export class MeshView {
   /** @type {BufferGeometry|null} */
   geometry = null;
   mesh = null;
+  /** Positions changed since the normals were computed (a proxy frame skips them). */
+  #normalsStale = false;
 
   constructor(viewer) {
     this.viewer = viewer;
@@ -25,6 +28,18 @@ export class MeshView {
     this.wireframeMaterial = new MeshBasicMaterial({ color: 0x22262c, wireframe: true, transparent: true, opacity: 0.45 });
     this.wireframeMaterial.visible = false;
     this.wireframe = null;
+    this.proxy = new InteractionProxy(viewer, this.material, { beforeFull: () => this.#refreshNormals() });
+    // An orbit on a CPU rasteriser draws the light mesh too (interaction-proxy.js).
+    let orbiting = false;
+    viewer.controls.addEventListener('start', () => {
+      orbiting = true;
+      this.proxy.moved();
+    });
+    viewer.controls.addEventListener('change', () => orbiting && this.proxy.moved());
+    viewer.controls.addEventListener('end', () => {
+      orbiting = false;
+      this.proxy.settle();
+    });
     this.#syncDataset();
   }
 
@@ -71,28 +86,42 @@ export class MeshView {
     this.wireframe.frustumCulled = false;
     this.wireframe.renderOrder = 1;
     this.viewer.scene.add(this.mesh, this.wireframe);
+    this.proxy.setMesh(geometry, this.mesh, this.wireframe);
     this.#syncDataset();
     this.viewer.requestRender();
   }
 
-  showPositions(positions) {
+  /** {live: true}: a preview frame while something is dragged (drawn light on a CPU rasteriser). */
+  showPositions(positions, { live = false } = {}) {
     const attribute = this.geometry.getAttribute('position');
     attribute.array.set(positions);
     attribute.needsUpdate = true;
-    const normals = this.geometry.getAttribute('normal');
-    writeVertexNormals(attribute.array, this.geometry.index.array, normals.array);
-    normals.needsUpdate = true;
+    this.#normalsStale = true;
     // Stale: computed again by whatever asks for it (the views are never
     // culled, and picking has its own bounding volumes).
     this.geometry.boundingSphere = null;
     this.geometry.boundingBox = null;
+    if (live) this.proxy.moved();
+    else this.proxy.settle();
+    // The full mesh's normals wait while the proxy is drawn (beforeFull).
+    if (this.proxy.drawing) this.proxy.showPositions(attribute.array);
+    else this.#refreshNormals();
     this.viewer.requestRender();
+  }
+
+  #refreshNormals() {
+    if (!this.#normalsStale) return;
+    this.#normalsStale = false;
+    const normals = this.geometry.getAttribute('normal');
+    writeVertexNormals(this.geometry.getAttribute('position').array, this.geometry.index.array, normals.array);
+    normals.needsUpdate = true;
   }
 
   showSelection(weights) {
     const attribute = this.geometry.getAttribute('selectionWeight');
     attribute.array.set(weights);
     attribute.needsUpdate = true;
+    this.proxy.showAttribute('selectionWeight', attribute.array);
     this.viewer.requestRender();
   }
 
@@ -100,6 +129,7 @@ export class MeshView {
     const attribute = this.geometry.getAttribute('distortion');
     attribute.array.set(values);
     attribute.needsUpdate = true;
+    this.proxy.showAttribute('distortion', attribute.array);
     this.viewer.requestRender();
   }
 
@@ -138,6 +168,7 @@ export class MeshView {
   }
 
   get normals() {
+    this.#refreshNormals();
     return this.geometry.getAttribute('normal').array;
   }
 }

@@ -21,7 +21,8 @@ export function writeVertexNormals(positions, triangles, normals) {
     normals[c] += nx; normals[c + 1] += ny; normals[c + 2] += nz;
   }
   for (let i = 0; i < normals.length; i += 3) {
-    const length = Math.hypot(normals[i], normals[i + 1], normals[i + 2]);
+    // Not Math.hypot: V8's is several times slower, and it is per vertex per frame.
+    const length = Math.sqrt(normals[i] * normals[i] + normals[i + 1] * normals[i + 1] + normals[i + 2] * normals[i + 2]);
     if (length > 0) {
       normals[i] /= length; normals[i + 1] /= length; normals[i + 2] /= length;
     }

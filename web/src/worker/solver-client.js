@@ -20,7 +20,7 @@ export class SolverClient extends EventEmitter {
   #worker;
   #nextId = 1;
   #pending = new Map();
-  #previewInFlight = false;
+  #previewInFlight = 0; // the request id of the preview the worker is solving, or 0
   #queuedPreview = null;
   #wasmUrl;
   #disposed = false;
@@ -45,6 +45,8 @@ export class SolverClient extends EventEmitter {
       });
       for (const { reject } of this.#pending.values()) reject(failure);
       this.#pending.clear();
+      this.#previewInFlight = 0;
+      this.#sendQueuedPreview();
     };
   }
 
@@ -52,6 +54,12 @@ export class SolverClient extends EventEmitter {
     if (message.kind === PROGRESS) {
       this.emit('progress', { stage: message.stage, message: message.message });
       return;
+    }
+    // The next preview goes out before this one's shape is shown: the worker
+    // solves it while the page draws, instead of waiting for the page.
+    if (message.id === this.#previewInFlight) {
+      this.#previewInFlight = 0;
+      this.#sendQueuedPreview();
     }
     const pending = this.#pending.get(message.id);
     if (!pending) return;
@@ -113,17 +121,13 @@ export class SolverClient extends EventEmitter {
     if (this.#previewInFlight || !this.#queuedPreview) return;
     const { op, distortion, iterations, resolve, reject } = this.#queuedPreview;
     this.#queuedPreview = null;
-    this.#previewInFlight = true;
     // A preview runs the solver's few warm-started iterations (or `iterations`,
     // fewer still); the committed edit on release gets the iteration cap.
     const { maxIterations, ...previewOp } = op;
     if (iterations) previewOp.maxIterations = iterations;
-    this.request(Request.deform, { op: { ...previewOp, preview: true }, commit: false, distortion })
-      .then(resolve, reject)
-      .finally(() => {
-        this.#previewInFlight = false;
-        this.#sendQueuedPreview();
-      });
+    const id = this.#nextId;
+    this.request(Request.deform, { op: { ...previewOp, preview: true }, commit: false, distortion }).then(resolve, reject);
+    if (!this.#disposed) this.#previewInFlight = id;
   }
 }
 
