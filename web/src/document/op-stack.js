@@ -88,6 +88,9 @@ export class OpStack {
       }
       this.#runner.cache.dropAfter(index);
       this.#runner.show(index + 1, result);
+      // The committed shape is the worker's new rest pose: its factorization
+      // starts now, not in the next edit's first preview.
+      editor.prepareSolver();
       editor.history.push(this.#historyEntry(label));
       const stats = result.summary.last;
       if (stats?.inverted > 0) editor.emit('warning', { message: foldOverWarning(stats.inverted) });

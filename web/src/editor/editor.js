@@ -148,12 +148,15 @@ export class Editor extends EventEmitter {
     const notice = describeProblems(info);
     if (notice) this.emit('notice', notice);
     this.emit('change', { reason: 'load' });
-    this.#prepareSolver();
+    this.prepareSolver();
   }
 
-  // Factorizes in the background; the page stays usable, and the first edit
-  // queues behind this in the worker instead of paying for it mid-drag.
-  #prepareSolver() {
+  /**
+   * Factorizes the worker's rest pose in the background (a new mesh, a
+   * committed edit): the page stays usable, and the next edit queues behind
+   * this in the worker instead of paying for it mid-drag.
+   */
+  prepareSolver() {
     const document = this.document;
     this.selectionState.forget(); // prepare leaves an empty selection in the session
     this.#client
