@@ -128,6 +128,13 @@ export interface Anisoform {
   selection(): Float32Array;
   /** One committed, undoable edit. An empty selection edits the whole mesh. */
   deform(op: DeformOp): Promise<DeformResult>;
+  /**
+   * Stops the solve in progress at once (a committed edit, a re-run of the
+   * document, a flattening; the UI's Cancel and Esc): its promise rejects with
+   * code 'cancelled', and the mesh, the document and the history stay as they
+   * were before it. False when nothing is being solved.
+   */
+  cancel(): boolean;
   /** Undo/redo move over the document's ops (and selection steps). */
   undo(): boolean;
   redo(): boolean;

@@ -53,6 +53,7 @@ export function createAnisoformApi({ editor, viewer, picker, ready }) {
       reported(editor.ops.setParameter(opId, patch, options), 'The parameter was not applied'),
     setOpEnabled: (opId, enabled) => reported(editor.ops.setEnabled(opId, enabled), 'The op was not changed'),
 
+    cancel: () => editor.cancelSolve(),
     undo: () => editor.undo(),
     redo: () => editor.redo(),
     reset: () => editor.reset(),

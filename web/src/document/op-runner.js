@@ -19,6 +19,8 @@ export class OpRunner {
   cache = new SnapshotCache();
   /** Bumped whenever the rest pose changes: a selection rule holds for one rest pose only. */
   restVersion = 0;
+  /** The state on screen (show). */
+  shown = 0;
 
   /** document: () => the EditDocument the states belong to. */
   constructor({ editor, client, document, dropPattern }) {
@@ -66,6 +68,23 @@ export class OpRunner {
     if (show) this.show(n, result);
   }
 
+  /**
+   * Puts the state on screen into a new worker (SolverClient.restart, after
+   * a cancel): the mesh as loaded (state 0, kept exactly, so its hash is the
+   * document's), then that state as the rest pose, replayed by the core from
+   * the nearest cached state when it is no longer cached. `post` sends ahead
+   * of every other request.
+   */
+  async seed(post) {
+    const { triangles } = this.#editor.requireDocument();
+    await post(Request.setMesh, { positions: this.cache.get(0).exact.slice(), triangles: triangles.slice(), weld: false });
+    const n = this.shown;
+    const from = this.cache.nearest(n);
+    if (from > 0) await post(Request.setPositions, { positions: this.cache.get(from).exact.slice() });
+    if (from < n) await post(Request.replay, { document: this.#document().toJSON(), from, to: n, preview: false });
+    this.restVersion++;
+  }
+
   /** Re-runs the document from op `index` on, op by op, so that every later state is cached again for undo. */
   async rerunFrom(index) {
     this.cache.dropAfter(index);
@@ -81,6 +100,7 @@ export class OpRunner {
   /** Shows state n (and caches it, given its exact positions): the mesh's positions are now those. */
   show(n, { positions, exact, distortion }) {
     if (exact) this.cache.set(n, { positions, exact });
+    this.shown = n;
     this.restVersion++;
     this.#dropPattern();
     const mesh = this.#editor.requireDocument();

@@ -60,6 +60,16 @@ export class OpStack {
     else this.#persistence.changed({ change: false });
   }
 
+  /**
+   * A cancel ended the worker mid-solve: `restart(seed)` gets a new one with
+   * the state on screen (the cancelled work rejects with 'cancelled' and
+   * leaves the document as it was); a live preview's state is gone with it.
+   */
+  restartSolver(restart) {
+    this.#live.leave();
+    return restart((post) => this.#runner.seed(post));
+  }
+
   /** The document as JSON (api.document()). */
   toJSON() {
     return this.#requireDocument().toJSON();

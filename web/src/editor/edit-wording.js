@@ -28,8 +28,11 @@ export function reporter(emit) {
     if (reported.has(error)) return error;
     const code = error?.code ?? 'internal';
     const detail = error?.message ?? String(error);
-    const message = context ? `${context}: ${detail}` : detail;
-    emit('error', { code, message });
+    // A cancel is the user's own doing, not a failure: a notice says so,
+    // without the context's "failed".
+    const message = context && code !== 'cancelled' ? `${context}: ${detail}` : detail;
+    if (code === 'cancelled') emit('notice', { message });
+    else emit('error', { code, message });
     const wrapped = Object.assign(new Error(message), { code, cause: error });
     reported.add(wrapped);
     return wrapped;

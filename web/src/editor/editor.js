@@ -82,6 +82,25 @@ export class Editor extends EventEmitter {
     return this.#busy > 0;
   }
 
+  /**
+   * Esc, or Cancel beside the progress: stops the solve in progress at once
+   * (a committed edit, a replay, a flattening). The mesh, the document and
+   * the history stay as they were before it; the solver comes back with that
+   * state in the background. False when nothing is being solved.
+   */
+  cancelSolve() {
+    if (!this.busy || !this.document) return false;
+    const document = this.document;
+    this.selectionState.forget(); // the new worker has none
+    this.#patterns.drop(); // the last flattening was the old worker's
+    this.ops.restartSolver((seed) => this.#client.restart(seed)).then(
+      () => this.document === document && this.prepareSolver(),
+      // 'cancelled': a later cancel restarted it again, and reports for itself.
+      (error) => error.code !== 'cancelled' && this.document === document && this.report(error, 'The solver could not be restarted'),
+    );
+    return true;
+  }
+
   /** Marks a committed solve in progress; call the returned function when it ends. */
   beginBusy() {
     this.#busy++;

@@ -157,7 +157,7 @@ export function createModeller(container, options = {}) {
   installKeyboardShortcuts(keyTarget, lifetime, {
     undo: () => api.undo(),
     redo: () => api.redo(),
-    cancel: () => gestures.cancel() || editor.cancelGesture(),
+    cancel: () => gestures.cancel() || editor.cancelGesture() || editor.cancelSolve(),
     frame: () => api.frame(),
   });
   // The panel's own form events stay inside: outside, 'change' is the api's

@@ -9,7 +9,12 @@ export function statusBar(container, { editor, viewer, lifetime }) {
   const fps = h('span', { className: 'status-item', 'data-testid': 'status-fps' });
   const bar = h('span', { className: 'progress-bar' }, h('span', { className: 'progress-fill' }));
   const progressText = h('span', { className: 'progress-text' });
-  const progress = h('span', { className: 'status-item progress', 'data-testid': 'progress', hidden: true }, bar, progressText);
+  // Stops a committed solve (Esc does too): the state before it stays.
+  const cancel = h('button', {
+    type: 'button', className: 'button progress-cancel', 'data-testid': 'cancel-solve', hidden: true,
+    title: 'Stop this solve (Esc): the mesh stays as it was', onclick: () => editor.cancelSolve(),
+  }, 'Cancel');
+  const progress = h('span', { className: 'status-item progress', 'data-testid': 'progress', hidden: true }, bar, progressText, cancel);
   container.append(mesh, progress, h('span', { className: 'spacer' }), solve, fps);
 
   editor.on('mesh', (document) => {
@@ -19,6 +24,9 @@ export function statusBar(container, { editor, viewer, lifetime }) {
     solve.textContent = `${live ? 'preview' : 'solve'} ${ms.toFixed(1)} ms · ${iterations} it`;
   });
   editor.on('progress', ({ stage, message, fraction }) => {
+    // A background step (the solver's preparation) ending during a
+    // committed solve leaves that solve's progress and its Cancel shown.
+    if (stage === 'done' && editor.busy) return;
     progress.hidden = stage === 'done';
     progressText.textContent = message;
     bar.classList.toggle('indeterminate', fraction === undefined);
@@ -26,6 +34,7 @@ export function statusBar(container, { editor, viewer, lifetime }) {
   });
   editor.on('busy', (busy) => {
     progress.hidden = !busy;
+    cancel.hidden = !busy;
     if (busy) {
       progressText.textContent = 'Solving';
       bar.classList.add('indeterminate');

@@ -23,7 +23,12 @@ export class SolverClient extends EventEmitter {
   #previewInFlight = 0; // the request id of the preview the worker is solving, or 0
   #queuedPreview = null;
   #wasmUrl;
+  #workerUrl;
   #disposed = false;
+  /** While a restart puts the state back: its promise; else null. */
+  #seeding = null;
+  /** Requests made meanwhile, sent in order once it is done: {id, kind, payload, transfer, resolve, reject}. */
+  #held = [];
 
   /**
    * workerUrl / wasmUrl: where the solver worker and its WASM are, when not
@@ -34,25 +39,71 @@ export class SolverClient extends EventEmitter {
   constructor({ workerUrl, wasmUrl } = {}) {
     super();
     this.#wasmUrl = wasmUrl === undefined ? undefined : String(wasmUrl);
-    this.#worker = workerUrl === undefined
+    this.#workerUrl = workerUrl;
+    this.#worker = this.#spawn();
+  }
+
+  #spawn() {
+    const worker = this.#workerUrl === undefined
       ? new Worker(new URL('./solver-worker.js', import.meta.url), { type: 'module' })
-      : new Worker(workerUrl, { type: 'module' });
-    this.#worker.onmessage = (event) => this.#receive(event.data);
-    this.#worker.onerror = (event) => {
+      : new Worker(this.#workerUrl, { type: 'module' });
+    worker.onmessage = (event) => this.#receive(event.data);
+    worker.onerror = (event) => {
       const failure = new SolverError({
         code: 'internal',
         message: `The solver stopped: ${event.message || 'the worker could not start'}`,
       });
-      for (const { reject } of this.#pending.values()) reject(failure);
-      this.#pending.clear();
-      this.#previewInFlight = 0;
+      this.#rejectAll(failure);
       this.#sendQueuedPreview();
     };
+    return worker;
+  }
+
+  #rejectAll(failure) {
+    for (const { reject } of this.#pending.values()) reject(failure);
+    this.#pending.clear();
+    this.#previewInFlight = 0;
+  }
+
+  /**
+   * Stops whatever the worker is solving, at once: the worker is ended and a
+   * new one started, requests waiting for the old one reject with code
+   * 'cancelled', and `seed(post)` puts the state back (post(kind, payload,
+   * transfer) sends a request ahead of any other). Requests made meanwhile
+   * wait until the seed is done. Resolves when it is (rejects if it failed).
+   */
+  restart(seed) {
+    if (this.#disposed) return Promise.reject(disposedError());
+    this.#worker.onmessage = null;
+    this.#worker.onerror = null;
+    this.#worker.terminate();
+    const cancelled = new SolverError({ code: 'cancelled', message: 'Cancelled: the solve was stopped; the mesh and its history are as they were.' });
+    this.#rejectAll(cancelled);
+    // Requests held for an earlier restart belong to the work being cancelled.
+    for (const { reject } of this.#held) reject(cancelled);
+    this.#held = [];
+    this.#queuedPreview?.resolve(null);
+    this.#queuedPreview = null;
+    this.#worker = this.#spawn();
+    this.emit('progress', { stage: 'restart', message: 'Restarting the solver' });
+    const post = (kind, payload = {}, transfer = []) => this.#post(this.#nextId++, kind, payload, transfer);
+    const seeding = post(Request.init).then(() => seed(post));
+    this.#seeding = seeding;
+    const release = () => {
+      if (this.#seeding !== seeding) return; // a later restart took over
+      this.#seeding = null;
+      const held = this.#held;
+      this.#held = [];
+      for (const { id, kind, payload, transfer, resolve, reject } of held) this.#post(id, kind, payload, transfer).then(resolve, reject);
+    };
+    seeding.then(release, release);
+    return seeding;
   }
 
   #receive(message) {
     if (message.kind === PROGRESS) {
-      this.emit('progress', { stage: message.stage, message: message.message });
+      // A restart's seed (a reload of the mesh) is announced as the restart.
+      if (!this.#seeding) this.emit('progress', { stage: message.stage, message: message.message });
       return;
     }
     // The next preview goes out before this one's shape is shown: the worker
@@ -70,9 +121,17 @@ export class SolverClient extends EventEmitter {
 
   request(kind, payload = {}, transfer = []) {
     if (this.#disposed) return Promise.reject(disposedError());
+    // The id now, so that it is known to the caller's bookkeeping at once
+    // (the previews'), even when the request waits for a restart's seed.
+    const id = this.#nextId++;
+    if (!this.#seeding) return this.#post(id, kind, payload, transfer);
+    return new Promise((resolve, reject) => this.#held.push({ id, kind, payload, transfer, resolve, reject }));
+  }
+
+  #post(id, kind, payload, transfer) {
+    if (this.#disposed) return Promise.reject(disposedError());
     // The WASM location travels with init, the one request that loads it.
     if (kind === Request.init && this.#wasmUrl !== undefined) payload = { ...payload, wasmUrl: this.#wasmUrl };
-    const id = this.#nextId++;
     return new Promise((resolve, reject) => {
       this.#pending.set(id, { resolve, reject });
       this.#worker.postMessage({ id, kind, ...payload }, transfer);
@@ -87,6 +146,8 @@ export class SolverClient extends EventEmitter {
     if (this.#disposed) return;
     this.#disposed = true;
     this.#worker.terminate();
+    for (const { reject } of this.#held) reject(disposedError());
+    this.#held = [];
     this.#queuedPreview?.resolve(null);
     this.#queuedPreview = null;
     for (const { reject } of this.#pending.values()) reject(disposedError());

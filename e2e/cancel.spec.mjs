@@ -1,0 +1,131 @@
+// Cancel (the button beside the progress, Esc, api.cancel()) stops a long
+// committed solve at once: its promise rejects with code 'cancelled', a
+// notice (not an error) says so, the mesh, the document and the history are
+// exactly as before, and the solver comes back with that state: the next
+// edit, undo and a replay of the document all work as if nothing happened.
+import { expect, meshPath, openApp, test, uploadFile } from './support.mjs';
+
+// A solve that would run for tens of seconds on the armadillo.
+const LONG_EDIT = {
+  method: 'anarap',
+  direction: { type: 'global', vector: [0, 1, 0] },
+  transform: { scale: [1.6, 1] },
+  maxIterations: 2000,
+  tolerance: 1e-15,
+  acceleration: 'none',
+};
+
+async function setUp(page) {
+  const pageErrors = await openApp(page);
+  const loaded = await uploadFile(page, meshPath('closed/armadillo.off'));
+  expect(loaded.ok).toBe(true);
+  await page.evaluate(async () => {
+    const api = window.anisoform;
+    const p = api.positions();
+    let lowY = Infinity;
+    let highY = -Infinity;
+    for (let i = 1; i < p.length; i += 3) {
+      lowY = Math.min(lowY, p[i]);
+      highY = Math.max(highY, p[i]);
+    }
+    const height = highY - lowY;
+    window.__height = height;
+    window.__events = [];
+    api.on('error', (event) => window.__events.push({ kind: 'error', ...event }));
+    // One committed edit first, so that there is history to keep.
+    await api.select({ box: { min: [-1e9, lowY + 0.6 * height, -1e9], max: [1e9, 1e9, 1e9] } }, { falloff: 0.05 * height });
+    await api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.2, 1] } });
+  });
+  return pageErrors;
+}
+
+// Starts LONG_EDIT, waits until it is solving, stops it with `stop` (run in
+// the page), and reports what happened.
+async function cancelLongEdit(page, stop) {
+  return page.evaluate(async ({ edit, stop }) => {
+    const api = window.anisoform;
+    const before = { positions: Array.from(api.positions()), document: JSON.stringify(api.document()) };
+    const started = api.deform(edit).then(() => ({ outcome: 'finished' }), (error) => ({ outcome: 'rejected', code: error.code, message: error.message, at: performance.now() }));
+    await new Promise((resolve) => setTimeout(resolve, 800));
+    const cancelledAt = performance.now();
+    const accepted = stop === 'api' ? api.cancel() : null;
+    if (stop === 'button') document.querySelector('[data-testid="cancel-solve"]').click();
+    if (stop === 'escape') document.querySelector('[data-testid="viewport"]').dispatchEvent(new KeyboardEvent('keydown', { key: 'Escape', bubbles: true }));
+    const ended = await started;
+    const after = { positions: Array.from(api.positions()), document: JSON.stringify(api.document()) };
+    return {
+      accepted,
+      ended,
+      msToReject: ended.at - cancelledAt,
+      samePositions: after.positions.every((x, i) => Object.is(x, before.positions[i])),
+      sameDocument: after.document === before.document,
+      cancelHidden: document.querySelector('[data-testid="cancel-solve"]').hidden,
+      notice: document.querySelector('[data-testid="notice"]').textContent,
+      noticeShown: !document.querySelector('[data-testid="notice"]').hidden,
+      errorShown: !document.querySelector('[data-testid="error"]').hidden,
+      events: window.__events,
+    };
+  }, { edit: LONG_EDIT, stop });
+}
+
+function expectKept(result) {
+  expect(result.ended.outcome).toBe('rejected');
+  expect(result.ended.code).toBe('cancelled');
+  // Not waiting for the solve (tens of seconds): the worker is ended at once.
+  console.log(`cancel: the edit's promise rejected ${result.msToReject.toFixed(0)} ms after the cancel`);
+  expect(result.msToReject).toBeLessThan(2000);
+  expect(result.samePositions).toBe(true);
+  expect(result.sameDocument).toBe(true);
+  expect(result.cancelHidden).toBe(true);
+  expect(result.noticeShown).toBe(true);
+  expect(result.notice).toContain('Cancelled: the solve was stopped');
+  expect(result.errorShown).toBe(false);
+  expect(result.events).toEqual([]);
+}
+
+test('api.cancel() stops a long commit at once; the next edit, undo and a replay then work', async ({ page }) => {
+  test.setTimeout(180_000);
+  const pageErrors = await setUp(page);
+  const result = await cancelLongEdit(page, 'api');
+  expect(result.accepted).toBe(true);
+  expectKept(result);
+
+  const after = await page.evaluate(async () => {
+    const api = window.anisoform;
+    const kept = Array.from(api.positions());
+    const idle = api.cancel(); // nothing to stop now
+    // The solver holds the state on screen again: a new edit applies on it...
+    await api.deform({ method: 'anarap', direction: { type: 'global', vector: [1, 0, 0] }, transform: { scale: [1.15, 1] } });
+    const edited = Array.from(api.positions());
+    let moved = 0;
+    for (let i = 0; i < kept.length; i++) moved = Math.max(moved, Math.abs(edited[i] - kept[i]));
+    // ...undo brings back exactly the state the cancel kept...
+    const undone = api.undo();
+    await new Promise((resolve) => setTimeout(resolve, 300));
+    const back = Array.from(api.positions()).every((x, i) => Object.is(x, kept[i]));
+    api.redo();
+    await new Promise((resolve) => setTimeout(resolve, 300));
+    // ...and the document replays on the restarted solver's mesh (same hash) bitwise.
+    const document = api.document();
+    const before = Array.from(api.positions());
+    await api.open(document);
+    const replayed = Array.from(api.positions()).every((x, i) => Object.is(x, before[i]));
+    return { idle, moved, undone, back, replayed, ops: api.document().ops.length, height: window.__height, events: window.__events };
+  });
+  expect(after.idle).toBe(false);
+  expect(after.moved).toBeGreaterThan(0.01 * after.height);
+  expect(after.undone).toBe(true);
+  expect(after.back).toBe(true);
+  expect(after.replayed).toBe(true);
+  expect(after.ops).toBe(2);
+  expect(after.events).toEqual([]);
+  expect(pageErrors).toEqual([]);
+});
+
+test('the Cancel button and Esc stop a long commit the same way', async ({ page }) => {
+  test.setTimeout(180_000);
+  const pageErrors = await setUp(page);
+  expectKept(await cancelLongEdit(page, 'button'));
+  expectKept(await cancelLongEdit(page, 'escape'));
+  expect(pageErrors).toEqual([]);
+});
