@@ -1,5 +1,5 @@
 // Keyboard shortcuts: Ctrl/Cmd+Z undo, Ctrl/Cmd+Shift+Z (or Ctrl+Y) redo,
-// Esc cancels a live edit, F or Home frames the whole mesh. Ignored while
+// Esc cancels a live edit or a committed solve, F or Home frames the whole mesh. Ignored while
 // typing in a field, where those keys belong to the field, and inside an
 // open dialog (the shortcut overlay), which has the keys to itself. The
 // full UI's editing keys: editing-keys.js; the list of all: shortcut-list.js.

@@ -27,7 +27,7 @@ export function shortcutRows(tools) {
     ['Arrow keys', 'Pan the view (3D view focused); Shift+arrows orbit'],
     ['Ctrl+Z', 'Undo'],
     ['Ctrl+Shift+Z or Ctrl+Y', 'Redo'],
-    ['Esc', 'Cancel the drag in progress; close this list'],
+    ['Esc', 'Cancel the drag or the solve in progress; close this list'],
     ['?', 'Show this list'],
   ];
 }
