@@ -34,6 +34,11 @@ export class LivePreview {
     this.#document = document;
   }
 
+  /** Whether the worker holds a live state (a slider's op input and region). */
+  get active() {
+    return this.#live !== null;
+  }
+
   /**
    * Forgets the live state and the slider values not solved yet (a change, a
    * commit or an undo supersedes them); true when the worker held a live state.

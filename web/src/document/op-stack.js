@@ -36,6 +36,11 @@ export class OpStack {
       historyEntry: (label) => this.#historyEntry(label) });
   }
 
+  /** Whether a slider's live preview holds the worker's state (live-preview.js). */
+  get live() {
+    return this.#live.active;
+  }
+
   get snapshots() {
     return this.#runner.cache;
   }
@@ -98,9 +103,9 @@ export class OpStack {
       }
       this.#runner.cache.dropAfter(index);
       this.#runner.show(index + 1, result);
-      // The committed shape is the worker's new rest pose: its factorization
-      // starts now, not in the next edit's first preview.
-      editor.prepareSolver();
+      // The committed shape is the worker's new rest pose: it is factorized
+      // in the background, not in the next edit's first preview.
+      editor.prepareSolverSoon();
       editor.history.push(this.#historyEntry(label));
       const stats = result.summary.last;
       if (stats?.inverted > 0) editor.emit('warning', { message: foldOverWarning(stats.inverted) });

@@ -43,6 +43,9 @@ import { describeProblems } from './problem-summary.js';
 import { SelectionState } from './selection-state.js';
 import { toSolverOp } from './solver-op.js';
 
+/** How long the solver must be idle after a commit before it factorizes the new shape. */
+const PREPARE_AFTER_COMMIT_MS = 400;
+
 export class Editor extends EventEmitter {
   /** @type {MeshDocument|null} */
   document = null;
@@ -53,6 +56,7 @@ export class Editor extends EventEmitter {
   heatMapKind = null;
   #client;
   #busy = 0;
+  #prepareTimer = 0;
   #meshBound = [];
   #report = reporter((event, payload) => this.emit(event, payload));
   #gestures;
@@ -168,6 +172,26 @@ export class Editor extends EventEmitter {
     if (notice) this.emit('notice', notice);
     this.emit('change', { reason: 'load' });
     this.prepareSolver();
+  }
+
+  /**
+   * After a committed edit: prepareSolver once the solver has been idle for
+   * PREPARE_AFTER_COMMIT_MS. Not at once: the worker cannot interrupt a
+   * factorization, and a slider on the op just made (which needs the op's
+   * input, whose factorization is kept) would wait behind it.
+   */
+  prepareSolverSoon() {
+    clearTimeout(this.#prepareTimer);
+    const document = this.document;
+    const attempt = () => {
+      if (this.document !== document || this.#client.disposed) return;
+      // Not under a drag or a slider's live state either: prepare would reset
+      // the selection and the warm start those hold in the worker.
+      const inUse = this.busy || this.#client.busy || this.gestureActive || this.ops.live;
+      if (inUse) this.#prepareTimer = setTimeout(attempt, PREPARE_AFTER_COMMIT_MS);
+      else this.prepareSolver();
+    };
+    this.#prepareTimer = setTimeout(attempt, PREPARE_AFTER_COMMIT_MS);
   }
 
   /**

@@ -156,7 +156,11 @@ export class SolverClient extends EventEmitter {
 
   /** True while a request is waiting for the worker. */
   get busy() {
-    return this.#pending.size > 0;
+    return this.#pending.size > 0 || this.#held.length > 0;
+  }
+
+  get disposed() {
+    return this.#disposed;
   }
 
   /**
