@@ -2,23 +2,15 @@
 // background (announced as progress, ending in 'Ready'), so that the next
 // edit does not pay for it in its first preview; the page is not busy
 // meanwhile, and the next edit queues behind it and applies as usual.
-import { expect, meshPath, openApp, test, uploadFile } from './support.mjs';
+import { expect, meshPath, openApp, test, uploadFile, verticalRange } from './support.mjs';
 
 test('a commit starts the next factorization in the background, and the next edit still applies', async ({ page }) => {
   test.setTimeout(120_000);
   const pageErrors = await openApp(page);
   const loaded = await uploadFile(page, meshPath('closed/armadillo.off'));
   expect(loaded.ok).toBe(true);
-  const result = await page.evaluate(async () => {
+  const result = await page.evaluate(async ({ low: lowY, height }) => {
     const api = window.anisoform;
-    const p = api.positions();
-    let lowY = Infinity;
-    let highY = -Infinity;
-    for (let i = 1; i < p.length; i += 3) {
-      lowY = Math.min(lowY, p[i]);
-      highY = Math.max(highY, p[i]);
-    }
-    const height = highY - lowY;
     // Wait for the load's own preparation to end first.
     await new Promise((resolve) => {
       const off = api.on('progress', ({ stage }) => stage === 'done' && (off(), resolve()));
@@ -43,7 +35,7 @@ test('a commit starts the next factorization in the background, and the next edi
     let moved = 0;
     for (let i = 0; i < shapeAfterFirst.length; i++) moved = Math.max(moved, Math.abs(shapeAfterSecond[i] - shapeAfterFirst[i]));
     return { first, second, afterCommit: progress.slice(afterFirst), moved, height, ops: api.document().ops.length };
-  });
+  }, await verticalRange(page));
   expect(result.first.iterations).toBeGreaterThan(0);
   const stages = result.afterCommit.map(({ stage }) => stage);
   expect(stages[0]).toBe('factorize');

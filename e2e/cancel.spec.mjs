@@ -3,7 +3,7 @@
 // notice (not an error) says so, the mesh, the document and the history are
 // exactly as before, and the solver comes back with that state: the next
 // edit, undo and a replay of the document all work as if nothing happened.
-import { expect, meshPath, openApp, test, uploadFile } from './support.mjs';
+import { expect, meshPath, openApp, test, uploadFile, verticalRange } from './support.mjs';
 
 // A solve that would run for tens of seconds on the armadillo.
 const LONG_EDIT = {
@@ -19,23 +19,15 @@ async function setUp(page) {
   const pageErrors = await openApp(page);
   const loaded = await uploadFile(page, meshPath('closed/armadillo.off'));
   expect(loaded.ok).toBe(true);
-  await page.evaluate(async () => {
+  await page.evaluate(async ({ low: lowY, height }) => {
     const api = window.anisoform;
-    const p = api.positions();
-    let lowY = Infinity;
-    let highY = -Infinity;
-    for (let i = 1; i < p.length; i += 3) {
-      lowY = Math.min(lowY, p[i]);
-      highY = Math.max(highY, p[i]);
-    }
-    const height = highY - lowY;
     window.__height = height;
     window.__events = [];
     api.on('error', (event) => window.__events.push({ kind: 'error', ...event }));
     // One committed edit first, so that there is history to keep.
     await api.select({ box: { min: [-1e9, lowY + 0.6 * height, -1e9], max: [1e9, 1e9, 1e9] } }, { falloff: 0.05 * height });
     await api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.2, 1] } });
-  });
+  }, await verticalRange(page));
   return pageErrors;
 }
 

@@ -123,6 +123,18 @@ export function extentAlong(positions, unit) {
   return max - min;
 }
 
+/** The loaded mesh's lowest and highest y, and its height (the difference). */
+export async function verticalRange(page) {
+  const positions = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  let low = Infinity;
+  let high = -Infinity;
+  for (let i = 1; i < positions.length; i += 3) {
+    low = Math.min(low, positions[i]);
+    high = Math.max(high, positions[i]);
+  }
+  return { low, high, height: high - low };
+}
+
 /** Saves a screenshot of the page for review as e2e/artifacts/NAME.png (git-ignored; CI keeps it). */
 export async function saveScreenshot(page, name) {
   await page.screenshot({ path: resolve(repoRoot, 'e2e', 'artifacts', `${name}.png`) });
