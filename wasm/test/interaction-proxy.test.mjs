@@ -8,6 +8,7 @@ import { after, before, test } from 'node:test';
 import { BufferAttribute, BufferGeometry, Mesh, MeshBasicMaterial, Scene } from '../../web/node_modules/three/build/three.module.js';
 
 import { InteractionProxy, PROXY_TRIANGLES } from '../../web/src/viewer/interaction-proxy.js';
+import { simplifiedMesh } from '../../web/src/worker/display-proxy.js';
 import { loadAnisoform, sessionWith } from '../node-support.mjs';
 
 let wasm;
@@ -49,7 +50,9 @@ async function shown(relative) {
   const wireframe = new Mesh(geometry, material);
   viewer.scene.add(mesh, wireframe);
   const fullDrawn = { count: 0 };
-  const proxy = new InteractionProxy(viewer, material, { enabled: true, beforeFull: () => fullDrawn.count++ });
+  // The worker's simplification (SessionHost.simplify), of the mesh as loaded.
+  const simplify = (triangles) => simplifiedMesh(geometry.getAttribute('position').array.slice(), geometry.index.array, triangles);
+  const proxy = new InteractionProxy(viewer, material, { enabled: true, simplify, beforeFull: () => fullDrawn.count++ });
   proxies.push(proxy);
   await proxy.setMesh(geometry, mesh, wireframe);
   return { viewer, geometry, mesh, wireframe, proxy, fullDrawn };
@@ -134,7 +137,7 @@ test('the proxy settles by itself once nothing has moved for a moment', async ()
   const { viewer, proxy } = await shown('closed/armadillo.off');
   proxy.moved();
   assert.equal(viewer.canvas.dataset.detail, 'proxy');
-  await new Promise((resolve) => setTimeout(resolve, 400));
+  await new Promise((resolve) => setTimeout(resolve, 900));
   assert.equal(viewer.canvas.dataset.detail, 'full');
 });
 
@@ -148,7 +151,7 @@ test('a small mesh, or a GPU, draws the full mesh throughout', async () => {
   const viewer = viewerStub();
   const geometry = meshFrom('closed/armadillo.off');
   const mesh = new Mesh(geometry);
-  const gpu = new InteractionProxy(viewer, mesh.material, { enabled: false });
+  const gpu = new InteractionProxy(viewer, mesh.material, { enabled: false, simplify: () => assert.fail('a GPU needs no proxy') });
   proxies.push(gpu);
   await gpu.setMesh(geometry, mesh, new Mesh(geometry));
   gpu.moved();

@@ -58,3 +58,24 @@ test('a deform reply carries the core distortion against the mesh as loaded when
     host.session.delete();
   }
 });
+
+test('simplify answers with a coarser mesh over the rest mesh\'s own vertices (the page\'s drawing in motion)', async () => {
+  const { host, positions } = hostWith('closed/armadillo.off');
+  try {
+    const triangleCount = host.session.triangles().length / 3;
+    const { result, transfer } = await host.handle(Request.simplify, { triangles: 6000 });
+    assert.equal(transfer.length, 2);
+    const { vertices, triangles } = result;
+    assert.ok(triangles.length / 3 <= 6000 && triangles.length / 3 >= 4800, `${triangles.length / 3} of ${triangleCount} triangles`);
+    assert.equal(new Set(vertices).size, vertices.length, 'each mesh vertex once');
+    assert.ok(vertices.every((v) => v < positions.length / 3));
+    assert.ok(triangles.every((p) => p < vertices.length));
+    // Every proxy triangle is a real one: no zero-area triangle from a collapse.
+    for (let t = 0; t < triangles.length; t += 3) {
+      const [a, b, c] = [0, 1, 2].map((k) => vertices[triangles[t + k]]);
+      assert.ok(a !== b && b !== c && a !== c, `triangle ${t / 3} has distinct corners`);
+    }
+  } finally {
+    host.session.delete();
+  }
+});

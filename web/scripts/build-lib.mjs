@@ -1,6 +1,6 @@
 // Builds the anisoform package into web/dist-lib/ (README "Embedding"):
 //   anisoform.js       createModeller and <anisoform-modeller> (ES module;
-//                      three, three-mesh-bvh and meshoptimizer stay imports)
+//                      three and three-mesh-bvh stay imports)
 //   solver-worker.js   the solver worker with the WASM loader bundled in
 //   anisoform.wasm     the solver
 //   style.css          the full UI's styles (ui: 'full')
@@ -19,9 +19,7 @@ const web = fileURLToPath(new URL('..', import.meta.url));
 const outDir = `${web}dist-lib`;
 const WORKER_URL = "new URL('./solver-worker.js', import.meta.url)";
 const IGNORED_WORKER_URL = "new URL(/* @vite-ignore */ './solver-worker.js', import.meta.url)";
-// The page's libraries: the embedder's bundler resolves them (one copy of three per page).
-const PEERS = ['three', 'three-mesh-bvh', 'meshoptimizer'];
-const isPeer = (id) => PEERS.some((name) => id === name || id.startsWith(`${name}/`));
+const isThree = (id) => id === 'three' || id.startsWith('three/') || id === 'three-mesh-bvh';
 
 await rm(outDir, { recursive: true, force: true });
 await mkdir(outDir, { recursive: true });
@@ -77,7 +75,7 @@ await build({
     target: 'es2022',
     assetsInlineLimit: 0,
     lib: { entry: `${web}src/embed/index.js`, formats: ['es'], fileName: () => 'anisoform.js', cssFileName: 'style' },
-    rollupOptions: { external: isPeer },
+    rollupOptions: { external: isThree },
   },
 });
 
@@ -110,7 +108,7 @@ const manifest = {
   },
   files: ['anisoform.js', 'solver-worker.js', 'anisoform.wasm', 'style.css', 'index.d.ts', 'api.d.ts', 'anisoform-wasm.d.ts', 'README.md'],
   sideEffects: ['./anisoform.js', './style.css'],
-  dependencies: Object.fromEntries(PEERS.map((name) => [name, app.dependencies[name]])),
+  dependencies: { three: app.dependencies.three, 'three-mesh-bvh': app.dependencies['three-mesh-bvh'] },
 };
 await writeFile(`${outDir}/package.json`, `${JSON.stringify(manifest, null, 2)}\n`);
 console.log(`build-lib: ${outDir}`);

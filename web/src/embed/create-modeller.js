@@ -19,6 +19,7 @@ import { DirectionDisplay } from '../viewer/direction-display.js';
 import { MeshView } from '../viewer/mesh-view.js';
 import { Viewer } from '../viewer/viewer.js';
 import { SolverClient } from '../worker/solver-client.js';
+import { Request } from '../worker/protocol.js';
 import { installFullUi } from './full-ui.js';
 import { Lifetime } from './lifetime.js';
 import { resolveMeshSource } from './mesh-source.js';
@@ -55,7 +56,8 @@ export function createModeller(container, options = {}) {
   lifetime.defer(() => layout.root.remove());
   const settings = new Settings();
   const viewer = new Viewer(layout.viewport, lifetime);
-  const meshView = new MeshView(viewer);
+  // The light drawing of a moving mesh on a CPU rasteriser is made in the worker.
+  const meshView = new MeshView(viewer, { simplify: (triangles) => client.request(Request.simplify, { triangles }) });
   lifetime.defer(() => meshView.proxy.dispose());
   new AxisGizmo(viewer, lifetime);
   const picker = new Picker(viewer, meshView);

@@ -4,17 +4,17 @@
 // triangle, on the same few cores the solver needs: a 52k-triangle mesh takes
 // 60-190 ms a frame on two cores, so a live preview or an orbit showed 5-8 new
 // shapes a second however fast the solver was. While the shape or the camera
-// moves, this draws a simplified mesh instead (meshoptimizer's quadric
-// simplifier, PROXY_TRIANGLES triangles) whose vertices are a subset of the
-// mesh's own: each frame gathers their positions and computes their normals,
-// and the full mesh's GPU buffers are left alone until it is drawn again.
-// The full mesh comes back once nothing has moved for SETTLE_MS, and at once
-// when an edit is committed. A GPU draws the full mesh all the time.
+// moves, this draws a simplified mesh instead (PROXY_TRIANGLES triangles,
+// made off the main thread: worker/display-proxy.js) whose vertices are a
+// subset of the mesh's own: each frame gathers their positions and computes
+// their normals, and the full mesh's GPU buffers are left alone until it is
+// drawn again. The full mesh comes back once nothing has moved for
+// SETTLE_MS, and at once when an edit is committed. A GPU draws the full
+// mesh all the time.
 //
 // The canvas's data-detail attribute says what is drawn ('full' or 'proxy'),
 // for tests and assistive tools.
 import { BufferAttribute, BufferGeometry, DynamicDrawUsage, Mesh } from 'three';
-import { MeshoptSimplifier } from 'meshoptimizer/simplifier';
 import { rendersInSoftware } from './software-rendering.js';
 import { writeVertexNormals } from './vertex-normals.js';
 
@@ -22,19 +22,19 @@ import { writeVertexNormals } from './vertex-normals.js';
 export const PROXY_TRIANGLES = 6000;
 /** A mesh this small is drawn in full even while it moves. */
 const MIN_TRIANGLES_FOR_PROXY = 3 * PROXY_TRIANGLES;
-/** How long nothing must move before the full mesh is drawn again. */
-const SETTLE_MS = 250;
 /**
- * The simplifier stops at PROXY_TRIANGLES, not at an error bound: its error
- * is relative to the mesh's extent, and 1 is the whole mesh.
+ * How long nothing must move before the full mesh is drawn again: longer
+ * than a screen drag's preview takes at 26k vertices (~250 ms), so that a
+ * drag does not flicker between the two drawings.
  */
-const NO_ERROR_BOUND = 1;
+const SETTLE_MS = 600;
 /** The per-vertex attributes the proxy copies from the full mesh (the surface material's). */
 const GATHERED = [['position', 3], ['selectionWeight', 1], ['distortion', 1]];
 
 export class InteractionProxy {
   #viewer;
   #material;
+  #simplify;
   #beforeFull;
   #full = null; // {geometry, mesh, wireframe}: drawn when settled
   #proxy = null; // {mesh, vertices: the full mesh's index of each proxy vertex}
@@ -43,14 +43,17 @@ export class InteractionProxy {
   #generation = 0;
 
   /**
-   * beforeFull(): called before the full mesh is drawn again (its normals may
-   * be stale: frames drawn by the proxy skip them).
+   * simplify(triangles): a promise of the loaded mesh simplified to about
+   * that many triangles, {vertices, triangles} (display-proxy.js; null: no
+   * proxy). beforeFull(): called before the full mesh is drawn again (its
+   * normals may be stale: frames drawn by the proxy skip them).
    */
-  constructor(viewer, material, { beforeFull = () => {}, enabled = rendersInSoftware() } = {}) {
+  constructor(viewer, material, { simplify = null, beforeFull = () => {}, enabled = rendersInSoftware() } = {}) {
     this.#viewer = viewer;
     this.#material = material;
+    this.#simplify = simplify;
     this.#beforeFull = beforeFull;
-    this.enabled = enabled;
+    this.enabled = enabled && simplify !== null;
     this.#syncDataset();
   }
 
@@ -64,7 +67,7 @@ export class InteractionProxy {
     this.#full = { geometry, mesh, wireframe };
     if (!this.enabled || geometry.index.count / 3 < MIN_TRIANGLES_FOR_PROXY) return Promise.resolve();
     const generation = ++this.#generation;
-    return simplify(geometry).then(({ vertices, triangles }) => {
+    return this.#simplify(PROXY_TRIANGLES).then(({ vertices, triangles }) => {
       if (generation !== this.#generation) return; // another mesh came since
       const proxyGeometry = new BufferGeometry();
       for (const [name, size] of GATHERED) {
@@ -79,7 +82,8 @@ export class InteractionProxy {
       this.#viewer.scene.add(this.#proxy.mesh);
       if (this.#moving) this.#show();
     }, () => {
-      // Without a simplifier (no WebAssembly) the full mesh is drawn throughout.
+      // Without a simplification (the mesh was replaced meanwhile, or the
+      // solver restarted) the full mesh is drawn throughout.
     });
   }
 
@@ -162,23 +166,4 @@ export class InteractionProxy {
   #syncDataset() {
     this.#viewer.canvas.dataset.detail = this.drawing ? 'proxy' : 'full';
   }
-}
-
-/** The simplified mesh: the full mesh's index of each of its vertices, and its triangles over those. */
-async function simplify(geometry) {
-  await MeshoptSimplifier.ready;
-  const positions = geometry.getAttribute('position').array;
-  const [index] = MeshoptSimplifier.simplify(new Uint32Array(geometry.index.array), positions, 3,
-    PROXY_TRIANGLES * 3, NO_ERROR_BOUND);
-  const proxyVertex = new Map();
-  const triangles = new Uint32Array(index.length);
-  for (let i = 0; i < index.length; i++) {
-    let p = proxyVertex.get(index[i]);
-    if (p === undefined) {
-      p = proxyVertex.size;
-      proxyVertex.set(index[i], p);
-    }
-    triangles[i] = p;
-  }
-  return { vertices: Uint32Array.from(proxyVertex.keys()), triangles };
 }

@@ -17,7 +17,8 @@ export class MeshView {
   /** Positions changed since the normals were computed (a proxy frame skips them). */
   #normalsStale = false;
 
-  constructor(viewer) {
+  /** simplify: InteractionProxy's (the solver worker's simplification of the loaded mesh). */
+  constructor(viewer, { simplify = null } = {}) {
     this.viewer = viewer;
     this.material = createSurfaceMaterial();
     this.material.flatShading = false;
@@ -28,7 +29,7 @@ export class MeshView {
     this.wireframeMaterial = new MeshBasicMaterial({ color: 0x22262c, wireframe: true, transparent: true, opacity: 0.45 });
     this.wireframeMaterial.visible = false;
     this.wireframe = null;
-    this.proxy = new InteractionProxy(viewer, this.material, { beforeFull: () => this.#refreshNormals() });
+    this.proxy = new InteractionProxy(viewer, this.material, { simplify, beforeFull: () => this.#refreshNormals() });
     // An orbit on a CPU rasteriser draws the light mesh too (interaction-proxy.js).
     let orbiting = false;
     viewer.controls.addEventListener('start', () => {

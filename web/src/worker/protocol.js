@@ -18,6 +18,12 @@ export const Request = Object.freeze({
   /** {} -> {ms}: factorize ahead of the first edit, so the first drag is live. */
   prepare: 'prepare',
   /**
+   * {triangles: number} -> {vertices: Uint32Array, triangles: Uint32Array}:
+   * the rest mesh simplified to about that many triangles, over a subset of
+   * its vertices (display-proxy.js), for the page to draw while it moves.
+   */
+  simplify: 'simplify',
+  /**
    * {region, options: {falloff, mode}} -> {count, weights: Float32Array}: the
    * core's selection rule (Session.select) on the rest pose; weights is a copy
    * of the session's whole selection afterwards.

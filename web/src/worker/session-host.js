@@ -2,6 +2,7 @@
 // (protocol.js). Results hand out copies of the session's heap views: a view
 // detaches when WASM memory grows, and a copy can be transferred to the page.
 import { Request } from './protocol.js';
+import { simplifiedMesh } from './display-proxy.js';
 
 export class SessionHost {
   /**
@@ -15,6 +16,7 @@ export class SessionHost {
       [Request.loadFile]: (payload) => this.loadFile(payload),
       [Request.setMesh]: (payload) => this.setMesh(payload),
       [Request.prepare]: () => this.prepare(),
+      [Request.simplify]: (payload) => this.simplify(payload),
       [Request.select]: (payload) => this.select(payload),
       [Request.setSelection]: (payload) => this.setSelection(payload),
       [Request.deform]: (payload) => this.deform(payload),
@@ -31,7 +33,7 @@ export class SessionHost {
     };
   }
 
-  /** @returns {{result: object, transfer: Transferable[]}} */
+  /** @returns {{result: object, transfer: Transferable[]}}, or a promise of it */
   handle(kind, payload) {
     const handler = this.handlers[kind];
     if (!handler) throw new Error(`unknown request '${kind}'`);
@@ -94,6 +96,11 @@ export class SessionHost {
     // adjacency now rather than in the first select with a falloff.
     this.session.select({ vertices: [] });
     return { result: { ms: performance.now() - started }, transfer: [] };
+  }
+
+  async simplify({ triangles }) {
+    const simplified = await simplifiedMesh(this.session.positions().slice(), this.session.triangles().slice(), triangles);
+    return { result: simplified, transfer: [simplified.vertices.buffer, simplified.triangles.buffer] };
   }
 
   select({ region, options }) {

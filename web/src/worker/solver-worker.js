@@ -40,7 +40,7 @@ self.onmessage = (event) => {
   queue = queue.then(async () => {
     try {
       const { result, transfer } =
-        kind === Request.init ? await initialize(payload) : requireHost().handle(kind, payload);
+        kind === Request.init ? await initialize(payload) : await requireHost().handle(kind, payload);
       self.postMessage({ id, ok: true, result }, transfer);
     } catch (error) {
       self.postMessage({ id, ok: false, error: describeError(error) });
