@@ -100,7 +100,11 @@ export class Editor extends EventEmitter {
     this.ops.restartSolver((seed) => this.#client.restart(seed)).then(
       () => this.document === document && this.prepareSolver(),
       // 'cancelled': a later cancel restarted it again, and reports for itself.
-      (error) => error.code !== 'cancelled' && this.document === document && this.report(error, 'The solver could not be restarted'),
+      (error) => {
+        if (error.code === 'cancelled' || this.document !== document) return;
+        this.emit('progress', { stage: 'done', message: '' }); // no "Restarting" left showing
+        this.report(error, 'The solver could not be restarted');
+      },
     );
     return true;
   }
