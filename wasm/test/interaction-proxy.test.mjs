@@ -78,6 +78,11 @@ test('while the armadillo moves, a simplified mesh over its own vertices is draw
   const light = proxyMesh(viewer, mesh);
   assert.ok(light, 'the proxy is in the scene');
   assert.equal(light.visible, false, 'and hidden until something moves');
+  // Ready to draw as it is (an orbit moves no vertex): unit normals already.
+  const built = light.geometry.getAttribute('normal').array;
+  for (let p = 0; p < built.length / 3; p++) {
+    assert.ok(Math.abs(Math.hypot(built[3 * p], built[3 * p + 1], built[3 * p + 2]) - 1) < 1e-5, `normal ${p} before any move`);
+  }
 
   // A deformed shape arrives: the proxy's vertices are exactly the mesh's.
   const full = geometry.getAttribute('position').array;

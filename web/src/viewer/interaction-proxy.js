@@ -36,7 +36,7 @@ export class InteractionProxy {
   #material;
   #simplify;
   #beforeFull;
-  #full = null; // {geometry, mesh, wireframe}: drawn when settled
+  #full = null; // {mesh, wireframe}: drawn when settled
   #proxy = null; // {mesh, vertices: the full mesh's index of each proxy vertex}
   #moving = false;
   #settleTimer = 0;
@@ -64,7 +64,7 @@ export class InteractionProxy {
    */
   setMesh(geometry, mesh, wireframe) {
     this.#dropProxy();
-    this.#full = { geometry, mesh, wireframe };
+    this.#full = { mesh, wireframe };
     if (!this.enabled || geometry.index.count / 3 < MIN_TRIANGLES_FOR_PROXY) return Promise.resolve();
     const generation = ++this.#generation;
     return this.#simplify(PROXY_TRIANGLES).then(({ vertices, triangles }) => {
@@ -79,6 +79,8 @@ export class InteractionProxy {
       this.#proxy.mesh.frustumCulled = false;
       this.#proxy.mesh.visible = false;
       for (const [name] of GATHERED) this.showAttribute(name, geometry.getAttribute(name).array);
+      // Its normals too: an orbit moves no vertex, and draws the proxy as it is.
+      this.showPositions(geometry.getAttribute('position').array);
       this.#viewer.scene.add(this.#proxy.mesh);
       if (this.#moving) this.#show();
     }, () => {
