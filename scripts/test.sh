@@ -6,8 +6,8 @@
 #
 # One native build serves the Catch2 suite, the CLI the Node tests compare
 # against, and the fuzzer: clang with AddressSanitizer + UndefinedBehavior-
-# Sanitizer at -O1 with line tables only. Every test therefore runs with the
-# sanitizers' checks; the optimised release configuration is what the WASM
+# Sanitizer, the core at -O2 (the test files at -O0), line tables only.
+# Every test therefore runs with the sanitizers' checks; the optimised release configuration is what the WASM
 # module ships (tested in Node and Playwright) and what the benchmark builds
 # (bench/README.md).
 # Order: fail fast on the cheap stages; the fuzzer last.
@@ -31,7 +31,7 @@ bash scripts/setup.sh
 
 stage "native build (clang, ASan + UBSan, libFuzzer targets)"
 CC=clang CXX=clang++ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug \
-  -DCMAKE_CXX_FLAGS_DEBUG="-O1 -gline-tables-only" -DANISO_SANITIZE=ON -DANISO_FUZZ=ON \
+  -DCMAKE_CXX_FLAGS_DEBUG="-O2 -gline-tables-only" -DANISO_SANITIZE=ON -DANISO_FUZZ=ON \
   -DANISO_BENCH=OFF -DANISO_SHARED_DIR="$ANISO_SHARED_DIR" >/dev/null
 cmake --build build-asan -j"$JOBS"
 
