@@ -13,6 +13,7 @@
 #include "anisoform/limits.h"
 #include "anisoform/mesh_check.h"
 #include "anisoform/mesh_io.h"
+#include "anisoform/session.h"
 #include "cli_runner.h"
 #include "test_support.h"
 
@@ -130,4 +131,28 @@ TEST_CASE("limits: a twist's range is relative to the mesh size", "[limits]") {
   // The same rate on spot a thousand times smaller is 1000 turns... / 1000.
   aniso::Deformer small(aniso::Mesh{spot.V * 1e-3, spot.F});
   CHECK(small.deform(request).V.allFinite());
+}
+
+TEST_CASE("limits: a session's vertex limit refuses a bigger mesh by name and keeps the one it has", "[limits]") {
+  aniso::Session session;
+  CHECK(session.vertex_limit() == 0);  // none by default (the CLI, the tests)
+  const aniso::Mesh face = aniso::test::load("open/nefertiti_face.off");
+  const aniso::Mesh spot = aniso::test::load("closed/spot_triangulated.obj");
+  REQUIRE(face.num_vertices() < 1000);
+  REQUIRE(spot.num_vertices() > 1000);
+  session.set_vertex_limit(1000, "for this test");
+  session.adopt_mesh(face, {});
+  try {
+    session.adopt_mesh(spot, {});
+    FAIL("a mesh over the limit was accepted");
+  } catch (const aniso::Error& error) {
+    CHECK(error.code() == aniso::ErrorCode::BadMesh);
+    CHECK(std::string(error.what()) ==
+          "the mesh has " + std::to_string(spot.num_vertices()) + " vertices, more than the 1000 for this test");
+  }
+  CHECK(session.info().report.vertices == face.num_vertices());
+  CHECK(session.positions() == face.V);
+  CHECK_THROWS_AS(session.set_vertex_limit(-1, ""), aniso::Error);
+  session.set_vertex_limit(0, "");
+  CHECK(session.adopt_mesh(spot, {}).report.vertices == spot.num_vertices());
 }

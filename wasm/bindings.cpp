@@ -14,6 +14,7 @@
 #include <malloc.h>
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -232,6 +233,27 @@ val op_schema_js() {
   return guarded([] { return to_js(op_schema()); });
 }
 
+// A browser session refuses meshes too big to edit within the module's
+// memory ceiling, at load rather than at the first edit. Every edit
+// factorizes the whole mesh's Laplacian; measured in Node, one AnARAP
+// commit on the 200k koala peaked at 632 MB of heap (3.2 KB per vertex) and
+// one on a 416k mesh (the armadillo subdivided twice) at 1182 MB (2.8 KB per
+// vertex). The budget is 4 KB per vertex, a margin over both: the factor's
+// fill-in depends on the mesh, not on its size alone. (800k vertices ran a
+// minute into the first commit and then failed at the 2 GB ceiling.)
+constexpr double kEditBytesPerVertex = 4096.0;
+
+Session* new_browser_session() {
+  auto session = std::make_unique<Session>();
+  const double max_bytes = ANISO_WASM_MAXIMUM_MEMORY_GB * 1073741824.0;
+  session->set_vertex_limit(
+      static_cast<int>(max_bytes / kEditBytesPerVertex),
+      "that can be edited here: every edit factorizes the whole mesh, about 4 KB per vertex, and this "
+      "browser module may use at most " ANISO_STRINGIFY(ANISO_WASM_MAXIMUM_MEMORY_GB)
+      " GB (use the native CLI, or a simplified mesh)");
+  return session.release();
+}
+
 }  // namespace
 }  // namespace aniso::wasm
 
@@ -239,7 +261,8 @@ EMSCRIPTEN_BINDINGS(anisoform) {
   using namespace aniso::wasm;
   using aniso::Session;
   emscripten::class_<Session>("Session")
-      .constructor<>()
+      .constructor(&new_browser_session, emscripten::allow_raw_pointers())
+      .function("vertexLimit", &Session::vertex_limit)
       .function("loadMesh", &load_mesh)
       .function("setMesh", &set_mesh)
       .function("info", &info)

@@ -456,6 +456,12 @@ export interface Session {
   /** Over the whole session: every rest pose and every flattened patch. */
   factorizations(): number;
   /**
+   * The most vertices a mesh may have in this module: loadMesh/setMesh refuse a bigger one at once
+   * with 'bad-mesh', naming both numbers (every edit factorizes the whole mesh: about 4 KB per
+   * vertex, within the module's 2 GB).
+   */
+  vertexLimit(): number;
+  /**
    * Replays an edit document (an object, or its JSON text) on this session's mesh: each enabled op's
    * region, a full cold solve, a commit. Deterministic (bitwise) for a build. The selection is then
    * cleared. Any error (bad JSON, version, region, amounts, a mesh whose hash differs) names the op

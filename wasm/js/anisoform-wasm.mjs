@@ -189,6 +189,10 @@ export async function instantiateAnisoform(factory, options = {}) {
 
     factorizations() { return this.#call('factorizations'); }
 
+    // The most vertices a mesh may have to load here (the module's memory
+    // ceiling over the memory an edit needs per vertex); a bigger one is refused.
+    vertexLimit() { return this.#call('vertexLimit'); }
+
     // The edit document (core document.h): JSON text as it is, an object as JSON.
     replay(document, options = {}) {
       return this.#call('replay', documentText(document), toJson(options, 'replay options'));

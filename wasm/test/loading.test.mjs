@@ -7,6 +7,7 @@ import path from 'node:path';
 import { before, test } from 'node:test';
 
 import { loadAnisoform, meshBytes, meshesDir, sessionWith } from '../node-support.mjs';
+import { subdivided } from '../subdivided-mesh.mjs';
 
 let wasm;
 let AnisoformError;
@@ -205,6 +206,31 @@ test('the benchmarks\' build: cappedCylinder gives a closed, consistently orient
       assert.ok(Math.abs(radius - 1) < 1e-12, `radius ${radius}`);
     }
     assert.throws(() => benchWasm.cappedCylinder(10), (error) => error.code === 'bad-parameter' && /16/.test(error.message));
+  } finally {
+    session.delete();
+  }
+});
+
+test('a mesh too big to edit within the module memory is refused at once, naming both numbers; the previous mesh stays', () => {
+  const session = new wasm.Session();
+  try {
+    // 2 GB over the 4 KB an edit needs per vertex.
+    assert.equal(session.vertexLimit(), 2 ** 31 / 4096);
+    session.loadMesh(meshBytes('large/koala_loop1_200k.ply'), 'koala_loop1_200k.ply');
+    const before = session.positions().slice();
+    const big = subdivided(session.positions(), session.triangles());
+    assert.equal(big.positions.length / 3, 799954);
+    const started = performance.now();
+    assert.throws(() => session.setMesh(big.positions, big.triangles), (error) => {
+      assert.ok(error instanceof AnisoformError);
+      assert.equal(error.code, 'bad-mesh');
+      assert.match(error.message, /799954 vertices, more than the 524288 that can be edited here/);
+      assert.match(error.message, /2 GB/);
+      return true;
+    });
+    console.log(`an 800k-vertex mesh refused after ${Math.round(performance.now() - started)} ms`);
+    assert.equal(session.info().vertices, 199990);
+    assert.deepEqual(session.positions(), before);
   } finally {
     session.delete();
   }

@@ -114,6 +114,14 @@ class Session {
   // are kept in info().notes, after which the session adds its own.
   const SessionMeshInfo& adopt_mesh(Mesh mesh, std::vector<std::string> notes);
 
+  // The most vertices a mesh may have in this host (0, the default: no
+  // limit), and why, for the refusal: "more than the N <why>". The WASM
+  // module sets it from its memory ceiling: every edit factorizes the whole
+  // mesh's Laplacian, and a mesh too big for that would otherwise load and
+  // then fail at its first edit, a minute later.
+  void set_vertex_limit(int max_vertices, std::string why);
+  int vertex_limit() const { return vertex_limit_; }
+
   bool has_mesh() const { return deformer_ != nullptr; }
   // These throw Error(BadParameter) "no mesh is loaded" before the first mesh.
   const SessionMeshInfo& info() const;
@@ -183,6 +191,8 @@ class Session {
   std::unique_ptr<VertexAdjacency> adjacency_;  // for select(), built lazily per mesh (not per pose)
   std::unique_ptr<SessionFlattenState> flatten_;  // always set; dropped per positions change
   int retired_factorizations_ = 0;      // done by the Deformers of earlier rest poses
+  int vertex_limit_ = 0;                // set_vertex_limit
+  std::string vertex_limit_why_;
   Positions loaded_;                    // positions as loaded, for DistortionReference::Loaded
   Positions current_;
   Eigen::VectorXd weights_;

@@ -138,6 +138,12 @@ const SessionMeshInfo& Session::set_mesh(const std::vector<double>& positions,
   return adopt_mesh(std::move(mesh), std::move(notes));
 }
 
+void Session::set_vertex_limit(int max_vertices, std::string why) {
+  if (max_vertices < 0) fail(ErrorCode::BadParameter, "the vertex limit must be 0 (none) or positive");
+  vertex_limit_ = max_vertices;
+  vertex_limit_why_ = std::move(why);
+}
+
 const SessionMeshInfo& Session::adopt_mesh(Mesh mesh, std::vector<std::string> notes) {
   // A soup has no shared vertices, so no edit could spread over it: weld it,
   // as the CLI does, and say so.
@@ -147,6 +153,11 @@ const SessionMeshInfo& Session::adopt_mesh(Mesh mesh, std::vector<std::string> n
     notes.push_back("the file is a triangle soup (no shared vertices): welded by exact position, " +
                     std::to_string(before) + " -> " + std::to_string(mesh.num_vertices()) +
                     " vertices");
+  }
+  // Before the checks and the Laplacian: the refusal should come at once.
+  if (vertex_limit_ > 0 && mesh.num_vertices() > vertex_limit_) {
+    fail(ErrorCode::BadMesh, "the mesh has " + std::to_string(mesh.num_vertices()) + " vertices, more than the " +
+                                 std::to_string(vertex_limit_) + " " + vertex_limit_why_);
   }
   SessionMeshInfo info{check_mesh(mesh), std::move(notes)};
   if (!info.report.solvable()) {
