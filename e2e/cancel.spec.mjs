@@ -39,6 +39,8 @@ async function cancelLongEdit(page, stop) {
     const before = { positions: Array.from(api.positions()), document: JSON.stringify(api.document()) };
     const started = api.deform(edit).then(() => ({ outcome: 'finished' }), (error) => ({ outcome: 'rejected', code: error.code, message: error.message, at: performance.now() }));
     await new Promise((resolve) => setTimeout(resolve, 800));
+    // What the status bar says while it solves: the stage and how far.
+    const progress = document.querySelector('[data-testid="progress"]').textContent;
     const cancelledAt = performance.now();
     const accepted = stop === 'api' ? api.cancel() : null;
     if (stop === 'button') document.querySelector('[data-testid="cancel-solve"]').click();
@@ -47,6 +49,7 @@ async function cancelLongEdit(page, stop) {
     const after = { positions: Array.from(api.positions()), document: JSON.stringify(api.document()) };
     return {
       accepted,
+      progress,
       ended,
       msToReject: ended.at - cancelledAt,
       samePositions: after.positions.every((x, i) => Object.is(x, before.positions[i])),
@@ -61,6 +64,8 @@ async function cancelLongEdit(page, stop) {
 }
 
 function expectKept(result) {
+  // The core's progress: iterations done of the 2000 allowed (or the factorization).
+  expect(result.progress).toMatch(/(Solving|Preparing the solver) \d+ %/);
   expect(result.ended.outcome).toBe('rejected');
   expect(result.ended.code).toBe('cancelled');
   // Not waiting for the solve (tens of seconds): the worker is ended at once.

@@ -233,6 +233,21 @@ val op_schema_js() {
   return guarded([] { return to_js(op_schema()); });
 }
 
+// Progress of the long calls, to a JS function (stage name, fraction), or
+// none with null/undefined. The function runs inside the call: the worker's
+// posts a message and returns; it must not throw.
+val set_progress(Session& s, val report) {
+  return guarded([&] {
+    if (report.isNull() || report.isUndefined()) {
+      s.set_progress(nullptr);
+      return;
+    }
+    s.set_progress([report](ProgressStage stage, double fraction) {
+      report(std::string(progress_stage_name(stage)), fraction);
+    });
+  });
+}
+
 // A browser session refuses meshes too big to edit within the module's
 // memory ceiling, at load rather than at the first edit. Every edit
 // factorizes the whole mesh's Laplacian; measured in Node, one AnARAP
@@ -263,6 +278,7 @@ EMSCRIPTEN_BINDINGS(anisoform) {
   emscripten::class_<Session>("Session")
       .constructor(&new_browser_session, emscripten::allow_raw_pointers())
       .function("vertexLimit", &Session::vertex_limit)
+      .function("setProgress", &set_progress)
       .function("loadMesh", &load_mesh)
       .function("setMesh", &set_mesh)
       .function("info", &info)

@@ -462,6 +462,12 @@ export interface Session {
    */
   vertexLimit(): number;
   /**
+   * Progress of the long calls: `report(stage, fraction)` is called inside loadMesh/setMesh
+   * ('load'), each factorization ('factorize': 0 then 1), deform's iterations ('solve': iterations
+   * over the cap, then 1 when done) and flatten's ('flatten'). null stops it. It must not throw.
+   */
+  setProgress(report: ((stage: 'load' | 'factorize' | 'solve' | 'flatten', fraction: number) => void) | null): void;
+  /**
    * Replays an edit document (an object, or its JSON text) on this session's mesh: each enabled op's
    * region, a full cold solve, a commit. Deterministic (bitwise) for a build. The selection is then
    * cleared. Any error (bad JSON, version, region, amounts, a mesh whose hash differs) names the op

@@ -193,6 +193,14 @@ export async function instantiateAnisoform(factory, options = {}) {
     // ceiling over the memory an edit needs per vertex); a bigger one is refused.
     vertexLimit() { return this.#call('vertexLimit'); }
 
+    // report(stage, fraction) during loadMesh/setMesh ('load'), a
+    // factorization ('factorize'), deform's iterations ('solve') and
+    // flatten's ('flatten'); null stops it. It runs inside the call.
+    setProgress(report) {
+      if (report !== null && typeof report !== 'function') throw badParameter('setProgress: report must be a function or null');
+      return this.#call('setProgress', report);
+    }
+
     // The edit document (core document.h): JSON text as it is, an object as JSON.
     replay(document, options = {}) {
       return this.#call('replay', documentText(document), toJson(options, 'replay options'));

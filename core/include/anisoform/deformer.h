@@ -20,6 +20,7 @@
 #include "anisoform/deform_request.h"
 #include "anisoform/laplacian.h"
 #include "anisoform/mesh.h"
+#include "anisoform/progress.h"
 
 namespace aniso {
 
@@ -33,6 +34,9 @@ class Deformer {
   ~Deformer();
 
   DeformResult deform(const DeformRequest& request);
+
+  // Factorizations and a deform's iterations report here (none by default).
+  void set_progress(ProgressFn progress) { progress_ = std::move(progress); }
 
   const Mesh& rest() const { return rest_; }
   int factorizations() const { return factorizations_; }
@@ -54,6 +58,7 @@ class Deformer {
   std::map<std::vector<int>, std::unique_ptr<LaplacianSolver>> solvers_;
   int factorizations_ = 0;
   std::unique_ptr<Workspace> workspace_;
+  ProgressFn progress_;
 };
 
 }  // namespace aniso

@@ -27,6 +27,7 @@
 #include "anisoform/deformer.h"
 #include "anisoform/distortion.h"
 #include "anisoform/mesh.h"
+#include "anisoform/progress.h"
 #include "anisoform/mesh_check.h"
 #include "anisoform/mesh_io.h"
 #include "anisoform/selection.h"
@@ -122,6 +123,10 @@ class Session {
   void set_vertex_limit(int max_vertices, std::string why);
   int vertex_limit() const { return vertex_limit_; }
 
+  // Long calls report how far they have got: loading a mesh, factorizing,
+  // a deform's iterations, a flattening's (progress.h). None by default.
+  void set_progress(ProgressFn progress);
+
   bool has_mesh() const { return deformer_ != nullptr; }
   // These throw Error(BadParameter) "no mesh is loaded" before the first mesh.
   const SessionMeshInfo& info() const;
@@ -170,6 +175,8 @@ class Session {
 
  private:
   void require_mesh() const;
+  void report(ProgressStage stage, double fraction) const;
+  std::unique_ptr<Deformer> new_deformer(Mesh mesh);
   void replace_rest(Positions V);
   // New current positions with their float32 copy, allocated before anything
   // changes (a failed allocation leaves the session as it was); set_current
@@ -192,6 +199,7 @@ class Session {
   std::unique_ptr<SessionFlattenState> flatten_;  // always set; dropped per positions change
   int retired_factorizations_ = 0;      // done by the Deformers of earlier rest poses
   int vertex_limit_ = 0;                // set_vertex_limit
+  ProgressFn progress_;
   std::string vertex_limit_why_;
   Positions loaded_;                    // positions as loaded, for DistortionReference::Loaded
   Positions current_;

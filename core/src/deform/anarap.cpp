@@ -375,7 +375,7 @@ void AnArapSolver::global_rhs(Positions& b) const {
 
 int AnArapSolver::run(const LaplacianSolver& solver, Positions& V, int max_iterations,
                         double tolerance, std::vector<double>& history, bool final_energy,
-                        bool accelerate) {
+                        bool accelerate, const std::function<void(int)>& on_iteration) {
   Positions b, g, proposal;
   AndersonMixer mixer(kAndersonWindow);
   std::vector<Eigen::Quaterniond> kept_rotations;
@@ -411,6 +411,7 @@ int AnArapSolver::run(const LaplacianSolver& solver, Positions& V, int max_itera
     }
     history.push_back(energy);
     ++iterations;
+    if (on_iteration) on_iteration(iterations);
     // Relative change, measured against the energy's own size but never
     // against less than a 1e-12 part of the fans' rest size, so that an exact
     // solution (energy ~ 0) stops too.

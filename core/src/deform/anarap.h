@@ -40,6 +40,7 @@
 //   each update exact given the others, so the energy never increases.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -86,8 +87,10 @@ class AnArapSolver {
   // `accelerate`: Anderson acceleration of the positions (anderson.h), each
   // proposal kept only if it lowers the energy, so the history still never
   // increases; for converging iterations only (not the paper's rotation steps).
+  // `on_iteration(done)` is called after each iteration (progress).
   int run(const LaplacianSolver& solver, Positions& V, int max_iterations, double tolerance,
-          std::vector<double>& history, bool final_energy = true, bool accelerate = false);
+          std::vector<double>& history, bool final_energy = true, bool accelerate = false,
+          const std::function<void(int)>& on_iteration = nullptr);
 
  private:
   // S_i = sum w e' t^T (full targets) and with the polar targets, per cell.

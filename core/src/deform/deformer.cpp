@@ -206,7 +206,9 @@ const LaplacianSolver& Deformer::solver_for(std::vector<int> pins, double* preco
   auto it = solvers_.find(pins);
   if (it != solvers_.end()) return *it->second;
   const auto start = Clock::now();
+  if (progress_) progress_(ProgressStage::Factorize, 0.0);
   auto solver = std::make_unique<LaplacianSolver>(laplacian_, pins);
+  if (progress_) progress_(ProgressStage::Factorize, 1.0);
   ++factorizations_;
   *precompute_ms += ms_since(start);
   return *solvers_.emplace(std::move(pins), std::move(solver)).first->second;
@@ -238,6 +240,7 @@ DeformResult Deformer::deform(const DeformRequest& request) {
   if (!std::isfinite(result.energy)) fail(ErrorCode::Numerical, "the solve produced a non-finite energy");
   result.inverted = workspace_->inversions.count(rest_, result.V);
   result.solve_ms = ms_since(start) - result.precompute_ms;
+  if (progress_) progress_(ProgressStage::Solve, 1.0);
   return result;
 }
 
@@ -349,9 +352,13 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
     }
     for (int p : request.pins) result.V.row(p) = unit_.V.row(p);
     const int steps = stepped ? request.rotation_steps : request.max_iterations;
+    const auto on_iteration = [&](int done) {
+      if (progress_) progress_(ProgressStage::Solve, static_cast<double>(done) / steps);
+    };
     result.iterations = iterations->run(solver, result.V, steps, stepped ? -1.0 : request.tolerance,
                                         result.energy_history, request.final_energy,
-                                        !stepped && request.acceleration == Acceleration::Anderson);
+                                        !stepped && request.acceleration == Acceleration::Anderson,
+                                        on_iteration);
     result.energy = result.energy_history.empty() ? 0.0 : result.energy_history.back();
     result.converged = stepped || result.iterations < steps;
     realign(unit_, gauge, affected, Alignment::Rigid, result.V);

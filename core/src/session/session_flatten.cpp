@@ -1,6 +1,7 @@
 // Session::flatten and Session::export_pattern (session.h, session_flatten.h):
 // the Flattener cached per (positions, patch mask), and the result re-indexed
 // from the patch's compact numbering to the session's input vertices.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -109,7 +110,16 @@ SessionFlattenResult Session::flatten(const SessionFlatten& given) {
   }
   Flattener& flattener = built ? *built : *state.flattener;
 
-  FlattenResult result = flattener.flatten(flatten_options(request));
+  FlattenOptions options = flatten_options(request);
+  if (progress_) {
+    const int cap = options.solver.max_iterations;
+    options.solver.progress = [this, cap](int iteration, double) {
+      progress_(ProgressStage::Flatten, std::min(1.0, static_cast<double>(iteration) / cap));
+      return true;
+    };
+  }
+  FlattenResult result = flattener.flatten(options);
+  if (progress_) progress_(ProgressStage::Flatten, 1.0);
   SessionFlattenResult out =
       reindex(flattener.patch(), flattener.charts(), result, deformer_->rest().num_vertices());
 

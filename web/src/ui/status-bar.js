@@ -28,7 +28,7 @@ export function statusBar(container, { editor, viewer, lifetime }) {
     // committed solve leaves that solve's progress and its Cancel shown.
     if (stage === 'done' && editor.busy) return;
     progress.hidden = stage === 'done';
-    progressText.textContent = message;
+    progressText.textContent = fraction === undefined ? message : `${message} ${Math.round(fraction * 100)} %`;
     bar.classList.toggle('indeterminate', fraction === undefined);
     bar.firstChild.style.width = fraction === undefined ? '' : `${Math.round(fraction * 100)}%`;
   });

@@ -67,6 +67,8 @@ export const Request = Object.freeze({
   selectDocumentRegion: 'selectDocumentRegion',
 });
 
+// Worker -> page, between requests' answers: {kind: PROGRESS, stage, message,
+// fraction?}, fraction in [0, 1] when the core can tell (session-host.js).
 export const PROGRESS = 'progress';
 
 /**

@@ -4,14 +4,24 @@
 import { Request } from './protocol.js';
 import { simplifiedMesh } from './display-proxy.js';
 
+const PROGRESS_AFTER_MS = 150;
+const PROGRESS_EVERY_MS = 100;
+const STAGE_MESSAGES = {
+  load: 'Reading the mesh',
+  factorize: 'Preparing the solver',
+  solve: 'Solving',
+  flatten: 'Flattening the patch',
+};
+
 export class SessionHost {
   /**
    * @param {object} wasm        the module from createAnisoformWasm()
-   * @param {(stage: string, message: string) => void} reportProgress
+   * @param {(stage: string, message: string, fraction?: number) => void} reportProgress
    */
   constructor(wasm, reportProgress) {
     this.session = new wasm.Session();
     this.reportProgress = reportProgress;
+    this.session.setProgress((stage, fraction) => this.#coreProgress(stage, fraction));
     this.handlers = {
       [Request.loadFile]: (payload) => this.loadFile(payload),
       [Request.setMesh]: (payload) => this.setMesh(payload),
@@ -37,7 +47,27 @@ export class SessionHost {
   handle(kind, payload) {
     const handler = this.handlers[kind];
     if (!handler) throw new Error(`unknown request '${kind}'`);
+    // Progress is shown for the calls a user waits for, not for the live
+    // previews of a drag or a slider.
+    this.#progress = { started: performance.now(), posted: -Infinity, stage: null, shown: kind !== Request.deform || !payload.op?.preview };
     return handler(payload);
+  }
+
+  #progress = null;
+
+  // The core's progress (stage, fraction) as the page's: only once a call
+  // has run for PROGRESS_AFTER_MS (a quick one shows none), then at most
+  // every PROGRESS_EVERY_MS, and always a stage's start and end.
+  #coreProgress(stage, fraction) {
+    const progress = this.#progress;
+    if (!progress?.shown) return;
+    const now = performance.now();
+    if (now - progress.started < PROGRESS_AFTER_MS) return;
+    const edge = stage !== progress.stage || fraction === 0 || fraction === 1;
+    if (!edge && now - progress.posted < PROGRESS_EVERY_MS) return;
+    progress.stage = stage;
+    progress.posted = now;
+    this.reportProgress(stage, STAGE_MESSAGES[stage] ?? stage, fraction);
   }
 
   loadFile({ bytes, name }) {

@@ -103,7 +103,7 @@ export class SolverClient extends EventEmitter {
   #receive(message) {
     if (message.kind === PROGRESS) {
       // A restart's seed (a reload of the mesh) is announced as the restart.
-      if (!this.#seeding) this.emit('progress', { stage: message.stage, message: message.message });
+      if (!this.#seeding) this.emit('progress', { stage: message.stage, message: message.message, fraction: message.fraction });
       return;
     }
     // The next preview goes out before this one's shape is shown: the worker

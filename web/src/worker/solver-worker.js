@@ -7,8 +7,8 @@ import { SessionHost } from './session-host.js';
 
 let host = null;
 
-function reportProgress(stage, message) {
-  self.postMessage({ kind: PROGRESS, stage, message });
+function reportProgress(stage, message, fraction) {
+  self.postMessage({ kind: PROGRESS, stage, message, fraction });
 }
 
 async function initialize({ wasmUrl }) {

@@ -1,0 +1,66 @@
+// Progress of the long calls (Session.setProgress): each stage in order, its
+// fractions rising to 1, reported from inside the call.
+import assert from 'node:assert/strict';
+import { before, test } from 'node:test';
+
+import { loadAnisoform, meshBytes } from '../node-support.mjs';
+
+let wasm;
+let AnisoformError;
+before(async () => {
+  ({ wasm, AnisoformError } = await loadAnisoform());
+});
+
+const fractionsOf = (calls, stage) => calls.filter(([name]) => name === stage).map(([, fraction]) => fraction);
+
+function assertRisingToOne(fractions, what) {
+  assert.ok(fractions.length >= 2, `${what}: ${JSON.stringify(fractions)}`);
+  for (let i = 1; i < fractions.length; i++) assert.ok(fractions[i] >= fractions[i - 1], `${what} fell: ${fractions}`);
+  assert.ok(fractions.every((fraction) => fraction >= 0 && fraction <= 1), `${what}: ${fractions}`);
+  assert.equal(fractions.at(-1), 1, what);
+}
+
+test('a load, a committed AnARAP stretch and a flatten report their stages with fractions rising to 1', () => {
+  const session = new wasm.Session();
+  try {
+    const calls = [];
+    session.setProgress((stage, fraction) => calls.push([stage, fraction]));
+
+    session.loadMesh(meshBytes('closed/armadillo.off'), 'armadillo.off');
+    assert.deepEqual(calls.map(([stage]) => stage), ['load', 'load', 'load', 'load']);
+    assert.deepEqual(fractionsOf(calls, 'load'), [0, 0.05, 0.35, 1]);
+
+    calls.length = 0;
+    const ys = session.positions().filter((_, i) => i % 3 === 1);
+    const cut = Math.max(...ys) - (Math.max(...ys) - Math.min(...ys)) / 3;
+    assert.ok(session.select({ box: { min: [-1e9, cut, -1e9], max: [1e9, 1e9, 1e9] } }) > 1000);
+    const stretch = { method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: 1.2 }, maxIterations: 8, tolerance: 0 };
+    const result = session.deform(stretch);
+    // The factorization first (0 then 1), then one report per iteration (k of 8) and 1 at the end.
+    assert.deepEqual(calls.slice(0, 2), [['factorize', 0], ['factorize', 1]]);
+    const solve = fractionsOf(calls, 'solve');
+    assert.equal(result.iterations, 8);
+    assert.deepEqual(solve, [1, 2, 3, 4, 5, 6, 7, 8].map((k) => k / 8).concat([1]));
+
+    // The same rest pose and pins again: no new factorization.
+    calls.length = 0;
+    session.deform({ ...stretch, maxIterations: 3 });
+    session.commit();
+    assert.deepEqual(fractionsOf(calls, 'factorize'), []);
+    assertRisingToOne(fractionsOf(calls, 'solve'), 'second solve');
+
+    calls.length = 0;
+    session.loadMesh(meshBytes('open/hemisphere.obj'), 'hemisphere.obj');
+    calls.length = 0;
+    session.flatten({ compress: [0.8, 1] });
+    assertRisingToOne(fractionsOf(calls, 'flatten'), 'flatten');
+
+    calls.length = 0;
+    session.setProgress(null);
+    session.flatten({ compress: [0.9, 1] });
+    assert.deepEqual(calls, []);
+    assert.throws(() => session.setProgress('not a function'), (error) => error instanceof AnisoformError && error.code === 'bad-parameter');
+  } finally {
+    session.delete();
+  }
+});
