@@ -64,10 +64,10 @@ export function createModeller(container, options = {}) {
   viewer.setBoundsSource(() => editor.document?.bounds() ?? null);
   editor.attachView({ cameraState: () => viewer.cameraState(), pick: (x, y) => picker.pick(x, y) });
 
+  // The normals and the picking BVH come from the worker (worker/mesh-display.js).
   editor.on('mesh', (loaded) => {
-    meshView.setMesh(loaded.positions, loaded.triangles);
-    editor.emit('progress', { stage: 'parse', message: 'Building the picking structure' });
-    picker.rebuild();
+    meshView.setMesh(loaded.positions, loaded.triangles, loaded.display.normals);
+    picker.attach(loaded.display.bvh);
     viewer.frame({ defaultDirection: true });
   });
   editor.on('positions', ({ positions, live }) => {

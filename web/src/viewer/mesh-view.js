@@ -64,7 +64,8 @@ export class MeshView {
     canvas.wireframe = String(this.wireframeMaterial.visible && this.wireframe !== null);
   }
 
-  setMesh(positions, triangles) {
+  /** normals: of `positions`, computed by the solver worker (worker/mesh-display.js). */
+  setMesh(positions, triangles, normals) {
     if (this.mesh) {
       this.viewer.scene.remove(this.mesh, this.wireframe);
       this.geometry.dispose();
@@ -75,8 +76,7 @@ export class MeshView {
     geometry.setIndex(new BufferAttribute(new Uint32Array(triangles), 1));
     geometry.setAttribute('selectionWeight', dynamic(new BufferAttribute(new Float32Array(vertexCount), 1)));
     geometry.setAttribute('distortion', dynamic(new BufferAttribute(new Float32Array(vertexCount), 1)));
-    geometry.computeVertexNormals();
-    geometry.getAttribute('normal').setUsage(DynamicDrawUsage);
+    geometry.setAttribute('normal', dynamic(new BufferAttribute(new Float32Array(normals), 3)));
     geometry.computeBoundingSphere();
     this.geometry = geometry;
     this.mesh = new Mesh(geometry, this.material);
