@@ -114,9 +114,11 @@ export function createModeller(container, options = {}) {
     previousTool = settings.values.tool;
   });
 
-  // Ready means drawn: wait for the frame that shows the mesh.
+  // Ready means drawn: wait for the frame that shows the mesh (a big one's
+  // buffers reach the GPU over a few frames first: viewer/staged-upload.js).
   async function drawn() {
     performance.mark('anisoform:mesh-loaded');
+    await meshView.shown;
     await new Promise((resolve) => {
       const off = viewer.on('frame', () => {
         off();

@@ -63,7 +63,7 @@ export class SessionHost {
     const result = { info, positions, triangles, exact, hash };
     const transfer = [positions.buffer, triangles.buffer, exact.buffer];
     if (display) {
-      this.reportProgress('parse', 'Preparing the mesh for display and picking');
+      this.reportProgress('parse', 'Building the picking structure');
       const { normals, bvh, transfer: displayTransfer } = meshDisplay(positions, triangles);
       Object.assign(result, { normals, bvh });
       transfer.push(...displayTransfer);
