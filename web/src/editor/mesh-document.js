@@ -14,7 +14,8 @@ export class MeshDocument {
    * @param {{name: string, positions: Float32Array, triangles: Uint32Array, info: object,
    *   display: {normals: Float32Array, bvh: object}}} mesh
    *   display: the worker's vertex normals and picking BVH of the mesh as
-   *   loaded (worker/mesh-display.js), for the view to draw and pick it
+   *   loaded (worker/mesh-display.js), for the view to draw and pick it; the
+   *   view takes their arrays over (it writes them as the shape changes)
    */
   constructor({ name, positions, triangles, info, display }) {
     this.name = name;

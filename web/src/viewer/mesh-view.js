@@ -1,8 +1,8 @@
 // The edited mesh on screen: a BufferGeometry with positions, normals,
 // selection weights and distortion values, drawn with the surface material.
-// The geometry keeps its own copies of the arrays it writes (the editor's
-// arrays are immutable and shared with the undo history); the index, never
-// written, is the editor's triangles. A big mesh is drawn once its buffers
+// The geometry keeps its own copies of the positions (the editor's arrays
+// are immutable and shared with the undo history); the index, never written,
+// is the editor's triangles, and the normals are the worker's, taken over. A big mesh is drawn once its buffers
 // are on the GPU (staged-upload.js). Flat shading and a wireframe
 // overlay are display options; the canvas's data-flat-shading and
 // data-wireframe attributes say what the materials draw (for tests and
@@ -72,7 +72,7 @@ export class MeshView {
     canvas.wireframe = String(this.wireframeMaterial.visible && this.wireframe !== null);
   }
 
-  /** normals: of `positions`, computed by the solver worker (worker/mesh-display.js). */
+  /** normals: of `positions`, computed by the solver worker (worker/mesh-display.js); the view takes the array over. */
   setMesh(positions, triangles, normals) {
     this.#upload.cancel();
     if (this.mesh) {
@@ -85,7 +85,7 @@ export class MeshView {
     geometry.setIndex(new BufferAttribute(triangles, 1));
     geometry.setAttribute('selectionWeight', dynamic(new BufferAttribute(new Float32Array(vertexCount), 1)));
     geometry.setAttribute('distortion', dynamic(new BufferAttribute(new Float32Array(vertexCount), 1)));
-    geometry.setAttribute('normal', dynamic(new BufferAttribute(new Float32Array(normals), 3)));
+    geometry.setAttribute('normal', dynamic(new BufferAttribute(normals, 3)));
     // No bounding sphere: the renderer computes it when it first draws the
     // mesh (as after every new shape), not in this task (36 ms at 800k vertices).
     this.geometry = geometry;
