@@ -1,12 +1,12 @@
 // The edited mesh on screen: a BufferGeometry with positions, normals,
 // selection weights and distortion values, drawn with the surface material.
-// The geometry keeps its own copies of the positions (the editor's arrays
-// are immutable and shared with the undo history); the index, never written,
-// is the editor's triangles, and the normals are the worker's, taken over. A big mesh is drawn once its buffers
-// are on the GPU (staged-upload.js). Flat shading and a wireframe
-// overlay are display options; the canvas's data-flat-shading and
-// data-wireframe attributes say what the materials draw (for tests and
-// assistive tools).
+// The geometry keeps its own copy of the positions (the editor's arrays are
+// immutable and shared with the undo history); the index, never written, is
+// the editor's triangles, and the normals are the worker's, taken over. A big
+// mesh is drawn once its buffers are on the GPU (staged-upload.js). Flat
+// shading and a wireframe overlay are display options; the canvas's
+// data-flat-shading and data-wireframe attributes say what the materials
+// draw (for tests and assistive tools).
 import { BufferAttribute, BufferGeometry, DynamicDrawUsage, Mesh, MeshBasicMaterial } from 'three';
 import { createSurfaceMaterial } from './surface-material.js';
 import { writeVertexNormals } from './vertex-normals.js';

@@ -4,12 +4,12 @@
 // and 2 s for an 800k-vertex scan (the BVH 1.3 s, three's normals 0.5 s),
 // a frozen tab right when the mesh appears.
 //
-// The BVH is built exactly as the page used to build it (three-mesh-bvh's
-// defaults, indirect), over the very arrays the page draws: the float32
-// positions and the triangles of the MeshPayload. Indirect mode leaves the
-// index as it is (its own buffer holds the triangle order), so the page
-// attaches the tree to its copy of those arrays (MeshBVH.deserialize) and
-// every pick is the one a BVH built on the page would give.
+// The BVH is built with three-mesh-bvh's defaults, indirect, over the very
+// arrays the page draws: the float32 positions and the triangles of the
+// MeshPayload. Indirect mode leaves the index as it is (its own buffer holds
+// the triangle order), so the page attaches the tree to its copy of those
+// arrays (MeshBVH.deserialize) and every pick is the one a BVH built on the
+// page would give.
 import { BufferAttribute, BufferGeometry } from 'three';
 import { MeshBVH } from 'three-mesh-bvh';
 import { writeVertexNormals } from '../viewer/vertex-normals.js';
