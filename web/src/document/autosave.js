@@ -1,8 +1,9 @@
 // Autosave of the edit document and its base mesh's bytes in IndexedDB, so a
 // reload restores the work. One record: {document, meshName, meshBytes,
-// savedAt}. A failed save (quota, private mode) rejects with code 'storage'
-// and a message that says the work in the page is kept; it never touches the
-// in-memory document.
+// savedAt}; meshBytes is a Blob of the file (older records hold an
+// ArrayBuffer: editor.load reads both). A failed save (quota, private mode)
+// rejects with code 'storage' and a message that says the work in the page
+// is kept; it never touches the in-memory document.
 const DATABASE = 'anisoform';
 const STORE = 'autosave';
 const KEY = 'current';

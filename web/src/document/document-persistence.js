@@ -14,7 +14,7 @@ export class DocumentPersistence {
   #stack;
   #historyEntry;
   #autosave = new Autosave();
-  /** The base mesh as loaded: {name, bytes}. */
+  /** The base mesh as loaded: {name, bytes: a Blob of the file}. */
   mesh = null;
   /** True while the autosaved mesh is being loaded (its load must not replace the autosave). */
   restoring = false;

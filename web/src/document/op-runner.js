@@ -77,7 +77,8 @@ export class OpRunner {
    */
   async seed(post) {
     const { triangles } = this.#editor.requireDocument();
-    await post(Request.setMesh, { positions: this.cache.get(0).exact.slice(), triangles: triangles.slice(), weld: false });
+    // The page draws and picks this mesh already: no normals or BVH back (display: false).
+    await post(Request.setMesh, { positions: this.cache.get(0).exact.slice(), triangles: triangles.slice(), weld: false, display: false });
     const n = this.shown;
     const from = this.cache.nearest(n);
     if (from > 0) await post(Request.setPositions, { positions: this.cache.get(from).exact.slice() });

@@ -164,11 +164,11 @@ export class Editor extends EventEmitter {
   // selection, the history, the arrows and whatever else bindToMesh named)
   // is dropped before the new mesh is announced.
   #adopt(payload, name) {
-    const { info, positions, triangles } = payload;
+    const { info, positions, triangles, normals, bvh } = payload;
     this.#gestures.abandon();
     this.#patterns.drop();
     for (const reset of this.#meshBound) reset();
-    this.document = new MeshDocument({ name, positions, triangles, info });
+    this.document = new MeshDocument({ name, positions, triangles, info, display: { normals, bvh } });
     this.history.clear();
     this.ops.adoptMesh(payload, name);
     this.emit('mesh', this.document);

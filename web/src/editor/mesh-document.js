@@ -11,14 +11,19 @@ export class MeshDocument {
   #adjacency = null;
 
   /**
-   * @param {{name: string, positions: Float32Array, triangles: Uint32Array, info: object}} mesh
+   * @param {{name: string, positions: Float32Array, triangles: Uint32Array, info: object,
+   *   display: {normals: Float32Array, bvh: object}}} mesh
+   *   display: the worker's vertex normals and picking BVH of the mesh as
+   *   loaded (worker/mesh-display.js), for the view to draw and pick it; the
+   *   view takes their arrays over (it writes them as the shape changes)
    */
-  constructor({ name, positions, triangles, info }) {
+  constructor({ name, positions, triangles, info, display }) {
     this.name = name;
     this.positions = positions;
     this.triangles = triangles;
     this.loadedPositions = positions;
     this.info = info;
+    this.display = display;
     this.selection = new Float32Array(positions.length / 3);
     this.selectionCount = 0;
     // Bumped on every selection change, so the solver client knows when to resend.

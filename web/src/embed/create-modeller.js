@@ -64,10 +64,10 @@ export function createModeller(container, options = {}) {
   viewer.setBoundsSource(() => editor.document?.bounds() ?? null);
   editor.attachView({ cameraState: () => viewer.cameraState(), pick: (x, y) => picker.pick(x, y) });
 
+  // The normals and the picking BVH come from the worker (worker/mesh-display.js).
   editor.on('mesh', (loaded) => {
-    meshView.setMesh(loaded.positions, loaded.triangles);
-    editor.emit('progress', { stage: 'parse', message: 'Building the picking structure' });
-    picker.rebuild();
+    meshView.setMesh(loaded.positions, loaded.triangles, loaded.display.normals);
+    picker.attach(loaded.display.bvh);
     viewer.frame({ defaultDirection: true });
   });
   editor.on('positions', ({ positions, live }) => {
@@ -114,9 +114,11 @@ export function createModeller(container, options = {}) {
     previousTool = settings.values.tool;
   });
 
-  // Ready means drawn: wait for the frame that shows the mesh.
+  // Ready means drawn: wait for the frame that shows the mesh (a big one's
+  // buffers reach the GPU over a few frames first: viewer/staged-upload.js).
   async function drawn() {
     performance.mark('anisoform:mesh-loaded');
+    await meshView.shown;
     await new Promise((resolve) => {
       const off = viewer.on('frame', () => {
         off();

@@ -1,8 +1,9 @@
 // Picking on the mesh with a three-mesh-bvh bounding volume hierarchy: the
 // first surface hit under a canvas pixel, and the vertices inside a sphere
-// (the brush). The BVH is built once per mesh ('indirect', so the triangle
-// order of the geometry, and so of exports, stays as loaded) and refitted
-// lazily: edits only mark it stale, the next pick refits it.
+// (the brush). The BVH is built once per mesh, in the solver worker
+// (worker/mesh-display.js: 'indirect', so the triangle order of the
+// geometry, and so of exports, stays as loaded), and refitted lazily: edits
+// only mark it stale, the next pick refits it.
 import { DoubleSide, Raycaster, Sphere, Vector2, Vector3 } from 'three';
 import { INTERSECTED, MeshBVH, NOT_INTERSECTED } from 'three-mesh-bvh';
 
@@ -20,8 +21,9 @@ export class Picker {
     this.meshView = meshView;
   }
 
-  rebuild() {
-    this.bvh = new MeshBVH(this.meshView.geometry, { indirect: true });
+  /** The mesh view's new geometry, with the worker's BVH of it (MeshPayload.bvh, serialized). */
+  attach(serializedBvh) {
+    this.bvh = MeshBVH.deserialize(serializedBvh, this.meshView.geometry, { setIndex: false });
     this.#stale = false;
   }
 

@@ -1,21 +1,28 @@
 // The edited mesh on screen: a BufferGeometry with positions, normals,
 // selection weights and distortion values, drawn with the surface material.
-// The geometry keeps its own copies of the arrays (the editor's arrays are
-// immutable and shared with the undo history). Flat shading and a wireframe
-// overlay are display options; the canvas's data-flat-shading and
-// data-wireframe attributes say what the materials draw (for tests and
-// assistive tools).
+// The geometry keeps its own copy of the positions (the editor's arrays are
+// immutable and shared with the undo history); the index, never written, is
+// the editor's triangles, and the normals are the worker's, taken over. A big
+// mesh is drawn once its buffers are on the GPU (staged-upload.js). Flat
+// shading and a wireframe overlay are display options; the canvas's
+// data-flat-shading and data-wireframe attributes say what the materials
+// draw (for tests and assistive tools).
 import { BufferAttribute, BufferGeometry, DynamicDrawUsage, Mesh, MeshBasicMaterial } from 'three';
 import { createSurfaceMaterial } from './surface-material.js';
 import { writeVertexNormals } from './vertex-normals.js';
 import { InteractionProxy } from './interaction-proxy.js';
+import { StagedUpload } from './staged-upload.js';
 
 export class MeshView {
   /** @type {BufferGeometry|null} */
   geometry = null;
   mesh = null;
+  /** Resolves when the last mesh given to setMesh is drawn (its buffers uploaded: staged-upload.js). */
+  shown = Promise.resolve();
   /** Positions changed since the normals were computed (a proxy frame skips them). */
   #normalsStale = false;
+  #upload;
+  #resolveShown = null;
 
   /** simplify: InteractionProxy's (the solver worker's simplification of the loaded mesh). */
   constructor(viewer, { simplify = null } = {}) {
@@ -29,6 +36,7 @@ export class MeshView {
     this.wireframeMaterial = new MeshBasicMaterial({ color: 0x22262c, wireframe: true, transparent: true, opacity: 0.45 });
     this.wireframeMaterial.visible = false;
     this.wireframe = null;
+    this.#upload = new StagedUpload(viewer, this.material);
     this.proxy = new InteractionProxy(viewer, this.material, { simplify, beforeFull: () => this.#refreshNormals() });
     // An orbit on a CPU rasteriser draws the light mesh too (interaction-proxy.js).
     let orbiting = false;
@@ -64,7 +72,9 @@ export class MeshView {
     canvas.wireframe = String(this.wireframeMaterial.visible && this.wireframe !== null);
   }
 
-  setMesh(positions, triangles) {
+  /** normals: of `positions`, computed by the solver worker (worker/mesh-display.js); the view takes the array over. */
+  setMesh(positions, triangles, normals) {
+    this.#upload.cancel();
     if (this.mesh) {
       this.viewer.scene.remove(this.mesh, this.wireframe);
       this.geometry.dispose();
@@ -72,12 +82,12 @@ export class MeshView {
     const vertexCount = positions.length / 3;
     const geometry = new BufferGeometry();
     geometry.setAttribute('position', dynamic(new BufferAttribute(new Float32Array(positions), 3)));
-    geometry.setIndex(new BufferAttribute(new Uint32Array(triangles), 1));
+    geometry.setIndex(new BufferAttribute(triangles, 1));
     geometry.setAttribute('selectionWeight', dynamic(new BufferAttribute(new Float32Array(vertexCount), 1)));
     geometry.setAttribute('distortion', dynamic(new BufferAttribute(new Float32Array(vertexCount), 1)));
-    geometry.computeVertexNormals();
-    geometry.getAttribute('normal').setUsage(DynamicDrawUsage);
-    geometry.computeBoundingSphere();
+    geometry.setAttribute('normal', dynamic(new BufferAttribute(normals, 3)));
+    // No bounding sphere: the renderer computes it when it first draws the
+    // mesh (as after every new shape), not in this task (36 ms at 800k vertices).
     this.geometry = geometry;
     this.mesh = new Mesh(geometry, this.material);
     this.wireframe = new Mesh(geometry, this.wireframeMaterial);
@@ -86,7 +96,17 @@ export class MeshView {
     this.mesh.frustumCulled = false;
     this.wireframe.frustumCulled = false;
     this.wireframe.renderOrder = 1;
-    this.viewer.scene.add(this.mesh, this.wireframe);
+    const { mesh, wireframe } = this;
+    // A mesh replaced before it was drawn will not be: nothing waits for it.
+    this.#resolveShown?.();
+    this.shown = new Promise((resolve) => {
+      this.#resolveShown = resolve;
+      this.#upload.upload(geometry, () => {
+        this.viewer.scene.add(mesh, wireframe);
+        this.viewer.requestRender();
+        resolve();
+      });
+    });
     this.proxy.setMesh(geometry, this.mesh, this.wireframe);
     this.#syncDataset();
     this.viewer.requestRender();

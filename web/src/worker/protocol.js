@@ -13,7 +13,10 @@ export const Request = Object.freeze({
   init: 'init',
   /** {bytes: ArrayBuffer, name} -> MeshPayload: core readers (OBJ, OFF, PLY, STL). */
   loadFile: 'loadFile',
-  /** {positions: Float32Array, triangles: Uint32Array, weld} -> MeshPayload (GLB). */
+  /**
+   * {positions: Float32Array, triangles: Uint32Array, weld, display = true} -> MeshPayload (GLB; a
+   * restart's seed, with display false: no normals or bvh, the page shows that mesh already).
+   */
   setMesh: 'setMesh',
   /** {} -> {ms}: factorize ahead of the first edit, so the first drag is live. */
   prepare: 'prepare',
@@ -90,6 +93,9 @@ export const PROGRESS = 'progress';
  * @property {Uint32Array} triangles    three vertex indices per triangle
  * @property {Float64Array} exact       the session's positions as doubles (the edit document's state 0)
  * @property {string} hash              Session.meshHash(): the edit document's mesh.hash
+ * @property {Float32Array} [normals]   vertex normals of `positions` (worker/mesh-display.js)
+ * @property {object} [bvh]             the picking BVH over `positions` and `triangles`:
+ *                                      MeshBVH.serialize's {version, roots, indirectBuffer}
  */
 
 /**

@@ -3,6 +3,7 @@
 // detaches when WASM memory grows, and a copy can be transferred to the page.
 import { Request } from './protocol.js';
 import { simplifiedMesh } from './display-proxy.js';
+import { meshDisplay } from './mesh-display.js';
 
 const PROGRESS_AFTER_MS = 150;
 const PROGRESS_EVERY_MS = 100;
@@ -73,21 +74,31 @@ export class SessionHost {
   loadFile({ bytes, name }) {
     this.reportProgress('parse', `Reading ${name}`);
     const info = this.session.loadMesh(new Uint8Array(bytes), name);
-    return this.meshPayload(info);
+    return this.meshPayload(info, true);
   }
 
-  setMesh({ positions, triangles, weld }) {
+  setMesh({ positions, triangles, weld, display = true }) {
     this.reportProgress('parse', 'Checking the mesh');
     const info = this.session.setMesh(positions, triangles, { weld });
-    return this.meshPayload(info);
+    return this.meshPayload(info, display);
   }
 
-  meshPayload(info) {
+  // display: the mesh will be shown, so its normals and picking BVH come
+  // along (mesh-display.js); a restart's seed puts back a mesh already shown.
+  meshPayload(info, display) {
     const positions = this.session.positions().slice();
     const triangles = this.session.triangles().slice();
     const exact = this.session.positionsExact();
     const hash = this.session.meshHash();
-    return { result: { info, positions, triangles, exact, hash }, transfer: [positions.buffer, triangles.buffer, exact.buffer] };
+    const result = { info, positions, triangles, exact, hash };
+    const transfer = [positions.buffer, triangles.buffer, exact.buffer];
+    if (display) {
+      this.reportProgress('parse', 'Building the picking structure');
+      const { normals, bvh, transfer: displayTransfer } = meshDisplay(positions, triangles);
+      Object.assign(result, { normals, bvh });
+      transfer.push(...displayTransfer);
+    }
+    return { result, transfer };
   }
 
   // The edit document's ops [from, to) through the core's replay; the result
