@@ -138,3 +138,18 @@ test('a bad document names the op or field and leaves the session as it was', as
     session.delete();
   }
 });
+
+test("a replay's factorizations and iterations are the session's progress (its scratch session's load is not)", () => {
+  const session = sessionWith(wasm, MESH);
+  try {
+    const calls = [];
+    session.setProgress((stage, fraction) => calls.push([stage, fraction]));
+    session.replay(documentOfSpool);
+    assert.deepEqual([...new Set(calls.map(([stage]) => stage))].sort(), ['factorize', 'solve']);
+    // Each of the three ops ends its solve at 1.
+    assert.ok(calls.filter(([stage, fraction]) => stage === 'solve' && fraction === 1).length >= 3, JSON.stringify(calls));
+    assert.deepEqual(calls.at(-1), ['solve', 1]);
+  } finally {
+    session.delete();
+  }
+});

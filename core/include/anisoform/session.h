@@ -126,6 +126,7 @@ class Session {
   // Long calls report how far they have got: loading a mesh, factorizing,
   // a deform's iterations, a flattening's (progress.h). None by default.
   void set_progress(ProgressFn progress);
+  const ProgressFn& progress() const { return progress_; }
 
   bool has_mesh() const { return deformer_ != nullptr; }
   // These throw Error(BadParameter) "no mesh is loaded" before the first mesh.

@@ -105,6 +105,8 @@ ReplaySummary replay_document(Session& session, const EditDocument& document, co
   Session scratch;
   scratch.set_mesh(xyz_of(session.loaded_positions()), session.triangles_u32(), /*weld=*/false);
   if (range.from > 0) scratch.set_positions(xyz_of(session.rest().V));
+  // The ops' factorizations and iterations are the session's progress.
+  scratch.set_progress(session.progress());
   ReplaySummary summary;
   for (std::size_t i = range.from; i < to; ++i) {
     const DocumentOp& op = document.ops[i];

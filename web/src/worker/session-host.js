@@ -49,8 +49,9 @@ export class SessionHost {
     const handler = this.handlers[kind];
     if (!handler) throw new Error(`unknown request '${kind}'`);
     // Progress is shown for the calls a user waits for, not for the live
-    // previews of a drag or a slider.
-    this.#progress = { started: performance.now(), posted: -Infinity, stage: null, shown: kind !== Request.deform || !payload.op?.preview };
+    // previews of a drag (a deform) or of a slider on an earlier op (a replay).
+    const livePreview = (kind === Request.deform && payload.op?.preview) || (kind === Request.replay && payload.preview);
+    this.#progress = { started: performance.now(), posted: -Infinity, stage: null, shown: !livePreview };
     return handler(payload);
   }
 
