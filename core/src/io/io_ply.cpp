@@ -120,7 +120,9 @@ PlyHeader parse_header(const char* data, std::size_t size) {
     }
   }
   if (!has_format) fail_file("the PLY header has no 'format' line");
-  header.body_offset = static_cast<std::size_t>(lines.rest().data() - text.data());
+  // By length, not by pointer: when the header is the whole file, the rest
+  // is an empty view whose data() may be null (fuzz/regressions/ply_header_only_no_newline).
+  header.body_offset = text.size() - lines.rest().size();
   return header;
 }
 
