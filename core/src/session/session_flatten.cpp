@@ -114,12 +114,12 @@ SessionFlattenResult Session::flatten(const SessionFlatten& given) {
   if (progress_) {
     const int cap = options.solver.max_iterations;
     options.solver.progress = [this, cap](int iteration, double) {
-      progress_(ProgressStage::Flatten, std::min(1.0, static_cast<double>(iteration) / cap));
+      report(ProgressStage::Flatten, std::min(1.0, static_cast<double>(iteration) / cap));
       return true;
     };
   }
   FlattenResult result = flattener.flatten(options);
-  if (progress_) progress_(ProgressStage::Flatten, 1.0);
+  report(ProgressStage::Flatten, 1.0);
   SessionFlattenResult out =
       reindex(flattener.patch(), flattener.charts(), result, deformer_->rest().num_vertices());
 
