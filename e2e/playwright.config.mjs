@@ -3,12 +3,13 @@
 // Chromium: no browser is downloaded.
 // Run: npm run build --prefix web && npx --prefix web playwright test -c e2e/playwright.config.mjs
 import { defineConfig } from '../web/node_modules/@playwright/test/index.mjs';
+import { rendererArgs } from './renderer.mjs';
 import { origin, port } from './server.mjs';
 
 export default defineConfig({
   testDir: '.',
   testMatch: '*.spec.mjs',
-  // SwiftShader renders on the CPU; two cores are shared by the browser, the
+  // WebGL renders on the CPU; two cores are shared by the browser, the
   // page's worker and the server, so tests run one at a time.
   workers: 1,
   fullyParallel: false,
@@ -21,11 +22,12 @@ export default defineConfig({
     viewport: { width: 900, height: 600 },
     launchOptions: {
       executablePath: process.env.ANISO_CHROMIUM ?? '/usr/bin/chromium',
-      // Composite on the (SwiftShader) GPU as a desktop browser does. Without
-      // these, headless Chromium composites in software and reads every WebGL
-      // frame back on the page's main thread: 0.6–0.9 s per frame of the
-      // 400k-triangle koala, which would measure the missing GPU, not the page.
-      args: ['--use-angle=swiftshader', '--ignore-gpu-blocklist'],
+      // Composite on the (CPU-rasterised) GPU as a desktop browser does
+      // (renderer.mjs says which rasteriser, and why). Without these, headless
+      // Chromium composites in software and reads every WebGL frame back on
+      // the page's main thread: 0.6–0.9 s per frame of the 400k-triangle
+      // koala, which would measure the missing GPU, not the page.
+      args: rendererArgs,
     },
     headless: true,
     trace: 'off',

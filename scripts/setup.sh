@@ -13,6 +13,7 @@ APT_PACKAGES=(
   libcgal-dev                                    # benchmark peer only (GPL, never linked into the library)
   emscripten                                     # the WASM build (3.1.6, prebuilt frozen cache)
   chromium                                       # Playwright drives Debian's browser; no browser download
+  libegl1 libegl-mesa0 libgl1-mesa-dri          # Mesa's llvmpipe: the e2e browser's WebGL (e2e/renderer.mjs)
   python3 gzip
 )
 if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
