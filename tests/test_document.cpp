@@ -173,6 +173,31 @@ TEST_CASE("document: replay is deterministic and runs every enabled op", "[docum
     }
     CHECK(positions_bitwise_equal(by_hand.positions(), first));
   }
+  SECTION("committing each op after live previews of it reuses their factorization, with the same bits") {
+    // What the app does: a drag or a slider previews the op on the session
+    // (warm-started, scale steps kept), then the commit replays it.
+    Session live;
+    load_spool(live);
+    int factorized = 0;  // through the progress reports: a replay's scratch work reports there too
+    live.set_progress([&factorized](ProgressStage stage, double fraction) {
+      if (stage == ProgressStage::Factorize && fraction == 0.0) ++factorized;
+    });
+    for (std::size_t i = 0; i < parsed.ops.size(); ++i) {
+      select_op_region(live, parsed, parsed.ops[i]);
+      for (const double amount : {0.5, 0.8, 1.0}) {
+        DeformOp edit = parsed.ops[i].edit;
+        edit.preview = true;
+        edit.request.transform.su = 1.0 + amount * (edit.request.transform.su - 1.0);
+        edit.request.transform.twist_degrees_per_unit *= amount;
+        live.deform(edit);
+      }
+      CHECK(factorized > 0);
+      factorized = 0;
+      replay_document(live, parsed, {i, i + 1});
+      CHECK(factorized == 0);
+    }
+    CHECK(positions_bitwise_equal(live.positions(), first));
+  }
   SECTION("a disabled op is skipped") {
     Json without_last = document;
     without_last["ops"].erase(2);

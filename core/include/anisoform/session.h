@@ -174,11 +174,29 @@ class Session {
   // Factorizations done in this session, over all rest poses and flattenings.
   int factorizations() const;
 
+  // A session on this one's mesh, at its rest pose, that shares its
+  // Deformers (the rest pose's and the previous one's, with their
+  // factorizations) and its adjacency: what a replay runs its ops in, so
+  // that committing an op previewed here neither reads, checks and
+  // factorizes the mesh again nor changes this session if an op fails.
+  // Results do not depend on the sharing: a cold solve starts from the rest
+  // pose and sets every target itself (replay.cpp).
+  std::unique_ptr<Session> fork();
+  // This session's rest pose and positions become the rest pose of `fork`
+  // (a fork of it), taking over its Deformer: the pose a replay ended at,
+  // without building its Laplacian again. Error(BadParameter) for a session
+  // on another mesh.
+  void adopt_rest_of(Session& fork);
+
  private:
   void require_mesh() const;
   void report(ProgressStage stage, double fraction) const;
-  std::unique_ptr<Deformer> new_deformer(Mesh mesh);
+  std::shared_ptr<Deformer> new_deformer(Mesh mesh);
+  // Reports of `deformer` go through this session's progress.
+  void report_through_this(Deformer& deformer);
   void replace_rest(Positions V);
+  // `deformer` (whose rest pose is V) becomes the rest pose's.
+  void install_rest(std::shared_ptr<Deformer> deformer, Positions V);
   // New current positions with their float32 copy, allocated before anything
   // changes (a failed allocation leaves the session as it was); set_current
   // then only moves them in.
@@ -190,13 +208,13 @@ class Session {
   void set_current(CurrentPositions current) noexcept;
   void set_weights(Eigen::VectorXd weights);
 
-  std::unique_ptr<Deformer> deformer_;  // owns the rest pose
+  std::shared_ptr<Deformer> deformer_;  // owns the rest pose (shared with forks)
   // The Deformer of the rest pose before the last change, with its
   // factorizations: going back to exactly that pose (undo, re-parameterising
   // the last op of an edit document) swaps it in instead of refactoring.
-  std::unique_ptr<Deformer> previous_;
+  std::shared_ptr<Deformer> previous_;
   std::unique_ptr<TargetContext> targets_;  // for direction_field(), built lazily per rest pose
-  std::unique_ptr<VertexAdjacency> adjacency_;  // for select(), built lazily per mesh (not per pose)
+  std::shared_ptr<const VertexAdjacency> adjacency_;  // for select(), built lazily per mesh (not per pose)
   std::unique_ptr<SessionFlattenState> flatten_;  // always set; dropped per positions change
   int retired_factorizations_ = 0;      // done by the Deformers of earlier rest poses
   int vertex_limit_ = 0;                // set_vertex_limit

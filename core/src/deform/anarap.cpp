@@ -210,9 +210,38 @@ void AnArapSolver::set_targets(const std::vector<Eigen::Matrix3d>& T) {
   update_target_energy();
 }
 
-void AnArapSolver::keep_scale_step(int amount) {
-  const bool spokes = elements_ == ArapElements::Spokes;
-  scale_step_[amount] = spokes ? Positions(spoke_target_ - spoke_edge_) : Positions(side_target_ - side_edge_);
+void AnArapSolver::set_scale_steps(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight) {
+  // Directly, not through set_targets with unit steps: no 3x3 map or polar
+  // part per side (a slider's first value cost 5x a later one that way).
+  const auto side_step = [&](int s, const Eigen::Vector3d& e, Eigen::Vector3d& along, Eigen::Vector3d& across) {
+    const Eigen::Vector3d a = u.row(s / 3).transpose(), b = v.row(s / 3).transpose();
+    along = (side_weight[s] * a.dot(e)) * a;
+    across = (side_weight[s] * b.dot(e)) * b;
+  };
+  Eigen::Vector3d along, across;
+  if (elements_ == ArapElements::Spokes) {
+    // A spoke's map is the mean of its sides' (set_targets): each side adds
+    // its share (a spoke on no side keeps its edge: steps 0).
+    scale_step_[0].setZero(spoke_edge_.rows(), 3);
+    scale_step_[1].setZero(spoke_edge_.rows(), 3);
+    for (int s = 0; s < 3 * rest_.num_triangles(); ++s) {
+      if (side_weight[s] == 0.0) continue;
+      for (int k = side_spoke_offsets_[s]; k < side_spoke_offsets_[s + 1]; ++k) {
+        const int q = side_spokes_[k];
+        side_step(s, spoke_share_[q] * spoke_edge_.row(q).transpose(), along, across);
+        scale_step_[0].row(q) += along.transpose();
+        scale_step_[1].row(q) += across.transpose();
+      }
+    }
+    return;
+  }
+  scale_step_[0].resize(side_edge_.rows(), 3);
+  scale_step_[1].resize(side_edge_.rows(), 3);
+  for (int s = 0; s < 3 * rest_.num_triangles(); ++s) {
+    side_step(s, side_edge_.row(s).transpose(), along, across);
+    scale_step_[0].row(s) = along.transpose();
+    scale_step_[1].row(s) = across.transpose();
+  }
 }
 
 void AnArapSolver::set_scale_targets(double su, double sv) {

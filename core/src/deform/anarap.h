@@ -61,13 +61,14 @@ class AnArapSolver {
   // current rotations (warm start).
   void set_targets(const std::vector<Eigen::Matrix3d>& T);
   // Scale-only targets (TransformSpec::scales_only, the same amounts on every
-  // side) are affine in the amounts: per spoke (or side)
-  // t = e + (su - 1) U + (sv - 1) V. (The normal's sn moves no edge lying in
-  // the surface; validate_request refuses it.) After set_targets with the
-  // maps of a unit step of amount k (0: su, 1: sv at 2, the other at 1),
-  // keep_scale_step(k) keeps t - e as that amount's step; set_scale_targets
-  // then sets the targets of any su, sv from the two.
-  void keep_scale_step(int amount);
+  // side) are affine in the amounts: a side of weight w in a frame (u, v, n)
+  // maps e to e + w (su - 1) u (u.e) + w (sv - 1) v (v.e) (transforms.h; the
+  // normal's sn moves no edge lying in the surface, validate_request refuses
+  // it), so per spoke (or side) t = e + (su - 1) U + (sv - 1) V.
+  // set_scale_steps keeps U and V, from each triangle's u and v (#F by 3) and
+  // each side's weight (3 #F, side_weights); set_scale_targets then sets the
+  // targets of any su, sv from the two: one pass over the spokes.
+  void set_scale_steps(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight);
   void set_scale_targets(double su, double sv);
   // alpha > 0: coupled rotations (see above); 0: the paper's scheme.
   void set_rotation_coupling(double alpha) { coupling_ = alpha; }
@@ -118,7 +119,7 @@ class AnArapSolver {
   // Spokes and rims: each triangle side's rest edge (3t + k, opposite corner
   // k, from corner k+1 to k+2) and its targets T e and P e.
   Positions side_edge_, side_target_, side_polar_;
-  Positions scale_step_[2];  // keep_scale_step: U, V in the layout of the targets
+  Positions scale_step_[2];  // set_scale_steps: U, V in the layout of the targets
   // sum w |t|^2 per cell: depends on the targets only, computed once per target set.
   Eigen::VectorXd target_energy_;
   std::vector<Eigen::Quaterniond> rotation_;

@@ -324,12 +324,7 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
                            ws.scale_steps->weights.size() == w.size() && ws.scale_steps->weights == w &&
                            same_frames(ws.scale_steps->frames, frames.frames);
         if (!valid) {
-          for (int amount = 0; amount < 2; ++amount) {
-            TransformSpec step;
-            (amount == 0 ? step.su : step.sv) = 2.0;
-            iterations->set_targets(side_targets(unit_, frames, step, w).T);
-            iterations->keep_scale_step(amount);
-          }
+          iterations->set_scale_steps(frames.frames.u, frames.frames.v, side_weights(unit_, w));
           ws.scale_steps = Workspace::ScaleSteps{request.elements, std::move(frames.frames), w};
         }
         iterations->set_scale_targets(request.transform.su, request.transform.sv);

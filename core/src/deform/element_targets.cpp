@@ -235,13 +235,20 @@ ElementTargets side_targets(const Mesh& mesh, const SideFrames& frames, const Tr
     oriented_frame(frames.frames, t, orientation, u, v, normal);
     for (int k = 0; k < 3; ++k) {
       const int a = mesh.F(t, (k + 1) % 3), b = mesh.F(t, (k + 2) % 3);
-      const double w = 0.5 * (weights[a] + weights[b]);
+      const double w = side_weight(mesh, weights, t, k);
       const Eigen::Vector3d midpoint = 0.5 * (mesh.V.row(a) + mesh.V.row(b)).transpose();
       Amounts amounts{spec.su, spec.sv};
       if (su.size() > 0) amounts = {0.5 * (su[a] + su[b]), 0.5 * (sv[a] + sv[b])};
       out.T[3 * static_cast<std::size_t>(t) + k] = element_transform(spec, u, v, normal, w, midpoint, amounts);
     }
   }
+  return out;
+}
+
+Eigen::VectorXd side_weights(const Mesh& mesh, const Eigen::VectorXd& weights) {
+  Eigen::VectorXd out(3 * mesh.num_triangles());
+  for (int t = 0; t < mesh.num_triangles(); ++t)
+    for (int k = 0; k < 3; ++k) out[3 * t + k] = side_weight(mesh, weights, t, k);
   return out;
 }
 

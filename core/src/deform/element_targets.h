@@ -79,4 +79,12 @@ SideFrames side_frames(TargetContext& context, const DirectionSource& source);
 ElementTargets side_targets(const Mesh& rest, const SideFrames& frames, const TransformSpec& spec,
                             const Eigen::VectorXd& weights);
 
+// A side's weight (side_targets): the mean of its two vertices' weights.
+// Side 3t + k is opposite corner k of triangle t.
+inline double side_weight(const Mesh& mesh, const Eigen::VectorXd& weights, int t, int k) {
+  return 0.5 * (weights[mesh.F(t, (k + 1) % 3)] + weights[mesh.F(t, (k + 2) % 3)]);
+}
+// Every side's weight (3 #F).
+Eigen::VectorXd side_weights(const Mesh& mesh, const Eigen::VectorXd& weights);
+
 }  // namespace aniso

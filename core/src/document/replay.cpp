@@ -101,12 +101,13 @@ ReplaySummary replay_document(Session& session, const EditDocument& document, co
     fail(ErrorCode::BadParameter, "replay: from " + std::to_string(range.from) + " is beyond the document's " +
                                       std::to_string(document.ops.size()) + " ops");
   }
-  // A scratch session, so that a failing op leaves `session` as it was.
-  Session scratch;
-  scratch.set_mesh(xyz_of(session.loaded_positions()), session.triangles_u32(), /*weld=*/false);
-  if (range.from > 0) scratch.set_positions(xyz_of(session.rest().V));
-  // The ops' factorizations and iterations are the session's progress.
-  scratch.set_progress(session.progress());
+  // A fork, so that a failing op leaves `session` as it was; it shares the
+  // session's factorizations, so committing an op that was just previewed
+  // (or undone to) does not factorize again. Its progress is the session's.
+  const std::unique_ptr<Session> fork = session.fork();
+  Session& scratch = *fork;
+  const Positions& loaded = session.loaded_positions();
+  if (range.from == 0 && !(session.rest().V.array() == loaded.array()).all()) scratch.set_positions(xyz_of(loaded));
   ReplaySummary summary;
   for (std::size_t i = range.from; i < to; ++i) {
     const DocumentOp& op = document.ops[i];
@@ -126,9 +127,8 @@ ReplaySummary replay_document(Session& session, const EditDocument& document, co
     });
     ++summary.replayed;
   }
-  const std::vector<double> result = xyz_of(scratch.positions());
   const std::vector<float> cleared(static_cast<std::size_t>(scratch.rest().num_vertices()), 0.0f);
-  session.set_positions(result);
+  session.adopt_rest_of(scratch);
   session.set_selection(cleared);
   return summary;
 }

@@ -168,7 +168,7 @@ const SessionMeshInfo& Session::adopt_mesh(Mesh mesh, std::vector<std::string> n
     fail(ErrorCode::BadMesh, "cannot edit this mesh: " + info.report.blocking_summary());
   }
   report(ProgressStage::Load, 0.35);
-  std::unique_ptr<Deformer> deformer = new_deformer(std::move(mesh));
+  std::shared_ptr<Deformer> deformer = new_deformer(std::move(mesh));
   // Everything the new mesh needs is allocated before the session changes, so
   // that running out of memory (std::bad_alloc) leaves it as it was, too.
   Positions loaded = deformer->rest().V;
@@ -204,11 +204,15 @@ void Session::report(ProgressStage stage, double fraction) const {
   if (progress_) progress_(stage, fraction);
 }
 
-std::unique_ptr<Deformer> Session::new_deformer(Mesh mesh) {
-  auto deformer = std::make_unique<Deformer>(std::move(mesh));
-  // Through the session, so that a later set_progress reaches it too.
-  deformer->set_progress([this](ProgressStage stage, double fraction) { report(stage, fraction); });
+std::shared_ptr<Deformer> Session::new_deformer(Mesh mesh) {
+  auto deformer = std::make_shared<Deformer>(std::move(mesh));
+  report_through_this(*deformer);
   return deformer;
+}
+
+void Session::report_through_this(Deformer& deformer) {
+  // Through the session, so that a later set_progress reaches it too.
+  deformer.set_progress([this](ProgressStage stage, double fraction) { report(stage, fraction); });
 }
 
 Session::CurrentPositions Session::current_positions(Positions V) {
@@ -233,21 +237,56 @@ void Session::set_weights(Eigen::VectorXd weights) {
 void Session::replace_rest(Positions V) {
   const bool back_to_previous = previous_ && previous_->rest().V.rows() == V.rows() &&
                                 std::memcmp(previous_->rest().V.data(), V.data(), sizeof(double) * static_cast<std::size_t>(V.size())) == 0;
-  std::unique_ptr<Deformer> deformer =
-      back_to_previous ? std::move(previous_) : new_deformer(Mesh{V, deformer_->rest().F});
+  install_rest(back_to_previous ? previous_ : new_deformer(Mesh{V, deformer_->rest().F}), std::move(V));
+}
+
+void Session::install_rest(std::shared_ptr<Deformer> deformer, Positions V) {
   CurrentPositions current = current_positions(std::move(V));
+  // Nothing below throws or allocates.
   targets_.reset();  // it refers to the old rest mesh
-  if (previous_) retired_factorizations_ += previous_->factorizations();
+  if (previous_ && previous_ != deformer) retired_factorizations_ += previous_->factorizations();
   previous_ = std::move(deformer_);
   deformer_ = std::move(deformer);
   set_current(std::move(current));
+}
+
+std::unique_ptr<Session> Session::fork() {
+  require_mesh();
+  auto fork = std::make_unique<Session>();
+  fork->deformer_ = deformer_;
+  fork->previous_ = previous_;
+  if (!adjacency_) adjacency_ = std::make_shared<VertexAdjacency>(vertex_adjacency(rest().F, rest().num_vertices()));
+  fork->adjacency_ = adjacency_;
+  fork->vertex_limit_ = vertex_limit_;
+  fork->vertex_limit_why_ = vertex_limit_why_;
+  fork->progress_ = progress_;
+  fork->loaded_ = loaded_;
+  fork->info_ = info_;
+  fork->triangles_u32_ = triangles_u32_;
+  fork->set_current(current_positions(deformer_->rest().V));
+  fork->set_weights(Eigen::VectorXd::Zero(deformer_->rest().num_vertices()));
+  return fork;
+}
+
+void Session::adopt_rest_of(Session& fork) {
+  require_mesh();
+  fork.require_mesh();
+  if (fork.triangles_u32_ != triangles_u32_) {
+    fail(ErrorCode::BadParameter, "adopt_rest_of: the session is not a fork of this one (other triangles)");
+  }
+  if (fork.deformer_ == deformer_) {  // it made no new rest pose
+    set_current(current_positions(deformer_->rest().V));
+    return;
+  }
+  report_through_this(*fork.deformer_);  // the fork's reports end with it
+  install_rest(fork.deformer_, fork.deformer_->rest().V);
 }
 
 int Session::select(const Region& region, double falloff, SelectionMode mode) {
   require_mesh();
   const Mesh& rest = deformer_->rest();
   // The adjacency is built once per mesh, not on every select (the page asks for each one).
-  if (!adjacency_) adjacency_ = std::make_unique<VertexAdjacency>(vertex_adjacency(rest.F, rest.num_vertices()));
+  if (!adjacency_) adjacency_ = std::make_shared<VertexAdjacency>(vertex_adjacency(rest.F, rest.num_vertices()));
   // Regions are evaluated on the rest pose, which is what is on screen between edits.
   const Eigen::VectorXd picked = selection_weights(rest, *adjacency_, region, falloff);
   Eigen::VectorXd weights = weights_;
