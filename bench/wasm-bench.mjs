@@ -7,8 +7,8 @@
 //   {"mesh":..., "vertices":..., "impl":..., "precompute_ms":..., "iteration_ms":...}
 // (medians over the runs; implementations interleaved run by run), and the
 // same-run ratios on stderr. Rows: eigen-ldlt, anisoform-arap,
-// anisoform-anarap, anisoform-andefgrad, anisoform-preview (CGAL has no WASM
-// build).
+// anisoform-anarap, anisoform-andefgrad, anisoform-preview, anisoform-commit
+// (CGAL has no WASM build).
 //
 // Timings are taken in JS around the JS-layer calls, so they include what a
 // browser caller pays: the layer's argument checks, the copy of the result
@@ -27,6 +27,12 @@
 //                        preview of a new amount (one warm-started AnARAP
 //                        iteration) with the copy into the float32 buffer the
 //                        worker transfers to the page (median of 9)
+//   anisoform-commit     a commit as the app makes one (document/op-stack.js):
+//                        precompute: the op's first live preview (as the drag
+//                        or slider before the release: the factorization);
+//                        iteration: the commit, Session.replay of the op as a
+//                        one-op document (a cold AnARAP stretch of the top
+//                        half, box region, to the default tolerance)
 // Environment: ANISO_WASM_DIR (default web/src/wasm), as the tests.
 import { readFileSync } from 'node:fs';
 import path from 'node:path';
@@ -38,10 +44,11 @@ const USAGE = `usage: node bench/wasm-bench.mjs --mesh cyl1k|cyl10k|cyl50k|cyl20
   --runs N        runs per implementation (medians); default 5, 3 above 100k vertices
   --iterations N  ARAP/AnARAP iterations per timed call (default 10)
   --only LIST     eigen-ldlt, anisoform-arap, anisoform-anarap, anisoform-andefgrad,
-                  anisoform-preview (default: all)
+                  anisoform-preview, anisoform-commit (default: all)
   --verbose       per-run details on stderr
 `;
-const IMPLS = ['eigen-ldlt', 'anisoform-arap', 'anisoform-anarap', 'anisoform-andefgrad', 'anisoform-preview'];
+const IMPLS = ['eigen-ldlt', 'anisoform-arap', 'anisoform-anarap', 'anisoform-andefgrad', 'anisoform-preview',
+  'anisoform-commit'];
 const CYLINDERS = { cyl1k: 1000, cyl10k: 10000, cyl50k: 50000, cyl200k: 200000 };
 const LDLT_SOLVES = 5;
 const ANDEFGRAD_CHANGES = 4;
@@ -129,7 +136,10 @@ function makeProblem(name, positions) {
   const moved = orderAlong(positions, axis, centre, true).slice(0, count).sort((a, b) => a - b);
   const topHalf = new Float32Array(n);
   for (let i = 0; i < n; ++i) if (positions[3 * i + axis] > centre[axis]) topHalf[i] = 1;
-  return { name, positions, vertices: n, axis, moveAxis, height: extent[axis], offset, direction, fixed, moved, topHalf };
+  // The same half as a document region (a box includes its boundary).
+  const topBox = { min: min.map((x, k) => (k === axis ? centre[axis] : x)), max };
+  return { name, positions, vertices: n, axis, moveAxis, height: extent[axis], offset, direction, fixed, moved, topHalf,
+    topBox };
 }
 
 // The problem, and `load(session)`, which puts its mesh in a session.
@@ -219,6 +229,27 @@ function runPreview(session, problem) {
   return { precompute: setup + first, iteration: median(times), detail: `first preview ${first.toFixed(3)} ms` };
 }
 
+// The session holds the mesh as loaded (a fresh one): the replay starts there.
+function runCommit(session, problem) {
+  const region = { name: 'top', steps: [{ region: { box: problem.topBox } }] };
+  session.setSelection(new Float32Array(problem.vertices));
+  for (const step of region.steps) session.select(step.region);
+  const op = session.resolveOp(stretchOp(problem, 'anarap'));
+  const [preview] = timed(() => session.deform({ ...op, preview: true, maxIterations: 1 }));
+  const { vertices, triangles } = session.info();
+  const document = {
+    format: 'anisoform-document',
+    version: 1,
+    mesh: { name: problem.name, vertices, triangles, hash: session.meshHash() },
+    regions: [region],
+    ops: [{ id: 'stretch', label: 'stretch', enabled: true, region: 'top', op }],
+  };
+  const factorizations = session.factorizations();
+  const [commit, summary] = timed(() => session.replay(document));
+  return { precompute: preview, iteration: commit,
+    detail: `${summary.last.iterations} iterations, ${session.factorizations() - factorizations} new factorizations` };
+}
+
 async function main() {
   const options = parseArguments(process.argv.slice(2));
   const { wasm } = await loadAnisoform({ bench: true });
@@ -242,6 +273,7 @@ async function main() {
     'anisoform-anarap': () => inFreshSession((session) => runAnarap(session, problem, options.iterations)),
     'anisoform-andefgrad': () => inFreshSession((session) => runAndefgrad(session, problem)),
     'anisoform-preview': () => inFreshSession((session) => runPreview(session, problem)),
+    'anisoform-commit': () => inFreshSession((session) => runCommit(session, problem)),
   };
   const active = IMPLS.filter((name) => options.only.size === 0 || options.only.has(name));
   if (options.verbose) {
@@ -286,6 +318,10 @@ async function main() {
     const ms = median(samples['anisoform-preview'].map((s) => s.iteration));
     process.stderr.write(`preview ${problem.name}: ${ms.toFixed(1)} ms per slider value = ${(1000 / ms).toFixed(1)} updates/s `
       + '(issue 11 goal 3: >= 30 at 50k vertices)\n');
+  }
+  if (samples['anisoform-commit']) {
+    const ms = median(samples['anisoform-commit'].map((s) => s.iteration));
+    process.stderr.write(`commit ${problem.name}: ${ms.toFixed(0)} ms after a preview (issue 11 goal 4: <= 3000 at 200k vertices)\n`);
   }
 }
 

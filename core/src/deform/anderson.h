@@ -23,8 +23,6 @@ class AndersonMixer {
   // x: the current iterate, g: G(x). Returns the proposal in `proposal`;
   // false when there is no history yet (the proposal is then g itself).
   bool propose(const Positions& x, const Positions& g, Positions& proposal);
-  // Forgets the differences (after a rejected proposal); the last pair stays,
-  // since it is still a true (x, G(x)).
   // Forgets the differences (after a rejected proposal); the last pair stays:
   // it is still a true (x, G(x)).
   void reset() { count_ = 0; }
