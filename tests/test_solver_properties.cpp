@@ -188,16 +188,38 @@ TEST_CASE("anarap: a live preview's scale targets are the direct ones, for every
     upper[i] = std::clamp((mesh.V(i, 1) - middle) / (0.2 * size) + 0.5, 0.0, 1.0);
     lower[i] = 1.0 - upper[i];
   }
+  const auto global = [](const Eigen::Vector3d& vector) {
+    DirectionSource source;
+    source.vector = vector;
+    return source;
+  };
+  // A painted field (arrows propagated over the mesh), then one arrow turned
+  // by 90 degrees: arrows at the top and at the front of the upper part.
+  int top = 0, front = 0;
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    if (mesh.V(i, 1) > mesh.V(top, 1)) top = i;
+    if (upper[i] == 1.0 && (upper[front] < 1.0 || mesh.V(i, 2) > mesh.V(front, 2))) front = i;
+  }
+  DirectionSource field;
+  field.kind = DirectionSource::Kind::Constraints;
+  field.constraints = {{top, Eigen::Vector3d::UnitX()}, {front, Eigen::Vector3d::UnitX()}};
+  DirectionSource turned = field;
+  turned.constraints[1].direction = Eigen::Vector3d::UnitY();
   for (const ArapElements elements : {ArapElements::Spokes, ArapElements::SpokesAndRims}) {
     Deformer live(mesh);
-    struct Step { Eigen::VectorXd weights; Eigen::Vector3d direction; double su, sv; };
+    struct Step { Eigen::VectorXd weights; DirectionSource direction; double su, sv; };
     const std::vector<Step> steps = {
-        {upper, Eigen::Vector3d::UnitY(), 1.3, 1.0}, {upper, Eigen::Vector3d::UnitY(), 1.6, 0.9},
-        {lower, Eigen::Vector3d::UnitY(), 1.6, 0.9},  // a new selection
-        {lower, Eigen::Vector3d(1, 1, 0), 0.7, 1.1},  // a new direction
-        {upper, Eigen::Vector3d(1, 1, 0), 1.2, 1.2}};
+        {upper, global(Eigen::Vector3d::UnitY()), 1.3, 1.0}, {upper, global(Eigen::Vector3d::UnitY()), 1.6, 0.9},
+        {lower, global(Eigen::Vector3d::UnitY()), 1.6, 0.9},  // a new selection
+        {lower, global(Eigen::Vector3d(1, 1, 0)), 0.7, 1.1},  // a new direction
+        {upper, global(Eigen::Vector3d(1, 1, 0)), 1.2, 1.2},
+        {upper, field, 1.3, 1.0},   // a field
+        {upper, turned, 1.3, 1.0},  // the field changed, nothing else
+        {upper, turned, 1.5, 0.9},
+        {upper, global(Eigen::Vector3d(1, 1, 0)), 1.4, 1.0}};  // back to a global direction
     for (std::size_t k = 0; k < steps.size(); ++k) {
-      DeformRequest request = test::stretch_request(Method::AnArap, steps[k].direction, steps[k].su, steps[k].sv);
+      DeformRequest request = test::stretch_request(Method::AnArap, Eigen::Vector3d::UnitY(), steps[k].su, steps[k].sv);
+      request.direction = steps[k].direction;
       request.selection = steps[k].weights;
       request.elements = elements;
       request.warm_start = false;

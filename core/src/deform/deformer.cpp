@@ -160,11 +160,17 @@ struct Deformer::Workspace {
   // Warm start: the last result of a setup (method, elements, pins).
   std::string last_key;
   Positions last_V;
+  // The side frames of the last direction source (side_frames), kept while
+  // the source is the same: a slider's or a drag's next value would
+  // otherwise build them again, and propagate a painted field again.
+  std::optional<DirectionSource> frames_source;
+  SideFrames frames;
+  int frames_built = 0;  // how many times `frames` was built: names this one
   // What the AnARAP solver's scale steps (set_scale_targets) were built
   // from: valid while the frames and the weights are these.
   struct ScaleSteps {
     ArapElements elements;
-    Frames frames;
+    int frames_built;
     Eigen::VectorXd weights;
   };
   std::optional<ScaleSteps> scale_steps;
@@ -176,8 +182,26 @@ bool same_rows(const Positions& a, const Positions& b) {
   return a.rows() == b.rows() && (a.array() == b.array()).all();
 }
 
-bool same_frames(const Frames& a, const Frames& b) {
-  return a.filled == b.filled && same_rows(a.u, b.u) && same_rows(a.v, b.v) && same_rows(a.n, b.n);
+bool same_constraint(const DirectionConstraint& a, const DirectionConstraint& b) {
+  return a.vertex == b.vertex && a.direction == b.direction && a.su == b.su && a.sv == b.sv &&
+         a.has_amounts == b.has_amounts;
+}
+
+// Whether two sources give the same frames on one rest pose. A screen drag
+// never counts as the same: its direction follows the pointer.
+bool same_frames_source(const DirectionSource& a, const DirectionSource& b) {
+  if (a.kind != b.kind) return false;
+  switch (a.kind) {
+    case DirectionSource::Kind::Global: return a.vector == b.vector;
+    case DirectionSource::Kind::CurvatureMin:
+    case DirectionSource::Kind::CurvatureMax: return a.curvature_smoothing == b.curvature_smoothing;
+    case DirectionSource::Kind::Constraints:
+      return std::equal(a.constraints.begin(), a.constraints.end(), b.constraints.begin(), b.constraints.end(),
+                        same_constraint);
+    case DirectionSource::Kind::Dense: return same_rows(a.dense, b.dense);
+    case DirectionSource::Kind::Screen: return false;
+  }
+  return false;
 }
 
 // The power of two nearest below the mesh's bounding-box diagonal (1 for a
@@ -310,7 +334,14 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
       iterations->set_targets(std::vector<Eigen::Matrix3d>(3 * static_cast<std::size_t>(unit_.num_triangles()),
                                                            Eigen::Matrix3d::Identity()));
     } else {
-      SideFrames frames = side_frames(ws.targets, request.direction);
+      if (!ws.frames_source || !same_frames_source(*ws.frames_source, request.direction)) {
+        SideFrames built = side_frames(ws.targets, request.direction);
+        ws.frames_source.reset();  // until both are set (an allocation may fail)
+        ws.frames = std::move(built);
+        ++ws.frames_built;
+        ws.frames_source = request.direction;
+      }
+      const SideFrames& frames = ws.frames;
       result.directions_filled = frames.frames.filled;
       rotational = request.transform.has_rotational_part();
       // A live preview of a scale: the targets from the solver's scale steps,
@@ -321,11 +352,11 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
       if (request.preview && request.transform.scales_only() && frames.su.size() == 0 &&
           request.direction.kind != DirectionSource::Kind::Screen) {
         const bool valid = ws.scale_steps && ws.scale_steps->elements == request.elements &&
-                           ws.scale_steps->weights.size() == w.size() && ws.scale_steps->weights == w &&
-                           same_frames(ws.scale_steps->frames, frames.frames);
+                           ws.scale_steps->frames_built == ws.frames_built &&
+                           ws.scale_steps->weights.size() == w.size() && ws.scale_steps->weights == w;
         if (!valid) {
           iterations->set_scale_steps(frames.frames.u, frames.frames.v, side_weights(unit_, w));
-          ws.scale_steps = Workspace::ScaleSteps{request.elements, std::move(frames.frames), w};
+          ws.scale_steps = Workspace::ScaleSteps{request.elements, ws.frames_built, w};
         }
         iterations->set_scale_targets(request.transform.su, request.transform.sv);
       } else {
