@@ -23,6 +23,12 @@ struct DirectionConstraint {
   bool has_amounts = false;                              // su/sv given for this vertex
 };
 
+// Exactly the same constraint (every field bitwise): what caches key on.
+inline bool operator==(const DirectionConstraint& a, const DirectionConstraint& b) {
+  return a.vertex == b.vertex && a.direction == b.direction && a.su == b.su && a.sv == b.sv &&
+         a.has_amounts == b.has_amounts;
+}
+
 struct DirectionField {
   Positions direction;  // #V by 3 unit tangent vectors (zero outside the region)
   Eigen::VectorXd su;   // #V amounts along (1 where no amounts were given)

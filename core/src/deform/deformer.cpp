@@ -182,11 +182,6 @@ bool same_rows(const Positions& a, const Positions& b) {
   return a.rows() == b.rows() && (a.array() == b.array()).all();
 }
 
-bool same_constraint(const DirectionConstraint& a, const DirectionConstraint& b) {
-  return a.vertex == b.vertex && a.direction == b.direction && a.su == b.su && a.sv == b.sv &&
-         a.has_amounts == b.has_amounts;
-}
-
 // Whether two sources give the same frames on one rest pose. A screen drag
 // never counts as the same: its direction follows the pointer.
 bool same_frames_source(const DirectionSource& a, const DirectionSource& b) {
@@ -196,8 +191,7 @@ bool same_frames_source(const DirectionSource& a, const DirectionSource& b) {
     case DirectionSource::Kind::CurvatureMin:
     case DirectionSource::Kind::CurvatureMax: return a.curvature_smoothing == b.curvature_smoothing;
     case DirectionSource::Kind::Constraints:
-      return std::equal(a.constraints.begin(), a.constraints.end(), b.constraints.begin(), b.constraints.end(),
-                        same_constraint);
+      return a.constraints == b.constraints;
     case DirectionSource::Kind::Dense: return same_rows(a.dense, b.dense);
     case DirectionSource::Kind::Screen: return false;
   }

@@ -1,6 +1,7 @@
 #include "deform/element_targets.h"
 
 #include <map>
+#include <optional>
 #include <utility>
 
 #include "directions/curvature.h"
@@ -12,12 +13,16 @@
 
 namespace aniso {
 
-struct TargetContext::CurvatureCache {
-  std::map<std::pair<int, int>, Positions> fields;  // (min/max, smoothing) -> field
+struct TargetContext::FieldCache {
+  std::map<std::pair<int, int>, Positions> curvature;  // (min/max, smoothing) -> field
+  // The last propagated field and its constraints: a drag or a slider asks
+  // for the same one at every value, and propagating it is a solve.
+  std::vector<DirectionConstraint> constraints;
+  std::optional<DirectionField> propagated;
 };
 
 TargetContext::TargetContext(const Mesh& rest)
-    : rest_(rest), curvature_(std::make_unique<CurvatureCache>()) {
+    : rest_(rest), fields_(std::make_unique<FieldCache>()) {
   vertex_normals_ = aniso::vertex_normals(rest);
   triangle_normals_ = aniso::triangle_normals(rest);
   // A zero-area triangle has no normal of its own: its frame borrows the mean
@@ -58,9 +63,9 @@ void TargetContext::vertex_directions(const DirectionSource& source, Positions& 
     case DirectionSource::Kind::CurvatureMax: {
       const int which = source.kind == DirectionSource::Kind::CurvatureMin ? 0 : 1;
       const auto key = std::make_pair(which, source.curvature_smoothing);
-      auto it = curvature_->fields.find(key);
-      if (it == curvature_->fields.end()) {
-        it = curvature_->fields
+      auto it = fields_->curvature.find(key);
+      if (it == fields_->curvature.end()) {
+        it = fields_->curvature
                  .emplace(key, curvature_direction_field(
                                    rest_, which == 0 ? CurvatureDirection::Min : CurvatureDirection::Max,
                                    source.curvature_smoothing))
@@ -70,7 +75,13 @@ void TargetContext::vertex_directions(const DirectionSource& source, Positions& 
       return;
     }
     case DirectionSource::Kind::Constraints: {
-      const DirectionField field = propagate_direction_field(rest_, source.constraints);
+      if (!fields_->propagated || fields_->constraints != source.constraints) {
+        DirectionField propagated = propagate_direction_field(rest_, source.constraints);
+        fields_->propagated.reset();  // until both are set (an allocation may fail)
+        fields_->constraints = source.constraints;
+        fields_->propagated = std::move(propagated);
+      }
+      const DirectionField& field = *fields_->propagated;
       directions = field.direction;
       bool any_amounts = false;
       for (const auto& c : source.constraints) any_amounts = any_amounts || c.has_amounts;

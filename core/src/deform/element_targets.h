@@ -41,8 +41,8 @@ class TargetContext {
   std::vector<int> triangle_offsets_, triangle_neighbors_;
   // Curvature fields are costly and depend on the rest mesh only: cached per
   // (direction, smoothing).
-  struct CurvatureCache;
-  std::unique_ptr<CurvatureCache> curvature_;
+  struct FieldCache;  // curvature fields, the last propagated field
+  std::unique_ptr<FieldCache> fields_;
 };
 
 struct ElementTargets {

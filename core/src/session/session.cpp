@@ -237,7 +237,9 @@ void Session::set_weights(Eigen::VectorXd weights) {
 void Session::replace_rest(Positions V) {
   const bool back_to_previous = previous_ && previous_->rest().V.rows() == V.rows() &&
                                 std::memcmp(previous_->rest().V.data(), V.data(), sizeof(double) * static_cast<std::size_t>(V.size())) == 0;
-  install_rest(back_to_previous ? previous_ : new_deformer(Mesh{V, deformer_->rest().F}), std::move(V));
+  // Built before V is moved into install_rest (argument order is unspecified).
+  std::shared_ptr<Deformer> deformer = back_to_previous ? previous_ : new_deformer(Mesh{V, deformer_->rest().F});
+  install_rest(std::move(deformer), std::move(V));
 }
 
 void Session::install_rest(std::shared_ptr<Deformer> deformer, Positions V) {
