@@ -86,7 +86,11 @@ export class OpRunner {
     this.restVersion++;
   }
 
-  /** Re-runs the document from op `index` on, op by op, so that every later state is cached again for undo. */
+  /**
+   * Re-runs the document from op `index` on, op by op, so that every later
+   * state is cached again for undo; resolves the last op's solve stats (null
+   * when it is off).
+   */
   async rerunFrom(index) {
     this.cache.dropAfter(index);
     await this.restore(index, { show: false });
@@ -95,7 +99,9 @@ export class OpRunner {
       const { positions, exact } = await this.replay(state, state + 1);
       this.cache.set(state + 1, { positions, exact });
     }
-    this.show(n, await this.replay(n - 1, n));
+    const last = await this.replay(n - 1, n);
+    this.show(n, last);
+    return last.summary.last ?? null;
   }
 
   /** Shows state n (and caches it, given its exact positions): the mesh's positions are now those. */

@@ -108,7 +108,7 @@ export class OpStack {
       editor.prepareSolverSoon();
       editor.history.push(this.#historyEntry(label));
       const stats = result.summary.last;
-      if (stats?.inverted > 0) editor.emit('warning', { message: foldOverWarning(stats.inverted) });
+      this.#reportSolved(stats);
       this.#persistence.changed();
       return stats;
     });
@@ -237,15 +237,25 @@ export class OpStack {
     return this.#run(async () => {
       const index = this.#requireDocument().indexOf(opId);
       const undo = change(this.document.ops[index]);
+      let stats;
       try {
-        await this.#runner.rerunFrom(index);
+        stats = await this.#runner.rerunFrom(index);
       } catch (error) {
         undo();
         await this.#runner.restore(this.document.ops.length).catch(() => {});
         throw error;
       }
       this.#persistence.changed();
+      this.#reportSolved(stats);
     });
+  }
+
+  // A committed solve's figures (the status bar's) and its fold-over
+  // warning, after the 'change' its positions made (which hides older ones).
+  #reportSolved(stats) {
+    if (!stats) return;
+    this.#editor.emit('stats', { ...stats, live: false });
+    if (stats.inverted > 0) this.#editor.emit('warning', { message: foldOverWarning(stats.inverted) });
   }
 
   // ---- opening and autosave (document-persistence.js) ----------------------

@@ -20,7 +20,6 @@ export class EditCommits {
     try {
       if (editor.document !== document) return null; // a new mesh arrived meanwhile
       const stats = await this.ops.commit(solverOp, label);
-      if (stats) editor.emit('stats', { ...stats, live: false });
       return stats && { iterations: stats.iterations, energy: stats.energy, ms: stats.ms, inverted: stats.inverted };
     } catch (error) {
       throw editor.report(error, `${label} failed`);
