@@ -39,9 +39,10 @@ class TargetContext {
   Positions triangle_normals_;
   std::vector<int> vertex_offsets_, vertex_neighbors_;
   std::vector<int> triangle_offsets_, triangle_neighbors_;
-  // Curvature fields are costly and depend on the rest mesh only: cached per
-  // (direction, smoothing).
-  struct FieldCache;  // curvature fields, the last propagated field
+  // Fields that cost a solve and depend on the rest mesh and the source
+  // only: the curvature fields per (direction, smoothing), and the last
+  // propagated field with its constraints.
+  struct FieldCache;
   std::unique_ptr<FieldCache> fields_;
 };
 
