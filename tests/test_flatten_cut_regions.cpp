@@ -62,42 +62,84 @@ TEST_CASE("flatten: a plane and a garment panel need no cut", "[flatten]") {
   }
 }
 
-TEST_CASE("flatten: on the torso panel along its (barely turning) long axis the baseline edges out ours only by the targets' anisotropy",
+TEST_CASE("flatten: ours beats the uniform baseline on the open meshes, on the combined error and on compression alone",
           "[flatten]") {
-  // Why the baseline scores 2.5 % against our 2.6 % compression error here
-  // (global axis y, su = 0.8): the projected direction barely turns over a
-  // front panel, so one uniform scale of the isometric flattening is nearly
-  // exact for compression (it adds 0.07 points to the isometric 2.41 %). Ours
-  // minimizes the ARAP energy |J - R T|^2 in absolute terms, while the
-  // metrics are relative (error / su): with su < sv the unavoidable
-  // curvature distortion is pushed into the direction with the smaller
-  // target, where it counts 1/su times more. With isotropic targets both are
-  // the same map, and the gap grows with the anisotropy. Where the direction
-  // turns over the patch (a field, a cone, the band of the Fig. 11 test) the
-  // single scale is wrong and ours wins by far.
-  const Mesh torso = test::load("open/human_woman_torso_front_patch.obj");
-  Flattener flattener(torso);
-  const auto errors = [&flattener](double su, double sv, FlattenMethod method) {
-    FlattenOptions options;
-    options.su = su;
-    options.sv = sv;
-    options.method = method;
-    options.directions.global = Eigen::Vector3d::UnitY();
-    return flattener.flatten(options).metrics;
+  // su = 0.8 along each patch's longest bounding-box axis (the CLI's default
+  // direction). The baseline (isometric flattening scaled once) is nearly
+  // exact on a panel whose direction barely turns, and the ARAP energy alone
+  // lost to it there (torso: 2.65 % against 2.48 % compression error): it
+  // also penalises shear, which the errors do not count, and spreads the
+  // curvature's distortion differently. The stretch refinement minimises the
+  // errors themselves. Demosthenes and the bunny (17k and 69k triangles) are
+  // measured in the note, not here: they take seconds even in a release build.
+  struct Case {
+    const char* name;
+    bool developable_enough;  // converges, and ours is under half the baseline's error
   };
-  const FlattenMetrics isotropic_ours = errors(0.8, 0.8, FlattenMethod::Anisotropic);
-  const FlattenMetrics isotropic_base = errors(0.8, 0.8, FlattenMethod::UniformBaseline);
-  CHECK(isotropic_ours.compression_error_mean == Approx(isotropic_base.compression_error_mean).epsilon(1e-6));
-  double previous_gap = 0.0;
-  for (double su : {0.9, 0.8, 0.7}) {
-    const FlattenMetrics ours = errors(su, 1.0, FlattenMethod::Anisotropic);
-    const FlattenMetrics base = errors(su, 1.0, FlattenMethod::UniformBaseline);
-    const double gap = ours.compression_error_mean - base.compression_error_mean;
-    INFO("su " << su << ": ours " << ours.compression_error_mean << " baseline " << base.compression_error_mean);
-    CHECK(gap > previous_gap);
-    CHECK(gap < 0.01);  // measured 0.0007 (su 0.9), 0.0017 (su 0.8)
-    // The baseline is close to the isometric flattening's own error.
-    CHECK(base.compression_error_mean - isotropic_base.compression_error_mean < 0.005);
-    previous_gap = gap;
+  for (const Case& c : {Case{"open/human_woman_torso_front_patch.obj", true}, Case{"open/nefertiti_face.off", true},
+                        Case{"open/hemisphere.obj", true}, Case{"open/cube_no_bottom.obj", true},
+                        Case{"open/hand_lowres.obj", false}, Case{"open/spothead.obj", false}}) {
+    const Mesh mesh = test::load(c.name);
+    Eigen::Vector3d extent = mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff();
+    Eigen::Index longest = 0;
+    extent.maxCoeff(&longest);
+    Flattener flattener(mesh);
+    FlattenOptions options;
+    options.su = 0.8;
+    options.directions.global = Eigen::Vector3d::Unit(longest);
+    const FlattenMetrics ours = flattener.flatten(options).metrics;
+    options.method = FlattenMethod::UniformBaseline;
+    const FlattenMetrics base = flattener.flatten(options).metrics;
+    const double ours_combined = ours.compression_error_mean + ours.cross_error_mean;
+    const double base_combined = base.compression_error_mean + base.cross_error_mean;
+    std::printf("[flatten] %-40s ours %.4f + %.4f, %d it%s | baseline %.4f + %.4f\n", c.name,
+                ours.compression_error_mean, ours.cross_error_mean, ours.iterations,
+                ours.converged ? "" : " (not converged)", base.compression_error_mean, base.cross_error_mean);
+    INFO(c.name << ": ours " << ours_combined << " baseline " << base_combined);
+    CHECK(ours.flipped == 0);
+    CHECK(ours_combined < base_combined);
+    CHECK(ours.compression_error_mean < base.compression_error_mean);
+    if (c.developable_enough) {
+      CHECK(ours.converged);
+      CHECK(ours_combined < 0.5 * base_combined);  // measured 0.16-0.35 of it
+    }
   }
+}
+
+TEST_CASE("flatten: the stretch refinement lowers the energy at every step and can be turned off", "[flatten]") {
+  const Mesh torso = test::load("open/human_woman_torso_front_patch.obj");
+  const FlattenPatch patch = extract_flatten_patch(torso, {});
+  const TriangleCharts charts = triangle_charts(patch.mesh);
+  FlattenDirections directions;
+  directions.global = Eigen::Vector3d::UnitY();
+  const FlattenTargets targets = flatten_targets(torso, patch, charts, directions, 0.8, 1.0);
+  const ArapFlattening arap(patch, charts);
+  Eigen::MatrixX2d start;
+  lscm_free_boundary(patch, charts, start);
+  Eigen::MatrixX2d uv;
+  const StretchRefineReport report =
+      refine_stretch(patch, charts, targets, arap.laplacian(), ArapFlattenSettings{}, 0, {start}, uv);
+  REQUIRE(report.start == 0);
+  CHECK(report.converged);
+  REQUIRE(report.energy_history.size() > 10);
+  for (std::size_t k = 1; k < report.energy_history.size(); ++k) {
+    INFO("step " << k);
+    CHECK(report.energy_history[k] < report.energy_history[k - 1]);
+  }
+  CHECK(count_folded(patch.mesh.F, charts, uv) == 0);
+  // A start with a folded triangle is never used.
+  Eigen::MatrixX2d mirrored = start;
+  mirrored.col(1) *= -1.0;
+  Eigen::MatrixX2d unused;
+  CHECK(refine_stretch(patch, charts, targets, arap.laplacian(), ArapFlattenSettings{}, 0, {mirrored}, unused).start == -1);
+
+  // Off: the paper's ARAP result, with its larger error.
+  Flattener flattener(torso);
+  FlattenOptions options;
+  options.su = 0.8;
+  options.directions = directions;
+  const FlattenMetrics refined = flattener.flatten(options).metrics;
+  options.solver.refine = false;
+  const FlattenMetrics paper = flattener.flatten(options).metrics;
+  CHECK(refined.compression_error_mean < 0.5 * paper.compression_error_mean);
 }

@@ -77,6 +77,10 @@ struct ArapFlattenSettings {
   double tolerance = 1e-8;   // stop when the relative energy change falls below
   bool guard_folds = true;   // shorten a global step that would fold a triangle
                              // over, whenever the current map has none folded
+  // After the local/global iterations, minimise the reported error itself
+  // (flatten_refine.cpp; beyond the paper): false keeps the paper's ARAP
+  // result as it is.
+  bool refine = true;
   int unfold_iterations = 50;  // from a folded start: iterations allowed to
                                // unfold it before giving up (the Flattener then
                                // starts again from a fold-free map)

@@ -37,6 +37,26 @@ struct Flattener::Impl {
     return arap->solve(targets, settings, uv);
   }
 
+  const Eigen::MatrixX2d& tutte_start() {
+    if (!fold_free_start) {
+      fold_free_start.emplace();
+      tutte_embedding(patch, charts, *fold_free_start);
+    }
+    return *fold_free_start;
+  }
+
+  // The maps the stretch refinement may start from: the local/global result
+  // and the two start maps at the wanted area. Where the guard stalled, the
+  // result holds triangles squeezed to nearly nothing, which block every
+  // step of the refinement; a start map then does better (the refinement
+  // takes the one with the lowest energy).
+  std::vector<Eigen::MatrixX2d> refinement_starts(const Eigen::MatrixX2d& solved_uv,
+                                                  const FlattenTargets& targets) {
+    std::vector<Eigen::MatrixX2d> starts{solved_uv, conformal_start, tutte_start()};
+    for (std::size_t k = 1; k < starts.size(); ++k) scale_to_area(patch, target_areas(charts, targets), starts[k]);
+    return starts;
+  }
+
   // ARAP from the conformal start; if folds remain (ARAP cannot be trusted to
   // undo folds it starts with), again from the fold-free start, guarded.
   Solved solve(const FlattenTargets& targets, const ArapFlattenSettings& settings) {
@@ -44,12 +64,8 @@ struct Flattener::Impl {
     solved.report = iterate_from(conformal_start, targets, settings, solved.uv);
     solved.iterations = solved.report.iterations;
     if (solved.report.folded == 0) return solved;
-    if (!fold_free_start) {
-      fold_free_start.emplace();
-      tutte_embedding(patch, charts, *fold_free_start);
-    }
     Eigen::MatrixX2d uv;
-    const ArapFlattenReport report = iterate_from(*fold_free_start, targets, settings, uv);
+    const ArapFlattenReport report = iterate_from(tutte_start(), targets, settings, uv);
     solved.iterations += report.iterations;
     if (report.folded <= solved.report.folded) {
       solved.uv = std::move(uv);
@@ -90,6 +106,17 @@ FlattenResult Flattener::flatten(const FlattenOptions& options) {
   const FlattenTargets solved_targets =
       baseline ? with_uniform_amounts(result.targets, 1.0, 1.0) : result.targets;
   Impl::Solved solved = im.solve(solved_targets, options.solver);
+  bool converged = solved.report.converged;
+  if (!baseline && options.solver.refine) {
+    const StretchRefineReport refined =
+        refine_stretch(patch, im.charts, solved_targets, im.arap->laplacian(), options.solver,
+                       solved.iterations, im.refinement_starts(solved.uv, solved_targets), solved.uv);
+    if (refined.start >= 0) {
+      solved.iterations += refined.iterations;
+      converged = refined.converged;
+      if (refined.start > 0) solved.initialization = refined.start == 1 ? "lscm" : "tutte";
+    }
+  }
   result.uv = std::move(solved.uv);
 
   // The grainline: where the wanted field runs on average in the pattern. For
@@ -111,7 +138,7 @@ FlattenResult Flattener::flatten(const FlattenOptions& options) {
   metrics.flipped = count_folded(F, im.charts, result.uv);
   metrics.iterations = solved.iterations;
   metrics.energy = solved.report.energy;
-  metrics.converged = solved.report.converged;
+  metrics.converged = converged;
   metrics.filled_directions = result.targets.filled_directions;
   metrics.initialization = solved.initialization;
   metrics.method = baseline ? "uniform-baseline" : "anisotropic";

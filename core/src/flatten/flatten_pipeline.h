@@ -44,6 +44,8 @@
 
 namespace aniso {
 
+class LaplacianSolver;
+
 // ---- the patch -------------------------------------------------------------
 
 // The faces of `mesh` whose three vertices have vertex_mask[i] != 0 (an empty
@@ -134,12 +136,47 @@ class ArapFlattening {
                           Eigen::MatrixX2d& uv) const;
 
   int factorizations() const { return factorizations_; }
+  // The prefactored Laplacian (one pin per component), which the stretch
+  // refinement uses as its preconditioner.
+  const LaplacianSolver& laplacian() const;
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
   int factorizations_ = 0;
 };
+
+// The fold guard: the largest fraction of the step from `from` towards `to`
+// (#P by 2 each) that folds no non-degenerate triangle over, times a safety
+// share (0.8) so that none is driven to exactly zero area; 1 when the whole
+// step keeps every triangle's signed area positive.
+double fold_free_step_fraction(const Triangles& F, const TriangleCharts& charts,
+                               const Eigen::Ref<const Eigen::MatrixXd>& from,
+                               const Eigen::Ref<const Eigen::MatrixXd>& to);
+
+// ---- the stretch refinement (flatten_refine.cpp) -------------------------------
+
+struct StretchRefineReport {
+  int start = -1;          // which of the starts it ran from; -1: none is fold-free (uv unchanged)
+  int iterations = 0;
+  double energy = 0.0;     // the refinement's energy at the end (about the mean errors)
+  bool converged = false;  // the relative energy change stayed below the tolerance
+  bool stalled = false;    // the fold guard or the line search blocked every step
+  std::vector<double> energy_history;
+};
+
+// Writes to uv (#P by 2) the map that minimises the smoothed mean of
+// |along/su - 1| + |across/sv - 1| plus a small area term (the file's head
+// says exactly what), by preconditioned L-BFGS with a fold-free backtracking
+// line search, from the fold-free one of `starts` with the lowest energy:
+// monotone, and no triangle folds. Runs at most settings.max_iterations -
+// iterations_before iterations; progress is called with the iteration counted
+// from iterations_before.
+StretchRefineReport refine_stretch(const FlattenPatch& patch, const TriangleCharts& charts,
+                                   const FlattenTargets& targets,
+                                   const LaplacianSolver& preconditioner,
+                                   const ArapFlattenSettings& settings, int iterations_before,
+                                   const std::vector<Eigen::MatrixX2d>& starts, Eigen::MatrixX2d& uv);
 
 // ---- measuring --------------------------------------------------------------
 

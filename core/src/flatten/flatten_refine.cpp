@@ -1,0 +1,293 @@
+// The stretch refinement: after the local/global iterations, the pattern is
+// moved to minimise the error the flattening is judged by (METHOD §8: the
+// achieved stretch along and across the wanted direction against su and sv),
+// not the ARAP energy, which also penalises shear and spreads the unavoidable
+// error differently (on a nearly developable panel the uniform baseline beat
+// it on that error).
+//
+// Per triangle t with 3D area A_t, Ju = J cu and Jv = J cv its images of the
+// wanted direction and of the one across (J: chart -> plane):
+//   E_t = A_t [ rho(|Ju|/su - 1) + rho(|Jv|/sv - 1)
+//               + kAreaWeight rho(det J / (su sv) - 1) + barrier(det J / (su sv)) ],
+// rho(r) = sqrt(r^2 + d^2) - d a smoothed |r|, so that the sum is the reported
+// mean errors (divided by the total area) to within d; the area term keeps the
+// shear the error does not see from collapsing triangles, and the barrier
+// (zero above kBarrierStart of the wanted area) keeps every triangle's area
+// positive. Minimised by L-BFGS preconditioned with the patch's prefactored
+// cotangent Laplacian (a Sobolev gradient, as SLIM-type methods use), with a
+// backtracking line search inside the fold guard's step bound: the energy
+// falls at every iteration and no triangle ever folds.
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <utility>
+
+#include <Eigen/LU>
+
+#include "anisoform/error.h"
+#include "flatten/flatten_pipeline.h"
+#include "geometry/laplacian_solver.h"
+
+namespace aniso {
+
+namespace {
+
+constexpr double kSmoothing = 1e-2;     // d in rho: the error's kink, smoothed
+constexpr double kAreaWeight = 0.25;    // the area error's share of the energy
+constexpr double kBarrierStart = 0.1;   // area ratio below which the barrier acts
+// Below this energy every triangle meets its targets to about 1e-6 (rho is
+// r^2 / 2d near 0): the map is exact, and relative changes of an energy
+// falling geometrically towards 0 say nothing more.
+constexpr double kExactEnergy = 1e-14;
+constexpr int kMemory = 8;              // L-BFGS pairs kept
+constexpr double kArmijo = 1e-4;        // sufficient decrease of the line search
+constexpr int kMaxHalvings = 40;
+// Relative energy changes below the tolerance this many times in a row end
+// the iterations (one small step of a quasi-Newton method can be a fluke).
+constexpr int kQuietSteps = 3;
+// Steps cut short by the fold guard, with no real progress, after which the
+// refinement gives up (stalled).
+constexpr int kBlockedSteps = 10;
+
+double smooth_abs(double r) { return std::sqrt(r * r + kSmoothing * kSmoothing) - kSmoothing; }
+double smooth_abs_slope(double r) { return r / std::sqrt(r * r + kSmoothing * kSmoothing); }
+
+// barrier(x) = x0/x - 1 + ln(x/x0) below x0: zero with zero slope at x0,
+// infinite at 0. +inf for x <= 0 (a folded triangle is never accepted).
+double barrier(double x, double x0) {
+  if (x >= x0) return 0.0;
+  if (!(x > 0.0)) return std::numeric_limits<double>::infinity();
+  return x0 / x - 1.0 + std::log(x / x0);
+}
+double barrier_slope(double x, double x0) {
+  if (x >= x0) return 0.0;
+  return -x0 / (x * x) + 1.0 / x;
+}
+
+// Per triangle: Ju = sum_k alpha_k u_k and Jv = sum_k beta_k u_k (u_k its
+// corners in the plane), with the weight A_t / (total area).
+struct StretchTerms {
+  Eigen::MatrixX3d alpha, beta;
+  Eigen::VectorXd weight, su, sv;
+  Eigen::VectorXd barrier_start;  // per triangle: x0 of its barrier
+  std::vector<int> active;        // non-degenerate triangles
+
+  StretchTerms(const TriangleCharts& charts, const FlattenTargets& targets) {
+    const int m = static_cast<int>(charts.area.size());
+    alpha.setZero(m, 3);
+    beta.setZero(m, 3);
+    weight.setZero(m);
+    su = targets.su;
+    sv = targets.sv;
+    const double total = charts.area.sum();
+    for (int t = 0; t < m; ++t) {
+      if (!(charts.area[t] > 0.0)) continue;
+      Eigen::Matrix2d chart_edges;
+      chart_edges << charts.corners(t, 2), charts.corners(t, 4),  //
+          charts.corners(t, 3), charts.corners(t, 5);
+      const Eigen::Matrix2d inverse = chart_edges.inverse();
+      const Eigen::Vector2d cu = targets.direction.row(t).transpose();
+      const Eigen::Vector2d a = inverse * cu;
+      const Eigen::Vector2d b = inverse * Eigen::Vector2d(-cu.y(), cu.x());
+      alpha.row(t) << -a.x() - a.y(), a.x(), a.y();
+      beta.row(t) << -b.x() - b.y(), b.x(), b.y();
+      weight[t] = charts.area[t] / total;
+      active.push_back(t);
+    }
+    barrier_start.setConstant(m, kBarrierStart);
+  }
+
+  // A start map may already hold triangles squeezed below kBarrierStart (the
+  // local/global guard stalls on them): their barrier starts at half their
+  // area, so that it stops further collapse without dominating the energy.
+  void start_barriers_below(const Triangles& F, const Eigen::MatrixXd& uv) {
+    for (const int t : active) {
+      const auto [p, q] = images(F, uv, t);
+      const double area = (p.x() * q.y() - p.y() * q.x()) / (su[t] * sv[t]);
+      barrier_start[t] = std::min(kBarrierStart, 0.5 * area);
+    }
+  }
+
+  // Ju and Jv of triangle t.
+  std::pair<Eigen::Vector2d, Eigen::Vector2d> images(const Triangles& F, const Eigen::MatrixXd& uv, int t) const {
+    Eigen::Vector2d p = Eigen::Vector2d::Zero(), q = Eigen::Vector2d::Zero();
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector2d corner = uv.row(F(t, k)).transpose();
+      p += alpha(t, k) * corner;
+      q += beta(t, k) * corner;
+    }
+    return {p, q};
+  }
+
+  // E(uv); with `gradient`, also dE/duv (#P by 2).
+  double energy(const Triangles& F, const Eigen::MatrixXd& uv, Eigen::MatrixXd* gradient) const {
+    if (gradient) gradient->setZero(uv.rows(), 2);
+    double sum = 0.0;
+    for (const int t : active) {
+      const auto [p, q] = images(F, uv, t);
+      const double p_length = p.norm(), q_length = q.norm();
+      const double along = p_length / su[t] - 1.0, across = q_length / sv[t] - 1.0;
+      const double area = (p.x() * q.y() - p.y() * q.x()) / (su[t] * sv[t]);
+      const double b = barrier(area, barrier_start[t]);
+      if (!std::isfinite(b)) return std::numeric_limits<double>::infinity();
+      sum += weight[t] * (smooth_abs(along) + smooth_abs(across) + kAreaWeight * smooth_abs(area - 1.0) + b);
+      if (!gradient) continue;
+      const double area_slope =
+          (kAreaWeight * smooth_abs_slope(area - 1.0) + barrier_slope(area, barrier_start[t])) / (su[t] * sv[t]);
+      Eigen::Vector2d dp = area_slope * Eigen::Vector2d(q.y(), -q.x());
+      Eigen::Vector2d dq = area_slope * Eigen::Vector2d(-p.y(), p.x());
+      if (p_length > 0.0) dp += smooth_abs_slope(along) / (su[t] * p_length) * p;
+      if (q_length > 0.0) dq += smooth_abs_slope(across) / (sv[t] * q_length) * q;
+      for (int k = 0; k < 3; ++k) {
+        gradient->row(F(t, k)) += weight[t] * (alpha(t, k) * dp + beta(t, k) * dq).transpose();
+      }
+    }
+    return sum;
+  }
+};
+
+double dot(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) { return a.cwiseProduct(b).sum(); }
+
+}  // namespace
+
+StretchRefineReport refine_stretch(const FlattenPatch& patch, const TriangleCharts& charts,
+                                   const FlattenTargets& targets,
+                                   const LaplacianSolver& preconditioner,
+                                   const ArapFlattenSettings& settings, int iterations_before,
+                                   const std::vector<Eigen::MatrixX2d>& starts,
+                                   Eigen::MatrixX2d& uv_out) {
+  const Triangles& F = patch.mesh.F;
+  StretchTerms terms(charts, targets);
+  StretchRefineReport report;
+  double energy = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < starts.size(); ++k) {
+    if (count_folded(F, charts, starts[k]) > 0) continue;
+    const double start_energy = terms.energy(F, starts[k], nullptr);
+    if (start_energy < energy) {
+      energy = start_energy;
+      report.start = static_cast<int>(k);
+    }
+  }
+  if (report.start < 0) return report;
+  Eigen::MatrixXd uv = starts[report.start];
+  terms.start_barriers_below(F, uv);
+  Eigen::MatrixXd gradient, next_gradient;
+  energy = terms.energy(F, uv, &gradient);
+  report.energy_history.push_back(energy);
+  // The preconditioner solves L x = g with x = 0 on the pinned vertices (one
+  // per component: the energy does not change when a piece moves).
+  const auto precondition = [&preconditioner](const Eigen::MatrixXd& g) {
+    Eigen::MatrixXd x = Eigen::MatrixXd::Zero(g.rows(), 2);
+    preconditioner.solve(g, x);
+    return x;
+  };
+  std::deque<Eigen::MatrixXd> steps, changes;  // s_i, y_i
+  std::deque<double> curvatures;               // 1 / (y_i . s_i)
+  double scale = 0.0;                          // H0 = scale * L^-1 once known
+  int quiet = 0, blocked = 0;
+  const int cap = std::max(0, settings.max_iterations - iterations_before);
+  while (report.iterations < cap) {
+    if (energy <= kExactEnergy) {
+      report.converged = true;
+      break;
+    }
+    // Two-loop recursion: direction = -H gradient.
+    Eigen::MatrixXd direction = -gradient;
+    std::vector<double> coefficients(steps.size());
+    for (int i = static_cast<int>(steps.size()) - 1; i >= 0; --i) {
+      coefficients[i] = curvatures[i] * dot(steps[i], direction);
+      direction -= coefficients[i] * changes[i];
+    }
+    direction = precondition(direction);
+    if (scale > 0.0) direction *= scale;
+    for (std::size_t i = 0; i < steps.size(); ++i) {
+      const double beta = curvatures[i] * dot(changes[i], direction);
+      direction += (coefficients[i] - beta) * steps[i];
+    }
+    double slope = dot(gradient, direction);
+    if (!(slope < 0.0)) {  // not a descent direction: start the memory again
+      steps.clear();
+      changes.clear();
+      curvatures.clear();
+      direction = precondition(-gradient);
+      if (scale > 0.0) direction *= scale;
+      slope = dot(gradient, direction);
+      if (!(slope < 0.0)) {
+        report.converged = true;  // the gradient vanishes to round-off
+        break;
+      }
+    }
+    const double bound = fold_free_step_fraction(F, charts, uv, uv + direction);
+    double step = bound;
+    Eigen::MatrixXd candidate = uv + step * direction;
+    double candidate_energy = terms.energy(F, candidate, nullptr);
+    // The first step has no curvature estimate yet: it grows while the
+    // energy keeps falling, so that its length is the problem's, not the
+    // preconditioner's units.
+    if (scale == 0.0 && bound >= 1.0) {
+      for (int grow = 0; grow < kMaxHalvings; ++grow) {
+        const Eigen::MatrixXd further = uv + 2.0 * step * direction;
+        if (fold_free_step_fraction(F, charts, uv, further) < 1.0) break;
+        const double further_energy = terms.energy(F, further, nullptr);
+        if (!(further_energy < candidate_energy)) break;
+        step *= 2.0;
+        candidate = further;
+        candidate_energy = further_energy;
+      }
+    }
+    int halvings = 0;
+    while (!(candidate_energy <= energy + kArmijo * step * slope) && halvings < kMaxHalvings) {
+      step *= 0.5;
+      candidate = uv + step * direction;
+      candidate_energy = terms.energy(F, candidate, nullptr);
+      ++halvings;
+    }
+    if (!(candidate_energy < energy)) {
+      report.stalled = true;  // no step lowers the energy along a descent direction
+      break;
+    }
+    terms.energy(F, candidate, &next_gradient);
+    const Eigen::MatrixXd s = candidate - uv;
+    const Eigen::MatrixXd y = next_gradient - gradient;
+    const double sy = dot(s, y);
+    if (sy > 1e-16 * std::sqrt(dot(s, s) * dot(y, y))) {
+      if (static_cast<int>(steps.size()) == kMemory) {
+        steps.pop_front();
+        changes.pop_front();
+        curvatures.pop_front();
+      }
+      steps.push_back(s);
+      changes.push_back(y);
+      curvatures.push_back(1.0 / sy);
+      scale = sy / dot(y, precondition(y));
+    }
+    const double previous = energy;
+    uv = std::move(candidate);
+    gradient = next_gradient;
+    energy = candidate_energy;
+    ++report.iterations;
+    report.energy_history.push_back(energy);
+    if (settings.progress && !settings.progress(iterations_before + report.iterations, energy)) break;
+    // A step the fold guard cut short says nothing about convergence (it
+    // was small because a triangle is near zero area), but many in a row
+    // mean such triangles block the descent.
+    const bool small_change = previous - energy <= settings.tolerance * previous;
+    const bool cut_short = bound < 1.0;
+    quiet = small_change && !cut_short ? quiet + 1 : 0;
+    blocked = small_change && cut_short ? blocked + 1 : 0;
+    if (quiet >= kQuietSteps) {
+      report.converged = true;
+      break;
+    }
+    if (blocked >= kBlockedSteps) {
+      report.stalled = true;
+      break;
+    }
+  }
+  report.energy = energy;
+  uv_out = uv;
+  return report;
+}
+
+}  // namespace aniso
