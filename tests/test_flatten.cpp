@@ -339,9 +339,10 @@ TEST_CASE("flatten (fig. 11): the torso panel's curving compression band is met 
   CHECK(baseline.metrics.flipped == 0);
   CHECK(ours.metrics.compression_error_mean < baseline.metrics.compression_error_mean);
   CHECK(ours.metrics.compression_error_max < baseline.metrics.compression_error_max);
-  // Stated bounds on ours (measured 0.0354 mean, 0.141 max; baseline 0.067, 0.255).
-  CHECK(ours.metrics.compression_error_mean < 0.045);
-  CHECK(ours.metrics.compression_error_max < 0.18);
+  // Stated bounds on ours (measured 0.0089 mean, 0.124 max with the stretch
+  // refinement, 0.0354 and 0.141 without; baseline 0.067, 0.255).
+  CHECK(ours.metrics.compression_error_mean < 0.015);
+  CHECK(ours.metrics.compression_error_max < 0.15);
 }
 
 TEST_CASE("flatten: the energy decreases monotonically over the iterations", "[flatten]") {

@@ -2,9 +2,10 @@
 // recorded mesh with the app's own surface material, heat palettes and mesh
 // view (web/src/viewer/), from a fixed camera, and returns the PNG. No
 // animation, no controls: one frame per picture.
-import { Color, PerspectiveCamera, Scene, Vector3, WebGLRenderer } from 'three';
+import { Color, EventDispatcher, PerspectiveCamera, Scene, Vector3, WebGLRenderer } from 'three';
 import { HEAT_PALETTES, FIXED_HEAT_RANGE } from '/web/src/viewer/heat-palettes.js';
 import { MeshView } from '/web/src/viewer/mesh-view.js';
+import { writeVertexNormals } from '/web/src/viewer/vertex-normals.js';
 
 const renderer = new WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
 renderer.setPixelRatio(1);
@@ -24,9 +25,17 @@ const MARKER = { oneSided: true, neutral: [0, 0, 0], middle: [60, 110, 210], gro
 window.renderPicture = (picture) => {
   renderer.setSize(picture.width, picture.height, false);
   const scene = new Scene();
-  const view = new MeshView({ canvas: renderer.domElement, scene, requestRender() {} });
-  const { positions, triangles, selection, heat, heatKind } = picture.mesh;
-  view.setMesh(positions, triangles);
+  // The viewer's part MeshView uses: no orbit controls (an event target that
+  // never fires) and no frames (every figure mesh uploads in one step).
+  const viewer = { canvas: renderer.domElement, scene, controls: new EventDispatcher(), requestRender() {}, on: () => () => {} };
+  const view = new MeshView(viewer);
+  const { selection, heat, heatKind } = picture.mesh;
+  // The typed arrays MeshView takes (the app's come from the solver worker).
+  const positions = new Float32Array(picture.mesh.positions);
+  const triangles = new Uint32Array(picture.mesh.triangles);
+  const normals = new Float32Array(positions.length);
+  writeVertexNormals(positions, triangles, normals);
+  view.setMesh(positions, triangles, normals);
   view.setFlatShading(Boolean(picture.flat));
   view.setWireframe(Boolean(picture.wireframe));
   if (selection) view.showSelection(selection);

@@ -16,6 +16,9 @@
 //       E(u, L) = sum_t sum_{edges (i,j) of t} w_ij |(u_j - u_i) - L_t T_t (x_j - x_i)|^2,
 //     L_t in SO(2), w_ij the clamped half-cotangent weights of laplacian.h,
 //     global step = one prefactored 2D Poisson solve (one pin per component);
+//  5b. refine_stretch (flatten_refine.cpp, beyond the paper): the errors of
+//     step 6 themselves, smoothed, minimised from the best fold-free map by
+//     preconditioned L-BFGS with a fold-free line search;
 //  6. measure_stretch / summarize_stretch: achieved stretch along and across
 //     the wanted direction per triangle, errors against the wanted amounts;
 //  7. align_grainlines / layout_components: each piece turned so that its
