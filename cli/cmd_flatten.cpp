@@ -34,6 +34,7 @@ struct FlattenArguments {
   std::string mm_per_unit;
   std::string iterations;
   std::string tolerance;
+  bool no_refine = false;
 };
 
 enum class PatternFormat { Obj, Svg, Dxf };
@@ -125,6 +126,7 @@ FlattenPlan plan_flatten(const FlattenArguments& args) {
       fail(ErrorCode::BadParameter, "--tolerance: must be >= 0, got " + args.tolerance);
     }
   }
+  plan.request.refine = !args.no_refine;
   return plan;
 }
 
@@ -261,11 +263,14 @@ void add_flatten_options(CLI::App& command, FlattenArguments& args) {
   command.add_option("--mm-per-unit", args.mm_per_unit,
                      "Millimetres per model unit for SVG/DXF (default 1)")
       ->type_name("K");
-  command.add_option("--iterations", args.iterations, "ARAP iteration cap, >= 1 (default 500)")
+  command.add_option("--iterations", args.iterations, "Iteration cap of the ARAP iterations and the stretch refinement together, >= 1 (default 500)")
       ->type_name("N");
   command.add_option("--tolerance", args.tolerance,
                      "Relative energy change that ends the iterations, >= 0 (default 1e-8)")
       ->type_name("T");
+  command.add_flag("--no-refine", args.no_refine,
+                   "Keep the paper's ARAP result: no stretch refinement of the errors afterwards "
+                   "(README, Flattening refinement)");
 }
 
 }  // namespace

@@ -174,6 +174,9 @@ TEST_CASE("op: refusals name the field and quote the value", "[op]") {
         "flatten: options.direction.type must be one of global, constraints, got 'curvature'");
   CHECK(flatten_refusal(R"({"tolerance":-1})") == "flatten: options.tolerance must be >= 0, got -1");
   CHECK(flatten_refusal("null") == "flatten: options must be an object");
+  CHECK(flatten_refusal(R"({"refine":1})") == "flatten: options.refine must be true or false, got 1");
+  CHECK(flatten_options_from_json(Json::parse("{}")).refine);
+  CHECK_FALSE(flatten_options_from_json(Json::parse(R"({"refine":false})")).refine);
 
   const auto region_refusal = [](const char* text) {
     return bad_parameter_message([&] { region_from_json(Json::parse(text)); });
@@ -278,5 +281,5 @@ TEST_CASE("op: results as JSON and the schema", "[op]") {
   const Json schema = op_schema();
   CHECK(schema["op"].size() == 15);
   CHECK(schema["op.transform"] == Json::array({"scale", "thickness", "shear", "rotate", "twist"}));
-  CHECK(schema["flatten"].size() == 6);
+  CHECK(schema["flatten"].size() == 7);
 }

@@ -246,10 +246,15 @@ export interface FlattenOptions {
   baseline?: 'uniform';
   /** 'mesh' (default): every triangle; 'selection': the triangles whose 3 vertices have weight > 0. */
   patch?: 'mesh' | 'selection';
-  /** ARAP iteration cap (default 500). */
+  /** Iteration cap of the ARAP iterations and the stretch refinement together (default 500). */
   maxIterations?: number;
   /** Relative energy change that ends the iterations (default 1e-8). */
   tolerance?: number;
+  /**
+   * After the ARAP iterations, minimise the reported errors themselves (default true; README,
+   * "Flattening refinement"). false: the paper's local/global result as it is.
+   */
+  refine?: boolean;
 }
 
 /** A part of the patch that needs a dart or a cut (FlattenRegion, flatten.h). */

@@ -47,7 +47,7 @@ using Json = nlohmann::ordered_json;
 
 DeformOp deform_op_from_json(const Json& op);
 // {compress?: su|[su]|[su,sv], direction?: global or constraints (as an op's),
-//  baseline?: 'uniform', patch?: 'mesh'|'selection', maxIterations?, tolerance?}
+//  baseline?: 'uniform', patch?: 'mesh'|'selection', maxIterations?, tolerance?, refine?}
 SessionFlatten flatten_options_from_json(const Json& options);
 // {all:true} | {sphere:{center, radius}} | {box:{min, max}} | {vertices:[...], weights?:[...]}
 Region region_from_json(const Json& region);

@@ -26,6 +26,7 @@ struct SessionFlatten {
   FlattenMethod method = FlattenMethod::Anisotropic;
   int max_iterations = ArapFlattenSettings().max_iterations;
   double tolerance = ArapFlattenSettings().tolerance;
+  bool refine = ArapFlattenSettings().refine;  // false: the paper's local/global result as it is
 };
 
 // The flatten() options a request means (its direction resolved first,

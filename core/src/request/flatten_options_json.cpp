@@ -63,6 +63,7 @@ SessionFlatten flatten_options_from_json(const Json& options) {
     out.tolerance = finite_number(options["tolerance"], name + ".tolerance");
     if (out.tolerance < 0.0) refuse(name + ".tolerance", "must be >= 0, got " + describe(options["tolerance"]));
   }
+  if (has(options, "refine")) out.refine = flag(options["refine"], name + ".refine");
   return out;
 }
 

@@ -12,6 +12,7 @@ FlattenOptions flatten_options(const SessionFlatten& request) {
   options.sv = request.sv;
   options.solver.max_iterations = request.max_iterations;
   options.solver.tolerance = request.tolerance;
+  options.solver.refine = request.refine;
   return options;
 }
 

@@ -31,6 +31,6 @@ inline const Keys kVertices{"vertices", "weights"};
 inline const Keys kSelect{"falloff", "mode"};
 inline const Keys kMeshOptions{"weld"};
 inline const Keys kPatternOptions{"mmPerUnit"};
-inline const Keys kFlatten{"compress", "direction", "baseline", "patch", "maxIterations", "tolerance"};
+inline const Keys kFlatten{"compress", "direction", "baseline", "patch", "maxIterations", "tolerance", "refine"};
 
 }  // namespace aniso::op_keys
