@@ -55,7 +55,7 @@ const MEASURES = {
   areaDistortionMean: 'area_distortion_mean', energy: 'energy',
 };
 
-function assertSameMetrics(t, metrics, report) {
+function assertSameMetrics(t, metrics, report, tolerance) {
   for (const [js, json] of Object.entries(COUNTS)) assert.equal(metrics[js], report[json], js);
   assert.equal(metrics.method, report.method);
   assert.equal(metrics.initialization, report.initialization);
@@ -65,21 +65,32 @@ function assertSameMetrics(t, metrics, report) {
   for (const [js, json] of Object.entries(MEASURES)) {
     const relative = Math.abs(metrics[js] - report[json]) / Math.max(Math.abs(report[json]), 1e-12);
     t.diagnostic(`${js}: wasm ${metrics[js]}, native ${report[json]}, relative ${relative.toExponential(1)}`);
-    assert.ok(relative <= 1e-6, `${js}: wasm ${metrics[js]} vs native ${report[json]}`);
+    assert.ok(relative <= tolerance, `${js}: wasm ${metrics[js]} vs native ${report[json]}`);
   }
 }
 
+// The local/global iterations (refine: false, and the baseline) give the
+// same map natively and in WASM to round-off. The stretch refinement after
+// them is a quasi-Newton descent on a flat, non-smooth-ish energy: rounding
+// decides a line search's halving here and there and the iteration it stops
+// at, so its result agrees to the stopping rule's precision, not to
+// round-off: measured 6e-5 and 2.5e-4 relative on these two patches' mean
+// errors, 1.6e-3 on a maximum (one triangle's).
+const EXACT = 1e-6;
+const REFINED = 5e-3;
 const PARITY = [
-  { file: 'open/human_woman_torso_front_patch.obj', options: { compress: 0.8, direction: { type: 'global', vector: [0, 1, 0] } }, cli: ['--compress', '0.8', '--direction', 'global:0,1,0'] },
-  { file: 'open/hemisphere.obj', options: { compress: [0.9, 1.1], direction: { type: 'global', vector: [1, 0, 0] } }, cli: ['--compress', '0.9,1.1', '--direction', 'global:1,0,0'] },
-  { file: 'open/human_woman_torso_front_patch.obj', name: 'default direction, baseline', options: { compress: 0.8, baseline: 'uniform' }, cli: ['--compress', '0.8', '--baseline', 'uniform'] },
+  { file: 'open/human_woman_torso_front_patch.obj', options: { compress: 0.8, direction: { type: 'global', vector: [0, 1, 0] } }, cli: ['--compress', '0.8', '--direction', 'global:0,1,0'], tolerance: REFINED },
+  { file: 'open/human_woman_torso_front_patch.obj', name: 'refine: false', options: { compress: 0.8, direction: { type: 'global', vector: [0, 1, 0] }, refine: false }, cli: ['--compress', '0.8', '--direction', 'global:0,1,0', '--no-refine'], tolerance: EXACT },
+  { file: 'open/hemisphere.obj', options: { compress: [0.9, 1.1], direction: { type: 'global', vector: [1, 0, 0] } }, cli: ['--compress', '0.9,1.1', '--direction', 'global:1,0,0'], tolerance: REFINED },
+  { file: 'open/hemisphere.obj', name: 'refine: false', options: { compress: [0.9, 1.1], direction: { type: 'global', vector: [1, 0, 0] }, refine: false }, cli: ['--compress', '0.9,1.1', '--direction', 'global:1,0,0', '--no-refine'], tolerance: EXACT },
+  { file: 'open/human_woman_torso_front_patch.obj', name: 'default direction, baseline', options: { compress: 0.8, baseline: 'uniform' }, cli: ['--compress', '0.8', '--baseline', 'uniform'], tolerance: EXACT },
 ];
 
 for (const c of PARITY) {
-  test(`${c.file}${c.name ? `, ${c.name}` : ''}: WASM flatten metrics equal the native CLI's within 1e-6`, { skip: skipNative }, (t) => withSession(c.file, (session) => {
+  test(`${c.file}${c.name ? `, ${c.name}` : ''}: WASM flatten metrics equal the native CLI's within ${c.tolerance}`, { skip: skipNative }, (t) => withSession(c.file, (session) => {
     const report = runCli(c.file, c.cli);
     const result = session.flatten(c.options);
-    assertSameMetrics(t, result.metrics, report);
+    assertSameMetrics(t, result.metrics, report, c.tolerance);
     assert.deepEqual(result.grainlines.length, report.grainline.length);
   }));
 }
