@@ -69,10 +69,8 @@ export class LivePreview {
     }
     const live = this.#live;
     await live.ready;
-    // One warm-started iteration per slider value: each frame refines the
-    // last shape towards the new amount, so the shape follows the slider at
-    // the solver's iteration rate; the release solves in full.
-    const result = await this.#client.preview({ ...op, warmStart: true }, this.#editor.heatMapKind, { iterations: 1 });
+    // A warm-started preview (solver-client.js): the release solves in full.
+    const result = await this.#client.preview({ ...op, warmStart: true }, this.#editor.heatMapKind);
     if (!result || this.#live !== live) return null;
     this.#editor.emit('positions', { positions: result.positions, live: true, distortion: result.distortion });
     this.#editor.emit('stats', { ...result.stats, live: true });
