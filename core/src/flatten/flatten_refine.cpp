@@ -25,7 +25,6 @@
 
 #include <Eigen/LU>
 
-#include "anisoform/error.h"
 #include "flatten/flatten_pipeline.h"
 #include "geometry/laplacian_solver.h"
 

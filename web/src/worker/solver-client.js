@@ -14,7 +14,7 @@ import { PROGRESS, Request } from './protocol.js';
 // solver's iteration rate (at 50k vertices in the page: 3 iterations took
 // 160-290 ms a preview, 3.4-4.5 shapes/s in a 2 s drag). The core caps a
 // preview at kPreviewIterations (session.h) whatever is asked.
-export const LIVE_PREVIEW_ITERATIONS = 1;
+const LIVE_PREVIEW_ITERATIONS = 1;
 
 export class SolverError extends Error {
   constructor({ code, message }) {
@@ -176,10 +176,10 @@ export class SolverClient extends EventEmitter {
    * preview superseded it. `distortion`: a heat map kind to send back with
    * the positions (protocol.js, Request.deform).
    */
-  preview(op, distortion = null, { iterations = LIVE_PREVIEW_ITERATIONS } = {}) {
+  preview(op, distortion = null) {
     return new Promise((resolve, reject) => {
       this.#queuedPreview?.resolve(null);
-      this.#queuedPreview = { op, distortion, iterations, resolve, reject };
+      this.#queuedPreview = { op, distortion, resolve, reject };
       this.#sendQueuedPreview();
     });
   }
@@ -192,12 +192,12 @@ export class SolverClient extends EventEmitter {
 
   #sendQueuedPreview() {
     if (this.#previewInFlight || !this.#queuedPreview) return;
-    const { op, distortion, iterations, resolve, reject } = this.#queuedPreview;
+    const { op, distortion, resolve, reject } = this.#queuedPreview;
     this.#queuedPreview = null;
-    // A preview runs `iterations` warm-started iterations; the committed edit
-    // on release gets the iteration cap.
+    // A preview runs LIVE_PREVIEW_ITERATIONS warm-started iterations; the
+    // committed edit on release gets the iteration cap.
     const { maxIterations, ...previewOp } = op;
-    previewOp.maxIterations = iterations;
+    previewOp.maxIterations = LIVE_PREVIEW_ITERATIONS;
     const id = this.#nextId;
     this.request(Request.deform, { op: { ...previewOp, preview: true }, commit: false, distortion }).then(resolve, reject);
     if (!this.#disposed) this.#previewInFlight = id;
