@@ -73,13 +73,17 @@ TEST_CASE("flatten: ours beats the uniform baseline on the open meshes, on the c
   // errors themselves. Spothead, demosthenes and the bunny (9k, 17k and 69k
   // triangles) are measured in the note, not here: they take seconds even in
   // a release build.
+  // The hand is nearly closed: its start maps squeeze most triangles to
+  // almost nothing, and the refinement un-squeezes them with the map-weighted
+  // preconditioner (it ended at 0.97 of the baseline's error without it).
   struct Case {
     const char* name;
-    bool developable_enough;  // converges, and ours is under half the baseline's error
+    bool converges;
+    double share;  // ours is under this share of the baseline's combined error
   };
-  for (const Case& c : {Case{"open/human_woman_torso_front_patch.obj", true}, Case{"open/nefertiti_face.off", true},
-                        Case{"open/hemisphere.obj", true}, Case{"open/cube_no_bottom.obj", true},
-                        Case{"open/hand_lowres.obj", false}}) {
+  for (const Case& c : {Case{"open/human_woman_torso_front_patch.obj", true, 0.5}, Case{"open/nefertiti_face.off", true, 0.5},
+                        Case{"open/hemisphere.obj", true, 0.5}, Case{"open/cube_no_bottom.obj", true, 0.5},
+                        Case{"open/hand_lowres.obj", false, 0.35}}) {
     const Mesh mesh = test::load(c.name);
     Eigen::Vector3d extent = mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff();
     Eigen::Index longest = 0;
@@ -100,10 +104,8 @@ TEST_CASE("flatten: ours beats the uniform baseline on the open meshes, on the c
     CHECK(ours.flipped == 0);
     CHECK(ours_combined < base_combined);
     CHECK(ours.compression_error_mean < base.compression_error_mean);
-    if (c.developable_enough) {
-      CHECK(ours.converged);
-      CHECK(ours_combined < 0.5 * base_combined);  // measured 0.16-0.35 of it
-    }
+    if (c.converges) CHECK(ours.converged);
+    CHECK(ours_combined < c.share * base_combined);  // measured 0.16-0.35 of it; the hand 0.25
   }
 }
 
@@ -122,6 +124,7 @@ TEST_CASE("flatten: the stretch refinement lowers the energy at every step and c
       refine_stretch(patch, charts, targets, arap.laplacian(), ArapFlattenSettings{}, 0, {start}, uv);
   REQUIRE(report.start == 0);
   CHECK(report.converged);
+  CHECK(report.factorizations == 0);  // nothing squeezed: the patch's own Laplacian
   REQUIRE(report.energy_history.size() > 10);
   for (std::size_t k = 1; k < report.energy_history.size(); ++k) {
     INFO("step " << k);
@@ -143,4 +146,48 @@ TEST_CASE("flatten: the stretch refinement lowers the energy at every step and c
   options.solver.refine = false;
   const FlattenMetrics paper = flattener.flatten(options).metrics;
   CHECK(refined.compression_error_mean < 0.5 * paper.compression_error_mean);
+}
+
+TEST_CASE("flatten: from a start that squeezes a nearly closed patch, the refinement grows the squeezed triangles back",
+          "[flatten]") {
+  // The hand's Tutte map at the wanted area holds most triangles at a tiny
+  // fraction of their area. The barrier (from 10 % of the wanted area, for
+  // every start) pushes them back, and the map-weighted preconditioner lets
+  // them move (the hand needs some squeezed: it is flattened as one piece),
+  // with the energy falling at every step and no fold. With the barrier
+  // starting below each start's own areas and the fixed preconditioner, 1,343
+  // were still squeezed after 500 iterations.
+  const Mesh hand = test::load("open/hand_lowres.obj");
+  const FlattenPatch patch = extract_flatten_patch(hand, {});
+  const TriangleCharts charts = triangle_charts(patch.mesh);
+  FlattenDirections directions;
+  directions.global = Eigen::Vector3d::UnitY();
+  const FlattenTargets targets = flatten_targets(hand, patch, charts, directions, 0.8, 1.0);
+  const ArapFlattening arap(patch, charts);
+  Eigen::MatrixX2d start;
+  tutte_embedding(patch, charts, start);
+  const Eigen::VectorXd wanted = charts.area.cwiseProduct(targets.su).cwiseProduct(targets.sv);
+  scale_to_area(patch, wanted, start);
+  const auto squeezed = [&](const Eigen::MatrixX2d& uv) {
+    int count = 0;
+    for (int t = 0; t < patch.mesh.num_triangles(); ++t) {
+      if (charts.area[t] > 0.0 && uv_signed_area(patch.mesh.F, uv, t) < 0.1 * wanted[t]) ++count;
+    }
+    return count;
+  };
+  ArapFlattenSettings settings;
+  settings.max_iterations = 500;
+  Eigen::MatrixX2d uv;
+  const StretchRefineReport report = refine_stretch(patch, charts, targets, arap.laplacian(), settings, 0, {start}, uv);
+  REQUIRE(report.start == 0);
+  std::printf("[flatten] hand from its Tutte map: %d of %d triangles below 10 %% of their area, %d after %d iterations "
+              "(%d preconditioner factorizations)\n",
+              squeezed(start), patch.mesh.num_triangles(), squeezed(uv), report.iterations, report.factorizations);
+  CHECK(report.factorizations >= 1);
+  CHECK(squeezed(uv) < 0.75 * squeezed(start));  // measured 930 of 1,360
+  for (std::size_t k = 1; k < report.energy_history.size(); ++k) {
+    INFO("step " << k);
+    CHECK(report.energy_history[k] < report.energy_history[k - 1]);
+  }
+  CHECK(count_folded(patch.mesh.F, charts, uv) == 0);
 }

@@ -165,6 +165,7 @@ struct StretchRefineReport {
   double energy = 0.0;     // the refinement's energy at the end (about the mean errors)
   bool converged = false;  // the relative energy change stayed below the tolerance
   bool stalled = false;    // the fold guard or the line search blocked every step
+  int factorizations = 0;  // of the map-weighted preconditioner (0 unless the start squeezes triangles)
   std::vector<double> energy_history;
 };
 

@@ -12,15 +12,23 @@
 // rho(r) = sqrt(r^2 + d^2) - d a smoothed |r|, so that the sum is the reported
 // mean errors (divided by the total area) to within d; the area term keeps the
 // shear the error does not see from collapsing triangles, and the barrier
-// (zero above kBarrierStart of the wanted area) keeps every triangle's area
-// positive. Minimised by L-BFGS preconditioned with the patch's prefactored
-// cotangent Laplacian (a Sobolev gradient, as SLIM-type methods use), with a
-// backtracking line search inside the fold guard's step bound: the energy
-// falls at every iteration and no triangle ever folds.
+// (zero above kBarrierStart of the wanted area, for every triangle and every
+// start) keeps every triangle's area positive and pushes back the ones a
+// start map squeezed. Minimised by L-BFGS with a backtracking line search
+// inside the fold guard's step bound: the energy falls at every iteration and
+// no triangle ever folds. The preconditioner (a Sobolev gradient, as
+// SLIM-type methods use) is the patch's prefactored cotangent Laplacian; from
+// a start that squeezes triangles below the barrier (the Tutte or LSCM map of
+// a nearly closed patch holds area ratios down to 1e-12) it is the chart
+// Laplacian weighted by the current map's area ratios, rebuilt as they
+// change: with the fixed one, the squeezed regions barely moved per step
+// (1,360 of the hand's 1,602 triangles were still below 10 % of their area
+// after 500 iterations).
 #include <algorithm>
 #include <cmath>
 #include <deque>
 #include <limits>
+#include <memory>
 #include <utility>
 
 #include <Eigen/LU>
@@ -48,6 +56,15 @@ constexpr int kQuietSteps = 3;
 // Steps cut short by the fold guard, with no real progress, after which the
 // refinement gives up (stalled).
 constexpr int kBlockedSteps = 10;
+// The map-weighted preconditioner (used when the start map squeezes
+// triangles below kBarrierStart): every kRefreshCheck iterations it is
+// rebuilt if some triangle's area ratio has changed by more than
+// kRefreshChange times since it was built. Area ratios below kRatioFloor
+// weigh as kRatioFloor (a Tutte map of a nearly closed patch holds ratios of
+// 1e-12; the weights' spread stays within what the factorization resolves).
+constexpr int kRefreshCheck = 10;
+constexpr double kRefreshChange = 2.0;
+constexpr double kRatioFloor = 1e-6;
 
 double smooth_abs(double r) { return std::sqrt(r * r + kSmoothing * kSmoothing) - kSmoothing; }
 double smooth_abs_slope(double r) { return r / std::sqrt(r * r + kSmoothing * kSmoothing); }
@@ -69,8 +86,7 @@ double barrier_slope(double x, double x0) {
 struct StretchTerms {
   Eigen::MatrixX3d alpha, beta;
   Eigen::VectorXd weight, su, sv;
-  Eigen::VectorXd barrier_start;  // per triangle: x0 of its barrier
-  std::vector<int> active;        // non-degenerate triangles
+  std::vector<int> active;  // non-degenerate triangles
 
   StretchTerms(const TriangleCharts& charts, const FlattenTargets& targets) {
     const int m = static_cast<int>(charts.area.size());
@@ -94,18 +110,6 @@ struct StretchTerms {
       weight[t] = charts.area[t] / total;
       active.push_back(t);
     }
-    barrier_start.setConstant(m, kBarrierStart);
-  }
-
-  // A start map may already hold triangles squeezed below kBarrierStart (the
-  // local/global guard stalls on them): their barrier starts at half their
-  // area, so that it stops further collapse without dominating the energy.
-  void start_barriers_below(const Triangles& F, const Eigen::MatrixXd& uv) {
-    for (const int t : active) {
-      const auto [p, q] = images(F, uv, t);
-      const double area = (p.x() * q.y() - p.y() * q.x()) / (su[t] * sv[t]);
-      barrier_start[t] = std::min(kBarrierStart, 0.5 * area);
-    }
   }
 
   // Ju and Jv of triangle t.
@@ -119,6 +123,43 @@ struct StretchTerms {
     return {p, q};
   }
 
+  // det J / (su sv) of triangle t: its area over the wanted area.
+  double area_ratio(const Triangles& F, const Eigen::MatrixXd& uv, int t) const {
+    const auto [p, q] = images(F, uv, t);
+    return (p.x() * q.y() - p.y() * q.x()) / (su[t] * sv[t]);
+  }
+
+  // The area ratios of the active triangles, in their order.
+  std::vector<double> area_ratios(const Triangles& F, const Eigen::MatrixXd& uv) const {
+    std::vector<double> ratios;
+    ratios.reserve(active.size());
+    for (const int t : active) ratios.push_back(area_ratio(F, uv, t));
+    return ratios;
+  }
+
+  // The chart Laplacian of the stretch terms, sum_t w_t (alpha alpha^T +
+  // beta beta^T), each triangle weighted by 1 / its area ratio (floored):
+  // where the map has squeezed a triangle to a fraction of its area, its
+  // terms' curvature in uv is that much larger, and a preconditioner that
+  // knows it moves such regions as far per step as the rest.
+  Eigen::SparseMatrix<double> map_weighted_laplacian(const std::vector<double>& ratios, int num_vertices,
+                                                     const Triangles& F) const {
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(active.size() * 9);
+    for (std::size_t k = 0; k < active.size(); ++k) {
+      const int t = active[k];
+      const double w = weight[t] / std::max(ratios[k], kRatioFloor);
+      for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) {
+          entries.emplace_back(F(t, i), F(t, j), w * (alpha(t, i) * alpha(t, j) + beta(t, i) * beta(t, j)));
+        }
+      }
+    }
+    Eigen::SparseMatrix<double> L(num_vertices, num_vertices);
+    L.setFromTriplets(entries.begin(), entries.end());
+    return L;
+  }
+
   // E(uv); with `gradient`, also dE/duv (#P by 2).
   double energy(const Triangles& F, const Eigen::MatrixXd& uv, Eigen::MatrixXd* gradient) const {
     if (gradient) gradient->setZero(uv.rows(), 2);
@@ -128,12 +169,12 @@ struct StretchTerms {
       const double p_length = p.norm(), q_length = q.norm();
       const double along = p_length / su[t] - 1.0, across = q_length / sv[t] - 1.0;
       const double area = (p.x() * q.y() - p.y() * q.x()) / (su[t] * sv[t]);
-      const double b = barrier(area, barrier_start[t]);
+      const double b = barrier(area, kBarrierStart);
       if (!std::isfinite(b)) return std::numeric_limits<double>::infinity();
       sum += weight[t] * (smooth_abs(along) + smooth_abs(across) + kAreaWeight * smooth_abs(area - 1.0) + b);
       if (!gradient) continue;
       const double area_slope =
-          (kAreaWeight * smooth_abs_slope(area - 1.0) + barrier_slope(area, barrier_start[t])) / (su[t] * sv[t]);
+          (kAreaWeight * smooth_abs_slope(area - 1.0) + barrier_slope(area, kBarrierStart)) / (su[t] * sv[t]);
       Eigen::Vector2d dp = area_slope * Eigen::Vector2d(q.y(), -q.x());
       Eigen::Vector2d dq = area_slope * Eigen::Vector2d(-p.y(), p.x());
       if (p_length > 0.0) dp += smooth_abs_slope(along) / (su[t] * p_length) * p;
@@ -170,16 +211,43 @@ StretchRefineReport refine_stretch(const FlattenPatch& patch, const TriangleChar
   }
   if (report.start < 0) return report;
   Eigen::MatrixXd uv = starts[report.start];
-  terms.start_barriers_below(F, uv);
   Eigen::MatrixXd gradient, next_gradient;
   energy = terms.energy(F, uv, &gradient);
   report.energy_history.push_back(energy);
+  // A start that squeezes triangles below the barrier (the Tutte or LSCM map
+  // of a nearly closed patch) is preconditioned by the map-weighted chart
+  // Laplacian, rebuilt as the map changes; any other by the patch's
+  // prefactored cotangent Laplacian.
+  std::vector<double> built_ratios = terms.area_ratios(F, uv);
+  std::unique_ptr<LaplacianSolver> map_weighted;
+  if (*std::min_element(built_ratios.begin(), built_ratios.end()) < kBarrierStart) {
+    map_weighted = std::make_unique<LaplacianSolver>(
+        terms.map_weighted_laplacian(built_ratios, static_cast<int>(uv.rows()), F), preconditioner.pinned());
+    ++report.factorizations;
+  }
   // The preconditioner solves L x = g with x = 0 on the pinned vertices (one
   // per component: the energy does not change when a piece moves).
-  const auto precondition = [&preconditioner](const Eigen::MatrixXd& g) {
+  const auto precondition = [&](const Eigen::MatrixXd& g) {
     Eigen::MatrixXd x = Eigen::MatrixXd::Zero(g.rows(), 2);
-    preconditioner.solve(g, x);
+    (map_weighted ? *map_weighted : preconditioner).solve(g, x);
     return x;
+  };
+  // Rebuilds the map-weighted preconditioner once the map has moved away
+  // from the one it was built for. The L-BFGS pairs stay (they are the
+  // energy's curvature, whatever H0 is); only H0's scale is measured again.
+  const auto refresh_preconditioner = [&](double& scale, const Eigen::MatrixXd& last_change, double last_curvature) {
+    std::vector<double> ratios = terms.area_ratios(F, uv);
+    double change = 0.0;
+    for (std::size_t k = 0; k < ratios.size(); ++k) {
+      const double now = std::max(ratios[k], kRatioFloor), then = std::max(built_ratios[k], kRatioFloor);
+      change = std::max(change, std::max(now / then, then / now));
+    }
+    if (!(change > kRefreshChange)) return;
+    map_weighted = std::make_unique<LaplacianSolver>(
+        terms.map_weighted_laplacian(ratios, static_cast<int>(uv.rows()), F), preconditioner.pinned());
+    ++report.factorizations;
+    built_ratios = std::move(ratios);
+    if (last_change.size() > 0) scale = 1.0 / (last_curvature * dot(last_change, precondition(last_change)));
   };
   std::deque<Eigen::MatrixXd> steps, changes;  // s_i, y_i
   std::deque<double> curvatures;               // 1 / (y_i . s_i)
@@ -187,6 +255,10 @@ StretchRefineReport refine_stretch(const FlattenPatch& patch, const TriangleChar
   int quiet = 0, blocked = 0;
   const int cap = std::max(0, settings.max_iterations - iterations_before);
   while (report.iterations < cap) {
+    if (map_weighted && report.iterations > 0 && report.iterations % kRefreshCheck == 0) {
+      refresh_preconditioner(scale, changes.empty() ? Eigen::MatrixXd() : changes.back(),
+                             curvatures.empty() ? 0.0 : curvatures.back());
+    }
     if (energy <= kExactEnergy) {
       report.converged = true;
       break;
