@@ -38,10 +38,11 @@ test('a garment panel flattens without a warning; the heat range adapts and can 
   await expect(legend).toBeVisible();
   await expect(page.getByTestId('heatmap-legend-title')).toHaveText('Compression error (flatten)');
   await expect(page.getByTestId('heatmap-legend-range')).toHaveText('Range adapted to the data (95th percentile)');
-  // The hand is far off nearly everywhere: its adapted range is far above the fixed 10 %.
+  // The hand cannot be one piece: its mean error is above the fixed range's
+  // 10 % and its adapted range (95th percentile) far above it.
   const handTop = await page.getByTestId('heatmap-legend-values').locator('span').last().textContent();
   expect(Number.parseFloat(handTop)).toBeGreaterThan(50);
-  expect(Number.parseFloat(await page.getByTestId('metric-compression').textContent())).toBeGreaterThan(50);
+  expect(Number.parseFloat(await page.getByTestId('metric-compression').textContent())).toBeGreaterThan(10);
 
   await page.locator('#display-heatRange').selectOption('fixed');
   await expect(page.getByTestId('heatmap-legend-range')).toHaveText('Fixed range');
