@@ -109,14 +109,40 @@ TEST_CASE("flatten: ours beats the uniform baseline on the open meshes, on the c
   }
 }
 
-TEST_CASE("flatten: the stretch refinement lowers the energy at every step and can be turned off", "[flatten]") {
-  const Mesh torso = test::load("open/human_woman_torso_front_patch.obj");
-  const FlattenPatch patch = extract_flatten_patch(torso, {});
-  const TriangleCharts charts = triangle_charts(patch.mesh);
+namespace {
+
+// A whole open mesh as one patch, su 0.8 along y: what refine_stretch needs.
+struct RefineProblem {
+  Mesh mesh;
+  FlattenPatch patch;
+  TriangleCharts charts;
   FlattenDirections directions;
-  directions.global = Eigen::Vector3d::UnitY();
-  const FlattenTargets targets = flatten_targets(torso, patch, charts, directions, 0.8, 1.0);
-  const ArapFlattening arap(patch, charts);
+  FlattenTargets targets;
+  ArapFlattening arap;
+
+  explicit RefineProblem(const char* name)
+      : mesh(test::load(name)),
+        patch(extract_flatten_patch(mesh, {})),
+        charts(triangle_charts(patch.mesh)),
+        directions{with_global(Eigen::Vector3d::UnitY())},
+        targets(flatten_targets(mesh, patch, charts, directions, 0.8, 1.0)),
+        arap(patch, charts) {}
+
+  static FlattenDirections with_global(const Eigen::Vector3d& axis) {
+    FlattenDirections d;
+    d.global = axis;
+    return d;
+  }
+};
+
+}  // namespace
+
+TEST_CASE("flatten: the stretch refinement lowers the energy at every step and can be turned off", "[flatten]") {
+  const RefineProblem torso("open/human_woman_torso_front_patch.obj");
+  const FlattenPatch& patch = torso.patch;
+  const TriangleCharts& charts = torso.charts;
+  const FlattenTargets& targets = torso.targets;
+  const ArapFlattening& arap = torso.arap;
   Eigen::MatrixX2d start;
   lscm_free_boundary(patch, charts, start);
   Eigen::MatrixX2d uv;
@@ -138,10 +164,10 @@ TEST_CASE("flatten: the stretch refinement lowers the energy at every step and c
   CHECK(refine_stretch(patch, charts, targets, arap.laplacian(), ArapFlattenSettings{}, 0, {mirrored}, unused).start == -1);
 
   // Off: the paper's ARAP result, with its larger error.
-  Flattener flattener(torso);
+  Flattener flattener(torso.mesh);
   FlattenOptions options;
   options.su = 0.8;
-  options.directions = directions;
+  options.directions = torso.directions;
   const FlattenMetrics refined = flattener.flatten(options).metrics;
   options.solver.refine = false;
   const FlattenMetrics paper = flattener.flatten(options).metrics;
@@ -157,13 +183,10 @@ TEST_CASE("flatten: from a start that squeezes a nearly closed patch, the refine
   // with the energy falling at every step and no fold. With the barrier
   // starting below each start's own areas and the fixed preconditioner, 1,343
   // were still squeezed after 500 iterations.
-  const Mesh hand = test::load("open/hand_lowres.obj");
-  const FlattenPatch patch = extract_flatten_patch(hand, {});
-  const TriangleCharts charts = triangle_charts(patch.mesh);
-  FlattenDirections directions;
-  directions.global = Eigen::Vector3d::UnitY();
-  const FlattenTargets targets = flatten_targets(hand, patch, charts, directions, 0.8, 1.0);
-  const ArapFlattening arap(patch, charts);
+  const RefineProblem hand("open/hand_lowres.obj");
+  const FlattenPatch& patch = hand.patch;
+  const TriangleCharts& charts = hand.charts;
+  const FlattenTargets& targets = hand.targets;
   Eigen::MatrixX2d start;
   tutte_embedding(patch, charts, start);
   const Eigen::VectorXd wanted = charts.area.cwiseProduct(targets.su).cwiseProduct(targets.sv);
@@ -178,7 +201,8 @@ TEST_CASE("flatten: from a start that squeezes a nearly closed patch, the refine
   ArapFlattenSettings settings;
   settings.max_iterations = 500;
   Eigen::MatrixX2d uv;
-  const StretchRefineReport report = refine_stretch(patch, charts, targets, arap.laplacian(), settings, 0, {start}, uv);
+  const StretchRefineReport report =
+      refine_stretch(patch, charts, targets, hand.arap.laplacian(), settings, 0, {start}, uv);
   REQUIRE(report.start == 0);
   std::printf("[flatten] hand from its Tutte map: %d of %d triangles below 10 %% of their area, %d after %d iterations "
               "(%d preconditioner factorizations)\n",

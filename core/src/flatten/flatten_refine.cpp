@@ -220,7 +220,7 @@ StretchRefineReport refine_stretch(const FlattenPatch& patch, const TriangleChar
   // prefactored cotangent Laplacian.
   std::vector<double> built_ratios = terms.area_ratios(F, uv);
   std::unique_ptr<LaplacianSolver> map_weighted;
-  if (*std::min_element(built_ratios.begin(), built_ratios.end()) < kBarrierStart) {
+  if (std::any_of(built_ratios.begin(), built_ratios.end(), [](double ratio) { return ratio < kBarrierStart; })) {
     map_weighted = std::make_unique<LaplacianSolver>(
         terms.map_weighted_laplacian(built_ratios, static_cast<int>(uv.rows()), F), preconditioner.pinned());
     ++report.factorizations;
