@@ -123,9 +123,9 @@ struct StretchTerms {
     return {p, q};
   }
 
-  // det J / (su sv) of triangle t: its area over the wanted area.
-  double area_ratio(const Triangles& F, const Eigen::MatrixXd& uv, int t) const {
-    const auto [p, q] = images(F, uv, t);
+  // det J / (su sv) of triangle t from its images Ju = p, Jv = q: its area
+  // over the wanted area.
+  double area_ratio(const Eigen::Vector2d& p, const Eigen::Vector2d& q, int t) const {
     return (p.x() * q.y() - p.y() * q.x()) / (su[t] * sv[t]);
   }
 
@@ -133,7 +133,10 @@ struct StretchTerms {
   std::vector<double> area_ratios(const Triangles& F, const Eigen::MatrixXd& uv) const {
     std::vector<double> ratios;
     ratios.reserve(active.size());
-    for (const int t : active) ratios.push_back(area_ratio(F, uv, t));
+    for (const int t : active) {
+      const auto [p, q] = images(F, uv, t);
+      ratios.push_back(area_ratio(p, q, t));
+    }
     return ratios;
   }
 
@@ -168,7 +171,7 @@ struct StretchTerms {
       const auto [p, q] = images(F, uv, t);
       const double p_length = p.norm(), q_length = q.norm();
       const double along = p_length / su[t] - 1.0, across = q_length / sv[t] - 1.0;
-      const double area = (p.x() * q.y() - p.y() * q.x()) / (su[t] * sv[t]);
+      const double area = area_ratio(p, q, t);
       const double b = barrier(area, kBarrierStart);
       if (!std::isfinite(b)) return std::numeric_limits<double>::infinity();
       sum += weight[t] * (smooth_abs(along) + smooth_abs(across) + kAreaWeight * smooth_abs(area - 1.0) + b);
