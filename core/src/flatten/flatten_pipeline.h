@@ -96,11 +96,15 @@ void lscm_free_boundary(const FlattenPatch& patch, const TriangleCharts& charts,
 
 // Fold-free start (Tutte 1963, Floater 2003): per component the longest
 // boundary loop is put on a circle by arc length, every other loop is closed
-// by a virtual fan vertex, and every interior vertex is the mean of its
-// neighbours. For a patch of disk topology with holes (genus 0) no triangle
-// is folded over. Scaled to the 3D area like lscm_free_boundary. uv: #P by 2.
-void tutte_embedding(const FlattenPatch& patch, const TriangleCharts& charts,
-                     Eigen::MatrixX2d& uv);
+// by a virtual fan vertex, and every interior vertex is a convex combination
+// of its neighbours: uniform weights, then up to `stretch_rounds` rounds of
+// weights divided by the ends' L2 stretch (flatten_tutte.cpp says why and
+// what it measured), keeping the map of lowest total stretch. For a patch of
+// disk topology with holes (genus 0) no triangle is folded over. Scaled to
+// the 3D area like lscm_free_boundary. uv: #P by 2.
+constexpr int kDefaultStretchRounds = 5;
+void tutte_embedding(const FlattenPatch& patch, const TriangleCharts& charts, Eigen::MatrixX2d& uv,
+                     int stretch_rounds = kDefaultStretchRounds);
 
 // Scales each component of uv about its centroid so that its signed area is
 // the sum of `triangle_area` (#T) over it: the 3D areas for a start map, the
