@@ -38,9 +38,17 @@ async function cancelLongEdit(page, stop) {
     const api = window.anisoform;
     const before = { positions: Array.from(api.positions()), document: JSON.stringify(api.document()) };
     const started = api.deform(edit).then(() => ({ outcome: 'finished' }), (error) => ({ outcome: 'rejected', code: error.code, message: error.message, at: performance.now() }));
-    await new Promise((resolve) => setTimeout(resolve, 800));
-    // What the status bar says while it solves: the stage and how far.
-    const progress = document.querySelector('[data-testid="progress"]').textContent;
+    // What the status bar says while it solves: the stage and how far. A
+    // background step may run first (the factorization of the last commit's
+    // shape, one step shown without a percentage): wait for the edit's own,
+    // after its start has replaced what the last call left there.
+    await new Promise((resolve) => setTimeout(resolve, 300));
+    const status = document.querySelector('[data-testid="progress"]');
+    const deadline = performance.now() + 20_000;
+    while (!/(Solving|Preparing the solver) \d+ %/.test(status.textContent) && performance.now() < deadline) {
+      await new Promise((resolve) => setTimeout(resolve, 50));
+    }
+    const progress = status.textContent;
     const cancelledAt = performance.now();
     const accepted = stop === 'api' ? api.cancel() : null;
     if (stop === 'button') document.querySelector('[data-testid="cancel-solve"]').click();
