@@ -137,15 +137,37 @@ double squared_stretch(const Triangles& F, const TriangleCharts& charts, const E
   return 0.5 * (chart_edges * map_edges.inverse()).squaredNorm();
 }
 
+// Per triangle: its squared L2 stretch (0 for a degenerate one, which has no
+// chart and is left out of every mean).
+Eigen::VectorXd squared_stretches(const FlattenPatch& patch, const TriangleCharts& charts, const Eigen::MatrixX2d& uv) {
+  Eigen::VectorXd squared = Eigen::VectorXd::Zero(patch.mesh.num_triangles());
+  for (int t = 0; t < patch.mesh.num_triangles(); ++t) {
+    if (charts.area[t] > 0.0) squared[t] = squared_stretch(patch.mesh.F, charts, uv, t);
+  }
+  return squared;
+}
+
+// The patch's area-weighted RMS L2 stretch.
+double total_stretch(const TriangleCharts& charts, const Eigen::VectorXd& squared) {
+  double sum = 0.0, area = 0.0;
+  for (int t = 0; t < squared.size(); ++t) {
+    if (!(charts.area[t] > 0.0)) continue;
+    sum += charts.area[t] * squared[t];
+    area += charts.area[t];
+  }
+  return area > 0.0 ? std::sqrt(sum / area) : 0.0;
+}
+
 // Per vertex: the area-weighted RMS of its triangles' L2 stretch (1 for a
 // vertex without a non-degenerate triangle).
-Eigen::VectorXd vertex_stretch(const FlattenPatch& patch, const TriangleCharts& charts, const Eigen::MatrixX2d& uv) {
+Eigen::VectorXd vertex_stretch(const FlattenPatch& patch, const TriangleCharts& charts,
+                               const Eigen::VectorXd& squared) {
   const Triangles& F = patch.mesh.F;
   const int n = patch.mesh.num_vertices();
   Eigen::VectorXd sum = Eigen::VectorXd::Zero(n), area = Eigen::VectorXd::Zero(n);
   for (int t = 0; t < F.rows(); ++t) {
     if (!(charts.area[t] > 0.0)) continue;
-    const double s2 = std::min(squared_stretch(F, charts, uv, t), std::numeric_limits<double>::max());
+    const double s2 = std::min(squared[t], std::numeric_limits<double>::max());
     for (int k = 0; k < 3; ++k) {
       sum[F(t, k)] += charts.area[t] * s2;
       area[F(t, k)] += charts.area[t];
@@ -156,17 +178,6 @@ Eigen::VectorXd vertex_stretch(const FlattenPatch& patch, const TriangleCharts& 
     if (area[i] > 0.0) stretch[i] = std::sqrt(sum[i] / area[i]);
   }
   return stretch;
-}
-
-// The patch's area-weighted RMS L2 stretch.
-double total_stretch(const FlattenPatch& patch, const TriangleCharts& charts, const Eigen::MatrixX2d& uv) {
-  double sum = 0.0, area = 0.0;
-  for (int t = 0; t < patch.mesh.F.rows(); ++t) {
-    if (!(charts.area[t] > 0.0)) continue;
-    sum += charts.area[t] * squared_stretch(patch.mesh.F, charts, uv, t);
-    area += charts.area[t];
-  }
-  return area > 0.0 ? std::sqrt(sum / area) : 0.0;
 }
 
 }  // namespace
@@ -214,14 +225,15 @@ void tutte_embedding(const FlattenPatch& patch, const TriangleCharts& charts, Ei
     solve_convex_combination(edges, weights, fixed, position);
     Eigen::MatrixX2d map = position.topRows(patch.mesh.num_vertices());
     scale_to_area(patch, charts.area, map);
-    const Eigen::VectorXd stretch = vertex_stretch(patch, charts, map);
-    const double total = total_stretch(patch, charts, map);
+    const Eigen::VectorXd squared = squared_stretches(patch, charts, map);
+    const double total = total_stretch(charts, squared);
     const bool improved = total < kStretchGain * best_stretch;
     if (total < best_stretch || best.rows() == 0) {
       best_stretch = total;
       best = std::move(map);
     }
     if (!improved || round == stretch_rounds) break;
+    const Eigen::VectorXd stretch = vertex_stretch(patch, charts, squared);
     std::vector<double> next = weights;
     double largest = 0.0;
     for (std::size_t e = 0; e < edges.size(); ++e) {
