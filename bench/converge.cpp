@@ -50,34 +50,46 @@ int run_convergence(const Problem& problem, double tolerance, int runs, int max_
       warmup.max_iterations = 1;
       deformer.deform(warmup);
     }
-    Converged plain, accelerated;
-    std::vector<double> ratio_ms;
+    // Plain local/global first, then each acceleration, interleaved run by run.
+    struct Variant {
+      const char* name;
+      aniso::Acceleration acceleration;
+      Converged result;
+      std::vector<double> speedup;  // plain ms / this ms, per run
+    };
+    std::vector<Variant> variants = {{"none", aniso::Acceleration::None, {}, {}},
+                                     {"anderson", aniso::Acceleration::Anderson, {}, {}},
+                                     {"lbfgs", aniso::Acceleration::Lbfgs, {}, {}}};
     try {
-      for (int r = 0; r < runs; ++r) {  // interleaved, as the main benchmark
-        request.acceleration = aniso::Acceleration::None;
-        solve_once(deformer, request, plain);
-        request.acceleration = aniso::Acceleration::Anderson;
-        solve_once(deformer, request, accelerated);
-        ratio_ms.push_back(plain.ms.back() / accelerated.ms.back());
+      for (int r = 0; r < runs; ++r) {
+        for (Variant& v : variants) {
+          request.acceleration = v.acceleration;
+          solve_once(deformer, request, v.result);
+          v.speedup.push_back(variants[0].result.ms.back() / v.result.ms.back());
+        }
       }
     } catch (const std::exception& e) {
       std::fprintf(stderr, "anisoform_bench: %s failed on %s: %s\n", row.impl, problem.name.c_str(), e.what());
       return 3;
     }
-    for (const auto& [name, c] : {std::pair<const char*, const Converged&>{"none", plain},
-                                  std::pair<const char*, const Converged&>{"anderson", accelerated}}) {
+    for (const Variant& v : variants) {
+      const Converged& c = v.result;
       std::printf("{\"mesh\":\"%s\",\"vertices\":%d,\"impl\":\"%s\",\"acceleration\":\"%s\",\"tolerance\":%g,"
                   "\"iterations\":%.0f,\"converged\":%s,\"ms\":%.1f,\"energy\":%.10g}\n",
-                  problem.name.c_str(), n, row.impl, name, tolerance, median_of(c.iterations),
+                  problem.name.c_str(), n, row.impl, v.name, tolerance, median_of(c.iterations),
                   c.converged ? "true" : "false", median_of(c.ms), c.energy);
     }
     std::fflush(stdout);
-    std::fprintf(stderr,
-                 "converge %s %s (%d vertices, tolerance %g, %d runs): iterations %.0f -> %.0f, time plain/anderson "
-                 "%.2f (goal >= 5), energy anderson/plain - 1 = %.2e\n",
-                 problem.name.c_str(), row.impl, n, tolerance, runs, median_of(plain.iterations),
-                 median_of(accelerated.iterations), median_of(ratio_ms),
-                 accelerated.energy / plain.energy - 1.0);
+    const Converged& plain = variants[0].result;
+    for (std::size_t k = 1; k < variants.size(); ++k) {
+      const Variant& v = variants[k];
+      std::fprintf(stderr,
+                   "converge %s %s %s (%d vertices, tolerance %g, %d runs): iterations %.0f -> %.0f, time plain/%s "
+                   "%.2f (goal >= 5), energy %s/plain - 1 = %.2e\n",
+                   problem.name.c_str(), row.impl, v.name, n, tolerance, runs, median_of(plain.iterations),
+                   median_of(v.result.iterations), v.name, median_of(v.speedup), v.name,
+                   v.result.energy / plain.energy - 1.0);
+    }
   }
   return 0;
 }

@@ -351,8 +351,8 @@ void add_deform_options(CLI::App& deform, DeformArguments& args) {
                     "coupled rotations: how strongly neighbours are tied, > 0 (default 1)")
       ->type_name("ALPHA");
   deform.add_option("--acceleration", args.acceleration,
-                    "AnARAP/ARAP iterations: anderson (default: Anderson acceleration, same result in "
-                    "fewer iterations) | none (plain local/global)")
+                    "AnARAP/ARAP iterations: lbfgs (default: L-BFGS preconditioned by the Laplacian, same "
+                    "result in fewer iterations) | anderson (Anderson acceleration) | none (plain local/global)")
       ->type_name("KIND");
   deform.add_flag("--ascii", args.ascii, "Write PLY and STL as text instead of binary");
 }

@@ -519,3 +519,31 @@ TEST_CASE("cli: flatten --no-refine keeps the paper's ARAP result, with the larg
   CHECK(refined["flipped"] == 0);
   CHECK(paper["flipped"] == 0);
 }
+
+TEST_CASE("cli: --acceleration lbfgs, anderson and none reach the same shape, the accelerated ones sooner", "[cli]") {
+  const std::string in = mesh("closed/spool.off");
+  const aniso::Mesh rest = aniso::read_mesh(in).mesh;
+  const double diagonal = aniso::bounding_box(rest.V).diagonal();
+  struct Run {
+    int iterations;
+    aniso::Mesh mesh;
+  };
+  const auto run = [&](const std::string& acceleration) {
+    const std::string out = temp_path("acceleration-" + acceleration + ".off");
+    const json result = stdout_json(run_expecting({"deform", in, out, "--method", "anarap", "--scale", "1.4",
+                                                   "--direction", "global:0,1,0", "--select",
+                                                   "box:-9,0.1,-9,9,9,9", "--iterations", "3000",
+                                                   "--tolerance", "1e-9", "--acceleration", acceleration},
+                                                  0));
+    return Run{result["iterations"].get<int>(), aniso::read_mesh(out).mesh};
+  };
+  const Run plain = run("none"), anderson = run("anderson"), lbfgs = run("lbfgs");
+  INFO("iterations: none " << plain.iterations << ", anderson " << anderson.iterations << ", lbfgs "
+                           << lbfgs.iterations);
+  CHECK(2 * anderson.iterations < plain.iterations);
+  CHECK(2 * lbfgs.iterations < plain.iterations);
+  CHECK((anderson.mesh.V - plain.mesh.V).rowwise().norm().maxCoeff() <= 1e-3 * diagonal);
+  CHECK((lbfgs.mesh.V - plain.mesh.V).rowwise().norm().maxCoeff() <= 1e-3 * diagonal);
+  // The moved part did move: the comparison is not of three copies of the input.
+  CHECK((lbfgs.mesh.V - rest.V).rowwise().norm().maxCoeff() >= 0.05 * diagonal);
+}

@@ -202,11 +202,12 @@ export interface DeformOp {
   /** Relative energy change that ends the iterations (default 1e-6). */
   tolerance?: number;
   /**
-   * AnARAP/ARAP: 'anderson' (default) accelerates the converging iterations (Anderson acceleration, each
-   * proposal kept only if it lowers the energy): the same result in several times fewer iterations.
-   * 'none': plain local/global. The paper's rotation 'steps' are never accelerated.
+   * AnARAP/ARAP: how the converging iterations are accelerated, each step kept only if it lowers the
+   * energy: 'lbfgs' (default: L-BFGS preconditioned by the Laplacian) or 'anderson' (Anderson
+   * acceleration); the same result in several times fewer iterations. 'none': plain local/global.
+   * The paper's rotation 'steps' are never accelerated.
    */
-  acceleration?: 'anderson' | 'none';
+  acceleration?: 'lbfgs' | 'anderson' | 'none';
   /** Live preview: at most 4 iterations, warm-started (the 'steps' scheme runs its rotationSteps). */
   preview?: boolean;
   /** Start from the previous result of the same setup (default true). */

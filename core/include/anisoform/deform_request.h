@@ -40,6 +40,7 @@ enum class RotationScheme {
 
 // How AnARAP / ARAP's local/global iterations are sped up.
 enum class Acceleration {
+  Lbfgs,     // L-BFGS preconditioned by the prefactored Laplacian (anarap_lbfgs.cpp)
   Anderson,  // Anderson acceleration with an energy safeguard (anderson.h)
   None,      // plain local/global (the paper's)
 };
@@ -80,9 +81,9 @@ struct DeformRequest {
   ArapElements elements = ArapElements::Spokes;
   int max_iterations = 50;   // AnARAP / ARAP: cap on local/global iterations
   double tolerance = 1e-6;   // relative energy change that ends the iterations
-  // Converging iterations (not the paper's rotation steps) are Anderson
-  // accelerated: the same fixed point, in several times fewer iterations.
-  Acceleration acceleration = Acceleration::Anderson;
+  // Converging iterations (not the paper's rotation steps) are accelerated:
+  // the same fixed point, in several times fewer iterations.
+  Acceleration acceleration = Acceleration::Lbfgs;
   // AnARAP with a rotational part in T (rotate, twist, shear): the paper's
   // scheme has no fixed point (METHOD §5): each step turns the selected fans
   // once more, so it runs exactly `rotation_steps` steps. The coupled scheme

@@ -86,7 +86,7 @@ DistortionReference distortion_reference_from_name(const std::string& name);  //
 MeshFormat mesh_format_from_name(const std::string& name);                    // "obj" | "off" | "ply" | "stl"
 // "coupled" | "steps" (op.rotations); `field` names the option in the message.
 RotationScheme rotation_scheme_from_name(const std::string& name, const std::string& field);
-// "anderson" | "none" (op.acceleration); `field` names the option in the message.
+// "lbfgs" | "anderson" | "none" (op.acceleration); `field` names the option in the message.
 Acceleration acceleration_from_name(const std::string& name, const std::string& field);
 
 // ---- defaults that depend on the mesh --------------------------------------

@@ -13,9 +13,6 @@ namespace {
 // Differences kept by Anderson acceleration: Peng et al. use 5-6; more costs
 // memory (2 position arrays each) for little gain.
 constexpr int kAndersonWindow = 5;
-// Accelerated iterations stop after this many energy changes below the
-// tolerance in a row (plain ones after one).
-constexpr int kAndersonSmallSteps = 3;
 
 // Rotation maximizing f(R) = tr(R^T S), warm-started from q. Each step
 // perturbs on the right, R = R0 exp([d]x), with M = R0^T S:
@@ -402,9 +399,38 @@ void AnArapSolver::global_rhs(Positions& b) const {
   }
 }
 
+bool AnArapSolver::converged(double previous, double energy, double tolerance, bool accelerated,
+                             int& small_steps) const {
+  // Accelerated iterations stop after this many energy changes below the
+  // tolerance in a row (plain ones after one): an accelerated step that
+  // happened to gain little is no sign of convergence by itself.
+  constexpr int kAcceleratedSmallSteps = 3;
+  // Relative change, measured against the energy's own size but never
+  // against less than a 1e-12 part of the fans' rest size, so that an exact
+  // solution (energy ~ 0) stops too.
+  const double reference = std::max(std::abs(previous), 1e-12 * energy_scale_);
+  // At an exact solution (energy at the floor: nothing to do, an identity
+  // edit) accelerated steps only stir rounding noise, so that counts as
+  // small too.
+  const bool at_floor = accelerated && std::abs(energy) <= 1e-12 * energy_scale_;
+  const bool small = std::abs(previous - energy) <= tolerance * reference || at_floor;
+  small_steps = small ? small_steps + 1 : 0;
+  return tolerance >= 0.0 && small_steps >= (accelerated ? kAcceleratedSmallSteps : 1);
+}
+
 int AnArapSolver::run(const LaplacianSolver& solver, Positions& V, int max_iterations,
                         double tolerance, std::vector<double>& history, bool final_energy,
-                        bool accelerate, const std::function<void(int)>& on_iteration) {
+                        Acceleration acceleration, const std::function<void(int)>& on_iteration) {
+  // L-BFGS's gradient L V - b(R) is E's only where R is fitted exactly to V.
+  // Coupled rotations are fitted by one Gauss-Seidel sweep from the last
+  // ones, so there its model is off and its steps erratic (a twist's native
+  // and WASM replays differed by 5.6e-4 of the diagonal; with Anderson by
+  // 5e-13): those iterations are Anderson accelerated.
+  if (acceleration == Acceleration::Lbfgs && coupling_ > 0.0) acceleration = Acceleration::Anderson;
+  if (acceleration == Acceleration::Lbfgs) {
+    return run_lbfgs(solver, V, max_iterations, tolerance, history, final_energy, on_iteration);
+  }
+  const bool accelerate = acceleration == Acceleration::Anderson;
   Positions b, g, proposal;
   AndersonMixer mixer(kAndersonWindow);
   std::vector<Eigen::Quaterniond> kept_rotations;
@@ -441,19 +467,7 @@ int AnArapSolver::run(const LaplacianSolver& solver, Positions& V, int max_itera
     history.push_back(energy);
     ++iterations;
     if (on_iteration) on_iteration(iterations);
-    // Relative change, measured against the energy's own size but never
-    // against less than a 1e-12 part of the fans' rest size, so that an exact
-    // solution (energy ~ 0) stops too.
-    const double reference = std::max(std::abs(previous), 1e-12 * energy_scale_);
-    // An accelerated step that happened to gain little is no sign of
-    // convergence by itself: with acceleration the change must stay below
-    // the tolerance over several iterations in a row. At an exact solution
-    // (energy at the floor: nothing to do, an identity edit) the mixed
-    // steps only stir rounding noise, so that counts as small too.
-    const bool at_floor = accelerate && std::abs(energy) <= 1e-12 * energy_scale_;
-    const bool small = std::abs(previous - energy) <= tolerance * reference || at_floor;
-    small_steps = small ? small_steps + 1 : 0;
-    if (tolerance >= 0.0 && small_steps >= (accelerate ? kAndersonSmallSteps : 1)) break;
+    if (converged(previous, energy, tolerance, accelerate, small_steps)) break;
     previous = energy;
   }
   return iterations;

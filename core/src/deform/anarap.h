@@ -85,15 +85,29 @@ class AnArapSolver {
   // iteration's local step (E(V_k, R_k), non-increasing for symmetric T).
   // Without `final_energy`, the local step after the last solve is skipped
   // (V is the same): the last entry is then the energy before that solve.
-  // `accelerate`: Anderson acceleration of the positions (anderson.h), each
-  // proposal kept only if it lowers the energy, so the history still never
-  // increases; for converging iterations only (not the paper's rotation steps).
+  // `acceleration` (for converging iterations only, not the paper's rotation
+  // steps): L-BFGS on E (run_lbfgs; Anderson with coupled rotations, see
+  // run()) or Anderson acceleration of the positions (anderson.h); either
+  // keeps a step only if it lowers the energy, so the history still never
+  // increases.
   // `on_iteration(done)` is called after each iteration (progress).
   int run(const LaplacianSolver& solver, Positions& V, int max_iterations, double tolerance,
-          std::vector<double>& history, bool final_energy = true, bool accelerate = false,
+          std::vector<double>& history, bool final_energy = true,
+          Acceleration acceleration = Acceleration::None,
           const std::function<void(int)>& on_iteration = nullptr);
 
  private:
+  // Whether the iterations stop after an iteration from `previous` to
+  // `energy` (the relative-change test; small_steps counts the small
+  // changes in a row).
+  bool converged(double previous, double energy, double tolerance, bool accelerated, int& small_steps) const;
+  // run() with Acceleration::Lbfgs (anarap_lbfgs.cpp says how and why).
+  int run_lbfgs(const LaplacianSolver& solver, Positions& V, int max_iterations, double tolerance,
+                std::vector<double>& history, bool final_energy, const std::function<void(int)>& on_iteration);
+  // g = L V - b for the current rotations' b (written to `b`), zero on the
+  // solver's pinned rows: E's gradient over the free vertices, up to a
+  // constant factor (the global step solves g = 0).
+  void energy_gradient(const Positions& V, const std::vector<char>& pinned, Positions& b, Positions& g) const;
   // S_i = sum w e' t^T (full targets) and with the polar targets, per cell.
   // The polar covariance only `with_polar`.
   void update_target_energy();

@@ -377,7 +377,7 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
     };
     result.iterations = iterations->run(solver, result.V, steps, stepped ? -1.0 : request.tolerance,
                                         result.energy_history, request.final_energy,
-                                        !stepped && request.acceleration == Acceleration::Anderson,
+                                        stepped ? Acceleration::None : request.acceleration,
                                         on_iteration);
     result.energy = result.energy_history.empty() ? 0.0 : result.energy_history.back();
     result.converged = stepped || result.iterations < steps;

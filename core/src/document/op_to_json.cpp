@@ -94,7 +94,9 @@ Json to_json(const DeformOp& edit) {
   op["rotationCoupling"] = r.rotation_coupling;
   op["rotationSteps"] = r.rotation_steps;
   op["tolerance"] = r.tolerance;
-  op["acceleration"] = r.acceleration == Acceleration::Anderson ? "anderson" : "none";
+  op["acceleration"] = r.acceleration == Acceleration::Lbfgs      ? "lbfgs"
+                       : r.acceleration == Acceleration::Anderson ? "anderson"
+                                                                  : "none";
   op["preview"] = edit.preview;
   op["warmStart"] = r.warm_start;
   return op;

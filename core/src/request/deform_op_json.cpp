@@ -61,8 +61,8 @@ Method method_from_json(const Json& value) {
 }
 
 Acceleration acceleration_from_json(const Json& value, const std::string& field) {
-  return json_fields::one_of(value, op_keys::kAccelerations, field) == "anderson" ? Acceleration::Anderson
-                                                                                  : Acceleration::None;
+  const std::string name = json_fields::one_of(value, op_keys::kAccelerations, field);
+  return name == "lbfgs" ? Acceleration::Lbfgs : name == "anderson" ? Acceleration::Anderson : Acceleration::None;
 }
 
 RotationScheme rotation_scheme_from_json(const Json& value, const std::string& field) {

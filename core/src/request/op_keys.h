@@ -12,7 +12,7 @@ using json_fields::Keys;
 inline const Keys kOp{"method", "direction", "transform", "pins", "handles", "move", "elements",
                       "maxIterations", "rotations", "rotationCoupling", "rotationSteps", "tolerance", "acceleration", "preview", "warmStart"};
 inline const Keys kRotationSchemes{"coupled", "steps"};
-inline const Keys kAccelerations{"anderson", "none"};
+inline const Keys kAccelerations{"lbfgs", "anderson", "none"};
 inline const Keys kTransform{"scale", "thickness", "shear", "rotate", "twist"};
 inline const Keys kRotate{"axis", "degrees"};
 inline const Keys kTwist{"axis", "degreesPerUnit", "origin"};
