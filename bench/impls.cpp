@@ -139,6 +139,8 @@ Sample run_eigen_ldlt(const Problem& problem, int solves) {
   ldlt.compute(Lff);
   sample.precompute_ms = ms_since(t0);
   require(ldlt.info() == Eigen::Success, "Eigen SimplicialLDLT failed");
+  // Strictly lower nonzeros of L; ours factors the same matrix in the same (AMD) order.
+  sample.factor_nonzeros = ldlt.matrixL().nestedExpression().nonZeros();
 
   Eigen::MatrixXd B(nf, 3);
   for (int i = 0; i < n; ++i) {
@@ -160,6 +162,7 @@ Sample run_eigen_ldlt(const Problem& problem, int solves) {
 
 Sample run_anisoform_arap(const Problem& problem, int iterations) {
   aniso::DeformRequest request = arap_handles_request(problem);
+  request.acceleration = aniso::Acceleration::None;  // like for like with CGAL's plain iterations
   request.max_iterations = iterations;
   request.tolerance = 0.0;
   return run_iterative(problem, request);
@@ -167,6 +170,7 @@ Sample run_anisoform_arap(const Problem& problem, int iterations) {
 
 Sample run_anisoform_anarap(const Problem& problem, int iterations) {
   aniso::DeformRequest request = stretch_request(problem, aniso::Method::AnArap);
+  request.acceleration = aniso::Acceleration::None;  // like for like with CGAL's plain iterations
   request.max_iterations = iterations;
   request.tolerance = 0.0;
   return run_iterative(problem, request);

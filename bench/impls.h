@@ -23,6 +23,7 @@ double now_ms();
 struct Sample {
   double precompute_ms = 0.0;  // from the mesh to ready-to-iterate
   double iteration_ms = 0.0;   // per iteration (AnDefGrad: per change of amount)
+  long factor_nonzeros = 0;    // nnz of the factor L below its diagonal (the floor's row only)
   // Diagnostics (stderr with --verbose only).
   double setup_ms = 0.0;       // part of precompute: construction before any solve
   double first_call_ms = 0.0;  // the first deform call's iterations, per iteration

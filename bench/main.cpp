@@ -248,8 +248,10 @@ int main(int argc, char** argv) {
       pre.push_back(s.precompute_ms);
       it.push_back(s.iteration_ms);
     }
-    std::printf("{\"mesh\":%s,\"vertices\":%d,\"impl\":\"%s\",\"precompute_ms\":%.3f,\"iteration_ms\":%.3f}\n",
-                json_string(mesh_name).c_str(), n, impl->name.c_str(), median_of(pre), median_of(it));
+    const long factor_nonzeros = impl->samples.empty() ? 0 : impl->samples.back().factor_nonzeros;
+    const std::string nnz = factor_nonzeros > 0 ? ",\"factor_nnz\":" + std::to_string(factor_nonzeros) : "";
+    std::printf("{\"mesh\":%s,\"vertices\":%d,\"impl\":\"%s\",\"precompute_ms\":%.3f,\"iteration_ms\":%.3f%s}\n",
+                json_string(mesh_name).c_str(), n, impl->name.c_str(), median_of(pre), median_of(it), nnz.c_str());
     by_name[impl->name] = impl;
   }
   std::fflush(stdout);
