@@ -90,7 +90,7 @@ int AnArapSolver::run_lbfgs(const LaplacianSolver& solver, Positions& V, int max
       history.push_back(previous);
       return ++iterations;
     }
-    // Two-loop recursion: direction = -H g with H0 = L^-1 (zero on the pins).
+    // Two-loop recursion: direction = -H g with H0 = scale L^-1 (zero on the pins).
     direction = -g;
     coefficients.resize(steps.size());
     for (int k = static_cast<int>(steps.size()) - 1; k >= 0; --k) {
