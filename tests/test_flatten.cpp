@@ -347,23 +347,76 @@ TEST_CASE("flatten (fig. 11): the torso panel's curving compression band is met 
   CHECK(ours.metrics.compression_error_max < 0.15);
 }
 
-TEST_CASE("flatten: the energy decreases monotonically over the iterations", "[flatten]") {
-  const Mesh torso = test::load("open/human_woman_torso_front_patch.obj");
-  const FlattenPatch patch = extract_flatten_patch(torso, {});
-  const TriangleCharts charts = triangle_charts(patch.mesh);
-  FlattenDirections directions;
-  directions.global = Eigen::Vector3d(1.0, 0.3, 0.0);
-  const FlattenTargets targets = flatten_targets(torso, patch, charts, directions, 0.8, 1.1);
-  Eigen::MatrixX2d uv;
-  lscm_free_boundary(patch, charts, uv);
-  scale_to_area(patch, charts.area.cwiseProduct(targets.su).cwiseProduct(targets.sv), uv);
-  const ArapFlattening arap(patch, charts);
-  const ArapFlattenReport report = arap.solve(targets, ArapFlattenSettings{}, uv);
-  REQUIRE(report.energy_history.size() >= 3);
-  for (std::size_t k = 1; k < report.energy_history.size(); ++k) {
-    CHECK(report.energy_history[k] <= report.energy_history[k - 1] * (1.0 + 1e-12));
+namespace {
+
+// The ARAP phase's inputs for a whole mesh with one global direction: the
+// patch, its charts and targets, and the LSCM start scaled to the wanted area.
+struct ArapProblem {
+  FlattenPatch patch;
+  TriangleCharts charts;
+  FlattenTargets targets;
+  Eigen::MatrixX2d start;
+
+  ArapProblem(const Mesh& mesh, const Eigen::Vector3d& direction, double su, double sv)
+      : patch(extract_flatten_patch(mesh, {})), charts(triangle_charts(patch.mesh)) {
+    FlattenDirections directions;
+    directions.global = direction;
+    targets = flatten_targets(mesh, patch, charts, directions, su, sv);
+    lscm_free_boundary(patch, charts, start);
+    scale_to_area(patch, charts.area.cwiseProduct(targets.su).cwiseProduct(targets.sv), start);
   }
-  CHECK(report.energy_history.back() < 0.5 * report.energy_history.front());
+};
+
+}  // namespace
+
+TEST_CASE("flatten: the energy decreases monotonically over the iterations", "[flatten]") {
+  const ArapProblem problem(test::load("open/human_woman_torso_front_patch.obj"), Eigen::Vector3d(1.0, 0.3, 0.0),
+                            0.8, 1.1);
+  const auto& [patch, charts, targets, uv] = problem;
+  const ArapFlattening arap(patch, charts);
+  for (const bool accelerate : {false, true}) {
+    INFO("L-BFGS: " << accelerate);
+    ArapFlattenSettings settings;
+    settings.accelerate = accelerate;
+    Eigen::MatrixX2d solved = uv;
+    const ArapFlattenReport report = arap.solve(targets, settings, solved);
+    REQUIRE(report.energy_history.size() >= 3);
+    for (std::size_t k = 1; k < report.energy_history.size(); ++k) {
+      CHECK(report.energy_history[k] <= report.energy_history[k - 1] * (1.0 + 1e-12));
+    }
+    CHECK(report.energy_history.back() < 0.5 * report.energy_history.front());
+    CHECK(count_folded(patch.mesh.F, charts, solved) == 0);
+  }
+}
+
+// L-BFGS on the ARAP energy (flatten_arap.cpp) against the plain
+// local/global iterations, from the same LSCM start to the same tolerance.
+TEST_CASE("flatten: L-BFGS reaches the plain iterations' energy in a fraction of them", "[flatten]") {
+  for (const char* name : {"open/human_woman_torso_front_patch.obj", "open/nefertiti_face.off", "open/hemisphere.obj"}) {
+    INFO(name);
+    const ArapProblem problem(test::load(name), Eigen::Vector3d(0.0, 1.0, 0.2), 0.8, 1.0);
+    const auto& [patch, charts, targets, start] = problem;
+    const ArapFlattening arap(patch, charts);
+    ArapFlattenSettings settings;
+    settings.accelerate = false;
+    Eigen::MatrixX2d plain_uv = start, lbfgs_uv = start;
+    const ArapFlattenReport plain = arap.solve(targets, settings, plain_uv);
+    settings.accelerate = true;
+    const ArapFlattenReport lbfgs = arap.solve(targets, settings, lbfgs_uv);
+    std::printf("[flatten] %s ARAP phase to 1e-8: plain %d iterations, L-BFGS %d, energy L-BFGS/plain - 1 = %.2e\n",
+                name, plain.iterations, lbfgs.iterations, lbfgs.energy / plain.energy - 1.0);
+    CHECK(plain.converged);
+    CHECK(lbfgs.converged);
+    CHECK(lbfgs.folded == 0);
+    CHECK(std::abs(lbfgs.energy / plain.energy - 1.0) < 1e-6);
+    CHECK(2 * lbfgs.iterations <= plain.iterations);  // measured 3.3x, 2.8x, 2.5x fewer
+    // The same map up to a rotation (the energy has no preferred one): the
+    // achieved stretches agree.
+    const TriangleStretch a = measure_stretch(patch.mesh.F, charts, targets, plain_uv);
+    const TriangleStretch b = measure_stretch(patch.mesh.F, charts, targets, lbfgs_uv);
+    CHECK((a.along - b.along).cwiseAbs().maxCoeff() < 1e-3);
+    CHECK((a.across - b.across).cwiseAbs().maxCoeff() < 1e-3);
+  }
 }
 
 TEST_CASE("flatten: one factorization serves every amount, direction and method", "[flatten]") {

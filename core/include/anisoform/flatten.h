@@ -77,6 +77,9 @@ struct ArapFlattenSettings {
   double tolerance = 1e-8;   // stop when the relative energy change falls below
   bool guard_folds = true;   // shorten a global step that would fold a triangle
                              // over, whenever the current map has none folded
+  // L-BFGS on the ARAP energy from a fold-free map (flatten_arap.cpp);
+  // false: the plain local/global steps (the paper's).
+  bool accelerate = true;
   // After the local/global iterations, minimise the reported error itself
   // (flatten_refine.cpp; beyond the paper): false keeps the paper's ARAP
   // result as it is.

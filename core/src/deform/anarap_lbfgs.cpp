@@ -24,8 +24,7 @@
 // Anderson, 183 L-BFGS; README "Accelerated iterations" has the times).
 #include <algorithm>
 #include <cmath>
-#include <deque>
-
+#include "base/lbfgs_memory.h"
 #include "deform/anarap.h"
 
 namespace aniso {
@@ -43,7 +42,7 @@ constexpr double kMaxScale = 2.0;
 // quasi-Newton steps of the cyl50k stretch; with two, 5 in 250 iterations).
 constexpr int kHalvings = 2;
 
-double dot(const Positions& a, const Positions& b) { return (a.array() * b.array()).sum(); }
+double dot(const Positions& a, const Positions& b) { return LbfgsMemory<Positions>::dot(a, b); }
 
 }  // namespace
 
@@ -75,9 +74,12 @@ int AnArapSolver::run_lbfgs(const LaplacianSolver& solver, Positions& V, int max
   // kMaxScale, scales it (Nocedal & Wright's H0 scaling, measured against
   // L instead of the identity).
   double scale = 1.0;
-  std::deque<Positions> steps, changes;  // s_k, y_k
-  std::deque<double> curvatures;         // 1 / (y_k . s_k)
-  std::vector<double> coefficients;
+  LbfgsMemory<Positions> memory(kMemory);
+  const auto apply_h0 = [&](const Positions& q, Positions& r) {
+    r = Positions::Zero(n_, 3);
+    solver.solve(q, r);
+    r *= scale;
+  };
   std::vector<Eigen::Quaterniond> kept_rotations;
   double previous = local_step(V);
   energy_gradient(V, pinned, b, g);
@@ -90,34 +92,20 @@ int AnArapSolver::run_lbfgs(const LaplacianSolver& solver, Positions& V, int max
       history.push_back(previous);
       return ++iterations;
     }
-    // Two-loop recursion: direction = -H g with H0 = scale L^-1 (zero on the pins).
-    direction = -g;
-    coefficients.resize(steps.size());
-    for (int k = static_cast<int>(steps.size()) - 1; k >= 0; --k) {
-      coefficients[k] = curvatures[k] * dot(steps[k], direction);
-      direction -= coefficients[k] * changes[k];
-    }
-    trial = Positions::Zero(n_, 3);
-    solver.solve(direction, trial);
-    direction.swap(trial);
-    direction *= scale;
-    for (std::size_t k = 0; k < steps.size(); ++k) {
-      direction += (coefficients[k] - curvatures[k] * dot(changes[k], direction)) * steps[k];
-    }
+    // direction = -H g with H0 = scale L^-1 (zero on the pins).
+    memory.direction(g, direction, trial, apply_h0);
     kept_rotations = rotation_;
     trial = V + direction;
     double energy = local_step(trial);
-    for (int h = 0; h < kHalvings && !(energy < previous) && !steps.empty(); ++h) {
+    for (int h = 0; h < kHalvings && !(energy < previous) && !memory.empty(); ++h) {
       direction *= 0.5;
       trial = V + direction;
       energy = local_step(trial);
     }
-    if (!(energy < previous) && !steps.empty()) {
+    if (!(energy < previous) && !memory.empty()) {
       // The plain step from the last rotations (b is theirs).
       rotation_ = kept_rotations;
-      steps.clear();
-      changes.clear();
-      curvatures.clear();
+      memory.clear();
       scale = 1.0;
       trial = V;
       solver.solve(b, trial);
@@ -126,19 +114,8 @@ int AnArapSolver::run_lbfgs(const LaplacianSolver& solver, Positions& V, int max
     energy_gradient(trial, pinned, next_b, next_g);
     Positions s = trial - V, y = next_g - g;
     const double sy = dot(s, y);
-    // Only pairs of positive curvature keep H positive definite.
-    if (sy > 1e-14 * std::sqrt(dot(s, s) * dot(y, y))) {
-      const double s_L_s = sy + dot(s, next_b - b);  // L s = y + (b' - b) on the free rows
-      scale = std::clamp(s_L_s / sy, 1.0, kMaxScale);
-      if (static_cast<int>(steps.size()) == kMemory) {
-        steps.pop_front();
-        changes.pop_front();
-        curvatures.pop_front();
-      }
-      steps.push_back(std::move(s));
-      changes.push_back(std::move(y));
-      curvatures.push_back(1.0 / sy);
-    }
+    const double s_L_s = sy + dot(s, next_b - b);  // L s = y + (b' - b) on the free rows
+    if (memory.push(std::move(s), std::move(y), sy)) scale = std::clamp(s_L_s / sy, 1.0, kMaxScale);
     V.swap(trial);
     g.swap(next_g);
     b.swap(next_b);

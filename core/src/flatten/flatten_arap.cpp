@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "anisoform/error.h"
+#include "base/lbfgs_memory.h"
 #include "flatten/flatten_pipeline.h"
 #include "anisoform/laplacian.h"
 #include "geometry/laplacian_solver.h"
@@ -27,6 +28,14 @@ constexpr double kMinStepFraction = 1e-12;
 // Shortened steps in a row without relative progress above the tolerance
 // after which the guard stops (stalled).
 constexpr int kMaxStagnantSteps = 10;
+// L-BFGS (run_lbfgs): pairs kept, the largest scale of H0 = scale L^-1 and
+// the halvings of a step that raised the energy, as AnARAP's
+// (deform/anarap_lbfgs.cpp measured them), and the small changes in a row
+// that end the iterations.
+constexpr int kMemory = 5;
+constexpr double kMaxScale = 2.0;
+constexpr int kHalvings = 2;
+constexpr int kQuietSteps = 3;
 // One vertex per component: the global step is free up to a translation
 // per component (the rotations come from the local step).
 std::vector<int> one_pin_per_component(const FlattenPatch& patch) {
@@ -94,10 +103,10 @@ struct ArapFlattening::Impl {
     return energy;
   }
 
-  // Global step: L u = b, b_i = sum over edges (i -> j) of -w R q, b_j += w R q.
-  void solve_positions(const Eigen::MatrixXd& q, const Eigen::MatrixX2d& rotation,
-                       Eigen::MatrixXd& uv) const {
-    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(uv.rows(), 2);
+  // The global step's right-hand side: L u = b, b_i = sum over edges
+  // (i -> j) of -w R q, b_j += w R q.
+  Eigen::MatrixXd global_rhs(const Eigen::MatrixXd& q, const Eigen::MatrixX2d& rotation, int num_vertices) const {
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(num_vertices, 2);
     for (int t = 0; t < F.rows(); ++t) {
       const double c = rotation(t, 0), s = rotation(t, 1);
       for (int k = 0; k < 3; ++k) {
@@ -108,7 +117,187 @@ struct ArapFlattening::Impl {
         rhs.row(F(t, (k + 2) % 3)) += pull;
       }
     }
-    solver->solve(rhs, uv);
+    return rhs;
+  }
+
+  // E's gradient for the rotations fitted to uv (up to a factor 2): L uv - b,
+  // zero on the pinned rows. L is assembled from the very weights of the
+  // energy, edge by edge.
+  Eigen::MatrixXd energy_gradient(const Eigen::MatrixX2d& uv, const Eigen::MatrixXd& rhs) const {
+    Eigen::MatrixXd g = -rhs;
+    for (int t = 0; t < F.rows(); ++t) {
+      for (int k = 0; k < 3; ++k) {
+        const int a = F(t, (k + 1) % 3), b = F(t, (k + 2) % 3);
+        const Eigen::RowVector2d pull = weight(t, k) * (uv.row(a) - uv.row(b));
+        g.row(a) += pull;
+        g.row(b) -= pull;
+      }
+    }
+    for (const int p : solver->pinned()) g.row(p).setZero();
+    return g;
+  }
+
+  // The fold guard: moves `candidate` back towards the fold-free `uv` until
+  // no triangle folds on the way. Returns false if only a vanishing part of
+  // the step is fold-free (the guard has stalled); `shortened` says whether
+  // the step was cut.
+  bool guard_step(const Eigen::MatrixX2d& uv, Eigen::MatrixXd& candidate, bool& shortened) const {
+    shortened = false;
+    const double fraction = fold_free_step_fraction(F, charts, uv, candidate);
+    if (!(fraction < 1.0)) return true;
+    if (!(fraction > kMinStepFraction)) return false;
+    const Eigen::MatrixX2d step = candidate - uv;
+    candidate = uv + fraction * step;
+    // Round-off near a root: halve until the count agrees.
+    for (double f = 0.5 * fraction; count_folded(F, charts, candidate) > 0; f *= 0.5) {
+      if (!(f > kMinStepFraction)) {
+        candidate = uv;
+        break;
+      }
+      candidate = uv + f * step;
+    }
+    shortened = true;
+    return true;
+  }
+
+  // Plain local/global iterations (the paper's). Returns the last energy.
+  double run_plain(const Eigen::MatrixXd& q, const ArapFlattenSettings& settings, double exact_energy,
+                   int folded, Eigen::MatrixX2d& uv, Eigen::MatrixX2d& rotation, double energy,
+                   ArapFlattenReport& report) const {
+    Eigen::MatrixXd candidate(uv.rows(), 2);
+    int stagnant_steps = 0;
+    while (report.iterations < settings.max_iterations) {
+      if (folded > 0 && report.iterations >= settings.unfold_iterations) break;
+      if (energy <= exact_energy) {
+        report.converged = true;
+        break;
+      }
+      candidate = uv;  // the pinned rows keep their place
+      solver->solve(global_rhs(q, rotation, static_cast<int>(uv.rows())), candidate);
+      if (!candidate.allFinite()) {
+        fail(ErrorCode::Numerical, "the flattening's global step produced a non-finite position");
+      }
+      // The guard: from a fold-free map, take only fold-free steps. For fixed
+      // rotations the energy is a convex quadratic minimized at the candidate,
+      // so every shortened step still lowers it (the iteration stays monotone).
+      const bool guarded = settings.guard_folds && folded == 0;
+      bool shortened = false;
+      if (guarded && !guard_step(uv, candidate, shortened)) {
+        report.stalled = true;
+        break;
+      }
+      if (shortened) ++report.shortened_steps;
+      uv = candidate;
+      if (!guarded) folded = count_folded(F, charts, uv);
+      const double previous = energy;
+      energy = fit_rotations(q, uv, rotation);
+      ++report.iterations;
+      report.energy_history.push_back(energy);
+      if (settings.progress && !settings.progress(report.iterations, energy)) break;
+      const bool small_change = previous - energy <= settings.tolerance * previous;
+      if ((!shortened && small_change) || energy <= exact_energy) {
+        report.converged = true;
+        break;
+      }
+      // A shortened step's small change says nothing about convergence (the
+      // step was small), but many in a row mean a triangle near zero area
+      // blocks every step: the guard has reached what it can.
+      stagnant_steps = shortened && small_change ? stagnant_steps + 1 : 0;
+      if (stagnant_steps >= kMaxStagnantSteps) {
+        report.stalled = true;
+        break;
+      }
+    }
+    return energy;
+  }
+
+  // L-BFGS on the ARAP energy from a fold-free map, as AnARAP's
+  // (deform/anarap_lbfgs.cpp says why and how): H0 = scale L^-1 with the
+  // prefactored Laplacian, so a step without pairs is exactly the plain one.
+  // Every step goes through the fold guard and is kept only if the energy
+  // falls (halved up to kHalvings times, else the plain step from the last
+  // rotations, which never raises it). Returns the last energy.
+  double run_lbfgs(const Eigen::MatrixXd& q, const ArapFlattenSettings& settings, double exact_energy,
+                   Eigen::MatrixX2d& uv, Eigen::MatrixX2d& rotation, double energy,
+                   ArapFlattenReport& report) const {
+    const int n = static_cast<int>(uv.rows());
+    Eigen::MatrixXd rhs = global_rhs(q, rotation, n);
+    Eigen::MatrixXd gradient = energy_gradient(uv, rhs);
+    LbfgsMemory<Eigen::MatrixXd> memory(kMemory);
+    double scale = 1.0;
+    const auto apply_h0 = [&](const Eigen::MatrixXd& q, Eigen::MatrixXd& r) {
+      r = Eigen::MatrixXd::Zero(n, 2);
+      solver->solve(q, r);
+      r *= scale;
+    };
+    int quiet_steps = 0, stagnant_steps = 0;
+    Eigen::MatrixXd direction, trial(n, 2);
+    while (report.iterations < settings.max_iterations) {
+      if (energy <= exact_energy) {
+        report.converged = true;
+        break;
+      }
+      // direction = -H gradient (zero on the pins).
+      memory.direction(gradient, direction, trial, apply_h0);
+      const Eigen::MatrixX2d kept_rotation = rotation;
+      bool shortened = false;
+      trial = uv + direction;
+      if (!trial.allFinite()) {
+        fail(ErrorCode::Numerical, "the flattening's global step produced a non-finite position");
+      }
+      bool moved = guard_step(uv, trial, shortened);
+      double trial_energy = fit_rotations(q, trial, rotation);
+      for (int h = 0; h < kHalvings && moved && !(trial_energy < energy) && !memory.empty(); ++h) {
+        trial = uv + (trial - uv) * 0.5;  // on the fold-free segment already checked
+        trial_energy = fit_rotations(q, trial, rotation);
+      }
+      if (!(moved && trial_energy < energy) && !memory.empty()) {
+        // The plain step from the last rotations (rhs is theirs).
+        rotation = kept_rotation;
+        memory.clear();
+        scale = 1.0;
+        trial = uv;
+        solver->solve(rhs, trial);
+        moved = guard_step(uv, trial, shortened);
+        trial_energy = fit_rotations(q, trial, rotation);
+      }
+      if (!moved) {
+        rotation = kept_rotation;
+        report.stalled = true;
+        break;
+      }
+      if (shortened) ++report.shortened_steps;
+      Eigen::MatrixXd next_rhs = global_rhs(q, rotation, n);
+      Eigen::MatrixXd next_gradient = energy_gradient(trial, next_rhs);
+      Eigen::MatrixXd s = trial - uv, y = next_gradient - gradient;
+      const double sy = memory.dot(s, y);
+      // L s = y + (b' - b): s is zero on the pinned rows, where y and b differ.
+      const double s_L_s = sy + memory.dot(s, next_rhs - rhs);
+      if (memory.push(std::move(s), std::move(y), sy)) scale = std::clamp(s_L_s / sy, 1.0, kMaxScale);
+      uv = trial;
+      rhs.swap(next_rhs);
+      gradient.swap(next_gradient);
+      const double previous = energy;
+      energy = trial_energy;
+      ++report.iterations;
+      report.energy_history.push_back(energy);
+      if (settings.progress && !settings.progress(report.iterations, energy)) break;
+      // As the plain loop's rule, with kQuietSteps small changes in a row:
+      // one quasi-Newton step that happened to gain little is no sign of
+      // convergence by itself.
+      const bool small_change = previous - energy <= settings.tolerance * previous;
+      quiet_steps = small_change && !shortened ? quiet_steps + 1 : 0;
+      stagnant_steps = small_change && shortened ? stagnant_steps + 1 : 0;
+      if (quiet_steps >= kQuietSteps || energy <= exact_energy) {
+        report.converged = true;
+        break;
+      }
+      if (stagnant_steps >= kMaxStagnantSteps) {
+        report.stalled = true;
+        break;
+      }
+    }
+    return energy;
   }
 };
 
@@ -147,66 +336,13 @@ ArapFlattenReport ArapFlattening::solve(const FlattenTargets& targets,
   Eigen::MatrixX2d rotation(im.F.rows(), 2);
   double energy = im.fit_rotations(q, uv, rotation);
   report.energy_history.push_back(energy);
-  int folded = count_folded(im.F, im.charts, uv);
-  Eigen::MatrixXd candidate(uv.rows(), 2);
-  int stagnant_steps = 0;
-  while (report.iterations < settings.max_iterations) {
-    if (folded > 0 && report.iterations >= settings.unfold_iterations) break;
-    if (energy <= exact_energy) {
-      report.converged = true;
-      break;
-    }
-    candidate = uv;  // the pinned rows keep their place
-    im.solve_positions(q, rotation, candidate);
-    if (!candidate.allFinite()) {
-      fail(ErrorCode::Numerical, "the flattening's global step produced a non-finite position");
-    }
-    // The guard: from a fold-free map, take only fold-free steps. For fixed
-    // rotations the energy is a convex quadratic minimized at the candidate,
-    // so every shortened step still lowers it (the iteration stays monotone).
-    const bool guarded = settings.guard_folds && folded == 0;
-    bool shortened = false;
-    if (guarded) {
-      const double fraction = fold_free_step_fraction(im.F, im.charts, uv, candidate);
-      if (fraction < 1.0) {
-        if (!(fraction > kMinStepFraction)) {
-          report.stalled = true;
-          break;
-        }
-        const Eigen::MatrixX2d step = candidate - uv;
-        candidate = uv + fraction * step;
-        // Round-off near a root: halve until the count agrees.
-        for (double f = 0.5 * fraction; count_folded(im.F, im.charts, candidate) > 0; f *= 0.5) {
-          if (!(f > kMinStepFraction)) {
-            candidate = uv;
-            break;
-          }
-          candidate = uv + f * step;
-        }
-        shortened = true;
-        ++report.shortened_steps;
-      }
-    }
-    uv = candidate;
-    if (!guarded) folded = count_folded(im.F, im.charts, uv);
-    const double previous = energy;
-    energy = im.fit_rotations(q, uv, rotation);
-    ++report.iterations;
-    report.energy_history.push_back(energy);
-    if (settings.progress && !settings.progress(report.iterations, energy)) break;
-    const bool small_change = previous - energy <= settings.tolerance * previous;
-    if ((!shortened && small_change) || energy <= exact_energy) {
-      report.converged = true;
-      break;
-    }
-    // A shortened step's small change says nothing about convergence (the
-    // step was small), but many in a row mean a triangle near zero area
-    // blocks every step: the guard has reached what it can.
-    stagnant_steps = shortened && small_change ? stagnant_steps + 1 : 0;
-    if (stagnant_steps >= kMaxStagnantSteps) {
-      report.stalled = true;
-      break;
-    }
+  const int folded = count_folded(im.F, im.charts, uv);
+  // L-BFGS needs the guard's monotone steps: a folded start (which only the
+  // plain steps may unfold) iterates plainly.
+  if (settings.accelerate && settings.guard_folds && folded == 0) {
+    energy = im.run_lbfgs(q, settings, exact_energy, uv, rotation, energy, report);
+  } else {
+    energy = im.run_plain(q, settings, exact_energy, folded, uv, rotation, energy, report);
   }
   report.energy = energy;
   report.folded = count_folded(im.F, im.charts, uv);
