@@ -7,15 +7,30 @@ import { expect, meshPath, openApp, test, uploadFile, verticalRange } from './su
 test('a commit starts the next factorization in the background, and the next edit still applies', async ({ page }) => {
   test.setTimeout(120_000);
   const pageErrors = await openApp(page);
+  // The load's own preparation (factorizing the new mesh) ends with 'done'
+  // after the load's change; listening from before the upload, so that a
+  // quick one is not missed (waiting for it afterwards cost the full
+  // fallback of 20 s whenever it had ended already).
+  await page.evaluate(() => {
+    window.__loadPrepared = new Promise((resolve) => {
+      let loaded = false;
+      const offChange = window.anisoform.on('change', ({ reason }) => {
+        if (reason === 'load') loaded = true;
+      });
+      const offProgress = window.anisoform.on('progress', ({ stage }) => {
+        if (!loaded || stage !== 'done') return;
+        offChange();
+        offProgress();
+        resolve();
+      });
+      setTimeout(resolve, 20_000);
+    });
+  });
   const loaded = await uploadFile(page, meshPath('closed/armadillo.off'));
   expect(loaded.ok).toBe(true);
   const result = await page.evaluate(async ({ low: lowY, height }) => {
     const api = window.anisoform;
-    // Wait for the load's own preparation to end first.
-    await new Promise((resolve) => {
-      const off = api.on('progress', ({ stage }) => stage === 'done' && (off(), resolve()));
-      setTimeout(() => (off(), resolve()), 20_000);
-    });
+    await window.__loadPrepared;
     const progress = [];
     api.on('progress', ({ stage, message }) => progress.push({ stage, message }));
     await api.select({ box: { min: [-1e9, lowY + 0.7 * height, -1e9], max: [1e9, 1e9, 1e9] } }, { falloff: 0.05 * height });
