@@ -225,9 +225,9 @@ struct ArapFlattening::Impl {
     Eigen::MatrixXd gradient = energy_gradient(uv, rhs);
     LbfgsMemory<Eigen::MatrixXd> memory(kMemory);
     double scale = 1.0;
-    const auto apply_h0 = [&](const Eigen::MatrixXd& q, Eigen::MatrixXd& r) {
+    const auto apply_h0 = [&](const Eigen::MatrixXd& v, Eigen::MatrixXd& r) {
       r = Eigen::MatrixXd::Zero(n, 2);
-      solver->solve(q, r);
+      solver->solve(v, r);
       r *= scale;
     };
     int quiet_steps = 0, stagnant_steps = 0;
