@@ -1,12 +1,13 @@
 // Shared helpers of the end-to-end tests: where the shared meshes are, opening
 // the page, loading a file through the real file input, and reading the
 // canvas. State is asserted through window.anisoform. `test` carries the CSP
-// and same-origin guard of csp-guard.mjs.
+// and same-origin guard of csp-guard.mjs, and hands each test the worker's
+// one page, reset to a blank slate (page-pool.mjs).
 import { existsSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { expect } from '../web/node_modules/@playwright/test/index.mjs';
-import { test } from './csp-guard.mjs';
+import { test } from './page-pool.mjs';
 
 export { expect, test };
 

@@ -1,0 +1,102 @@
+// One browser page per Playwright worker, handed to test after test, instead
+// of a new context and page for each. Why: opening a page starts a renderer
+// process and its GPU channel, and closing it tears both down: ~0.6 s a test
+// on two cores, a sixth of the suite, whatever the test does.
+//
+// Each test still starts from what a new page would give it:
+// - before the test, the page is on about:blank with its origin's storage
+//   (the autosave's IndexedDB, any web storage, caches) and cookies cleared
+//   and its permissions reset, so every test opens the app afresh;
+// - after it, the listeners and routes the test added are removed;
+// - the viewport goes back to the test's configured one;
+// - a test that changed what no reset undoes (init scripts, exposed
+//   functions, extra headers, media emulation) gets its page closed, and
+//   the next test a new one; so does a test that closed the page itself;
+// - a test configured with other context options (test.use: viewport,
+//   touch, mobile) gets a page of its own options.
+// Pages that specs open themselves (browser.newPage) are theirs, as before.
+import { test as guarded } from './csp-guard.mjs';
+import { origin } from './server.mjs';
+
+// Page methods whose effect outlives a navigation and has no undo.
+const LASTING = ['addInitScript', 'exposeBinding', 'exposeFunction', 'setExtraHTTPHeaders', 'emulateMedia'];
+
+function markLasting(page, pool) {
+  for (const name of LASTING) {
+    const original = page[name].bind(page);
+    page[name] = (...args) => {
+      pool.spoiled = true;
+      return original(...args);
+    };
+  }
+}
+
+async function closePooled(pool) {
+  const { context } = pool;
+  Object.assign(pool, { key: null, context: null, page: null, ownListeners: null, cdp: null, spoiled: false });
+  await context?.close().catch(() => {});
+}
+
+async function openPooled(pool, browser, options, key) {
+  await closePooled(pool);
+  // browser.newContext is the CSP guard's (csp-guard.mjs): the pooled context is guarded too.
+  const context = await browser.newContext(options);
+  const page = await context.newPage();
+  markLasting(page, pool);
+  // Playwright's own listeners, to tell the tests' ones from them.
+  const ownListeners = new Map(page.eventNames().map((name) => [name, page.rawListeners(name)]));
+  Object.assign(pool, { key, context, page, ownListeners, cdp: await context.newCDPSession(page) });
+}
+
+function removeTestListeners({ page, ownListeners }) {
+  for (const name of page.eventNames()) {
+    const own = ownListeners.get(name) ?? [];
+    for (const listener of page.rawListeners(name)) if (!own.includes(listener)) page.off(name, listener);
+  }
+}
+
+// What a new context would start with: a blank page, an empty origin.
+async function blankSlate(pool, viewport) {
+  const { page, context, cdp } = pool;
+  await page.goto('about:blank');
+  await cdp.send('Storage.clearDataForOrigin', { origin, storageTypes: 'all' });
+  await context.clearCookies();
+  await context.clearPermissions();
+  const size = page.viewportSize();
+  if (viewport && (size?.width !== viewport.width || size?.height !== viewport.height)) {
+    await page.setViewportSize(viewport);
+  }
+}
+
+export const test = guarded.extend({
+  pagePool: [
+    // Depends on the guard's worker fixture so that its newContext wrapper is in place.
+    async ({ browser, cspRecord }, use) => {
+      void cspRecord;
+      const pool = { key: null, context: null, page: null, ownListeners: null, cdp: null, spoiled: false };
+      await use(pool);
+      await closePooled(pool);
+    },
+    { scope: 'worker' },
+  ],
+
+  page: async ({ pagePool: pool, browser, baseURL, viewport, hasTouch, isMobile, acceptDownloads }, use) => {
+    const options = { baseURL, viewport, hasTouch, isMobile, acceptDownloads };
+    const key = JSON.stringify(options);
+    if (pool.key !== key || pool.spoiled || !pool.page || pool.page.isClosed()) {
+      await openPooled(pool, browser, options, key);
+    } else {
+      await blankSlate(pool, viewport);
+    }
+    const { page } = pool;
+    await use(page);
+    if (page.isClosed()) {
+      await closePooled(pool);
+      return;
+    }
+    removeTestListeners(pool);
+    await page.unrouteAll({ behavior: 'ignoreErrors' });
+    // Leave the app now (its worker and solve end) rather than at the next test's start.
+    await page.goto('about:blank').catch(() => closePooled(pool));
+  },
+});
