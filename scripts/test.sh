@@ -42,7 +42,8 @@ stage "WASM build (emcmake)"
 bash scripts/build-wasm.sh
 
 stage "WASM tests (node --test)"
-ANISO_CLI="$ROOT/build-asan/cli/anisoform" node --test wasm/test/
+# Two files at a time (node's default is one fewer than the cores: one here).
+ANISO_CLI="$ROOT/build-asan/cli/anisoform" node --test --test-concurrency="$JOBS" wasm/test/
 
 stage "web build (the site and the anisoform package)"
 npm run build:site --prefix web
