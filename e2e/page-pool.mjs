@@ -99,6 +99,8 @@ export const test = guarded.extend({
       return;
     }
     removeTestListeners(pool);
+    // Popups and pages the test opened in this context go with it.
+    await Promise.all(pool.context.pages().filter((other) => other !== page).map((other) => other.close()));
     await page.unrouteAll({ behavior: 'ignoreErrors' });
     // Leave the app now (its worker and solve end) rather than at the next test's start.
     await page.goto('about:blank').catch(() => closePooled(pool));
