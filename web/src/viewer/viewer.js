@@ -2,8 +2,8 @@
 // Frames are drawn on demand (requestRender): an animation frame is asked for
 // only when something changed, so an idle editor costs neither GPU nor CPU
 // time (a standing requestAnimationFrame loop kept the browser's compositor
-// ticking at the display rate: 0.18 of a core for an idle page). The loop
-// also measures frames per second for the status bar.
+// ticking at the display rate: 0.18 of a core for an idle page). Drawn
+// frames are counted for the status bar's frames per second.
 import { Color, PerspectiveCamera, Scene, Vector3, WebGLRenderer } from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { EventEmitter } from '../shared/event-emitter.js';
