@@ -56,10 +56,10 @@ function removeTestListeners({ page, ownListeners }) {
   }
 }
 
-// What a new context would start with: a blank page, an empty origin.
+// What a new context would start with: a blank page (the last test's end
+// left it on about:blank), an empty origin.
 async function blankSlate(pool, viewport) {
   const { page, context, cdp } = pool;
-  await page.goto('about:blank');
   // The last test's documents are garbage now: collected here, not in a long
   // task in the middle of the next test (a 314 ms one failed a responsiveness check).
   await cdp.send('HeapProfiler.collectGarbage');
@@ -102,7 +102,8 @@ export const test = guarded.extend({
     // Popups and pages the test opened in this context go with it.
     await Promise.all(pool.context.pages().filter((other) => other !== page).map((other) => other.close()));
     await page.unrouteAll({ behavior: 'ignoreErrors' });
-    // Leave the app now (its worker and solve end) rather than at the next test's start.
+    // Leave the app now (its worker and solve end, before the CSP guard's
+    // check); a page that cannot leave it is not handed out again.
     await page.goto('about:blank').catch(() => closePooled(pool));
   },
 });

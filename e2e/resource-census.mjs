@@ -7,7 +7,7 @@
 //              document or an element still in the document
 //   detachedListeners  the same on elements no longer in the document
 //              (they go with the element; reported, not a leak)
-//   frames     requestAnimationFrame calls so far (each frame a modeller
+//   frames     requestAnimationFrame calls so far (a running render loop
 //              keeps adding to it)
 export function installResourceCensus() {
   const workers = new Set();

@@ -1,9 +1,6 @@
 // The viewport: renderer, camera, orbit controls and the render loop.
-// Frames are drawn on demand (requestRender): an animation frame is asked for
-// only when something changed, so an idle editor costs neither GPU nor CPU
-// time (a standing requestAnimationFrame loop kept the browser's compositor
-// ticking at the display rate: 0.18 of a core for an idle page). Drawn
-// frames are counted for the status bar's frames per second.
+// Frames are drawn on demand (requestRender), so an idle editor costs no GPU
+// time; the loop also measures frames per second for the status bar.
 import { Color, PerspectiveCamera, Scene, Vector3, WebGLRenderer } from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { EventEmitter } from '../shared/event-emitter.js';
@@ -15,9 +12,7 @@ const DEFAULT_VIEW_DIRECTION = new Vector3(0.8, 0.35, -1).normalize();
 const SPHERE_MARGIN = 1.1;
 
 export class Viewer extends EventEmitter {
-  /** The id of the animation frame asked for, or 0. */
-  #frameRequest = 0;
-  #disposed = false;
+  #needsRender = true;
   #frameTimes = [];
   /** () => {center, diagonal} of the shown mesh, or null before one is loaded. */
   #boundsSource = () => null;
@@ -51,9 +46,9 @@ export class Viewer extends EventEmitter {
     const resizeObserver = new ResizeObserver(() => this.#resize());
     resizeObserver.observe(container);
     this.#resize();
+    this.renderer.setAnimationLoop(() => this.#tick());
     lifetime.defer(() => {
-      this.#disposed = true;
-      cancelAnimationFrame(this.#frameRequest);
+      this.renderer.setAnimationLoop(null);
       resizeObserver.disconnect();
       this.controls.dispose();
       this.renderer.dispose();
@@ -64,12 +59,12 @@ export class Viewer extends EventEmitter {
   }
 
   requestRender() {
-    if (this.#frameRequest !== 0 || this.#disposed) return;
-    this.#frameRequest = requestAnimationFrame(() => this.#draw());
+    this.#needsRender = true;
   }
 
-  #draw() {
-    this.#frameRequest = 0;
+  #tick() {
+    if (!this.#needsRender) return;
+    this.#needsRender = false;
     this.renderer.render(this.scene, this.camera);
     const now = performance.now();
     this.#frameTimes.push(now);
