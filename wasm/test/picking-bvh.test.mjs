@@ -24,7 +24,7 @@ const HEIGHT = 400;
 function loaded(relative) {
   const host = new SessionHost(wasm, () => {});
   const bytes = meshBytes(relative);
-  const reply = host.handle(Request.loadFile, { bytes: bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.length), name: relative.split('/').pop() });
+  const reply = host.handle(Request.loadFile, { source: bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.length), name: relative.split('/').pop() });
   return { host, ...reply };
 }
 

@@ -16,9 +16,23 @@ function hostWith(relative) {
   const host = new SessionHost(wasm, () => {});
   const bytes = meshBytes(relative);
   const name = relative.split('/').pop();
-  const { result } = host.handle(Request.loadFile, { bytes: bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.length), name });
+  const { result } = host.handle(Request.loadFile, { source: bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.length), name });
   return { host, positions: result.positions };
 }
+
+test('a buffer loads at once, and its bytes come back as the Blob the autosave keeps', async () => {
+  const bytes = meshBytes('closed/spot_triangulated.obj');
+  const source = bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.length);
+  const host = new SessionHost(wasm, () => {});
+  try {
+    const { result } = host.handle(Request.loadFile, { source, name: 'spot_triangulated.obj' });
+    assert.ok(result.sourceBytes instanceof Blob);
+    assert.deepEqual(new Uint8Array(await result.sourceBytes.arrayBuffer()), new Uint8Array(bytes));
+    assert.equal(result.info.vertices, result.positions.length / 3);
+  } finally {
+    host.session.delete();
+  }
+});
 
 test('select answers with the count and a copy of the core selection, combined with the one sent before', () => {
   const { host, positions } = hostWith('closed/spot_triangulated.obj');

@@ -13,15 +13,20 @@ import { Request } from '../worker/protocol.js';
  * @returns {Promise<import('../worker/protocol.js').MeshPayload>}
  */
 export async function readMesh(client, source, name, emitProgress) {
-  const reader = readerFor(name);
-  const bytes = await bytesOf(source, name, emitProgress);
+  if (readerFor(name) === 'core') {
+    // The worker reads a picked File and keeps the bytes as a Blob: on the
+    // page, reading a 30 MB file and copying it into a Blob held the main
+    // thread 100-200 ms at a time.
+    if (source instanceof Blob) startReadProgress(name, emitProgress);
+    else source = copyOf(source);
+    return client.request(Request.loadFile, { source, name }, source instanceof ArrayBuffer ? [source] : []);
+  }
+  const bytes = source instanceof Blob ? await readFileBytes(source, startReadProgress(name, emitProgress)) : copyOf(source);
   emitProgress({ stage: 'parse', message: `Reading ${name}` });
-  // The edit document's base mesh travels beside it (autosave): keep the
-  // file's bytes, as a Blob: IndexedDB stores a Blob's bytes off the main
-  // thread, where an ArrayBuffer is cloned in the saving task (194 ms for a
-  // 30 MB file, at every autosave).
-  const sourceBytes = new Blob([bytes]);
-  if (reader === 'core') return { ...(await client.request(Request.loadFile, { bytes, name }, [bytes])), sourceBytes };
+  // The edit document's base mesh travels beside it (autosave) as a Blob:
+  // IndexedDB stores a Blob's bytes off the main thread, where an ArrayBuffer
+  // is cloned in the saving task (194 ms for a 30 MB file, at every autosave).
+  const sourceBytes = source instanceof Blob ? source : new Blob([bytes]);
   const { positions, triangles, notes } = await importGltf(bytes, name);
   // glTF splits vertices at seams; welding exact duplicates joins the surface.
   const payload = await client.request(Request.setMesh, { positions, triangles, weld: true }, [
@@ -40,14 +45,18 @@ export function fileNameOf(source, name) {
   return name;
 }
 
-async function bytesOf(source, name, emitProgress) {
-  if (source instanceof ArrayBuffer) return source.slice(0); // the caller keeps theirs
+// The bytes of an ArrayBuffer or typed array source, copied: the caller keeps theirs.
+function copyOf(source) {
+  if (source instanceof ArrayBuffer) return source.slice(0);
   if (ArrayBuffer.isView(source)) return source.buffer.slice(source.byteOffset, source.byteOffset + source.byteLength);
-  if (source instanceof Blob) {
-    emitProgress({ stage: 'read', message: `Reading ${name}`, fraction: 0 });
-    return readFileBytes(source, (fraction) => emitProgress({ stage: 'read', message: `Reading ${name}`, fraction }));
-  }
   throw Object.assign(new Error('load() takes a File, Blob or ArrayBuffer'), { code: 'bad-parameter' });
+}
+
+// Shows the read at 0 % at once; the worker (or the page, for a GLB) moves it.
+function startReadProgress(name, emitProgress) {
+  const report = (fraction) => emitProgress({ stage: 'read', message: `Reading ${name}`, fraction });
+  report(0);
+  return report;
 }
 
 // A load error in plain words: the core already names the file ("x.obj:

@@ -11,7 +11,11 @@
 export const Request = Object.freeze({
   /** {wasmUrl?} -> {version}: load the WASM module (from wasmUrl if given) and create the session. */
   init: 'init',
-  /** {bytes: ArrayBuffer, name} -> MeshPayload: core readers (OBJ, OFF, PLY, STL). */
+  /**
+   * {source: Blob | ArrayBuffer, name} -> MeshPayload & {sourceBytes: Blob}: core readers (OBJ,
+   * OFF, PLY, STL). A Blob (a picked File) is read here, in the worker; sourceBytes is the
+   * file's bytes as a Blob, kept for the autosave.
+   */
   loadFile: 'loadFile',
   /**
    * {positions: Float32Array, triangles: Uint32Array, weld, display = true} -> MeshPayload (GLB; a

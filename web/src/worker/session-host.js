@@ -1,6 +1,7 @@
 // Inside the worker: one WASM Session and a handler per protocol request
 // (protocol.js). Results hand out copies of the session's heap views: a view
 // detaches when WASM memory grows, and a copy can be transferred to the page.
+import { readFileBytes } from '../io/read-file.js';
 import { Request } from './protocol.js';
 import { simplifiedMesh } from './display-proxy.js';
 import { meshDisplay } from './mesh-display.js';
@@ -57,10 +58,11 @@ export class SessionHost {
 
   #progress = null;
 
-  // The core's progress (stage, fraction) as the page's: only once a call
-  // has run for PROGRESS_AFTER_MS (a quick one shows none), then at most
-  // every PROGRESS_EVERY_MS, and always a stage's start and end.
-  #coreProgress(stage, fraction) {
+  // Progress (stage, fraction) of the core, or of reading a file, as the
+  // page's: only once a call has run for PROGRESS_AFTER_MS (a quick one shows
+  // none), then at most every PROGRESS_EVERY_MS, and always a stage's start
+  // and end.
+  #coreProgress(stage, fraction, message = STAGE_MESSAGES[stage] ?? stage) {
     const progress = this.#progress;
     if (!progress?.shown) return;
     const now = performance.now();
@@ -69,13 +71,25 @@ export class SessionHost {
     if (!edge && now - progress.posted < PROGRESS_EVERY_MS) return;
     progress.stage = stage;
     progress.posted = now;
-    this.reportProgress(stage, STAGE_MESSAGES[stage] ?? stage, fraction);
+    this.reportProgress(stage, message, fraction);
   }
 
-  loadFile({ bytes, name }) {
+  // A picked File is read here (a promise), a buffer is loaded at once. The
+  // bytes are kept as a Blob beside the edit document, for the autosave
+  // (op-stack.js): a File is that Blob already; a buffer is copied here, off
+  // the page's thread.
+  loadFile({ source, name }) {
+    if (!(source instanceof Blob)) return this.#loadBytes(source, name, new Blob([source]));
+    const progress = (fraction) => this.#coreProgress('read', fraction, `Reading ${name}`);
+    return readFileBytes(source, progress).then((bytes) => this.#loadBytes(bytes, name, source));
+  }
+
+  #loadBytes(bytes, name, sourceBytes) {
     this.reportProgress('parse', `Reading ${name}`);
     const info = this.session.loadMesh(new Uint8Array(bytes), name);
-    return this.meshPayload(info, true);
+    const payload = this.meshPayload(info, true);
+    payload.result.sourceBytes = sourceBytes;
+    return payload;
   }
 
   setMesh({ positions, triangles, weld, display = true }) {
