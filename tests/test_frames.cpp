@@ -3,6 +3,7 @@
 
 #include <Eigen/Geometry>
 
+#include "deform/element_targets.h"
 #include "geometry/frames.h"
 #include "mesh/topology.h"
 #include "test_support.h"
@@ -27,7 +28,7 @@ TEST_CASE("frames: frames are orthonormal and right-handed with cu along the pro
   const VertexAdjacency adj = vertex_adjacency(mesh.F, mesh.num_vertices());
   const Eigen::Vector3d d(0.3, 1.0, 0.2);
   const Positions D = d.transpose().replicate(mesh.num_vertices(), 1);
-  const Frames f = build_frames(N, D, adj.offsets, adj.neighbors);
+  const Frames f = build_frames(N, D, [&]() -> const VertexAdjacency& { return adj; });
   for (int i = 0; i < mesh.num_vertices(); ++i) {
     const Eigen::Vector3d u = f.u.row(i), v = f.v.row(i), n = f.n.row(i);
     REQUIRE(u.norm() == Approx(1.0));
@@ -52,10 +53,34 @@ TEST_CASE("frames: directions parallel to the normal are filled from neighbours 
   (N.col(axis).cwiseAbs()).maxCoeff(&pole);
   const Eigen::Vector3d d = N.row(pole).transpose();  // exactly the pole's normal
   const VertexAdjacency adj = vertex_adjacency(mesh.F, mesh.num_vertices());
-  const Frames f = build_frames(N, d.transpose().replicate(mesh.num_vertices(), 1), adj.offsets, adj.neighbors);
+  const Frames f = build_frames(N, d.transpose().replicate(mesh.num_vertices(), 1),
+                                [&]() -> const VertexAdjacency& { return adj; });
   CHECK(f.filled >= 1);
   CHECK(f.filled < mesh.num_vertices() / 10);
   CHECK(f.u.allFinite());
   CHECK(f.u.row(pole).norm() == Approx(1.0));
   CHECK(std::abs(f.u.row(pole).dot(N.row(pole))) < 1e-12);
+}
+
+TEST_CASE("frames: the edit's triangle frames fill a direction along the normal from neighbours, through the lazily built adjacency", "[frames]") {
+  // TargetContext builds the triangle adjacency only when some triangle's
+  // direction is degenerate: the hemisphere's pole triangles, for a global
+  // direction along the axis.
+  const Mesh mesh = test::load("open/hemisphere.obj");
+  const Positions N = triangle_normals(mesh);
+  int pole = 0;
+  Eigen::RowVector3d extent = mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff();
+  int axis = 0;
+  extent.minCoeff(&axis);
+  N.col(axis).cwiseAbs().maxCoeff(&pole);
+  TargetContext context(mesh);
+  DirectionSource along_pole;
+  along_pole.vector = N.row(pole).transpose();
+  const SideFrames sides = side_frames(context, along_pole);
+  CHECK(sides.frames.filled >= 1);
+  CHECK(sides.frames.filled < mesh.num_triangles() / 10);
+  for (int t = 0; t < mesh.num_triangles(); ++t) {
+    REQUIRE(sides.frames.u.row(t).norm() == Approx(1.0));
+    REQUIRE(std::abs(sides.frames.u.row(t).dot(N.row(t))) < 1e-9);
+  }
 }

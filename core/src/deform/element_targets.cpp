@@ -34,10 +34,20 @@ TargetContext::TargetContext(const Mesh& rest)
     triangle_normals_.row(t) = sum.norm() > 0.0 ? Eigen::RowVector3d(sum.normalized())
                                                 : Eigen::RowVector3d(0, 0, 1);
   }
-  const VertexAdjacency adjacency = vertex_adjacency(rest.F, rest.num_vertices());
-  vertex_offsets_ = adjacency.offsets;
-  vertex_neighbors_ = adjacency.neighbors;
-  triangle_adjacency(rest.F, rest.num_vertices(), triangle_offsets_, triangle_neighbors_);
+}
+
+const VertexAdjacency& TargetContext::vertex_adjacency() {
+  if (!vertex_adjacency_) vertex_adjacency_ = aniso::vertex_adjacency(rest_.F, rest_.num_vertices());
+  return *vertex_adjacency_;
+}
+
+const VertexAdjacency& TargetContext::triangle_adjacency() {
+  if (!triangle_adjacency_) {
+    triangle_adjacency_.emplace();
+    aniso::triangle_adjacency(rest_.F, rest_.num_vertices(), triangle_adjacency_->offsets,
+                              triangle_adjacency_->neighbors);
+  }
+  return *triangle_adjacency_;
 }
 
 TargetContext::~TargetContext() = default;
@@ -152,8 +162,8 @@ ElementTargets vertex_targets(TargetContext& context, const DirectionSource& sou
   Positions directions;
   Eigen::VectorXd su, sv;
   context.vertex_directions(source, directions, su, sv);
-  const Frames frames = build_frames(context.vertex_normals(), directions, context.vertex_offsets(),
-                                     context.vertex_neighbors());
+  const Frames frames = build_frames(context.vertex_normals(), directions,
+                                     [&]() -> const VertexAdjacency& { return context.vertex_adjacency(); });
   ElementTargets out;
   out.filled = frames.filled;
   out.T.resize(n);
@@ -193,8 +203,8 @@ Frames triangle_frames(TargetContext& context, const DirectionSource& source, co
     }
     directions.row(t) = sum.transpose();
   }
-  return build_frames(context.triangle_normals(), directions, context.triangle_offsets(),
-                      context.triangle_neighbors());
+  return build_frames(context.triangle_normals(), directions,
+                      [&]() -> const VertexAdjacency& { return context.triangle_adjacency(); });
 }
 
 }  // namespace

@@ -91,8 +91,7 @@ Eigen::Vector3d any_tangent(const Eigen::Vector3d& n) {
 
 }  // namespace
 
-Frames build_frames(const Positions& normals, const Positions& directions,
-                    const std::vector<int>& neighbor_offsets, const std::vector<int>& neighbors,
+Frames build_frames(const Positions& normals, const Positions& directions, const NeighborsOf& neighbors_of,
                     double degenerate_fraction) {
   const int count = static_cast<int>(normals.rows());
   Frames frames;
@@ -112,6 +111,9 @@ Frames build_frames(const Positions& normals, const Positions& directions,
     }
   }
   if (frames.filled > 0) {
+    const VertexAdjacency& adjacency = neighbors_of();
+    const std::vector<int>& neighbor_offsets = adjacency.offsets;
+    const std::vector<int>& neighbors = adjacency.neighbors;
     // Breadth-first fill from known elements: each unknown element takes the
     // line-field mean of its known neighbours (signs aligned to the first one),
     // projected into its own tangent plane.

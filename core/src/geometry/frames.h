@@ -2,11 +2,13 @@
 // wanted direction projected into the tangent plane.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "anisoform/mesh.h"
+#include "mesh/topology.h"
 
 namespace aniso {
 
@@ -30,11 +32,13 @@ struct Frames {
 // tangent plane is shorter than `degenerate_fraction` of its length (the
 // direction is nearly parallel to the normal), the element takes the mean of its
 // non-degenerate neighbours' directions (line-field mean, repeated outwards), as
-// given by `neighbors` (CSR, as VertexAdjacency). With no usable direction at
-// all in a component, an arbitrary tangent is used and still counted as filled.
-Frames build_frames(const Positions& normals, const Positions& directions,
-                    const std::vector<int>& neighbor_offsets,
-                    const std::vector<int>& neighbors,
+// given by `neighbors_of()` (CSR: vertex_adjacency, or triangle_adjacency
+// below). It is called only when some element needs filling, which is rare:
+// building a large mesh's adjacency costs more than its frames. With no usable
+// direction at all in a component, an arbitrary tangent is used and still
+// counted as filled.
+using NeighborsOf = std::function<const VertexAdjacency&()>;
+Frames build_frames(const Positions& normals, const Positions& directions, const NeighborsOf& neighbors_of,
                     double degenerate_fraction = 1e-3);
 
 // Triangle-to-triangle adjacency through shared edges, CSR as above, each

@@ -370,8 +370,8 @@ Positions Session::direction_field(const DirectionSource& source) {
   Positions directions;
   Eigen::VectorXd su, sv;
   targets_->vertex_directions(source, directions, su, sv);
-  return build_frames(targets_->vertex_normals(), directions, targets_->vertex_offsets(),
-                      targets_->vertex_neighbors())
+  return build_frames(targets_->vertex_normals(), directions,
+                      [this]() -> const VertexAdjacency& { return targets_->vertex_adjacency(); })
       .u;
 }
 
