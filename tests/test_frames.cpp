@@ -41,16 +41,27 @@ TEST_CASE("frames: frames are orthonormal and right-handed with cu along the pro
   }
 }
 
+namespace {
+
+// The hemisphere's pole: the element whose normal (of `normals`, per vertex or
+// per triangle) runs most nearly along the mesh's shortest extent, its axis.
+int pole_of(const Mesh& mesh, const Positions& normals) {
+  const Eigen::RowVector3d extent = mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff();
+  int axis = 0;
+  extent.minCoeff(&axis);
+  int pole = 0;
+  normals.col(axis).cwiseAbs().maxCoeff(&pole);
+  return pole;
+}
+
+}  // namespace
+
 TEST_CASE("frames: directions parallel to the normal are filled from neighbours and counted", "[frames]") {
   // The hemisphere's pole has its normal along the axis: a global direction
   // along the axis is degenerate there.
   const Mesh mesh = test::load("open/hemisphere.obj");
   const Positions N = vertex_normals(mesh);
-  int pole = 0;
-  Eigen::RowVector3d extent = mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff();
-  int axis = 0;
-  extent.minCoeff(&axis);
-  (N.col(axis).cwiseAbs()).maxCoeff(&pole);
+  const int pole = pole_of(mesh, N);
   const Eigen::Vector3d d = N.row(pole).transpose();  // exactly the pole's normal
   const VertexAdjacency adj = vertex_adjacency(mesh.F, mesh.num_vertices());
   const Frames f = build_frames(N, d.transpose().replicate(mesh.num_vertices(), 1),
@@ -68,11 +79,7 @@ TEST_CASE("frames: the edit's triangle frames fill a direction along the normal 
   // direction along the axis.
   const Mesh mesh = test::load("open/hemisphere.obj");
   const Positions N = triangle_normals(mesh);
-  int pole = 0;
-  Eigen::RowVector3d extent = mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff();
-  int axis = 0;
-  extent.minCoeff(&axis);
-  N.col(axis).cwiseAbs().maxCoeff(&pole);
+  const int pole = pole_of(mesh, N);
   TargetContext context(mesh);
   DirectionSource along_pole;
   along_pole.vector = N.row(pole).transpose();

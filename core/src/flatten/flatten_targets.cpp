@@ -1,7 +1,6 @@
 // What every triangle should become in the plane: its wanted direction in its
 // chart and the wanted stretch along and across it (METHOD §3, §8).
 #include <cmath>
-#include <optional>
 #include <string>
 
 #include "anisoform/error.h"
@@ -41,13 +40,10 @@ Eigen::Vector3d corner_line_mean(const Positions& vertex_directions, const Trian
 void directions_into_charts(const FlattenPatch& patch, const TriangleCharts& charts,
                             const Positions& triangle_directions, FlattenTargets& targets) {
   const Triangles& F = patch.mesh.F;
-  std::optional<VertexAdjacency> adjacency;
+  VertexAdjacency adjacency;  // built only if some direction needs filling
   const Frames frames = build_frames(triangle_normals(patch.mesh), triangle_directions, [&]() -> const VertexAdjacency& {
-    if (!adjacency) {
-      adjacency.emplace();
-      triangle_adjacency(F, patch.mesh.num_vertices(), adjacency->offsets, adjacency->neighbors);
-    }
-    return *adjacency;
+    triangle_adjacency(F, patch.mesh.num_vertices(), adjacency.offsets, adjacency.neighbors);
+    return adjacency;
   });
   const int m = patch.mesh.num_triangles();
   targets.direction.resize(m, 2);

@@ -33,10 +33,10 @@ struct Frames {
 // direction is nearly parallel to the normal), the element takes the mean of its
 // non-degenerate neighbours' directions (line-field mean, repeated outwards), as
 // given by `neighbors_of()` (CSR: vertex_adjacency, or triangle_adjacency
-// below). It is called only when some element needs filling, which is rare:
-// building a large mesh's adjacency costs more than its frames. With no usable
-// direction at all in a component, an arbitrary tangent is used and still
-// counted as filled.
+// below). It is called once, and only when some element needs filling, which
+// is rare: building a large mesh's adjacency costs more than its frames. With
+// no usable direction at all in a component, an arbitrary tangent is used and
+// still counted as filled.
 using NeighborsOf = std::function<const VertexAdjacency&()>;
 Frames build_frames(const Positions& normals, const Positions& directions, const NeighborsOf& neighbors_of,
                     double degenerate_fraction = 1e-3);
