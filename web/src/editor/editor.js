@@ -175,6 +175,10 @@ export class Editor extends EventEmitter {
     const notice = describeProblems(info);
     if (notice) this.emit('notice', notice);
     this.emit('change', { reason: 'load' });
+    // The load's progress ends here; the background factorization shows its
+    // own once it runs long (else the bar kept the load's last words, e.g.
+    // "Building the picking structure", for the first part of it).
+    this.emit('progress', { stage: 'done', message: '' });
     this.prepareSolver();
   }
 
