@@ -153,7 +153,7 @@ AnArapSolver::AnArapSolver(const Mesh& rest, const CotanWeights& weights,
   energy_scale_ = 0.0;
   for (int i = 0; i < n_; ++i) energy_scale_ += std::abs(fan_size[i]);
   target_energy_.resize(n_);
-  for (int i = 0; i < n_; ++i) target_energy_[i] = fan_size[i];
+  update_target_energy();
   rotation_.assign(n_, Eigen::Quaterniond::Identity());
   rotation_matrices_.assign(n_, Eigen::Matrix3d::Identity());
   spoke_coupling_.resize(neighbors_.size());
@@ -267,9 +267,11 @@ void AnArapSolver::set_scale_targets(double su, double sv) {
 void AnArapSolver::update_target_energy() {
   target_energy_.setZero();
   if (elements_ == ArapElements::Spokes) {
+    target_sum_.setZero(n_, 3);
     for (int i = 0; i < n_; ++i) {
       for (int q = offsets_[i]; q < offsets_[i + 1]; ++q) {
         target_energy_[i] += spoke_weight_[q] * spoke_target_.row(q).squaredNorm();
+        target_sum_.row(i) += spoke_weight_[q] * spoke_target_.row(q);
       }
     }
     return;
@@ -389,11 +391,12 @@ void AnArapSolver::global_rhs(Positions& b) const {
   const std::vector<Eigen::Matrix3d>& R = rotation_matrices_;
   if (elements_ == ArapElements::Spokes) {
     // b_i = -1/2 sum_j w_ij (R_i + R_j) t_ij: a spoke's target t_ij = T_ij e_ij
-    // is the same map seen from both ends (t_ji = -t_ij).
+    // is the same map seen from both ends (t_ji = -t_ij). The R_i part is R_i
+    // times the cell's weighted target sum, which changes with the targets only.
     for (int i = 0; i < n_; ++i) {
-      Eigen::Vector3d acc = Eigen::Vector3d::Zero();
+      Eigen::Vector3d acc = R[i] * target_sum_.row(i).transpose();
       for (int q = offsets_[i]; q < offsets_[i + 1]; ++q) {
-        acc.noalias() += (R[i] + R[neighbors_[q]]) * (spoke_weight_[q] * spoke_target_.row(q).transpose());
+        acc.noalias() += R[neighbors_[q]] * (spoke_weight_[q] * spoke_target_.row(q).transpose());
       }
       b.row(i) = -0.5 * acc.transpose();
     }

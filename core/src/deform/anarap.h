@@ -136,6 +136,8 @@ class AnArapSolver {
   Positions scale_step_[2];  // set_scale_steps: U, V in the layout of the targets
   // sum w |t|^2 per cell: depends on the targets only, computed once per target set.
   Eigen::VectorXd target_energy_;
+  // Spokes: sum_j w_ij t_ij per cell, with target_energy_ (global_rhs's R_i part).
+  Positions target_sum_;
   std::vector<Eigen::Quaterniond> rotation_;
   std::vector<Eigen::Matrix3d> rotation_matrices_;  // R_i as matrices, after each local step
   // Scratch of the local step, kept to avoid reallocating every iteration.
