@@ -1,7 +1,8 @@
 // Factor once, solve many. The free-free block of L is factored by Eigen's
-// SimplicialLDLT (AMD ordering); solves walk the factor once for all right-hand
-// side columns together (Eigen's own solve walks it once per column), which is
-// what makes an ARAP iteration cheaper than three separate solves.
+// SimplicialLDLT (AMD ordering); solves sweep its factor by supernodes
+// (supernodal_factor.h), once for all right-hand side
+// columns together (Eigen's own solve walks it once per column). An ARAP
+// iteration is mostly these sweeps.
 #include "geometry/laplacian_solver.h"
 
 #include <algorithm>
@@ -10,19 +11,19 @@
 #include <Eigen/SparseCholesky>
 
 #include "anisoform/error.h"
+#include "geometry/supernodal_factor.h"
 
 namespace aniso {
 
 struct LaplacianSolver::Impl {
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt;
   std::vector<int> free_of;        // vertex -> free index or -1
   std::vector<int> free_vertices;  // free index -> vertex
   std::vector<int> pinned_index;   // vertex -> pinned index or -1
   Eigen::SparseMatrix<double, Eigen::RowMajor> L_fc;  // free rows, pinned columns
-  // Factor in compressed column form, permutation and inverse diagonal, kept
-  // so that solve() can work on all columns in one sweep.
-  std::vector<int> perm;  // perm[k]: free index at permuted position k
+  // The factor L D L^T of P L_ff P^T: L by supernodes, 1 / D, and P.
+  SupernodalFactor factor;
   Eigen::VectorXd inv_d;
+  std::vector<int> perm;  // perm[k]: free index at permuted position k
 };
 
 namespace {
@@ -102,16 +103,17 @@ LaplacianSolver::LaplacianSolver(const Eigen::SparseMatrix<double>& L, std::vect
   im.L_fc.resize(nf, nc);
   im.L_fc.setFromTriplets(fc.begin(), fc.end());
   if (nf == 0) return;
-  im.ldlt.compute(Lff);
-  if (im.ldlt.info() != Eigen::Success) {
+  // Local: once copied by supernodes, Eigen's factor would only double the memory.
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt(Lff);
+  if (ldlt.info() != Eigen::Success) {
     fail(ErrorCode::Numerical, "factorizing the Laplacian failed (is a mesh component left without a pinned vertex?)");
   }
-  const Eigen::VectorXd d = im.ldlt.vectorD();
+  const Eigen::VectorXd d = ldlt.vectorD();
   const double pivot_floor = 1e-13 * Lff.diagonal().cwiseAbs().maxCoeff();
   for (int k = 0; k < nf; ++k) {
     if (!(d[k] > pivot_floor)) {
       // The permuted position maps back to a free vertex through P^-1.
-      const int free_index = im.ldlt.permutationPinv().indices()[k];
+      const int free_index = ldlt.permutationPinv().indices()[k];
       fail(ErrorCode::Numerical,
            "the Laplacian is singular near vertex " + std::to_string(im.free_vertices[free_index]) +
                ": its component has no pinned vertex or only degenerate triangles");
@@ -120,50 +122,13 @@ LaplacianSolver::LaplacianSolver(const Eigen::SparseMatrix<double>& L, std::vect
   im.inv_d = d.cwiseInverse();
   im.perm.resize(nf);
   // ldlt solves P A P^T; P maps free index i to permuted position P.indices()[i].
-  const auto& p = im.ldlt.permutationP().indices();
+  const auto& p = ldlt.permutationP().indices();
   for (int i = 0; i < nf; ++i) im.perm[p[i]] = i;
+  im.factor = SupernodalFactor(ldlt.matrixL().nestedExpression());
 }
 
 LaplacianSolver::~LaplacianSolver() = default;
 
-namespace {
-
-// Sweeps L (unit lower, column-major) for K columns at once on row-major y.
-template <int K>
-void ldlt_sweeps(const Eigen::SparseMatrix<double>& Lfac, const Eigen::VectorXd& inv_d,
-                 double* y, int cols) {
-  const int n = static_cast<int>(Lfac.cols());
-  const int* outer = Lfac.outerIndexPtr();
-  const int* inner = Lfac.innerIndexPtr();
-  const double* val = Lfac.valuePtr();
-  const int kc = K > 0 ? K : cols;
-  // Forward: L z = y.
-  for (int j = 0; j < n; ++j) {
-    const double* yj = y + static_cast<std::ptrdiff_t>(j) * kc;
-    for (int q = outer[j]; q < outer[j + 1]; ++q) {
-      double* yi = y + static_cast<std::ptrdiff_t>(inner[q]) * kc;
-      const double l = val[q];
-      for (int c = 0; c < kc; ++c) yi[c] -= l * yj[c];
-    }
-  }
-  for (int j = 0; j < n; ++j) {
-    double* yj = y + static_cast<std::ptrdiff_t>(j) * kc;
-    for (int c = 0; c < kc; ++c) yj[c] *= inv_d[j];
-  }
-  // Backward: L^T x = z.
-  for (int j = n - 1; j >= 0; --j) {
-    double* yj = y + static_cast<std::ptrdiff_t>(j) * kc;
-    double acc[K > 0 ? K : 8] = {};
-    for (int q = outer[j]; q < outer[j + 1]; ++q) {
-      const double* yi = y + static_cast<std::ptrdiff_t>(inner[q]) * kc;
-      const double l = val[q];
-      for (int c = 0; c < kc; ++c) acc[c] += l * yi[c];
-    }
-    for (int c = 0; c < kc; ++c) yj[c] -= acc[c];
-  }
-}
-
-}  // namespace
 
 // The shared body of both solve() overloads; B and X are #V by k dense
 // matrices of any storage order.
@@ -182,17 +147,12 @@ void solve_pinned(const LaplacianSolver::Impl& im, const std::vector<int>& pinne
     const RowMatrix contrib = im.L_fc * pinned_values;
     for (int pos = 0; pos < nf; ++pos) rhs.row(pos) -= contrib.row(im.perm[pos]);
   }
-  const Eigen::SparseMatrix<double>& Lfac = im.ldlt.matrixL().nestedExpression();
-  if (k == 3) {
-    ldlt_sweeps<3>(Lfac, im.inv_d, rhs.data(), 3);
-  } else if (k == 2) {
-    ldlt_sweeps<2>(Lfac, im.inv_d, rhs.data(), 2);
-  } else if (k == 1) {
-    ldlt_sweeps<1>(Lfac, im.inv_d, rhs.data(), 1);
+  if (k <= 3) {
+    im.factor.solve(im.inv_d, rhs.data(), k);
   } else {
     for (int c = 0; c < k; ++c) {
       Eigen::VectorXd col = rhs.col(c);
-      ldlt_sweeps<1>(Lfac, im.inv_d, col.data(), 1);
+      im.factor.solve(im.inv_d, col.data(), 1);
       rhs.col(c) = col;
     }
   }

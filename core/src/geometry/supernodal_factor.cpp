@@ -1,0 +1,176 @@
+#include "geometry/supernodal_factor.h"
+
+#include <algorithm>
+#include <cstddef>
+#include <string>
+
+#include "anisoform/error.h"
+
+namespace aniso {
+
+namespace {
+
+// Rows of a supernode's block taken together in the sweeps: their sums are
+// independent, so the multiply-adds of different rows overlap instead of
+// waiting on one running sum.
+constexpr int kRowBlock = 4;
+// Columns copied together into the row-major block: a cache line of each
+// destination row per pass, each source column read in order.
+constexpr int kCopyTile = 8;
+
+// Forward: y[R[i]] -= B_i x for Rows rows B_i (w values each, consecutive).
+template <int K, int Rows>
+void subtract_rows(const double* b, int w, const double* x, const int* R, double* y) {
+  double sum[Rows][K] = {};
+  for (int k = 0; k < w; ++k) {
+    for (int i = 0; i < Rows; ++i) {
+      for (int c = 0; c < K; ++c) sum[i][c] += b[i * w + k] * x[k * K + c];
+    }
+  }
+  for (int i = 0; i < Rows; ++i) {
+    double* yi = y + static_cast<std::ptrdiff_t>(R[i]) * K;
+    for (int c = 0; c < K; ++c) yi[c] -= sum[i][c];
+  }
+}
+
+// Backward: acc += sum_i B_i^T y[R[i]] over Rows rows.
+template <int K, int Rows>
+void gather_rows(const double* b, int w, const int* R, const double* y, double* acc) {
+  double yr[Rows][K];
+  for (int i = 0; i < Rows; ++i) {
+    for (int c = 0; c < K; ++c) yr[i][c] = y[static_cast<std::ptrdiff_t>(R[i]) * K + c];
+  }
+  for (int k = 0; k < w; ++k) {
+    for (int c = 0; c < K; ++c) {
+      double a = acc[k * K + c];
+      for (int i = 0; i < Rows; ++i) a += b[i * w + k] * yr[i][c];
+      acc[k * K + c] = a;
+    }
+  }
+}
+
+}  // namespace
+
+SupernodalFactor::SupernodalFactor(const Eigen::SparseMatrix<double>& L) : n_(static_cast<int>(L.cols())) {
+  if (!L.isCompressed()) fail(ErrorCode::Numerical, "the factor to sweep by supernodes is not compressed");
+  const int* outer = L.outerIndexPtr();
+  const int* inner = L.innerIndexPtr();
+  const double* value = L.valuePtr();
+  first_column_.push_back(0);
+  for (int j = 0; j + 1 < n_; ++j) {
+    const int entries = outer[j + 1] - outer[j], next_entries = outer[j + 2] - outer[j + 1];
+    // Column j's pattern less its first row j + 1 lies in column j + 1's (the
+    // elimination tree's parent): equal counts make them equal.
+    const bool continues = entries >= 1 && inner[outer[j]] == j + 1 && entries == next_entries + 1;
+    if (!continues) first_column_.push_back(j + 1);
+  }
+  if (n_ > 0) first_column_.push_back(n_);
+  const int count = supernodes();
+  values_.resize(static_cast<std::size_t>(L.nonZeros()));
+  row_start_.reserve(count + 1);
+  triangle_start_.reserve(count);
+  block_start_.reserve(count);
+  int at = 0;  // next free entry of values_
+  for (int s = 0; s < count; ++s) {
+    const int c0 = first_column_[s], w = first_column_[s + 1] - c0;
+    widest_ = std::max(widest_, w);
+    const int below = outer[c0] + (w - 1);  // where R starts in the first column
+    const int r = outer[c0 + 1] - below;
+    row_start_.push_back(static_cast<int>(rows_.size()));
+    rows_.insert(rows_.end(), inner + below, inner + below + r);
+    triangle_start_.push_back(at);
+    for (int k = 0; k + 1 < w; ++k) {
+      std::copy(value + outer[c0 + k], value + outer[c0 + k] + (w - 1 - k), values_.begin() + at);
+      at += w - 1 - k;
+    }
+    block_start_.push_back(at);
+    double* block = values_.data() + at;
+    for (int k0 = 0; k0 < w; k0 += kCopyTile) {
+      const int k1 = std::min(w, k0 + kCopyTile);
+      for (int i = 0; i < r; ++i) {
+        for (int k = k0; k < k1; ++k) block[i * w + k] = value[outer[c0 + k] + (w - 1 - k) + i];
+      }
+    }
+    at += r * w;
+  }
+  row_start_.push_back(static_cast<int>(rows_.size()));
+}
+
+template <int K>
+void SupernodalFactor::sweeps(const Eigen::VectorXd& inv_d, double* y) const {
+  const int count = supernodes();
+  // Forward: L z = y, supernode by supernode.
+  for (int s = 0; s < count; ++s) {
+    const int c0 = first_column_[s], w = first_column_[s + 1] - c0;
+    double* x = y + static_cast<std::ptrdiff_t>(c0) * K;
+    const int* R = rows_.data() + row_start_[s];
+    const int r = row_start_[s + 1] - row_start_[s];
+    const double* b = values_.data() + block_start_[s];
+    if (w == 1) {  // most supernodes (the leaves): the simplicial column
+      for (int i = 0; i < r; ++i) {
+        double* yi = y + static_cast<std::ptrdiff_t>(R[i]) * K;
+        for (int c = 0; c < K; ++c) yi[c] -= b[i] * x[c];
+      }
+      continue;
+    }
+    const double* t = values_.data() + triangle_start_[s];
+    for (int k = 0; k + 1 < w; ++k) {
+      for (int m = k + 1; m < w; ++m, ++t) {
+        for (int c = 0; c < K; ++c) x[m * K + c] -= *t * x[k * K + c];
+      }
+    }
+    int i = 0;
+    for (; i + kRowBlock <= r; i += kRowBlock, b += kRowBlock * w) subtract_rows<K, kRowBlock>(b, w, x, R + i, y);
+    for (; i < r; ++i, b += w) subtract_rows<K, 1>(b, w, x, R + i, y);
+  }
+  for (int j = 0; j < n_; ++j) {
+    for (int c = 0; c < K; ++c) y[static_cast<std::ptrdiff_t>(j) * K + c] *= inv_d[j];
+  }
+  // Backward: L^T x = z, supernodes in reverse.
+  std::vector<double> acc(static_cast<std::size_t>(widest_) * K);
+  for (int s = count - 1; s >= 0; --s) {
+    const int c0 = first_column_[s], w = first_column_[s + 1] - c0;
+    double* x = y + static_cast<std::ptrdiff_t>(c0) * K;
+    const int* R = rows_.data() + row_start_[s];
+    const int r = row_start_[s + 1] - row_start_[s];
+    const double* b = values_.data() + block_start_[s];
+    if (w == 1) {
+      double sum[K] = {};
+      for (int i = 0; i < r; ++i) {
+        const double* yi = y + static_cast<std::ptrdiff_t>(R[i]) * K;
+        for (int c = 0; c < K; ++c) sum[c] += b[i] * yi[c];
+      }
+      for (int c = 0; c < K; ++c) x[c] -= sum[c];
+      continue;
+    }
+    // The block first (R's rows are final), then the triangle, last column
+    // first; column k's entries follow the (w-1) + ... + (w-k) of the
+    // columns before it.
+    std::fill(acc.begin(), acc.begin() + w * K, 0.0);
+    int i = 0;
+    for (; i + kRowBlock <= r; i += kRowBlock, b += kRowBlock * w) gather_rows<K, kRowBlock>(b, w, R + i, y, acc.data());
+    for (; i < r; ++i, b += w) gather_rows<K, 1>(b, w, R + i, y, acc.data());
+    for (int q = 0; q < w * K; ++q) x[q] -= acc[q];
+    const double* triangle = values_.data() + triangle_start_[s];
+    for (int k = w - 2; k >= 0; --k) {
+      const double* t = triangle + k * (w - 1) - k * (k - 1) / 2;
+      double sum[K] = {};
+      for (int m = k + 1; m < w; ++m) {
+        for (int c = 0; c < K; ++c) sum[c] += t[m - k - 1] * x[m * K + c];
+      }
+      for (int c = 0; c < K; ++c) x[k * K + c] -= sum[c];
+    }
+  }
+}
+
+void SupernodalFactor::solve(const Eigen::VectorXd& inv_d, double* y, int columns) const {
+  switch (columns) {
+    case 1: sweeps<1>(inv_d, y); break;
+    case 2: sweeps<2>(inv_d, y); break;
+    case 3: sweeps<3>(inv_d, y); break;
+    default:
+      fail(ErrorCode::BadParameter, "SupernodalFactor::solve takes 1, 2 or 3 columns, not " + std::to_string(columns));
+  }
+}
+
+}  // namespace aniso

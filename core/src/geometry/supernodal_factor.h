@@ -1,0 +1,50 @@
+// The triangular sweeps of an LDL^T solve, by supernodes of the unit lower
+// factor L as Eigen's SimplicialLDLT stores it (compressed columns, strictly
+// lower part, rows sorted).
+//
+// A supernode is a run of consecutive columns c0..c0+w-1 whose patterns
+// below the run are one row set R: each column's first entry is the next
+// column, and it has one entry more than the next. Its values are a small
+// unit lower triangle and a dense r-by-w block (r = |R|), kept here row by
+// row. Why: the simplicial sweep reads a row index and updates one scattered
+// row of the right-hand side per nonzero; here a row of R costs one index and
+// one scattered update for all w columns, and the multiply-adds run over
+// contiguous values. An ARAP iteration is mostly these sweeps (on the 50k
+// cylinder they take 1.3 times less than the simplicial ones).
+#pragma once
+
+#include <vector>
+
+#include <Eigen/SparseCore>
+
+namespace aniso {
+
+class SupernodalFactor {
+ public:
+  SupernodalFactor() = default;
+  // L: n by n, compressed, strictly lower entries with sorted rows. Copied:
+  // L may be freed afterwards.
+  explicit SupernodalFactor(const Eigen::SparseMatrix<double>& L);
+
+  // Solves L D L^T x = b in place on y (n rows of 1, 2 or 3 `columns`,
+  // row-major), with inv_d = 1 / diag(D).
+  void solve(const Eigen::VectorXd& inv_d, double* y, int columns) const;
+
+  int size() const { return n_; }
+  int supernodes() const { return first_column_.empty() ? 0 : static_cast<int>(first_column_.size()) - 1; }
+
+ private:
+  template <int K>
+  void sweeps(const Eigen::VectorXd& inv_d, double* y) const;
+
+  int n_ = 0;
+  int widest_ = 0;
+  std::vector<int> first_column_;    // supernode s: columns first_column_[s] .. first_column_[s+1]-1
+  std::vector<int> row_start_;       // its rows R: rows_[row_start_[s] .. row_start_[s+1]-1]
+  std::vector<int> rows_;
+  std::vector<int> triangle_start_;  // its triangle, column by column (column k: the w-1-k entries below k)
+  std::vector<int> block_start_;     // its r-by-w block, row by row
+  std::vector<double> values_;
+};
+
+}  // namespace aniso
