@@ -1,8 +1,8 @@
 // Factor once, solve many. The free-free block of L is factored by Eigen's
 // SimplicialLDLT (AMD ordering); solves sweep its factor by supernodes
-// (supernodal_factor.h), once for all right-hand side
-// columns together (Eigen's own solve walks it once per column). An ARAP
-// iteration is mostly these sweeps.
+// (supernodal_factor.h), once for all right-hand side columns together
+// (Eigen's own solve walks it once per column). An ARAP iteration is mostly
+// these sweeps.
 #include "geometry/laplacian_solver.h"
 
 #include <algorithm>
@@ -129,7 +129,6 @@ LaplacianSolver::LaplacianSolver(const Eigen::SparseMatrix<double>& L, std::vect
 
 LaplacianSolver::~LaplacianSolver() = default;
 
-
 // The shared body of both solve() overloads; B and X are #V by k dense
 // matrices of any storage order.
 template <typename B, typename X>
@@ -147,7 +146,7 @@ void solve_pinned(const LaplacianSolver::Impl& im, const std::vector<int>& pinne
     const RowMatrix contrib = im.L_fc * pinned_values;
     for (int pos = 0; pos < nf; ++pos) rhs.row(pos) -= contrib.row(im.perm[pos]);
   }
-  if (k <= 3) {
+  if (k >= 1 && k <= 3) {
     im.factor.solve(im.inv_d, rhs.data(), k);
   } else {
     for (int c = 0; c < k; ++c) {
