@@ -7,6 +7,7 @@
 #include "anisoform/laplacian.h"
 #include "geometry/laplacian_solver.h"
 #include "geometry/supernodal_factor.h"
+#include "geometry/supernodal_ldlt.h"
 #include "mesh/topology.h"
 #include "test_support.h"
 
@@ -150,6 +151,46 @@ TEST_CASE("supernodal factor: regroups Eigen's LDL^T factor and sweeps it to the
     CHECK((z - expected).norm() <= 1e-12 * expected.norm());
   }
   CHECK_THROWS_WITH(factor.solve(inv_d, nullptr, 4), Catch::Contains("1, 2 or 3 columns"));
+}
+
+TEST_CASE("supernodal LDL^T: the ordering, pivots and solutions of Eigen's SimplicialLDLT", "[laplacian]") {
+  // A closed scan and an open patch, one vertex held (the free-free block).
+  for (const char* name : {"closed/armadillo.off", "open/human_woman_torso_front_patch.obj"}) {
+    INFO(name);
+    const Mesh mesh = test::load(name);
+    const Eigen::SparseMatrix<double> L = cotangent_laplacian(mesh, cotangent_weights(mesh));
+    const int n = mesh.num_vertices() - 1;
+    const Eigen::SparseMatrix<double> free_block = L.bottomRightCorner(n, n);
+    const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> eigen(free_block);
+    REQUIRE(eigen.info() == Eigen::Success);
+    const SupernodalLdlt ours = supernodal_ldlt(free_block, 0.0);
+    REQUIRE(ours.bad_pivot == -1);
+    CHECK(std::equal(ours.perm.begin(), ours.perm.end(), eigen.permutationP().indices().data()));
+    CHECK((ours.d - eigen.vectorD()).norm() <= 1e-10 * eigen.vectorD().norm());
+    CHECK(ours.L.supernodes() < n);
+    // x = P^T L^-T D^-1 L^-1 P b against Eigen's solve.
+    const Eigen::MatrixXd b = Eigen::MatrixXd::Random(n, 3);
+    Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> y(n, 3);
+    for (int i = 0; i < n; ++i) y.row(ours.perm[i]) = b.row(i);
+    ours.L.solve(ours.d.cwiseInverse(), y.data(), 3);
+    Eigen::MatrixXd x(n, 3);
+    for (int i = 0; i < n; ++i) x.row(i) = y.row(ours.perm[i]);
+    const Eigen::MatrixXd expected = eigen.solve(b);
+    CHECK((x - expected).norm() <= 1e-9 * expected.norm());
+  }
+}
+
+TEST_CASE("supernodal LDL^T: a singular matrix stops at the pivot that vanishes", "[laplacian]") {
+  // The whole Laplacian of a closed mesh (no vertex held): constants are in
+  // its null space, so the last pivot vanishes to round-off.
+  const Mesh mesh = test::load("closed/torus.obj");
+  const Eigen::SparseMatrix<double> L = cotangent_laplacian(mesh, cotangent_weights(mesh));
+  const double floor = 1e-13 * L.diagonal().cwiseAbs().maxCoeff();
+  const SupernodalLdlt result = supernodal_ldlt(L, floor);
+  CHECK(result.bad_pivot == mesh.num_vertices() - 1);
+  // Held at one vertex, the same matrix factors.
+  const int n = mesh.num_vertices() - 1;
+  CHECK(supernodal_ldlt(L.bottomRightCorner(n, n), floor).bad_pivot == -1);
 }
 
 TEST_CASE("laplacian solver: a component without a pin is reported, not solved", "[laplacian]") {

@@ -1,17 +1,15 @@
-// Factor once, solve many. The free-free block of L is factored by Eigen's
-// SimplicialLDLT (AMD ordering); solves sweep its factor by supernodes
-// (supernodal_factor.h), once for all right-hand side columns together
-// (Eigen's own solve walks it once per column). An ARAP iteration is mostly
-// these sweeps.
+// Factor once, solve many. The free-free block of L is factored by supernodes
+// (supernodal_ldlt.h, AMD ordering); solves sweep the factor by supernodes
+// too (supernodal_factor.h), once for all right-hand side columns together.
+// An ARAP iteration is mostly these sweeps.
 #include "geometry/laplacian_solver.h"
 
 #include <algorithm>
 #include <string>
 
-#include <Eigen/SparseCholesky>
-
 #include "anisoform/error.h"
 #include "geometry/supernodal_factor.h"
+#include "geometry/supernodal_ldlt.h"
 
 namespace aniso {
 
@@ -103,28 +101,18 @@ LaplacianSolver::LaplacianSolver(const Eigen::SparseMatrix<double>& L, std::vect
   im.L_fc.resize(nf, nc);
   im.L_fc.setFromTriplets(fc.begin(), fc.end());
   if (nf == 0) return;
-  // Local: once copied by supernodes, Eigen's factor would only double the memory.
-  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt(Lff);
-  if (ldlt.info() != Eigen::Success) {
-    fail(ErrorCode::Numerical, "factorizing the Laplacian failed (is a mesh component left without a pinned vertex?)");
-  }
-  const Eigen::VectorXd d = ldlt.vectorD();
   const double pivot_floor = 1e-13 * Lff.diagonal().cwiseAbs().maxCoeff();
-  for (int k = 0; k < nf; ++k) {
-    if (!(d[k] > pivot_floor)) {
-      // The permuted position maps back to a free vertex through P^-1.
-      const int free_index = ldlt.permutationPinv().indices()[k];
-      fail(ErrorCode::Numerical,
-           "the Laplacian is singular near vertex " + std::to_string(im.free_vertices[free_index]) +
-               ": its component has no pinned vertex or only degenerate triangles");
-    }
-  }
-  im.inv_d = d.cwiseInverse();
+  SupernodalLdlt ldlt = supernodal_ldlt(Lff, pivot_floor);
   im.perm.resize(nf);
-  // ldlt solves P A P^T; P maps free index i to permuted position P.indices()[i].
-  const auto& p = ldlt.permutationP().indices();
-  for (int i = 0; i < nf; ++i) im.perm[p[i]] = i;
-  im.factor = SupernodalFactor(ldlt.matrixL().nestedExpression());
+  // The factor is of P L_ff P^T: free index i sits at position ldlt.perm[i].
+  for (int i = 0; i < nf; ++i) im.perm[ldlt.perm[i]] = i;
+  if (ldlt.bad_pivot >= 0) {
+    fail(ErrorCode::Numerical,
+         "the Laplacian is singular near vertex " + std::to_string(im.free_vertices[im.perm[ldlt.bad_pivot]]) +
+             ": its component has no pinned vertex or only degenerate triangles");
+  }
+  im.inv_d = ldlt.d.cwiseInverse();
+  im.factor = std::move(ldlt.L);
 }
 
 LaplacianSolver::~LaplacianSolver() = default;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <string>
+#include <utility>
 
 #include "anisoform/error.h"
 
@@ -65,35 +66,48 @@ SupernodalFactor::SupernodalFactor(const Eigen::SparseMatrix<double>& L) : n_(st
     if (!continues) first_column_.push_back(j + 1);
   }
   if (n_ > 0) first_column_.push_back(n_);
-  const int count = supernodes();
-  values_.resize(static_cast<std::size_t>(L.nonZeros()));
-  row_start_.reserve(count + 1);
-  triangle_start_.reserve(count);
-  block_start_.reserve(count);
-  int at = 0;  // next free entry of values_
-  for (int s = 0; s < count; ++s) {
+  values_.reserve(static_cast<std::size_t>(L.nonZeros()));
+  for (int s = 0; s < supernodes(); ++s) {
     const int c0 = first_column_[s], w = first_column_[s + 1] - c0;
-    widest_ = std::max(widest_, w);
     const int below = outer[c0] + (w - 1);  // where R starts in the first column
-    const int r = outer[c0 + 1] - below;
-    row_start_.push_back(static_cast<int>(rows_.size()));
-    rows_.insert(rows_.end(), inner + below, inner + below + r);
-    triangle_start_.push_back(at);
-    for (int k = 0; k + 1 < w; ++k) {
-      std::copy(value + outer[c0 + k], value + outer[c0 + k] + (w - 1 - k), values_.begin() + at);
-      at += w - 1 - k;
-    }
-    block_start_.push_back(at);
-    double* block = values_.data() + at;
-    for (int k0 = 0; k0 < w; k0 += kCopyTile) {
-      const int k1 = std::min(w, k0 + kCopyTile);
-      for (int i = 0; i < r; ++i) {
-        for (int k = k0; k < k1; ++k) block[i * w + k] = value[outer[c0 + k] + (w - 1 - k) + i];
-      }
-    }
-    at += r * w;
+    store(s, inner + below, outer[c0 + 1] - below,
+          [&](int p, int k) { return value[outer[c0 + k] + (p - k - 1)]; });
   }
   row_start_.push_back(static_cast<int>(rows_.size()));
+}
+
+SupernodalFactor::SupernodalFactor(int n, std::vector<int> first_column, const std::vector<int>& row_offsets,
+                                   const std::vector<int>& rows, const std::vector<std::size_t>& panel_offsets,
+                                   const double* panels)
+    : n_(n), first_column_(std::move(first_column)) {
+  for (int s = 0; s < supernodes(); ++s) {
+    const int w = first_column_[s + 1] - first_column_[s];
+    const int m = row_offsets[s + 1] - row_offsets[s];
+    const double* panel = panels + panel_offsets[s];
+    store(s, rows.data() + row_offsets[s] + w, m - w, [&](int p, int k) { return panel[static_cast<std::size_t>(k) * m + p]; });
+  }
+  row_start_.push_back(static_cast<int>(rows_.size()));
+}
+
+template <typename Entry>
+void SupernodalFactor::store(int s, const int* R, int r, const Entry& entry) {
+  const int w = first_column_[s + 1] - first_column_[s];
+  widest_ = std::max(widest_, w);
+  row_start_.push_back(static_cast<int>(rows_.size()));
+  rows_.insert(rows_.end(), R, R + r);
+  triangle_start_.push_back(static_cast<int>(values_.size()));
+  for (int k = 0; k + 1 < w; ++k) {
+    for (int p = k + 1; p < w; ++p) values_.push_back(entry(p, k));
+  }
+  block_start_.push_back(static_cast<int>(values_.size()));
+  values_.resize(values_.size() + static_cast<std::size_t>(r) * w);
+  double* block = values_.data() + block_start_.back();
+  for (int k0 = 0; k0 < w; k0 += kCopyTile) {
+    const int k1 = std::min(w, k0 + kCopyTile);
+    for (int i = 0; i < r; ++i) {
+      for (int k = k0; k < k1; ++k) block[i * w + k] = entry(w + i, k);
+    }
+  }
 }
 
 template <int K>

@@ -13,6 +13,7 @@
 // cylinder they take 1.3 times less than the simplicial ones).
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 #include <Eigen/SparseCore>
@@ -25,6 +26,15 @@ class SupernodalFactor {
   // L: n by n, compressed, strictly lower entries with sorted rows. Copied:
   // L may be freed afterwards.
   explicit SupernodalFactor(const Eigen::SparseMatrix<double>& L);
+  // From the panels of a supernodal factorization (supernodal_ldlt.h):
+  // supernode s covers columns first_column[s] .. first_column[s+1]-1, its
+  // rows (its own w columns' first, then R, ascending) are
+  // rows[row_offsets[s] .. row_offsets[s+1]-1], and its panel, column-major
+  // with that many rows, starts at panels + panel_offsets[s] and holds L
+  // below the diagonal.
+  SupernodalFactor(int n, std::vector<int> first_column, const std::vector<int>& row_offsets,
+                   const std::vector<int>& rows, const std::vector<std::size_t>& panel_offsets,
+                   const double* panels);
 
   // Solves L D L^T x = b in place on y (n rows of 1, 2 or 3 `columns`,
   // row-major), with inv_d = 1 / diag(D).
@@ -36,6 +46,10 @@ class SupernodalFactor {
  private:
   template <int K>
   void sweeps(const Eigen::VectorXd& inv_d, double* y) const;
+  // Appends supernode s's values: entry(p, k) is L's entry at its row p
+  // (0 .. w-1 its own columns, then R) in its column k, for p > k.
+  template <typename Entry>
+  void store(int s, const int* R, int r, const Entry& entry);
 
   int n_ = 0;
   int widest_ = 0;
