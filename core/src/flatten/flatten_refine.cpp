@@ -254,8 +254,8 @@ StretchRefineReport refine_stretch(const FlattenPatch& patch, const TriangleChar
       change = std::max(change, std::max(now / then, then / now));
     }
     if (!(change > kRefreshChange)) return;
-    map_weighted = std::make_unique<LaplacianSolver>(
-        terms.map_weighted_laplacian(ratios, static_cast<int>(uv.rows()), F), preconditioner.pinned());
+    // The same pattern: the refactorization keeps the ordering and analysis.
+    map_weighted->refactor(terms.map_weighted_laplacian(ratios, static_cast<int>(uv.rows()), F));
     ++report.factorizations;
     built_ratios = std::move(ratios);
     if (last_change.size() > 0) scale = 1.0 / (last_curvature * dot(last_change, precondition(last_change)));

@@ -5,7 +5,9 @@
 #include "geometry/laplacian_solver.h"
 
 #include <algorithm>
+#include <memory>
 #include <string>
+#include <utility>
 
 #include "anisoform/error.h"
 #include "geometry/supernodal_factor.h"
@@ -18,8 +20,10 @@ struct LaplacianSolver::Impl {
   std::vector<int> free_vertices;  // free index -> vertex
   std::vector<int> pinned_index;   // vertex -> pinned index or -1
   Eigen::SparseMatrix<double, Eigen::RowMajor> L_fc;  // free rows, pinned columns
-  // The factor L D L^T of P L_ff P^T: L by supernodes, 1 / D, and P.
+  // The factor L D L^T of P L_ff P^T: L by supernodes, 1 / D, and P; and
+  // what depends on L_ff's pattern only.
   SupernodalFactor factor;
+  std::unique_ptr<SupernodalAnalysis> analysis;
   Eigen::VectorXd inv_d;
   std::vector<int> perm;  // perm[k]: free index at permuted position k
 };
@@ -79,6 +83,20 @@ LaplacianSolver::LaplacianSolver(const Eigen::SparseMatrix<double>& L, std::vect
     }
   }
   require_pin_per_component(L, im.pinned_index);
+  factor(L);
+}
+
+void LaplacianSolver::refactor(const Eigen::SparseMatrix<double>& L) {
+  if (L.rows() != n_ || L.cols() != n_) {
+    fail(ErrorCode::BadParameter, "refactor: the matrix is " + std::to_string(L.rows()) + " by " +
+                                      std::to_string(L.cols()) + ", the solver's " + std::to_string(n_));
+  }
+  require_pin_per_component(L, impl_->pinned_index);
+  factor(L);
+}
+
+void LaplacianSolver::factor(const Eigen::SparseMatrix<double>& L) {
+  Impl& im = *impl_;
   const int nf = static_cast<int>(im.free_vertices.size());
   const int nc = static_cast<int>(pinned_.size());
   std::vector<Eigen::Triplet<double>> ff, fc;
@@ -98,19 +116,27 @@ LaplacianSolver::LaplacianSolver(const Eigen::SparseMatrix<double>& L, std::vect
   }
   Eigen::SparseMatrix<double> Lff(nf, nf);
   Lff.setFromTriplets(ff.begin(), ff.end());
-  im.L_fc.resize(nf, nc);
-  im.L_fc.setFromTriplets(fc.begin(), fc.end());
-  if (nf == 0) return;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> L_fc(nf, nc);
+  L_fc.setFromTriplets(fc.begin(), fc.end());
+  if (nf == 0) {
+    im.L_fc = std::move(L_fc);
+    return;
+  }
   const double pivot_floor = 1e-13 * Lff.diagonal().cwiseAbs().maxCoeff();
-  SupernodalLdlt ldlt = supernodal_ldlt(Lff, pivot_floor);
-  im.perm.resize(nf);
+  // The ordering and the symbolic factorization depend on the pattern only:
+  // a refactorization of the same pattern keeps them.
+  if (!im.analysis || !im.analysis->matches(Lff)) im.analysis = std::make_unique<SupernodalAnalysis>(Lff);
+  SupernodalLdlt ldlt = im.analysis->factor(Lff, pivot_floor);
   // The factor is of P L_ff P^T: free index i sits at position ldlt.perm[i].
-  for (int i = 0; i < nf; ++i) im.perm[ldlt.perm[i]] = i;
-  if (ldlt.bad_pivot >= 0) {
+  std::vector<int> perm(nf);
+  for (int i = 0; i < nf; ++i) perm[ldlt.perm[i]] = i;
+  if (ldlt.bad_pivot >= 0) {  // the solver keeps its last factorization
     fail(ErrorCode::Numerical,
-         "the Laplacian is singular near vertex " + std::to_string(im.free_vertices[im.perm[ldlt.bad_pivot]]) +
+         "the Laplacian is singular near vertex " + std::to_string(im.free_vertices[perm[ldlt.bad_pivot]]) +
              ": its component has no pinned vertex or only degenerate triangles");
   }
+  im.L_fc = std::move(L_fc);
+  im.perm = std::move(perm);
   im.inv_d = ldlt.d.cwiseInverse();
   im.factor = std::move(ldlt.L);
 }

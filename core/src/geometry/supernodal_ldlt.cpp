@@ -12,6 +12,7 @@ namespace aniso {
 namespace {
 
 using Panel = Eigen::Map<Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
+using Permutation = Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int>;
 
 // The symbolic factorization of C = P A P^T (upper triangle U, by columns):
 // the elimination tree, each column's count of entries below the diagonal,
@@ -22,6 +23,13 @@ struct Symbolic {
   std::vector<int> row_offsets, rows;           // per supernode: its own columns, then R
   std::vector<std::size_t> panel_offsets;       // per supernode: its m-by-w panel
 };
+
+// C's upper triangle by columns.
+Eigen::SparseMatrix<double> permuted_upper(const Eigen::SparseMatrix<double>& A, const Permutation& P) {
+  Eigen::SparseMatrix<double> U(A.rows(), A.cols());
+  U.selfadjointView<Eigen::Upper>() = A.selfadjointView<Eigen::Lower>().twistedBy(P);
+  return U;
+}
 
 // Visits the columns j < k with L(k, j) != 0 (row k's subtree of the
 // elimination tree, Liu 1986), in no particular order.
@@ -90,21 +98,48 @@ Symbolic analyse(const Eigen::SparseMatrix<double>& U) {
 
 }  // namespace
 
-SupernodalLdlt supernodal_ldlt(const Eigen::SparseMatrix<double>& A, double pivot_floor) {
-  const int n = static_cast<int>(A.cols());
-  SupernodalLdlt result;
+struct SupernodalSymbolic {
+  Permutation P;
+  Symbolic s;
+  Eigen::SparseMatrix<double> pattern;  // A's lower triangle as analysed (values unused)
+};
+
+SupernodalAnalysis::SupernodalAnalysis(const Eigen::SparseMatrix<double>& A)
+    : symbolic_(std::make_unique<SupernodalSymbolic>()) {
+  SupernodalSymbolic& sym = *symbolic_;
+  sym.pattern = A.triangularView<Eigen::Lower>();
   // The ordering as Eigen's SimplicialLDLT makes it (AMD on the full pattern).
-  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> P, Pinv;
+  Permutation Pinv;
   {
     const Eigen::SparseMatrix<double> full = A.selfadjointView<Eigen::Lower>();
     Eigen::AMDOrdering<int>()(full, Pinv);
   }
-  P = Pinv.inverse();
+  sym.P = Pinv.inverse();
+  sym.s = analyse(permuted_upper(A, sym.P));
+}
+
+SupernodalAnalysis::~SupernodalAnalysis() = default;
+
+bool SupernodalAnalysis::matches(const Eigen::SparseMatrix<double>& A) const {
+  const Eigen::SparseMatrix<double> lower = A.triangularView<Eigen::Lower>();
+  const Eigen::SparseMatrix<double>& pattern = symbolic_->pattern;
+  return lower.rows() == pattern.rows() && lower.cols() == pattern.cols() &&
+         lower.nonZeros() == pattern.nonZeros() &&
+         std::equal(lower.outerIndexPtr(), lower.outerIndexPtr() + lower.cols() + 1, pattern.outerIndexPtr()) &&
+         std::equal(lower.innerIndexPtr(), lower.innerIndexPtr() + lower.nonZeros(), pattern.innerIndexPtr());
+}
+
+SupernodalLdlt supernodal_ldlt(const Eigen::SparseMatrix<double>& A, double pivot_floor) {
+  return SupernodalAnalysis(A).factor(A, pivot_floor);
+}
+
+SupernodalLdlt SupernodalAnalysis::factor(const Eigen::SparseMatrix<double>& A, double pivot_floor) const {
+  const Symbolic& s = symbolic_->s;
+  const Permutation& P = symbolic_->P;
+  const int n = static_cast<int>(A.cols());
+  SupernodalLdlt result;
   result.perm.assign(P.indices().data(), P.indices().data() + n);
-  Eigen::SparseMatrix<double> U(n, n);
-  U.selfadjointView<Eigen::Upper>() = A.selfadjointView<Eigen::Lower>().twistedBy(P);
-  const Eigen::SparseMatrix<double> C = U.transpose();  // the lower triangle, by columns
-  const Symbolic s = analyse(U);
+  const Eigen::SparseMatrix<double> C = permuted_upper(A, P).transpose();  // the lower triangle, by columns
   const int supernodes = static_cast<int>(s.first_column.size()) - 1;
 
   // Each panel is zeroed when its supernode comes, not all at once: the

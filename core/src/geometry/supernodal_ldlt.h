@@ -7,6 +7,7 @@
 // dense matrix products.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include <Eigen/SparseCore>
@@ -26,8 +27,30 @@ struct SupernodalLdlt {
   int bad_pivot = -1;
 };
 
-// A: n by n, its lower triangle (what lies above is ignored). pivot_floor:
-// pivots at or below it stop the factorization (bad_pivot).
+struct SupernodalSymbolic;
+
+// What depends on A's pattern only: the ordering, the elimination tree and
+// the supernodes with their rows. Kept, it factors new values of the same
+// pattern without them (a preconditioner rebuilt as a map changes).
+class SupernodalAnalysis {
+ public:
+  // A: n by n, its lower triangle (what lies above is ignored).
+  explicit SupernodalAnalysis(const Eigen::SparseMatrix<double>& A);
+  ~SupernodalAnalysis();
+  SupernodalAnalysis(const SupernodalAnalysis&) = delete;
+  SupernodalAnalysis& operator=(const SupernodalAnalysis&) = delete;
+
+  // Whether A's lower triangle has the pattern analysed.
+  bool matches(const Eigen::SparseMatrix<double>& A) const;
+  // A with that pattern. pivot_floor: pivots at or below it stop the
+  // factorization (bad_pivot).
+  SupernodalLdlt factor(const Eigen::SparseMatrix<double>& A, double pivot_floor) const;
+
+ private:
+  std::unique_ptr<SupernodalSymbolic> symbolic_;
+};
+
+// Analysis and factorization at once.
 SupernodalLdlt supernodal_ldlt(const Eigen::SparseMatrix<double>& A, double pivot_floor);
 
 }  // namespace aniso
