@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <complex>
 
 #include <Eigen/Geometry>
 #include <Eigen/SparseCholesky>
@@ -222,6 +223,45 @@ TEST_CASE("laplacian solver: refactor with new values solves as a new solver, a 
   Eigen::MatrixXd again = Eigen::MatrixXd::Zero(n, 2);
   refactored.solve(b, again);
   CHECK(again == expected);
+}
+
+TEST_CASE("supernodal solve: a complex Hermitian system as Eigen's SimplicialLDLT solves it", "[laplacian]") {
+  // A connection Laplacian as the direction fields build (complex transport
+  // of unit modulus along each edge), one vertex held: Hermitian, definite.
+  const Mesh mesh = test::load("open/hemisphere.obj");
+  const Eigen::SparseMatrix<double> L = cotangent_laplacian(mesh, cotangent_weights(mesh));
+  const int n = mesh.num_vertices() - 1;
+  std::vector<Eigen::Triplet<std::complex<double>>> lower;
+  for (int col = 0; col < L.outerSize(); ++col) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(L, col); it; ++it) {
+      const int r = static_cast<int>(it.row()) - 1, c = col - 1;
+      if (r < 0 || c < 0 || r < c) continue;
+      const std::complex<double> value =
+          r == c ? std::complex<double>(it.value()) : it.value() * std::polar(1.0, 0.37 * r - 0.11 * c);
+      lower.emplace_back(r, c, value);
+    }
+  }
+  Eigen::SparseMatrix<std::complex<double>> A(n, n);
+  A.setFromTriplets(lower.begin(), lower.end());
+  const Eigen::MatrixXcd b = Eigen::MatrixXcd::Random(n, 2);
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<std::complex<double>>, Eigen::Lower> eigen(A);
+  REQUIRE(eigen.info() == Eigen::Success);
+  const Eigen::MatrixXcd expected = eigen.solve(b);
+  Eigen::MatrixXcd x = b;
+  CHECK(supernodal_solve(A, 0.0, x) == -1);
+  CHECK((x - expected).norm() <= 1e-9 * expected.norm());
+  // The real path is the same arithmetic as supernodal_ldlt's.
+  const Eigen::SparseMatrix<double> real_block = L.bottomRightCorner(n, n);
+  Eigen::MatrixXd y = b.real();
+  CHECK(supernodal_solve(real_block, 0.0, y) == -1);
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> real_eigen(real_block);
+  CHECK((y - real_eigen.solve(Eigen::MatrixXd(b.real()))).norm() <= 1e-9 * y.norm());
+  // A zero pivot (an empty row and column) is reported, the right side kept.
+  Eigen::SparseMatrix<std::complex<double>> singular = A;
+  singular.prune([](int row, int col, const std::complex<double>&) { return row != 5 && col != 5; });
+  Eigen::MatrixXcd z = b;
+  CHECK(supernodal_solve(singular, 0.0, z) >= 0);
+  CHECK(z == b);
 }
 
 TEST_CASE("laplacian solver: a component without a pin is reported, not solved", "[laplacian]") {

@@ -10,9 +10,9 @@
 
 #include <Eigen/Core>
 #include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
 
 #include "anisoform/error.h"
+#include "geometry/supernodal_ldlt.h"
 
 namespace aniso::field {
 
@@ -36,7 +36,7 @@ using ValueMatrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
 // cotangents included; for line fields up to the transport's tiny turn within
 // one triangle) and definite once every free vertex is connected to a fixed
 // one, which the caller guarantees. LDL^T needs only non-zero pivots. Only the
-// lower triangle is assembled: that is all SimplicialLDLT reads, and it
+// lower triangle is assembled: that is all the factorization reads, and it
 // halves the assembly's memory on large meshes.
 template <typename Scalar, typename Transport>
 void solve_with_fixed_values(const std::vector<WeightedEdge>& edges, Transport transport,
@@ -79,12 +79,13 @@ void solve_with_fixed_values(const std::vector<WeightedEdge>& edges, Transport t
   Eigen::SparseMatrix<Scalar> system(free_count, free_count);
   system.setFromTriplets(lower.begin(), lower.end());
 
-  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<Scalar>, Eigen::Lower> solver(system);
-  if (solver.info() != Eigen::Success) fail(ErrorCode::Numerical, what + ": the system could not be factored");
-  const ValueMatrix<Scalar> solution = solver.solve(rhs);
-  if (solver.info() != Eigen::Success || !solution.allFinite()) {
-    fail(ErrorCode::Numerical, what + ": the solve failed");
+  // The supernodal LDL^H (geometry/supernodal_ldlt.h): pivots of either sign,
+  // only a zero one is refused.
+  ValueMatrix<Scalar> solution = rhs;
+  if (supernodal_solve(system, 0.0, solution) >= 0) {
+    fail(ErrorCode::Numerical, what + ": the system could not be factored");
   }
+  if (!solution.allFinite()) fail(ErrorCode::Numerical, what + ": the solve failed");
   for (int i = 0; i < n; ++i) {
     if (free_index[i] >= 0) values.row(i) = solution.row(free_index[i]);
   }

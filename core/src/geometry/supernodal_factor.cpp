@@ -84,7 +84,8 @@ SupernodalFactor::SupernodalFactor(int n, std::vector<int> first_column, const s
     const int w = first_column_[s + 1] - first_column_[s];
     const int m = row_offsets[s + 1] - row_offsets[s];
     const double* panel = panels + panel_offsets[s];
-    store(s, rows.data() + row_offsets[s] + w, m - w, [&](int p, int k) { return panel[static_cast<std::size_t>(k) * m + p]; });
+    store(s, rows.data() + row_offsets[s] + w, m - w,
+          [&](int p, int k) { return panel[static_cast<std::size_t>(k) * m + p]; });
   }
   row_start_.push_back(static_cast<int>(rows_.size()));
 }
@@ -162,7 +163,9 @@ void SupernodalFactor::sweeps(const Eigen::VectorXd& inv_d, double* y) const {
     // columns before it.
     std::fill(acc.begin(), acc.begin() + w * K, 0.0);
     int i = 0;
-    for (; i + kRowBlock <= r; i += kRowBlock, b += kRowBlock * w) gather_rows<K, kRowBlock>(b, w, R + i, y, acc.data());
+    for (; i + kRowBlock <= r; i += kRowBlock, b += kRowBlock * w) {
+      gather_rows<K, kRowBlock>(b, w, R + i, y, acc.data());
+    }
     for (; i < r; ++i, b += w) gather_rows<K, 1>(b, w, R + i, y, acc.data());
     for (int q = 0; q < w * K; ++q) x[q] -= acc[q];
     const double* triangle = values_.data() + triangle_start_[s];

@@ -1,6 +1,8 @@
 #include "geometry/supernodal_ldlt.h"
 
 #include <algorithm>
+#include <cmath>
+#include <complex>
 #include <cstddef>
 #include <memory>
 
@@ -9,25 +11,25 @@
 
 namespace aniso {
 
-namespace {
-
-using Panel = Eigen::Map<Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
-using Permutation = Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int>;
-
 // The symbolic factorization of C = P A P^T (upper triangle U, by columns):
 // the elimination tree, each column's count of entries below the diagonal,
 // the supernodes, and each supernode's rows.
-struct Symbolic {
+struct SupernodalStructure {
   std::vector<int> parent, count;
   std::vector<int> first_column, supernode_of;  // supernode of each column
   std::vector<int> row_offsets, rows;           // per supernode: its own columns, then R
   std::vector<std::size_t> panel_offsets;       // per supernode: its m-by-w panel
 };
 
+namespace {
+
+using Permutation = Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int>;
+
 // C's upper triangle by columns.
-Eigen::SparseMatrix<double> permuted_upper(const Eigen::SparseMatrix<double>& A, const Permutation& P) {
-  Eigen::SparseMatrix<double> U(A.rows(), A.cols());
-  U.selfadjointView<Eigen::Upper>() = A.selfadjointView<Eigen::Lower>().twistedBy(P);
+template <typename Scalar>
+Eigen::SparseMatrix<Scalar> permuted_upper(const Eigen::SparseMatrix<Scalar>& A, const Permutation& P) {
+  Eigen::SparseMatrix<Scalar> U(A.rows(), A.cols());
+  U.template selfadjointView<Eigen::Upper>() = A.template selfadjointView<Eigen::Lower>().twistedBy(P);
   return U;
 }
 
@@ -45,9 +47,9 @@ void row_pattern(const Eigen::SparseMatrix<double>& U, const std::vector<int>& p
   }
 }
 
-Symbolic analyse(const Eigen::SparseMatrix<double>& U) {
+SupernodalStructure analyse(const Eigen::SparseMatrix<double>& U) {
   const int n = static_cast<int>(U.cols());
-  Symbolic s;
+  SupernodalStructure s;
   // Elimination tree (Liu's algorithm with path compression).
   s.parent.assign(n, -1);
   std::vector<int> ancestor(n, -1);
@@ -100,7 +102,7 @@ Symbolic analyse(const Eigen::SparseMatrix<double>& U) {
 
 struct SupernodalSymbolic {
   Permutation P;
-  Symbolic s;
+  SupernodalStructure s;
   Eigen::SparseMatrix<double> pattern;  // A's lower triangle as analysed (values unused)
 };
 
@@ -133,35 +135,42 @@ SupernodalLdlt supernodal_ldlt(const Eigen::SparseMatrix<double>& A, double pivo
   return SupernodalAnalysis(A).factor(A, pivot_floor);
 }
 
-SupernodalLdlt SupernodalAnalysis::factor(const Eigen::SparseMatrix<double>& A, double pivot_floor) const {
-  const Symbolic& s = symbolic_->s;
-  const Permutation& P = symbolic_->P;
-  const int n = static_cast<int>(A.cols());
-  SupernodalLdlt result;
-  result.perm.assign(P.indices().data(), P.indices().data() + n);
-  const Eigen::SparseMatrix<double> C = permuted_upper(A, P).transpose();  // the lower triangle, by columns
-  const int supernodes = static_cast<int>(s.first_column.size()) - 1;
+namespace {
 
-  // Each panel is zeroed when its supernode comes, not all at once: the
-  // memory is touched first where it is used.
-  const std::unique_ptr<double[]> panels(new double[s.panel_offsets.back()]);
-  result.d.setZero(n);
+// The numeric factorization P A P^T = L D L^H on the analysed pattern, into
+// panels (each supernode's m-by-w block of L, column-major, its rows as
+// SupernodalStructure::rows) and the real pivots d. Returns the first column
+// whose pivot fails the test (above pivot_floor, or for `any_sign` above it
+// in magnitude), or -1.
+template <typename Scalar>
+int factor_panels(const SupernodalStructure& s, const Permutation& P, const Eigen::SparseMatrix<Scalar>& A,
+                  double pivot_floor, bool any_sign, Scalar* panels, Eigen::VectorXd& d) {
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  using PanelOf = Eigen::Map<Matrix, 0, Eigen::OuterStride<>>;
+  const int n = static_cast<int>(A.cols());
+  const Eigen::SparseMatrix<Scalar> C = permuted_upper(A, P).adjoint();  // the lower triangle, by columns
+  const int supernodes = static_cast<int>(s.first_column.size()) - 1;
+  d.setZero(n);
   // Left-looking: the supernodes K whose rows reach supernode J wait in J's
   // list; next_row[K] is K's first row position not used yet.
   std::vector<int> head(supernodes, -1), next(supernodes, -1), next_row(supernodes, 0);
   std::vector<int> local(n, -1);  // row -> its position in the current supernode
-  Eigen::MatrixXd update, scaled;
+  Matrix update, scaled;
   for (int J = 0; J < supernodes; ++J) {
     const int c0 = s.first_column[J], w = s.first_column[J + 1] - c0;
     const int m = s.row_offsets[J + 1] - s.row_offsets[J];
     const int* rows = s.rows.data() + s.row_offsets[J];
     for (int p = 0; p < m; ++p) local[rows[p]] = p;
-    Panel X(panels.get() + s.panel_offsets[J], m, w, Eigen::OuterStride<>(m));
+    // Each panel is zeroed when its supernode comes, not all at once: the
+    // memory is touched first where it is used.
+    PanelOf X(panels + s.panel_offsets[J], m, w, Eigen::OuterStride<>(m));
     X.setZero();
     for (int k = 0; k < w; ++k) {
-      for (Eigen::SparseMatrix<double>::InnerIterator it(C, c0 + k); it; ++it) X(local[it.row()], k) += it.value();
+      for (typename Eigen::SparseMatrix<Scalar>::InnerIterator it(C, c0 + k); it; ++it) {
+        X(local[it.row()], k) += it.value();
+      }
     }
-    // X -= L_K D_K L_K^T on the rows of K that reach J, for each K waiting.
+    // X -= L_K D_K L_K^H on the rows of K that reach J, for each K waiting.
     while (head[J] != -1) {
       const int K = head[J];
       head[J] = next[K];
@@ -171,10 +180,10 @@ SupernodalLdlt SupernodalAnalysis::factor(const Eigen::SparseMatrix<double>& A, 
       const int p0 = next_row[K];
       int p1 = p0;
       while (p1 < km && krows[p1] < c0 + w) ++p1;
-      const Panel LK(panels.get() + s.panel_offsets[K], km, kw, Eigen::OuterStride<>(km));
-      const auto dK = result.d.segment(s.first_column[K], kw);
+      const PanelOf LK(panels + s.panel_offsets[K], km, kw, Eigen::OuterStride<>(km));
+      const auto dK = d.segment(s.first_column[K], kw).template cast<Scalar>();
       scaled.noalias() = LK.middleRows(p0, p1 - p0) * dK.asDiagonal();
-      update.noalias() = LK.middleRows(p0, km - p0) * scaled.transpose();
+      update.noalias() = LK.middleRows(p0, km - p0) * scaled.adjoint();
       for (int b = 0; b < p1 - p0; ++b) {
         const int column = krows[p0 + b] - c0;
         for (int a = b; a < km - p0; ++a) X(local[krows[p0 + a]], column) -= update(a, b);
@@ -186,19 +195,16 @@ SupernodalLdlt SupernodalAnalysis::factor(const Eigen::SparseMatrix<double>& A, 
         head[target] = K;
       }
     }
-    // The panel's own LDL^T, column by column.
+    // The panel's own LDL^H, column by column.
     for (int k = 0; k < w; ++k) {
       if (k > 0) {
-        const Eigen::VectorXd weighted = X.block(k, 0, 1, k).transpose().cwiseProduct(result.d.segment(c0, k));
+        const Matrix weighted = X.block(k, 0, 1, k).adjoint().cwiseProduct(d.segment(c0, k).template cast<Scalar>());
         X.block(k, k, m - k, 1).noalias() -= X.block(k, 0, m - k, k) * weighted;
       }
-      const double pivot = X(k, k);
-      if (!(pivot > pivot_floor)) {
-        result.bad_pivot = c0 + k;
-        return result;
-      }
-      result.d[c0 + k] = pivot;
-      X.block(k + 1, k, m - k - 1, 1) /= pivot;
+      const double pivot = Eigen::numext::real(X(k, k));
+      if (!((any_sign ? std::abs(pivot) : pivot) > pivot_floor)) return c0 + k;
+      d[c0 + k] = pivot;
+      X.block(k + 1, k, m - k - 1, 1) /= Scalar(pivot);
     }
     if (w < m) {
       next_row[J] = w;
@@ -207,8 +213,72 @@ SupernodalLdlt SupernodalAnalysis::factor(const Eigen::SparseMatrix<double>& A, 
       head[target] = J;
     }
   }
+  return -1;
+}
+
+}  // namespace
+
+SupernodalLdlt SupernodalAnalysis::factor(const Eigen::SparseMatrix<double>& A, double pivot_floor) const {
+  const SupernodalStructure& s = symbolic_->s;
+  const int n = static_cast<int>(A.cols());
+  SupernodalLdlt result;
+  result.perm.assign(symbolic_->P.indices().data(), symbolic_->P.indices().data() + n);
+  const std::unique_ptr<double[]> panels(new double[s.panel_offsets.back()]);
+  result.bad_pivot = factor_panels(s, symbolic_->P, A, pivot_floor, false, panels.get(), result.d);
+  if (result.bad_pivot >= 0) return result;
   result.L = SupernodalFactor(n, s.first_column, s.row_offsets, s.rows, s.panel_offsets, panels.get());
   return result;
 }
+
+template <typename Scalar>
+int supernodal_solve(const Eigen::SparseMatrix<Scalar>& A, double pivot_floor,
+                     Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>& X) {
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  using PanelOf = Eigen::Map<const Matrix, 0, Eigen::OuterStride<>>;
+  const int n = static_cast<int>(A.cols());
+  // The pattern is all the analysis reads.
+  const Eigen::SparseMatrix<double> pattern = A.real();
+  Permutation Pinv;
+  {
+    const Eigen::SparseMatrix<double> full = pattern.selfadjointView<Eigen::Lower>();
+    Eigen::AMDOrdering<int>()(full, Pinv);
+  }
+  const Permutation P = Pinv.inverse();
+  const SupernodalStructure s = analyse(permuted_upper(pattern, P));
+  const std::unique_ptr<Scalar[]> panels(new Scalar[s.panel_offsets.back()]);
+  Eigen::VectorXd d;
+  const int bad = factor_panels(s, P, A, pivot_floor, true, panels.get(), d);
+  if (bad >= 0) return bad;
+  Matrix Y(n, X.cols());
+  for (int i = 0; i < n; ++i) Y.row(P.indices()[i]) = X.row(i);
+  const int supernodes = static_cast<int>(s.first_column.size()) - 1;
+  Matrix t;
+  for (int J = 0; J < supernodes; ++J) {  // L z = y
+    const int c0 = s.first_column[J], w = s.first_column[J + 1] - c0;
+    const int m = s.row_offsets[J + 1] - s.row_offsets[J];
+    const int* rows = s.rows.data() + s.row_offsets[J];
+    const PanelOf L(panels.get() + s.panel_offsets[J], m, w, Eigen::OuterStride<>(m));
+    L.topRows(w).template triangularView<Eigen::UnitLower>().solveInPlace(Y.middleRows(c0, w));
+    t.noalias() = L.bottomRows(m - w) * Y.middleRows(c0, w);
+    for (int i = 0; i < m - w; ++i) Y.row(rows[w + i]) -= t.row(i);
+  }
+  for (int j = 0; j < n; ++j) Y.row(j) /= Scalar(d[j]);
+  for (int J = supernodes - 1; J >= 0; --J) {  // L^H x = z
+    const int c0 = s.first_column[J], w = s.first_column[J + 1] - c0;
+    const int m = s.row_offsets[J + 1] - s.row_offsets[J];
+    const int* rows = s.rows.data() + s.row_offsets[J];
+    const PanelOf L(panels.get() + s.panel_offsets[J], m, w, Eigen::OuterStride<>(m));
+    t.resize(m - w, Y.cols());
+    for (int i = 0; i < m - w; ++i) t.row(i) = Y.row(rows[w + i]);
+    Y.middleRows(c0, w).noalias() -= L.bottomRows(m - w).adjoint() * t;
+    L.topRows(w).template triangularView<Eigen::UnitLower>().adjoint().solveInPlace(Y.middleRows(c0, w));
+  }
+  for (int i = 0; i < n; ++i) X.row(i) = Y.row(P.indices()[i]);
+  return -1;
+}
+
+template int supernodal_solve<double>(const Eigen::SparseMatrix<double>&, double, Eigen::MatrixXd&);
+template int supernodal_solve<std::complex<double>>(const Eigen::SparseMatrix<std::complex<double>>&, double,
+                                                    Eigen::MatrixXcd&);
 
 }  // namespace aniso

@@ -10,6 +10,7 @@
 #include <memory>
 #include <vector>
 
+#include <Eigen/Core>
 #include <Eigen/SparseCore>
 
 #include "geometry/supernodal_factor.h"
@@ -52,5 +53,14 @@ class SupernodalAnalysis {
 
 // Analysis and factorization at once.
 SupernodalLdlt supernodal_ldlt(const Eigen::SparseMatrix<double>& A, double pivot_floor);
+
+// Solves A X = B in place (X: B in, the solution out) for a Hermitian A (its
+// lower triangle), real or complex, by L D L^H with pivots of either sign:
+// the direction fields' systems. Returns -1, or the first column (in the
+// factor's order) whose pivot is not above pivot_floor in magnitude (X is
+// then unchanged). For double and std::complex<double>.
+template <typename Scalar>
+int supernodal_solve(const Eigen::SparseMatrix<Scalar>& A, double pivot_floor,
+                     Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>& X);
 
 }  // namespace aniso
