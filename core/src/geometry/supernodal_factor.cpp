@@ -52,30 +52,6 @@ void gather_rows(const double* b, int w, const int* R, const double* y, double* 
 
 }  // namespace
 
-SupernodalFactor::SupernodalFactor(const Eigen::SparseMatrix<double>& L) : n_(static_cast<int>(L.cols())) {
-  if (!L.isCompressed()) fail(ErrorCode::Numerical, "the factor to sweep by supernodes is not compressed");
-  const int* outer = L.outerIndexPtr();
-  const int* inner = L.innerIndexPtr();
-  const double* value = L.valuePtr();
-  first_column_.push_back(0);
-  for (int j = 0; j + 1 < n_; ++j) {
-    const int entries = outer[j + 1] - outer[j], next_entries = outer[j + 2] - outer[j + 1];
-    // Column j's pattern less its first row j + 1 lies in column j + 1's (the
-    // elimination tree's parent): equal counts make them equal.
-    const bool continues = entries >= 1 && inner[outer[j]] == j + 1 && entries == next_entries + 1;
-    if (!continues) first_column_.push_back(j + 1);
-  }
-  if (n_ > 0) first_column_.push_back(n_);
-  values_.reserve(static_cast<std::size_t>(L.nonZeros()));
-  for (int s = 0; s < supernodes(); ++s) {
-    const int c0 = first_column_[s], w = first_column_[s + 1] - c0;
-    const int below = outer[c0] + (w - 1);  // where R starts in the first column
-    store(s, inner + below, outer[c0 + 1] - below,
-          [&](int p, int k) { return value[outer[c0 + k] + (p - k - 1)]; });
-  }
-  row_start_.push_back(static_cast<int>(rows_.size()));
-}
-
 SupernodalFactor::SupernodalFactor(int n, std::vector<int> first_column, const std::vector<int>& row_offsets,
                                    const std::vector<int>& rows, const std::vector<std::size_t>& panel_offsets,
                                    const double* panels)

@@ -1,6 +1,5 @@
 // The triangular sweeps of an LDL^T solve, by supernodes of the unit lower
-// factor L as Eigen's SimplicialLDLT stores it (compressed columns, strictly
-// lower part, rows sorted).
+// factor L (supernodal_ldlt.h builds it).
 //
 // A supernode is a run of consecutive columns c0..c0+w-1 whose patterns
 // below the run are one row set R: each column's first entry is the next
@@ -10,7 +9,7 @@
 // row of the right-hand side per nonzero; here a row of R costs one index and
 // one scattered update for all w columns, and the multiply-adds run over
 // contiguous values. An ARAP iteration is mostly these sweeps (on the 50k
-// cylinder they take 1.3 times less than the simplicial ones).
+// cylinder they take 1.5 times less than the simplicial ones).
 #pragma once
 
 #include <cstddef>
@@ -23,9 +22,6 @@ namespace aniso {
 class SupernodalFactor {
  public:
   SupernodalFactor() = default;
-  // L: n by n, compressed, strictly lower entries with sorted rows. Copied:
-  // L may be freed afterwards.
-  explicit SupernodalFactor(const Eigen::SparseMatrix<double>& L);
   // From the panels of a supernodal factorization (supernodal_ldlt.h):
   // supernode s covers columns first_column[s] .. first_column[s+1]-1, its
   // rows (its own w columns' first, then R, ascending) are

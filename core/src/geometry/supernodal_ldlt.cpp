@@ -66,7 +66,9 @@ SupernodalStructure analyse(const Eigen::SparseMatrix<double>& U) {
   s.count.assign(n, 0);
   std::vector<int> mark(n, -1);
   for (int k = 0; k < n; ++k) row_pattern(U, s.parent, k, mark, [&](int j) { ++s.count[j]; });
-  // Fundamental supernodes, by the rule SupernodalFactor uses on a factor.
+  // Fundamental supernodes: column j + 1 continues j's when it is j's parent
+  // and j has one entry more (j's pattern less row j + 1 lies in its
+  // parent's, so equal counts make the patterns below equal).
   s.first_column.push_back(0);
   for (int j = 0; j + 1 < n; ++j) {
     if (!(s.parent[j] == j + 1 && s.count[j] == s.count[j + 1] + 1)) s.first_column.push_back(j + 1);
@@ -98,6 +100,18 @@ SupernodalStructure analyse(const Eigen::SparseMatrix<double>& U) {
   return s;
 }
 
+// The ordering as Eigen's SimplicialLDLT makes it (AMD on the full pattern
+// of A's lower triangle, into P), and the analysis of P A P^T.
+SupernodalStructure order_and_analyse(const Eigen::SparseMatrix<double>& A, Permutation& P) {
+  Permutation Pinv;
+  {
+    const Eigen::SparseMatrix<double> full = A.selfadjointView<Eigen::Lower>();
+    Eigen::AMDOrdering<int>()(full, Pinv);
+  }
+  P = Pinv.inverse();
+  return analyse(permuted_upper(A, P));
+}
+
 }  // namespace
 
 struct SupernodalSymbolic {
@@ -110,14 +124,7 @@ SupernodalAnalysis::SupernodalAnalysis(const Eigen::SparseMatrix<double>& A)
     : symbolic_(std::make_unique<SupernodalSymbolic>()) {
   SupernodalSymbolic& sym = *symbolic_;
   sym.pattern = A.triangularView<Eigen::Lower>();
-  // The ordering as Eigen's SimplicialLDLT makes it (AMD on the full pattern).
-  Permutation Pinv;
-  {
-    const Eigen::SparseMatrix<double> full = A.selfadjointView<Eigen::Lower>();
-    Eigen::AMDOrdering<int>()(full, Pinv);
-  }
-  sym.P = Pinv.inverse();
-  sym.s = analyse(permuted_upper(A, sym.P));
+  sym.s = order_and_analyse(A, sym.P);
 }
 
 SupernodalAnalysis::~SupernodalAnalysis() = default;
@@ -236,15 +243,8 @@ int supernodal_solve(const Eigen::SparseMatrix<Scalar>& A, double pivot_floor,
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   using PanelOf = Eigen::Map<const Matrix, 0, Eigen::OuterStride<>>;
   const int n = static_cast<int>(A.cols());
-  // The pattern is all the analysis reads.
-  const Eigen::SparseMatrix<double> pattern = A.real();
-  Permutation Pinv;
-  {
-    const Eigen::SparseMatrix<double> full = pattern.selfadjointView<Eigen::Lower>();
-    Eigen::AMDOrdering<int>()(full, Pinv);
-  }
-  const Permutation P = Pinv.inverse();
-  const SupernodalStructure s = analyse(permuted_upper(pattern, P));
+  Permutation P;
+  const SupernodalStructure s = order_and_analyse(A.real(), P);  // the pattern is all it reads
   const std::unique_ptr<Scalar[]> panels(new Scalar[s.panel_offsets.back()]);
   Eigen::VectorXd d;
   const int bad = factor_panels(s, P, A, pivot_floor, true, panels.get(), d);
