@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <numeric>
 #include <cmath>
 #include <optional>
 #include <sstream>
@@ -9,6 +10,7 @@
 
 #include "deform/anarap.h"
 #include "deform/andefgrad.h"
+#include "anisoform/direction_field.h"
 #include "anisoform/distortion.h"
 #include "directions/curvature.h"
 #include "deform/element_targets.h"
@@ -133,6 +135,27 @@ void validate_request(const DeformRequest& request, int n) {
   }
 }
 
+// The request in the numbering whose vertex rank[i] is the input's vertex i:
+// the selection, the pins and handles, a field's constraints and dense
+// directions. Entries outside the mesh are left as they are (ARAP's unused
+// direction is not checked).
+DeformRequest renumbered(const DeformRequest& request, const std::vector<int>& rank) {
+  const int n = static_cast<int>(rank.size());
+  DeformRequest out = request;
+  if (request.selection.size() == n) {
+    for (int i = 0; i < n; ++i) out.selection[rank[i]] = request.selection[i];
+  }
+  for (int& p : out.pins) p = rank[p];
+  for (int& h : out.handles) h = rank[h];
+  for (DirectionConstraint& c : out.direction.constraints) {
+    if (c.vertex >= 0 && c.vertex < n) c.vertex = rank[c.vertex];
+  }
+  if (request.direction.dense.rows() == n) {
+    for (int i = 0; i < n; ++i) out.direction.dense.row(rank[i]) = request.direction.dense.row(i);
+  }
+  return out;
+}
+
 // The point the linear baseline scales about: the weighted centroid of the
 // selection.
 Eigen::Vector3d linear_center(const Mesh& mesh, const Eigen::VectorXd& w) {
@@ -211,7 +234,21 @@ Deformer::Deformer(Mesh rest) : rest_(std::move(rest)) {
   require_solvable(rest_);  // also bounds the coordinates (limits.h), so the diagonal is finite
   diagonal_ = bounding_box(rest_.V).diagonal();
   scale_ = unit_scale(diagonal_);
-  unit_ = Mesh{rest_.V / scale_, rest_.F};
+  const int n = rest_.num_vertices();
+  order_ = breadth_first_order(rest_.F, n);
+  rank_.resize(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) rank_[order_[k]] = k;
+  unit_.V.resize(n, 3);
+  for (int k = 0; k < n; ++k) unit_.V.row(k) = rest_.V.row(order_[k]) / scale_;
+  // The faces in the order of their first vertex, so that the per-triangle
+  // passes (targets, weights) read and write nearby vertices too.
+  const Triangles renamed = rest_.F.unaryExpr([this](int v) { return rank_[v]; });
+  std::vector<int> faces(static_cast<std::size_t>(renamed.rows()));
+  std::iota(faces.begin(), faces.end(), 0);
+  std::stable_sort(faces.begin(), faces.end(),
+                   [&renamed](int a, int b) { return renamed.row(a).minCoeff() < renamed.row(b).minCoeff(); });
+  unit_.F.resize(renamed.rows(), 3);
+  for (std::size_t f = 0; f < faces.size(); ++f) unit_.F.row(static_cast<Eigen::Index>(f)) = renamed.row(faces[f]);
   cotan_weights_ = cotangent_weights(unit_);
   laplacian_ = cotangent_laplacian(unit_, cotan_weights_);
 }
@@ -234,15 +271,33 @@ const LaplacianSolver& Deformer::solver_for(std::vector<int> pins, double* preco
 
 DeformResult Deformer::deform(const DeformRequest& request) {
   const auto start = Clock::now();
-  validate_request(request, rest_.num_vertices());
+  const int n = rest_.num_vertices();
+  validate_request(request, n);
   validate_twist(request.transform, diagonal_);
+  checked_weights(request, n);  // here, so that a bad weight is named by the input's numbering
   // Solve on the unit-size copy (limits.h: results independent of the units,
-  // no overflow in squared areas), then scale lengths and energies back.
-  DeformRequest unit_request = request;
+  // no overflow in squared areas) in its numbering, then scale lengths and
+  // energies back and number the vertices as given.
+  DeformRequest unit_request = renumbered(request, rank_);
   unit_request.transform.twist_origin /= scale_;
   unit_request.transform.twist_degrees_per_unit *= scale_;
   unit_request.handle_offset /= scale_;
-  DeformResult result = deform_unit(unit_request);
+  DeformResult result;
+  try {
+    result = deform_unit(unit_request);
+  } catch (const Error&) {
+    // Of the errors a solve can raise, only a direction constraint's names a
+    // vertex (validate_request has checked the rest): its checks run again
+    // in the input's numbering, to raise the same error naming the vertex
+    // the caller knows.
+    if (request.direction.kind == DirectionSource::Kind::Constraints) {
+      propagate_direction_field(rest_, request.direction.constraints);
+    }
+    throw;
+  }
+  Positions solved = std::move(result.V);
+  result.V.resize(n, 3);
+  for (int k = 0; k < n; ++k) result.V.row(order_[k]) = solved.row(k);
   result.V *= scale_;
   result.energy *= scale_ * scale_;
   for (double& energy : result.energy_history) energy *= scale_ * scale_;

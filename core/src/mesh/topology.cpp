@@ -204,4 +204,29 @@ VertexAdjacency vertex_adjacency(const Triangles& F, int num_vertices) {
   return adjacency;
 }
 
+std::vector<int> breadth_first_order(const Triangles& F, int num_vertices) {
+  const VertexAdjacency adjacency = vertex_adjacency(F, num_vertices);
+  std::vector<int> order;
+  order.reserve(static_cast<std::size_t>(num_vertices));
+  std::vector<char> seen(static_cast<std::size_t>(num_vertices), 0);
+  for (int start = 0; start < num_vertices; ++start) {
+    if (seen[start]) continue;
+    seen[start] = 1;
+    std::size_t next = order.size();
+    order.push_back(start);
+    // `order` doubles as the queue: the vertices from `next` on are still to visit.
+    for (; next < order.size(); ++next) {
+      const int v = order[next];
+      for (int q = adjacency.offsets[v]; q < adjacency.offsets[v + 1]; ++q) {
+        const int u = adjacency.neighbors[q];
+        if (!seen[u]) {
+          seen[u] = 1;
+          order.push_back(u);
+        }
+      }
+    }
+  }
+  return order;
+}
+
 }  // namespace aniso

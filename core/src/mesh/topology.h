@@ -39,4 +39,10 @@ struct VertexAdjacency {
 };
 VertexAdjacency vertex_adjacency(const Triangles& F, int num_vertices);
 
+// The vertices in breadth-first order over the edges (each component from its
+// lowest vertex; unreferenced vertices where the index order meets them):
+// order[k] is the vertex numbered k. Renumbered so, a vertex's neighbours get
+// nearby numbers, whatever order the file had.
+std::vector<int> breadth_first_order(const Triangles& F, int num_vertices);
+
 }  // namespace aniso
