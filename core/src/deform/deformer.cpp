@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <numeric>
 #include <cmath>
+#include <numeric>
 #include <optional>
 #include <sstream>
 #include <string>
