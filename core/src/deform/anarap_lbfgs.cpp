@@ -75,8 +75,11 @@ int AnArapSolver::run_lbfgs(const LaplacianSolver& solver, Positions& V, int max
   // L instead of the identity).
   double scale = 1.0;
   LbfgsMemory<Positions> memory(kMemory);
+  // r is the caller's scratch: the solve writes every free row and reads the
+  // pinned ones, which must be zero (r = 0 there), so only those are zeroed.
   const auto apply_h0 = [&](const Positions& q, Positions& r) {
-    r = Positions::Zero(n_, 3);
+    r.resize(n_, 3);
+    for (const int p : solver.pinned()) r.row(p).setZero();
     solver.solve(q, r);
     r *= scale;
   };
@@ -114,7 +117,7 @@ int AnArapSolver::run_lbfgs(const LaplacianSolver& solver, Positions& V, int max
     energy_gradient(trial, pinned, next_b, next_g);
     Positions s = trial - V, y = next_g - g;
     const double sy = dot(s, y);
-    const double s_L_s = sy + dot(s, next_b - b);  // L s = y + (b' - b) on the free rows
+    const double s_L_s = sy + (s.array() * (next_b.array() - b.array())).sum();  // L s = y + (b' - b) on the free rows
     if (memory.push(std::move(s), std::move(y), sy)) scale = std::clamp(s_L_s / sy, 1.0, kMaxScale);
     V.swap(trial);
     g.swap(next_g);

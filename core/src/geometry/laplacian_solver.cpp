@@ -19,13 +19,19 @@ struct LaplacianSolver::Impl {
   std::vector<int> free_of;        // vertex -> free index or -1
   std::vector<int> free_vertices;  // free index -> vertex
   std::vector<int> pinned_index;   // vertex -> pinned index or -1
-  Eigen::SparseMatrix<double, Eigen::RowMajor> L_fc;  // free rows, pinned columns
+  // The solves' gathers and scatters, in factor order: the vertex at each
+  // position, and for the positions coupled to pinned vertices (the band
+  // along the pins) those vertices and L's entries. Why not L_fc times all
+  // pinned values: that product is a dense free-by-k temporary, allocated,
+  // zeroed and read back at every solve, where only the band has entries.
+  std::vector<int> vertex_at;
+  std::vector<int> band_positions, band_offsets, band_vertices;
+  std::vector<double> band_values;
   // The factor L D L^T of P L_ff P^T: L by supernodes, 1 / D, and P; and
   // what depends on L_ff's pattern only.
   SupernodalFactor factor;
   std::unique_ptr<SupernodalAnalysis> analysis;
   Eigen::VectorXd inv_d;
-  std::vector<int> perm;  // perm[k]: free index at permuted position k
 };
 
 namespace {
@@ -118,10 +124,7 @@ void LaplacianSolver::factor(const Eigen::SparseMatrix<double>& L) {
   Lff.setFromTriplets(ff.begin(), ff.end());
   Eigen::SparseMatrix<double, Eigen::RowMajor> L_fc(nf, nc);
   L_fc.setFromTriplets(fc.begin(), fc.end());
-  if (nf == 0) {
-    im.L_fc = std::move(L_fc);
-    return;
-  }
+  if (nf == 0) return;
   const double pivot_floor = 1e-13 * Lff.diagonal().cwiseAbs().maxCoeff();
   // The ordering and the symbolic factorization depend on the pattern only:
   // a refactorization of the same pattern keeps them.
@@ -135,8 +138,22 @@ void LaplacianSolver::factor(const Eigen::SparseMatrix<double>& L) {
          "the Laplacian is singular near vertex " + std::to_string(im.free_vertices[perm[ldlt.bad_pivot]]) +
              ": its component has no pinned vertex or only degenerate triangles");
   }
-  im.L_fc = std::move(L_fc);
-  im.perm = std::move(perm);
+  im.vertex_at.resize(nf);
+  im.band_positions.clear();
+  im.band_offsets.assign(1, 0);
+  im.band_vertices.clear();
+  im.band_values.clear();
+  for (int pos = 0; pos < nf; ++pos) {
+    im.vertex_at[pos] = im.free_vertices[perm[pos]];
+    Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(L_fc, perm[pos]);
+    if (!it) continue;
+    for (; it; ++it) {  // ascending pinned index: the order the sum is taken in
+      im.band_vertices.push_back(pinned_[static_cast<std::size_t>(it.col())]);
+      im.band_values.push_back(it.value());
+    }
+    im.band_positions.push_back(pos);
+    im.band_offsets.push_back(static_cast<int>(im.band_vertices.size()));
+  }
   im.inv_d = ldlt.d.cwiseInverse();
   im.factor = std::move(ldlt.L);
 }
@@ -146,19 +163,21 @@ LaplacianSolver::~LaplacianSolver() = default;
 // The shared body of both solve() overloads; B and X are #V by k dense
 // matrices of any storage order.
 template <typename B, typename X>
-void solve_pinned(const LaplacianSolver::Impl& im, const std::vector<int>& pinned, const B& b, X& x) {
+void solve_pinned(const LaplacianSolver::Impl& im, const B& b, X& x) {
   const int nf = static_cast<int>(im.free_vertices.size());
   const int k = static_cast<int>(b.cols());
   if (nf == 0) return;
   using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   // Right-hand side of the free rows in factor order, minus the pinned columns' contribution.
   RowMatrix rhs(nf, k);
-  for (int pos = 0; pos < nf; ++pos) rhs.row(pos) = b.row(im.free_vertices[im.perm[pos]]);
-  if (!pinned.empty()) {
-    RowMatrix pinned_values(pinned.size(), k);
-    for (std::size_t c = 0; c < pinned.size(); ++c) pinned_values.row(c) = x.row(pinned[c]);
-    const RowMatrix contrib = im.L_fc * pinned_values;
-    for (int pos = 0; pos < nf; ++pos) rhs.row(pos) -= contrib.row(im.perm[pos]);
+  for (int pos = 0; pos < nf; ++pos) rhs.row(pos) = b.row(im.vertex_at[pos]);
+  Eigen::RowVectorXd coupled(k);
+  for (std::size_t r = 0; r < im.band_positions.size(); ++r) {
+    coupled.setZero();
+    for (int e = im.band_offsets[r]; e < im.band_offsets[r + 1]; ++e) {
+      coupled += im.band_values[e] * x.row(im.band_vertices[e]);
+    }
+    rhs.row(im.band_positions[r]) -= coupled;
   }
   if (k >= 1 && k <= 3) {
     im.factor.solve(im.inv_d, rhs.data(), k);
@@ -169,16 +188,16 @@ void solve_pinned(const LaplacianSolver::Impl& im, const std::vector<int>& pinne
       rhs.col(c) = col;
     }
   }
-  for (int pos = 0; pos < nf; ++pos) x.row(im.free_vertices[im.perm[pos]]) = rhs.row(pos);
+  for (int pos = 0; pos < nf; ++pos) x.row(im.vertex_at[pos]) = rhs.row(pos);
 }
 
 void LaplacianSolver::solve(const Eigen::Ref<const Eigen::MatrixXd>& b,
                             Eigen::Ref<Eigen::MatrixXd> x) const {
-  solve_pinned(*impl_, pinned_, b, x);
+  solve_pinned(*impl_, b, x);
 }
 
 void LaplacianSolver::solve(const Positions& b, Positions& x) const {
-  solve_pinned(*impl_, pinned_, b, x);
+  solve_pinned(*impl_, b, x);
 }
 
 }  // namespace aniso
