@@ -185,7 +185,12 @@ TEST_CASE("laplacian solver: refactor with new values solves as a new solver, a 
   LaplacianSolver refactored(L, pins);
   refactored.refactor(L2);
   const LaplacianSolver fresh(L2, pins);
-  Eigen::MatrixXd x = Eigen::MatrixXd::Zero(n, 2), expected = Eigen::MatrixXd::Zero(n, 2);
+  // Pinned values that are not zero: their part of the right-hand side (the
+  // band along the pins) must follow the new values too.
+  Eigen::MatrixXd x = Eigen::MatrixXd::Zero(n, 2);
+  for (int p : pins) x.row(p) = Eigen::RowVector2d(1.5 + p, -0.25 * p);
+  Eigen::MatrixXd expected = x;
+  const Eigen::MatrixXd pinned_start = x;
   refactored.solve(b, x);
   fresh.solve(b, expected);
   CHECK(x == expected);  // the same ordering and analysis: the same arithmetic
@@ -194,7 +199,7 @@ TEST_CASE("laplacian solver: refactor with new values solves as a new solver, a 
   CotanWeights zero = weights;
   zero.weight.setZero();
   CHECK_THROWS_WITH(refactored.refactor(cotangent_laplacian(mesh, zero)), Catch::Contains("singular near vertex"));
-  Eigen::MatrixXd again = Eigen::MatrixXd::Zero(n, 2);
+  Eigen::MatrixXd again = pinned_start;
   refactored.solve(b, again);
   CHECK(again == expected);
 }
