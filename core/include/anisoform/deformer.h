@@ -50,7 +50,7 @@ class Deformer {
   // rest_ divided by scale_, a power of two near its bounding-box diagonal:
   // every solve runs on this unit-size copy (limits.h kMaxCoordinate). Its
   // vertices are renumbered breadth-first (order_[k]: the input vertex that
-  // is its vertex k; rank_ the inverse), its faces sorted by their first: the
+  // is its vertex k; rank_ the inverse), its faces sorted by their lowest vertex: the
   // iterations read each vertex's neighbours, and in a file's own numbering
   // (a subdivided mesh's new vertices come last) those reads were scattered
   // over the whole mesh (the 200k koala: an ARAP iteration 67 -> 50 ms).

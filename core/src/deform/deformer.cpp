@@ -240,7 +240,7 @@ Deformer::Deformer(Mesh rest) : rest_(std::move(rest)) {
   for (int k = 0; k < n; ++k) rank_[order_[k]] = k;
   unit_.V.resize(n, 3);
   for (int k = 0; k < n; ++k) unit_.V.row(k) = rest_.V.row(order_[k]) / scale_;
-  // The faces in the order of their first vertex, so that the per-triangle
+  // The faces in the order of their lowest (renumbered) vertex, so that the per-triangle
   // passes (targets, weights) read and write nearby vertices too.
   const Triangles renamed = rest_.F.unaryExpr([this](int v) { return rank_[v]; });
   std::vector<int> faces(static_cast<std::size_t>(renamed.rows()));
