@@ -13,14 +13,14 @@ async function flattenInPanel(page, mesh) {
   await expect(page.getByTestId('export-svg')).toBeEnabled();
 }
 
-for (const [mesh, reason] of [['open/hand_lowres.obj', /did not converge/], ['open/cube_no_bottom.obj', /area is off by \d+ %/]]) {
+for (const mesh of ['open/hand_lowres.obj', 'open/cube_no_bottom.obj']) {
   test(`${mesh} warns that it does not flatten as one piece, and what to do`, async ({ page }) => {
     const pageErrors = await openApp(page);
     await flattenInPanel(page, mesh);
     const warning = page.getByTestId('warning');
     await expect(warning).toBeVisible();
     await expect(warning).toContainText(/^Flatten: the patch does not flatten as one piece/);
-    await expect(warning).toContainText(reason);
+    await expect(warning).toContainText(/area is off by \d+ %/);
     await expect(warning).toContainText('cut it along a seam or add darts');
     // Where: the regions above the core's error threshold (metrics.suggestedCuts).
     await expect(warning).toContainText(/This patch needs a dart or a cut here: (one region misses|\d+ regions miss) the wanted stretch/);

@@ -276,12 +276,16 @@ TEST_CASE("flatten: no folded triangle on any open mesh", "[flatten]") {
       {"open/plane.off", 1},                {"open/spothead.obj", 1},
       {"open/stanford-bunny.obj", 5},
   };
-  // Folds are what is checked, at any iteration: a cap of 80 keeps the
-  // bunny's refinement (tens of ms an iteration) short under the sanitizers
-  // (its ARAP stage takes 62).
+  // Folds are what is checked, at any iteration of either stage: a cap of
+  // 40 keeps the refinement's Newton steps (a factorization each) few. On
+  // demosthenes and the bunny a step takes most of a second under the
+  // sanitizers: they are checked without the refinement here (its result
+  // on them is fold-free in the README's survey, and its folds are checked
+  // to convergence on the other meshes in test_flatten_cut_regions).
   FlattenOptions options;
-  options.solver.max_iterations = 80;
+  options.solver.max_iterations = 40;
   for (const auto& [name, loops] : meshes) {
+    options.solver.refine = name != "open/demosthenes-low-res.obj" && name != "open/stanford-bunny.obj";
     const Mesh mesh = test::load(name);
     const FlattenOutput out = flatten(mesh, {}, options);
     const FlattenMetrics& m = out.result.metrics;
@@ -302,7 +306,7 @@ TEST_CASE("flatten: the fold guard keeps hard anisotropic targets fold-free", "[
     const Mesh mesh = test::load(name);
     FlattenOptions options;
     options.su = 0.5;
-    options.solver.max_iterations = 150;  // folds are checked at any iteration; this keeps it short
+    options.solver.max_iterations = 80;  // folds are checked at any iteration; this keeps it short
     const FlattenOutput out = flatten(mesh, {}, options);
     INFO(name);
     CHECK(out.result.metrics.flipped == 0);

@@ -170,40 +170,6 @@ TEST_CASE("supernodal LDL^T: a singular matrix stops at the pivot that vanishes"
   CHECK(supernodal_ldlt(L.bottomRightCorner(n, n), floor).bad_pivot == -1);
 }
 
-TEST_CASE("laplacian solver: refactor with new values solves as a new solver, a failed one keeps the last", "[laplacian]") {
-  const Mesh mesh = test::load("open/hemisphere.obj");
-  const CotanWeights weights = cotangent_weights(mesh);
-  const Eigen::SparseMatrix<double> L = cotangent_laplacian(mesh, weights);
-  const std::vector<int> pins = {0, 17};
-  // The same pattern, other values: each triangle's weights scaled (as the
-  // flattening's map-weighted preconditioner is rebuilt).
-  CotanWeights scaled = weights;
-  for (int t = 0; t < mesh.num_triangles(); ++t) scaled.weight.row(t) *= 1.0 + 0.5 * std::sin(t);
-  const Eigen::SparseMatrix<double> L2 = cotangent_laplacian(mesh, scaled);
-  const int n = mesh.num_vertices();
-  const Eigen::MatrixXd b = Eigen::MatrixXd::Random(n, 2);
-  LaplacianSolver refactored(L, pins);
-  refactored.refactor(L2);
-  const LaplacianSolver fresh(L2, pins);
-  // Pinned values that are not zero: their part of the right-hand side (the
-  // band along the pins) must follow the new values too.
-  Eigen::MatrixXd x = Eigen::MatrixXd::Zero(n, 2);
-  for (int p : pins) x.row(p) = Eigen::RowVector2d(1.5 + p, -0.25 * p);
-  Eigen::MatrixXd expected = x;
-  const Eigen::MatrixXd pinned_start = x;
-  refactored.solve(b, x);
-  fresh.solve(b, expected);
-  CHECK(x == expected);  // the same ordering and analysis: the same arithmetic
-  // Singular values (every weight zero) are refused by name; the solver
-  // still solves with the factorization it had.
-  CotanWeights zero = weights;
-  zero.weight.setZero();
-  CHECK_THROWS_WITH(refactored.refactor(cotangent_laplacian(mesh, zero)), Catch::Contains("singular near vertex"));
-  Eigen::MatrixXd again = pinned_start;
-  refactored.solve(b, again);
-  CHECK(again == expected);
-}
-
 TEST_CASE("supernodal solve: a complex Hermitian system as Eigen's SimplicialLDLT solves it", "[laplacian]") {
   // A connection Laplacian as the direction fields build (complex transport
   // of unit modulus along each edge), one vertex held: Hermitian, definite.

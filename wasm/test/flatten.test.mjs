@@ -207,9 +207,15 @@ test('bad options name the field', () => withSession('open/plane.off', (session)
 
 test('a patch that cannot be one piece says why and what to do; a garment panel has no problem; the unit is guessed', () => {
   withSession('open/hand_lowres.obj', (session) => {
+    // The hand converges (in about 270 iterations), its area far off; cut
+    // short, it says so first.
+    const cut = session.flatten({ compress: [0.8, 1], maxIterations: 40 }).metrics;
+    assert.equal(cut.converged, false);
+    assert.match(cut.problem, /^the patch does not flatten as one piece \(the solver did not converge in 40 iterations\): cut it along a seam or add darts/);
     const { metrics } = session.flatten({ compress: [0.8, 1] });
-    assert.equal(metrics.converged, false);
-    assert.match(metrics.problem, /^the patch does not flatten as one piece \(the solver did not converge in \d+ iterations\): cut it along a seam or add darts/);
+    assert.equal(metrics.converged, true);
+    assert.ok(metrics.areaDistortionMean > 0.25, String(metrics.areaDistortionMean));
+    assert.match(metrics.problem, new RegExp(`area is off by ${Math.round(100 * metrics.areaDistortionMean)} % on average`));
   });
   withSession('open/cube_no_bottom.obj', (session) => {
     const { metrics } = session.flatten({ compress: [0.8, 1] });

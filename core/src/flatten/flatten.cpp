@@ -109,7 +109,7 @@ FlattenResult Flattener::flatten(const FlattenOptions& options) {
   bool converged = solved.report.converged;
   if (!baseline && options.solver.refine) {
     const StretchRefineReport refined =
-        refine_stretch(patch, im.charts, solved_targets, im.arap->laplacian(), options.solver,
+        refine_stretch(patch, im.charts, solved_targets, im.arap->pinned(), options.solver,
                        solved.iterations, im.refinement_starts(solved.uv, solved_targets), solved.uv);
     if (refined.start >= 0) {
       solved.iterations += refined.iterations;

@@ -314,7 +314,7 @@ ArapFlattening::ArapFlattening(const FlattenPatch& patch, const TriangleCharts& 
 
 ArapFlattening::~ArapFlattening() = default;
 
-const LaplacianSolver& ArapFlattening::laplacian() const { return *impl_->solver; }
+const std::vector<int>& ArapFlattening::pinned() const { return impl_->solver->pinned(); }
 
 ArapFlattenReport ArapFlattening::solve(const FlattenTargets& targets,
                                         const ArapFlattenSettings& settings,

@@ -18,7 +18,7 @@
 //     global step = one prefactored 2D Poisson solve (one pin per component);
 //  5b. refine_stretch (flatten_refine.cpp, beyond the paper): the errors of
 //     step 6 themselves, smoothed, minimised from the best fold-free map by
-//     preconditioned L-BFGS with a fold-free line search;
+//     projected Newton with a fold-free line search;
 //  6. measure_stretch / summarize_stretch: achieved stretch along and across
 //     the wanted direction per triangle, errors against the wanted amounts;
 //  7. align_grainlines / layout_components: each piece turned so that its
@@ -143,9 +143,9 @@ class ArapFlattening {
                           Eigen::MatrixX2d& uv) const;
 
   int factorizations() const { return factorizations_; }
-  // The prefactored Laplacian (one pin per component), which the stretch
-  // refinement uses as its preconditioner.
-  const LaplacianSolver& laplacian() const;
+  // The vertices its Laplacian pins (one per component), which the stretch
+  // refinement holds too.
+  const std::vector<int>& pinned() const;
 
  private:
   struct Impl;
@@ -169,20 +169,20 @@ struct StretchRefineReport {
   double energy = 0.0;     // the refinement's energy at the end (about the mean errors)
   bool converged = false;  // the relative energy change stayed below the tolerance
   bool stalled = false;    // the fold guard or the line search blocked every step
-  int factorizations = 0;  // of the map-weighted preconditioner (0 unless the start squeezes triangles)
+  int factorizations = 0;  // of Newton's system (one per step, more when one needed more regularization)
   std::vector<double> energy_history;
 };
 
 // Writes to uv (#P by 2) the map that minimises the smoothed mean of
 // |along/su - 1| + |across/sv - 1| plus a small area term (the file's head
-// says exactly what), by preconditioned L-BFGS with a fold-free backtracking
-// line search, from the fold-free one of `starts` with the lowest energy:
-// monotone, and no triangle folds. Runs at most settings.max_iterations -
+// says exactly what), by projected Newton with a fold-free backtracking line
+// search, from the fold-free one of `starts` with the lowest energy:
+// monotone, and no triangle folds. `pinned`: one vertex per component, held
+// (the energy does not see where a piece lies). Runs at most settings.max_iterations -
 // iterations_before iterations; progress is called with the iteration counted
 // from iterations_before.
 StretchRefineReport refine_stretch(const FlattenPatch& patch, const TriangleCharts& charts,
-                                   const FlattenTargets& targets,
-                                   const LaplacianSolver& preconditioner,
+                                   const FlattenTargets& targets, const std::vector<int>& pinned,
                                    const ArapFlattenSettings& settings, int iterations_before,
                                    const std::vector<Eigen::MatrixX2d>& starts, Eigen::MatrixX2d& uv);
 

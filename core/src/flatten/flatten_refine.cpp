@@ -14,27 +14,31 @@
 // shear the error does not see from collapsing triangles, and the barrier
 // (zero above kBarrierStart of the wanted area, for every triangle and every
 // start) keeps every triangle's area positive and pushes back the ones a
-// start map squeezed. Minimised by L-BFGS with a backtracking line search
-// inside the fold guard's step bound: the energy falls at every iteration and
-// no triangle ever folds. The preconditioner (a Sobolev gradient, as
-// SLIM-type methods use) is the patch's prefactored cotangent Laplacian; from
-// a start that squeezes triangles below the barrier (the Tutte or LSCM map of
-// a nearly closed patch holds area ratios down to 1e-12) it is the chart
-// Laplacian weighted by the current map's area ratios, rebuilt as they
-// change: with the fixed one, the squeezed regions barely moved per step
-// (1,360 of the hand's 1,602 triangles were still below 10 % of their area
-// after 500 iterations).
+// start map squeezed.
+//
+// Minimised by projected Newton (Teran et al. 2005; as in the SLIM line of
+// parameterization methods): each triangle's Hessian in (Ju, Jv) is made
+// positive semidefinite by clamping its eigenvalues at 0, the sum (plus a
+// small multiple of the chart Laplacian, which removes the rotation the
+// energy does not see) is factored, and a backtracking line search inside
+// the fold guard's step bound takes the step: the energy falls at every
+// iteration and no triangle ever folds. Why not a first-order method: the
+// smoothed kink has a curvature of 1/d = 100 where a triangle meets its
+// target and the barrier grows without bound near it, so the problem is
+// badly conditioned exactly where it ends. Preconditioned L-BFGS needed 971
+// iterations on the hand and about 2,500 on spothead to converge (500 was the
+// cap); Newton's steps follow that curvature.
 #include <algorithm>
 #include <cmath>
-#include <deque>
 #include <limits>
 #include <memory>
 #include <utility>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
 #include "flatten/flatten_pipeline.h"
-#include "geometry/laplacian_solver.h"
+#include "geometry/supernodal_ldlt.h"
 
 namespace aniso {
 
@@ -55,27 +59,47 @@ constexpr double kBarrierStart = 0.3;
 // r^2 / 2d near 0): the map is exact, and relative changes of an energy
 // falling geometrically towards 0 say nothing more.
 constexpr double kExactEnergy = 1e-14;
-constexpr int kMemory = 8;              // L-BFGS pairs kept
 constexpr double kArmijo = 1e-4;        // sufficient decrease of the line search
 constexpr int kMaxHalvings = 40;
 // Relative energy changes below the tolerance this many times in a row end
-// the iterations (one small step of a quasi-Newton method can be a fluke).
-constexpr int kQuietSteps = 3;
+// the iterations (also when Newton's predicted decrease is below it).
+constexpr int kQuietSteps = 2;
 // Steps cut short by the fold guard, with no real progress, after which the
 // refinement gives up (stalled).
 constexpr int kBlockedSteps = 10;
-// The map-weighted preconditioner (used when the start map squeezes
-// triangles below kBarrierStart): every kRefreshCheck iterations it is
-// rebuilt if some triangle's area ratio has changed by more than
-// kRefreshChange times since it was built. Area ratios below kRatioFloor
-// weigh as kRatioFloor (a Tutte map of a nearly closed patch holds ratios of
-// 1e-12; the weights' spread stays within what the factorization resolves).
-constexpr int kRefreshCheck = 10;
-constexpr double kRefreshChange = 2.0;
-constexpr double kRatioFloor = 1e-6;
+// Predicted relative decrease below which the steps use rho's own curvature
+// (smooth_abs_curvature), and the step length below which they go back to
+// the majorizer. Iterations to converge, local/global ones included, with
+// the switch at 1e-5 / 1e-4 / 1e-3 / never: hand 283 / 224 / 206 / 328,
+// spothead 299 / 250 / 339 / 387, demosthenes 386 / 479 / 500+ / 500+, the
+// cube 126 / 127 / 55 / 500+. Going back to the majorizer after short
+// Newton steps: hand 269, spothead 235, demosthenes 456, cube 121.
+constexpr double kNewtonFrom = 1e-4;
+constexpr double kNewtonStepFloor = 0.25;
+// The multiple of the chart Laplacian added to the Hessian: it fixes the
+// rotation of each piece (which the energy does not see) and keeps the
+// system definite where every term's curvature was clamped, small enough
+// not to slow Newton down (the terms' curvature is up to 1/d = 100 times
+// the Laplacian's). A failed factorization raises it kRegularizationGrowth
+// times, up to kMaxRegularization.
+constexpr double kRegularization = 1e-4;
+constexpr double kRegularizationGrowth = 100.0;
+constexpr double kMaxRegularization = 1e4;
 
 double smooth_abs(double r) { return std::sqrt(r * r + kSmoothing * kSmoothing) - kSmoothing; }
 double smooth_abs_slope(double r) { return r / std::sqrt(r * r + kSmoothing * kSmoothing); }
+// The curvature Newton uses for rho at r: its own, d^2 / (r^2 + d^2)^(3/2),
+// or with `majorize` rho'(r) / r = 1 / sqrt(r^2 + d^2), the curvature of the
+// quadratic in r that touches rho at r and lies above it everywhere (rho is
+// concave in r^2). Far from the target rho is nearly |r|, its own curvature
+// nearly 0, and a Newton step from it overshoots by orders of magnitude; the
+// majorizer's step lowers rho whatever its length (iteratively reweighted
+// least squares), but converges only linearly.
+double smooth_abs_curvature(double r, bool majorize) {
+  const double root = std::sqrt(r * r + kSmoothing * kSmoothing);
+  if (majorize) return 1.0 / root;
+  return kSmoothing * kSmoothing / (root * root * root);
+}
 
 // barrier(x) = x0/x - 1 + ln(x/x0) below x0: zero with zero slope at x0,
 // infinite at 0. +inf for x <= 0 (a folded triangle is never accepted).
@@ -88,6 +112,165 @@ double barrier_slope(double x, double x0) {
   if (x >= x0) return 0.0;
   return -x0 / (x * x) + 1.0 / x;
 }
+double barrier_curvature(double x, double x0) {
+  if (x >= x0) return 0.0;
+  return 2.0 * x0 / (x * x * x) - 1.0 / (x * x);
+}
+
+using Vector4 = Eigen::Matrix<double, 4, 1>;
+using Matrix4 = Eigen::Matrix<double, 4, 4>;
+using Matrix6 = Eigen::Matrix<double, 6, 6>;
+
+// One triangle's term (without its weight) as a function of z = (Ju, Jv) =
+// (p, q), with the wanted stretches su, sv; with `g` and `H` also its
+// gradient and Hessian in z (rho's curvature majorized or not, see
+// smooth_abs_curvature). +inf for a triangle with area <= 0.
+double triangle_term(const Eigen::Vector2d& p, const Eigen::Vector2d& q, double su, double sv, Vector4* g,
+                     Matrix4* H, bool majorize) {
+  const double p_length = p.norm(), q_length = q.norm();
+  const double along = p_length / su - 1.0, across = q_length / sv - 1.0;
+  const double s = su * sv;
+  const double area = (p.x() * q.y() - p.y() * q.x()) / s;
+  const double b = barrier(area, kBarrierStart);
+  if (!std::isfinite(b)) return std::numeric_limits<double>::infinity();
+  const double value = smooth_abs(along) + smooth_abs(across) + kAreaWeight * smooth_abs(area - 1.0) + b;
+  if (!g) return value;
+  // d area / dz and its (constant) Hessian.
+  const Vector4 area_gradient = Vector4(q.y(), -q.x(), -p.y(), p.x()) / s;
+  const double area_slope = kAreaWeight * smooth_abs_slope(area - 1.0) + barrier_slope(area, kBarrierStart);
+  *g = area_slope * area_gradient;
+  if (H) {
+    const double area_curvature =
+        kAreaWeight * smooth_abs_curvature(area - 1.0, majorize) + barrier_curvature(area, kBarrierStart);
+    *H = area_curvature * area_gradient * area_gradient.transpose();
+    (*H)(0, 3) += area_slope / s;
+    (*H)(3, 0) += area_slope / s;
+    (*H)(1, 2) -= area_slope / s;
+    (*H)(2, 1) -= area_slope / s;
+  }
+  // rho(|x| / scale - 1) for x = p (offset 0) and x = q (offset 2).
+  const auto length_term = [&](const Eigen::Vector2d& x, double length, double scale, double r, int offset) {
+    if (!(length > 0.0)) return;
+    const Eigen::Vector2d n = x / length;
+    const double slope = smooth_abs_slope(r);
+    g->segment<2>(offset) += slope / scale * n;
+    if (!H) return;
+    const Eigen::Matrix2d nn = n * n.transpose();
+    H->block<2, 2>(offset, offset) += smooth_abs_curvature(r, majorize) / (scale * scale) * nn +
+                                      slope / (scale * length) * (Eigen::Matrix2d::Identity() - nn);
+  };
+  length_term(p, p_length, su, along, 0);
+  length_term(q, q_length, sv, across, 2);
+  return value;
+}
+
+// H with its negative eigenvalues set to 0.
+Matrix4 positive_part(const Matrix4& H) {
+  const Eigen::SelfAdjointEigenSolver<Matrix4> eigen(H);
+  if (eigen.eigenvalues().minCoeff() >= 0.0) return H;
+  const Vector4 clamped = eigen.eigenvalues().cwiseMax(0.0);
+  return eigen.eigenvectors() * clamped.asDiagonal() * eigen.eigenvectors().transpose();
+}
+
+// Newton's linear system: the Hessian's lower triangle over the free
+// coordinates (u and v of every vertex that is not pinned, interleaved), of
+// one pattern for every iteration, so that the ordering and the symbolic
+// factorization are done once.
+class NewtonSystem {
+ public:
+  NewtonSystem(const Triangles& F, int num_vertices, const std::vector<int>& active,
+               const std::vector<int>& pinned)
+      : F_(F), active_(active), coordinate_(2 * static_cast<std::size_t>(num_vertices), 0) {
+    for (const int v : pinned) coordinate_[2 * v] = coordinate_[2 * v + 1] = -1;
+    int free = 0;
+    for (int& c : coordinate_) c = c < 0 ? -1 : free++;
+    std::vector<Eigen::Triplet<double>> entries;
+    for (int c = 0; c < free; ++c) entries.emplace_back(c, c, 0.0);
+    for (const int t : active_) {
+      for (int a = 0; a < 6; ++a) {
+        for (int b = 0; b < 6; ++b) {
+          const int row = coordinate(t, a), col = coordinate(t, b);
+          if (row >= 0 && col >= 0 && row >= col) entries.emplace_back(row, col, 0.0);
+        }
+      }
+    }
+    H_.resize(free, free);
+    H_.setFromTriplets(entries.begin(), entries.end());
+    slots_.assign(active_.size() * 36, -1);
+    for (std::size_t index = 0; index < active_.size(); ++index) {
+      for (int a = 0; a < 6; ++a) {
+        for (int b = 0; b < 6; ++b) {
+          const int row = coordinate(active_[index], a), col = coordinate(active_[index], b);
+          if (row >= 0 && col >= 0 && row >= col) slots_[index * 36 + a * 6 + b] = slot(row, col);
+        }
+      }
+    }
+    if (free > 0) analysis_ = std::make_unique<SupernodalAnalysis>(H_);
+  }
+
+  void clear() { std::fill(H_.valuePtr(), H_.valuePtr() + H_.nonZeros(), 0.0); }
+
+  void add(int index, const Matrix6& block) {
+    const int* slot = &slots_[static_cast<std::size_t>(index) * 36];
+    double* values = H_.valuePtr();
+    for (int a = 0; a < 6; ++a) {
+      for (int b = 0; b < 6; ++b) {
+        if (slot[a * 6 + b] >= 0) values[slot[a * 6 + b]] += block(a, b);
+      }
+    }
+  }
+
+  // Factors the assembled matrix; false when a pivot is not positive (the
+  // regularization was too small for round-off).
+  bool factor() {
+    if (!analysis_) return true;
+    const double floor = 1e-14 * H_.diagonal().cwiseAbs().maxCoeff();
+    ldlt_ = analysis_->factor(H_, floor);
+    if (ldlt_.bad_pivot >= 0) return false;
+    inv_d_ = ldlt_.d.cwiseInverse();
+    return true;
+  }
+
+  // -H^-1 g as a #P by 2 map change (0 on the pinned vertices).
+  Eigen::MatrixXd newton_direction(const Eigen::MatrixXd& gradient) const {
+    Eigen::MatrixXd direction = Eigen::MatrixXd::Zero(gradient.rows(), 2);
+    if (!analysis_) return direction;
+    Eigen::VectorXd y(H_.rows());
+    for (int v = 0; v < gradient.rows(); ++v) {
+      for (int c = 0; c < 2; ++c) {
+        const int i = coordinate_[2 * v + c];
+        if (i >= 0) y[ldlt_.perm[i]] = -gradient(v, c);
+      }
+    }
+    ldlt_.L.solve(inv_d_, y.data(), 1);
+    for (int v = 0; v < gradient.rows(); ++v) {
+      for (int c = 0; c < 2; ++c) {
+        const int i = coordinate_[2 * v + c];
+        if (i >= 0) direction(v, c) = y[ldlt_.perm[i]];
+      }
+    }
+    return direction;
+  }
+
+ private:
+  // The free coordinate of corner a / 2's u (a even) or v (a odd) in triangle t, or -1.
+  int coordinate(int t, int a) const { return coordinate_[2 * static_cast<std::size_t>(F_(t, a / 2)) + a % 2]; }
+
+  int slot(int row, int col) const {
+    const int* begin = H_.innerIndexPtr() + H_.outerIndexPtr()[col];
+    const int* end = H_.innerIndexPtr() + H_.outerIndexPtr()[col + 1];
+    return static_cast<int>(std::lower_bound(begin, end, row) - H_.innerIndexPtr());
+  }
+
+  const Triangles& F_;
+  const std::vector<int>& active_;
+  std::vector<int> coordinate_;  // per vertex and component: its free coordinate, or -1 (pinned)
+  Eigen::SparseMatrix<double> H_;
+  std::vector<int> slots_;       // per active triangle, its 6 by 6 block's places in H_ (-1: not stored)
+  std::unique_ptr<SupernodalAnalysis> analysis_;
+  SupernodalLdlt ldlt_;
+  Eigen::VectorXd inv_d_;
+};
 
 // Per triangle: Ju = sum_k alpha_k u_k and Jv = sum_k beta_k u_k (u_k its
 // corners in the plane), with the weight A_t / (total area).
@@ -131,70 +314,57 @@ struct StretchTerms {
     return {p, q};
   }
 
-  // det J / (su sv) of triangle t from its images Ju = p, Jv = q: its area
-  // over the wanted area.
-  double area_ratio(const Eigen::Vector2d& p, const Eigen::Vector2d& q, int t) const {
-    return (p.x() * q.y() - p.y() * q.x()) / (su[t] * sv[t]);
-  }
-
-  // The area ratios of the active triangles, in their order.
-  std::vector<double> area_ratios(const Triangles& F, const Eigen::MatrixXd& uv) const {
-    std::vector<double> ratios;
-    ratios.reserve(active.size());
-    for (const int t : active) {
-      const auto [p, q] = images(F, uv, t);
-      ratios.push_back(area_ratio(p, q, t));
-    }
-    return ratios;
-  }
-
-  // The chart Laplacian of the stretch terms, sum_t w_t (alpha alpha^T +
-  // beta beta^T), each triangle weighted by 1 / its area ratio (floored):
-  // where the map has squeezed a triangle to a fraction of its area, its
-  // terms' curvature in uv is that much larger, and a preconditioner that
-  // knows it moves such regions as far per step as the rest.
-  Eigen::SparseMatrix<double> map_weighted_laplacian(const std::vector<double>& ratios, int num_vertices,
-                                                     const Triangles& F) const {
-    std::vector<Eigen::Triplet<double>> entries;
-    entries.reserve(active.size() * 9);
-    for (std::size_t k = 0; k < active.size(); ++k) {
-      const int t = active[k];
-      const double w = weight[t] / std::max(ratios[k], kRatioFloor);
-      for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 3; ++j) {
-          entries.emplace_back(F(t, i), F(t, j), w * (alpha(t, i) * alpha(t, j) + beta(t, i) * beta(t, j)));
+  // G^T Hz G for G = d(Ju, Jv) / d(u_0, v_0, u_1, v_1, u_2, v_2) of triangle
+  // t: corner i's u (c = 0) or v (c = 1) enters Ju_c with alpha_i and Jv_c
+  // with beta_i, and nothing else.
+  Matrix6 corner_block(int t, const Matrix4& Hz) const {
+    Matrix6 block;
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) {
+        const double aa = alpha(t, i) * alpha(t, j), ab = alpha(t, i) * beta(t, j);
+        const double ba = beta(t, i) * alpha(t, j), bb = beta(t, i) * beta(t, j);
+        for (int a = 0; a < 2; ++a) {
+          for (int b = 0; b < 2; ++b) {
+            block(2 * i + a, 2 * j + b) =
+                aa * Hz(a, b) + ab * Hz(a, 2 + b) + ba * Hz(2 + a, b) + bb * Hz(2 + a, 2 + b);
+          }
         }
       }
     }
-    Eigen::SparseMatrix<double> L(num_vertices, num_vertices);
-    L.setFromTriplets(entries.begin(), entries.end());
-    return L;
+    return block;
   }
 
-  // E(uv); with `gradient`, also dE/duv (#P by 2).
-  double energy(const Triangles& F, const Eigen::MatrixXd& uv, Eigen::MatrixXd* gradient) const {
+  // E(uv); with `gradient`, also dE/duv (#P by 2); with `hessian`, also
+  // each triangle's positive part of the Hessian plus `regularization` times
+  // its chart Laplacian block, added to it.
+  double evaluate(const Triangles& F, const Eigen::MatrixXd& uv, Eigen::MatrixXd* gradient,
+                  NewtonSystem* hessian, double regularization, bool majorize) const {
     if (gradient) gradient->setZero(uv.rows(), 2);
     double sum = 0.0;
-    for (const int t : active) {
+    Vector4 g;
+    Matrix4 H;
+    for (std::size_t index = 0; index < active.size(); ++index) {
+      const int t = active[index];
       const auto [p, q] = images(F, uv, t);
-      const double p_length = p.norm(), q_length = q.norm();
-      const double along = p_length / su[t] - 1.0, across = q_length / sv[t] - 1.0;
-      const double area = area_ratio(p, q, t);
-      const double b = barrier(area, kBarrierStart);
-      if (!std::isfinite(b)) return std::numeric_limits<double>::infinity();
-      sum += weight[t] * (smooth_abs(along) + smooth_abs(across) + kAreaWeight * smooth_abs(area - 1.0) + b);
+      const double term = triangle_term(p, q, su[t], sv[t], gradient ? &g : nullptr, hessian ? &H : nullptr, majorize);
+      if (!std::isfinite(term)) return std::numeric_limits<double>::infinity();
+      sum += weight[t] * term;
       if (!gradient) continue;
-      const double area_slope =
-          (kAreaWeight * smooth_abs_slope(area - 1.0) + barrier_slope(area, kBarrierStart)) / (su[t] * sv[t]);
-      Eigen::Vector2d dp = area_slope * Eigen::Vector2d(q.y(), -q.x());
-      Eigen::Vector2d dq = area_slope * Eigen::Vector2d(-p.y(), p.x());
-      if (p_length > 0.0) dp += smooth_abs_slope(along) / (su[t] * p_length) * p;
-      if (q_length > 0.0) dq += smooth_abs_slope(across) / (sv[t] * q_length) * q;
       for (int k = 0; k < 3; ++k) {
-        gradient->row(F(t, k)) += weight[t] * (alpha(t, k) * dp + beta(t, k) * dq).transpose();
+        gradient->row(F(t, k)) +=
+            weight[t] * (alpha(t, k) * g.head<2>() + beta(t, k) * g.tail<2>()).transpose();
       }
+      if (!hessian) continue;
+      // The chart Laplacian's block is G^T G, G = d(Ju, Jv) / d(corners):
+      // |Ju|^2 + |Jv|^2 is the Dirichlet energy.
+      const Matrix4 Hz = weight[t] * (positive_part(H) + regularization * Matrix4::Identity());
+      hessian->add(static_cast<int>(index), corner_block(t, Hz));
     }
     return sum;
+  }
+
+  double energy(const Triangles& F, const Eigen::MatrixXd& uv) const {
+    return evaluate(F, uv, nullptr, nullptr, 0.0, false);
   }
 };
 
@@ -203,8 +373,7 @@ double dot(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) { return a.cwiseP
 }  // namespace
 
 StretchRefineReport refine_stretch(const FlattenPatch& patch, const TriangleCharts& charts,
-                                   const FlattenTargets& targets,
-                                   const LaplacianSolver& preconditioner,
+                                   const FlattenTargets& targets, const std::vector<int>& pinned,
                                    const ArapFlattenSettings& settings, int iterations_before,
                                    const std::vector<Eigen::MatrixX2d>& starts,
                                    Eigen::MatrixX2d& uv_out) {
@@ -214,7 +383,7 @@ StretchRefineReport refine_stretch(const FlattenPatch& patch, const TriangleChar
   double energy = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < starts.size(); ++k) {
     if (count_folded(F, charts, starts[k]) > 0) continue;
-    const double start_energy = terms.energy(F, starts[k], nullptr);
+    const double start_energy = terms.energy(F, starts[k]);
     if (start_energy < energy) {
       energy = start_energy;
       report.start = static_cast<int>(k);
@@ -222,131 +391,63 @@ StretchRefineReport refine_stretch(const FlattenPatch& patch, const TriangleChar
   }
   if (report.start < 0) return report;
   Eigen::MatrixXd uv = starts[report.start];
-  Eigen::MatrixXd gradient, next_gradient;
-  energy = terms.energy(F, uv, &gradient);
   report.energy_history.push_back(energy);
-  // A start that squeezes triangles below the barrier (the Tutte or LSCM map
-  // of a nearly closed patch) is preconditioned by the map-weighted chart
-  // Laplacian, rebuilt as the map changes; any other by the patch's
-  // prefactored cotangent Laplacian.
-  std::vector<double> built_ratios = terms.area_ratios(F, uv);
-  std::unique_ptr<LaplacianSolver> map_weighted;
-  if (std::any_of(built_ratios.begin(), built_ratios.end(), [](double ratio) { return ratio < kBarrierStart; })) {
-    map_weighted = std::make_unique<LaplacianSolver>(
-        terms.map_weighted_laplacian(built_ratios, static_cast<int>(uv.rows()), F), preconditioner.pinned());
-    ++report.factorizations;
-  }
-  // The preconditioner solves L x = g with x = 0 on the pinned vertices (one
-  // per component: the energy does not change when a piece moves).
-  const auto precondition = [&](const Eigen::MatrixXd& g) {
-    Eigen::MatrixXd x = Eigen::MatrixXd::Zero(g.rows(), 2);
-    (map_weighted ? *map_weighted : preconditioner).solve(g, x);
-    return x;
-  };
-  // Rebuilds the map-weighted preconditioner once the map has moved away
-  // from the one it was built for. The L-BFGS pairs stay (they are the
-  // energy's curvature, whatever H0 is); only H0's scale is measured again.
-  const auto refresh_preconditioner = [&](double& scale, const Eigen::MatrixXd& last_change, double last_curvature) {
-    std::vector<double> ratios = terms.area_ratios(F, uv);
-    double change = 0.0;
-    for (std::size_t k = 0; k < ratios.size(); ++k) {
-      const double now = std::max(ratios[k], kRatioFloor), then = std::max(built_ratios[k], kRatioFloor);
-      change = std::max(change, std::max(now / then, then / now));
-    }
-    if (!(change > kRefreshChange)) return;
-    // The same pattern: the refactorization keeps the ordering and analysis.
-    map_weighted->refactor(terms.map_weighted_laplacian(ratios, static_cast<int>(uv.rows()), F));
-    ++report.factorizations;
-    built_ratios = std::move(ratios);
-    if (last_change.size() > 0) scale = 1.0 / (last_curvature * dot(last_change, precondition(last_change)));
-  };
-  std::deque<Eigen::MatrixXd> steps, changes;  // s_i, y_i
-  std::deque<double> curvatures;               // 1 / (y_i . s_i)
-  double scale = 0.0;                          // H0 = scale * L^-1 once known
+  bool majorize = true;
+  NewtonSystem system(F, static_cast<int>(uv.rows()), terms.active, pinned);
+  double regularization = kRegularization;
   int quiet = 0, blocked = 0;
   const int cap = std::max(0, settings.max_iterations - iterations_before);
+  Eigen::MatrixXd gradient;
   while (report.iterations < cap) {
-    if (map_weighted && report.iterations > 0 && report.iterations % kRefreshCheck == 0) {
-      refresh_preconditioner(scale, changes.empty() ? Eigen::MatrixXd() : changes.back(),
-                             curvatures.empty() ? 0.0 : curvatures.back());
-    }
     if (energy <= kExactEnergy) {
       report.converged = true;
       break;
     }
-    // Two-loop recursion: direction = -H gradient.
-    Eigen::MatrixXd direction = -gradient;
-    std::vector<double> coefficients(steps.size());
-    for (int i = static_cast<int>(steps.size()) - 1; i >= 0; --i) {
-      coefficients[i] = curvatures[i] * dot(steps[i], direction);
-      direction -= coefficients[i] * changes[i];
-    }
-    direction = precondition(direction);
-    if (scale > 0.0) direction *= scale;
-    for (std::size_t i = 0; i < steps.size(); ++i) {
-      const double beta = curvatures[i] * dot(changes[i], direction);
-      direction += (coefficients[i] - beta) * steps[i];
-    }
-    double slope = dot(gradient, direction);
-    if (!(slope < 0.0)) {  // not a descent direction: start the memory again
-      steps.clear();
-      changes.clear();
-      curvatures.clear();
-      direction = precondition(-gradient);
-      if (scale > 0.0) direction *= scale;
-      slope = dot(gradient, direction);
-      if (!(slope < 0.0)) {
-        report.converged = true;  // the gradient vanishes to round-off
+    system.clear();
+    terms.evaluate(F, uv, &gradient, &system, regularization, majorize);
+    if (!system.factor()) {
+      if (regularization * kRegularizationGrowth > kMaxRegularization) {
+        report.stalled = true;
         break;
       }
+      regularization *= kRegularizationGrowth;
+      continue;
+    }
+    ++report.factorizations;
+    const Eigen::MatrixXd direction = system.newton_direction(gradient);
+    const double slope = dot(gradient, direction);
+    // Newton's predicted decrease, -slope / 2, below the tolerance: the
+    // minimum is reached (also when the gradient vanishes to round-off).
+    if (!(slope < 0.0) || -0.5 * slope <= settings.tolerance * energy) {
+      report.converged = true;
+      break;
     }
     const double bound = fold_free_step_fraction(F, charts, uv, uv + direction);
-    double step = bound;
+    double step = std::min(1.0, bound);
     Eigen::MatrixXd candidate = uv + step * direction;
-    double candidate_energy = terms.energy(F, candidate, nullptr);
-    // The first step has no curvature estimate yet: it grows while the
-    // energy keeps falling, so that its length is the problem's, not the
-    // preconditioner's units.
-    if (scale == 0.0 && bound >= 1.0) {
-      for (int grow = 0; grow < kMaxHalvings; ++grow) {
-        const Eigen::MatrixXd further = uv + 2.0 * step * direction;
-        if (fold_free_step_fraction(F, charts, uv, further) < 1.0) break;
-        const double further_energy = terms.energy(F, further, nullptr);
-        if (!(further_energy < candidate_energy)) break;
-        step *= 2.0;
-        candidate = further;
-        candidate_energy = further_energy;
-      }
-    }
+    double candidate_energy = terms.energy(F, candidate);
     int halvings = 0;
     while (!(candidate_energy <= energy + kArmijo * step * slope) && halvings < kMaxHalvings) {
       step *= 0.5;
       candidate = uv + step * direction;
-      candidate_energy = terms.energy(F, candidate, nullptr);
+      candidate_energy = terms.energy(F, candidate);
       ++halvings;
     }
     if (!(candidate_energy < energy)) {
       report.stalled = true;  // no step lowers the energy along a descent direction
       break;
     }
-    terms.energy(F, candidate, &next_gradient);
-    const Eigen::MatrixXd s = candidate - uv;
-    const Eigen::MatrixXd y = next_gradient - gradient;
-    const double sy = dot(s, y);
-    if (sy > 1e-16 * std::sqrt(dot(s, s) * dot(y, y))) {
-      if (static_cast<int>(steps.size()) == kMemory) {
-        steps.pop_front();
-        changes.pop_front();
-        curvatures.pop_front();
-      }
-      steps.push_back(s);
-      changes.push_back(y);
-      curvatures.push_back(1.0 / sy);
-      scale = sy / dot(y, precondition(y));
+    // Majorized steps until the predicted decrease is small (near a
+    // minimum, where Newton's own curvature is the right one), and back to
+    // them when a Newton step falls short (halved, or stopped by the fold
+    // guard, to under kNewtonStepFloor).
+    if (majorize && -0.5 * slope < kNewtonFrom * energy) {
+      majorize = false;
+    } else if (!majorize && step < kNewtonStepFloor) {
+      majorize = true;
     }
     const double previous = energy;
     uv = std::move(candidate);
-    gradient = next_gradient;
     energy = candidate_energy;
     ++report.iterations;
     report.energy_history.push_back(energy);

@@ -31,6 +31,7 @@
 #include <utility>
 #include <vector>
 
+#include <Eigen/LU>
 #include <Eigen/SparseCholesky>
 
 #include "anisoform/error.h"

@@ -27,10 +27,8 @@ struct LaplacianSolver::Impl {
   std::vector<int> vertex_at;
   std::vector<int> band_positions, band_offsets, band_vertices;
   std::vector<double> band_values;
-  // The factor L D L^T of P L_ff P^T: L by supernodes, 1 / D, and P; and
-  // what depends on L_ff's pattern only.
+  // The factor L D L^T of P L_ff P^T: L by supernodes and 1 / D.
   SupernodalFactor factor;
-  std::unique_ptr<SupernodalAnalysis> analysis;
   Eigen::VectorXd inv_d;
 };
 
@@ -92,14 +90,6 @@ LaplacianSolver::LaplacianSolver(const Eigen::SparseMatrix<double>& L, std::vect
   factor(L);
 }
 
-void LaplacianSolver::refactor(const Eigen::SparseMatrix<double>& L) {
-  if (L.rows() != n_ || L.cols() != n_) {
-    fail(ErrorCode::BadParameter, "refactor: the matrix is " + std::to_string(L.rows()) + " by " +
-                                      std::to_string(L.cols()) + ", the solver's " + std::to_string(n_));
-  }
-  require_pin_per_component(L, impl_->pinned_index);
-  factor(L);
-}
 
 void LaplacianSolver::factor(const Eigen::SparseMatrix<double>& L) {
   Impl& im = *impl_;
@@ -126,10 +116,7 @@ void LaplacianSolver::factor(const Eigen::SparseMatrix<double>& L) {
   L_fc.setFromTriplets(fc.begin(), fc.end());
   if (nf == 0) return;
   const double pivot_floor = 1e-13 * Lff.diagonal().cwiseAbs().maxCoeff();
-  // The ordering and the symbolic factorization depend on the pattern only:
-  // a refactorization of the same pattern keeps them.
-  if (!im.analysis || !im.analysis->matches(Lff)) im.analysis = std::make_unique<SupernodalAnalysis>(Lff);
-  SupernodalLdlt ldlt = im.analysis->factor(Lff, pivot_floor);
+  SupernodalLdlt ldlt = supernodal_ldlt(Lff, pivot_floor);
   // The factor is of P L_ff P^T: free index i sits at position ldlt.perm[i].
   std::vector<int> perm(nf);
   for (int i = 0; i < nf; ++i) perm[ldlt.perm[i]] = i;

@@ -31,11 +31,6 @@ class LaplacianSolver {
   // Row-major #V by 3 convenience for positions.
   void solve(const Positions& b, Positions& x) const;
 
-  // Factors L's new values, with the pinned vertices as built. L with the
-  // pattern of the last one keeps its ordering and symbolic analysis (a
-  // preconditioner rebuilt as a map changes); another is analysed afresh.
-  void refactor(const Eigen::SparseMatrix<double>& L);
-
   const std::vector<int>& pinned() const { return pinned_; }
   int num_vertices() const { return n_; }
 

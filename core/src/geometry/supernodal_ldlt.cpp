@@ -117,26 +117,16 @@ SupernodalStructure order_and_analyse(const Eigen::SparseMatrix<double>& A, Perm
 struct SupernodalSymbolic {
   Permutation P;
   SupernodalStructure s;
-  Eigen::SparseMatrix<double> pattern;  // A's lower triangle as analysed (values unused)
 };
 
 SupernodalAnalysis::SupernodalAnalysis(const Eigen::SparseMatrix<double>& A)
     : symbolic_(std::make_unique<SupernodalSymbolic>()) {
   SupernodalSymbolic& sym = *symbolic_;
-  sym.pattern = A.triangularView<Eigen::Lower>();
   sym.s = order_and_analyse(A, sym.P);
 }
 
 SupernodalAnalysis::~SupernodalAnalysis() = default;
 
-bool SupernodalAnalysis::matches(const Eigen::SparseMatrix<double>& A) const {
-  const Eigen::SparseMatrix<double> lower = A.triangularView<Eigen::Lower>();
-  const Eigen::SparseMatrix<double>& pattern = symbolic_->pattern;
-  return lower.rows() == pattern.rows() && lower.cols() == pattern.cols() &&
-         lower.nonZeros() == pattern.nonZeros() &&
-         std::equal(lower.outerIndexPtr(), lower.outerIndexPtr() + lower.cols() + 1, pattern.outerIndexPtr()) &&
-         std::equal(lower.innerIndexPtr(), lower.innerIndexPtr() + lower.nonZeros(), pattern.innerIndexPtr());
-}
 
 SupernodalLdlt supernodal_ldlt(const Eigen::SparseMatrix<double>& A, double pivot_floor) {
   return SupernodalAnalysis(A).factor(A, pivot_floor);

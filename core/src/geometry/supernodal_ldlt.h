@@ -32,7 +32,7 @@ struct SupernodalSymbolic;
 
 // What depends on A's pattern only: the ordering, the elimination tree and
 // the supernodes with their rows. Kept, it factors new values of the same
-// pattern without them (a preconditioner rebuilt as a map changes).
+// pattern without them (the flattening's Newton steps, one per step).
 class SupernodalAnalysis {
  public:
   // A: n by n, its lower triangle (what lies above is ignored).
@@ -41,8 +41,6 @@ class SupernodalAnalysis {
   SupernodalAnalysis(const SupernodalAnalysis&) = delete;
   SupernodalAnalysis& operator=(const SupernodalAnalysis&) = delete;
 
-  // Whether A's lower triangle has the pattern analysed.
-  bool matches(const Eigen::SparseMatrix<double>& A) const;
   // A with that pattern. pivot_floor: pivots at or below it stop the
   // factorization (bad_pivot).
   SupernodalLdlt factor(const Eigen::SparseMatrix<double>& A, double pivot_floor) const;
