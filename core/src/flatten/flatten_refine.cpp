@@ -92,9 +92,9 @@ double smooth_abs_slope(double r) { return r / std::sqrt(r * r + kSmoothing * kS
 // or with `majorize` rho'(r) / r = 1 / sqrt(r^2 + d^2), the curvature of the
 // quadratic in r that touches rho at r and lies above it everywhere (rho is
 // concave in r^2). Far from the target rho is nearly |r|, its own curvature
-// nearly 0, and a Newton step from it overshoots by orders of magnitude; the
-// majorizer's step lowers rho whatever its length (iteratively reweighted
-// least squares), but converges only linearly.
+// nearly 0, and a Newton step from it overshoots by orders of magnitude; a
+// step that lowers the majorizing quadratic lowers rho too (iteratively
+// reweighted least squares), but the iteration converges only linearly.
 double smooth_abs_curvature(double r, bool majorize) {
   const double root = std::sqrt(r * r + kSmoothing * kSmoothing);
   if (majorize) return 1.0 / root;
