@@ -86,8 +86,8 @@ constexpr double kRegularization = 1e-4;
 // Conjugate gradient iterations on the Hessian as it is, per Newton step
 // (truncated_newton_direction), and the relative residual that ends them.
 // Iterations to converge, local/global ones included, with projected Newton
-// alone / 10 of them: hand 269 / 146, spothead 235 / 210, demosthenes 456 /
-// 302, the cube 121 / 61, torso 68 / 55.
+// alone / with 10 of them / with them and the doubling below: hand 269 / 146
+// / 122, spothead 235 / 210 / 187, the cube 121 / 61 / 49, torso 68 / 55 / 48.
 constexpr int kPcgIterations = 10;
 constexpr double kPcgResidual = 1e-2;
 // A full step that lowers the energy is doubled while that lowers it more,
