@@ -94,7 +94,7 @@ TEST_CASE("flatten: ours beats the uniform baseline on the open meshes, on the c
   // curvature's distortion differently. The stretch refinement minimises the
   // errors themselves. Demosthenes and the bunny (17k and 69k triangles) are
   // measured in the README, not here: a Newton step factors a matrix, and
-  // under the sanitizers demosthenes' 266 take minutes.
+  // under the sanitizers demosthenes' 310 take minutes.
   // The hand and spothead are nearly closed: their start maps squeeze most
   // triangles to almost nothing, and the refinement's Newton steps
   // un-squeeze them and converge (L-BFGS preconditioned by a map-weighted

@@ -87,7 +87,9 @@ constexpr double kRegularization = 1e-4;
 // (truncated_newton_direction), and the relative residual that ends them.
 // Iterations to converge, local/global ones included, with projected Newton
 // alone / with 10 of them / with them and the doubling below: hand 269 / 146
-// / 122, spothead 235 / 210 / 187, the cube 121 / 61 / 49, torso 68 / 55 / 48.
+// / 122, spothead 235 / 210 / 187, the cube 121 / 61 / 49, torso 68 / 55 / 48
+// (with the unit-diagonal scaling of NewtonSystem::factor, which moves the
+// round-off: spothead 201, the cube 45).
 constexpr int kPcgIterations = 10;
 constexpr double kPcgResidual = 1e-2;
 // A full step that lowers the energy is doubled while that lowers it more,
