@@ -22,7 +22,10 @@
 // small multiple of the chart Laplacian, which removes the rotation the
 // energy does not see) is factored, and a backtracking line search inside
 // the fold guard's step bound takes the step: the energy falls at every
-// iteration and no triangle ever folds. Why not a first-order method: the
+// iteration and no triangle ever folds. Near the optimum a few conjugate
+// gradient iterations on the Hessian as it is correct each step for the
+// clamped curvature (truncated_newton_direction), and a full step that
+// lowers the energy is tried longer. Why not a first-order method: the
 // smoothed kink has a curvature of 1/d = 100 where a triangle meets its
 // target and the barrier grows without bound near it, so the problem is
 // badly conditioned exactly where it ends. Preconditioned L-BFGS needed 971
@@ -547,6 +550,7 @@ StretchRefineReport refine_stretch(const FlattenPatch& patch, const TriangleChar
       candidate_energy = terms.energy(F, candidate);
       ++halvings;
     }
+    // A full step that lowered the energy: longer ones, while they lower it more.
     if (halvings == 0 && bound >= 1.0) {
       const double reach = kMaxStretch * fold_free_step_fraction(F, charts, uv, uv + kMaxStretch * direction);
       for (double longer = 2.0 * step; longer <= reach; longer *= 2.0) {
