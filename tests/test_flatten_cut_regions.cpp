@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -82,6 +83,22 @@ TEST_CASE("flatten: a plane and a garment panel need no cut", "[flatten]") {
     CHECK(out.result.metrics.suggested_cuts.empty());
     CHECK(flatten_problem(out.result.metrics).empty());
   }
+}
+
+TEST_CASE("flatten: a pattern with folded triangles says so first, converged or not", "[flatten]") {
+  // Three faces on one edge cannot lie flat without overlapping: every start
+  // folds, the refinement cannot run, and the local/global stage gives up
+  // unconverged. The warning named only the non-convergence; the folds are
+  // what makes the pattern unusable.
+  const Mesh mesh = test::load("malformed/bad_nonmanifold_edge.obj");
+  FlattenOptions options;
+  options.su = 0.8;
+  const FlattenMetrics metrics = flatten(mesh, {}, options).result.metrics;
+  REQUIRE(metrics.flipped > 0);
+  const std::string problem = flatten_problem(metrics);
+  INFO(problem);
+  CHECK(problem.find("(" + std::to_string(metrics.flipped) + " triangle(s) folded over") != std::string::npos);
+  if (!metrics.converged) CHECK(problem.find(" and the solver did not converge in ") != std::string::npos);
 }
 
 TEST_CASE("flatten: ours beats the uniform baseline on the open meshes, on the combined error and on compression alone",

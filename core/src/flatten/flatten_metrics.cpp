@@ -77,17 +77,20 @@ TriangleStretch measure_stretch(const Triangles& F, const TriangleCharts& charts
 }
 
 std::string flatten_problem(const FlattenMetrics& metrics) {
+  // Folds first: they make the pattern unusable, converged or not (a
+  // non-manifold edge cannot be laid flat without one, and its solver then
+  // also stops unconverged).
   std::string reason;
+  if (metrics.flipped > 0) reason = std::to_string(metrics.flipped) + " triangle(s) folded over";
   if (!metrics.converged) {
-    reason = "the solver did not converge in " + std::to_string(metrics.iterations) + " iterations";
-  } else if (metrics.flipped > 0) {
-    reason = std::to_string(metrics.flipped) + " triangle(s) folded over";
-  } else if (!(metrics.area_distortion_mean <= kMaxUsableAreaDistortion)) {
+    reason += (reason.empty() ? "" : " and ") + std::string("the solver did not converge in ") +
+              std::to_string(metrics.iterations) + " iterations";
+  }
+  if (reason.empty() && !(metrics.area_distortion_mean <= kMaxUsableAreaDistortion)) {
     reason = "its area is off by " + std::to_string(static_cast<int>(std::lround(100.0 * metrics.area_distortion_mean))) +
              " % on average";
-  } else {
-    return "";
   }
+  if (reason.empty()) return "";
   return "the patch does not flatten as one piece (" + reason +
          "): cut it along a seam or add darts where it curves most (select part of it and flatten the "
          "Selection), then flatten each piece";
