@@ -207,7 +207,7 @@ test('bad options name the field', () => withSession('open/plane.off', (session)
 
 test('a patch that cannot be one piece says why and what to do; a garment panel has no problem; the unit is guessed', () => {
   withSession('open/hand_lowres.obj', (session) => {
-    // The hand converges (in about 270 iterations), its area far off; cut
+    // The hand converges (in about 125 iterations), its area far off; cut
     // short, it says so first.
     const cut = session.flatten({ compress: [0.8, 1], maxIterations: 40 }).metrics;
     assert.equal(cut.converged, false);

@@ -167,7 +167,7 @@ struct StretchRefineReport {
   int start = -1;          // which of the starts it ran from; -1: none is fold-free (uv unchanged)
   int iterations = 0;
   double energy = 0.0;     // the refinement's energy at the end (about the mean errors)
-  bool converged = false;  // the relative energy change stayed below the tolerance
+  bool converged = false;  // Newton's predicted or the actual relative decrease fell below the tolerance
   bool stalled = false;    // the fold guard or the line search blocked every step
   int factorizations = 0;  // of Newton's system (one per step, more when one needed more regularization)
   std::vector<double> energy_history;

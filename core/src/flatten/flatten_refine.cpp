@@ -86,6 +86,8 @@ constexpr double kNewtonStepFloor = 0.25;
 // the Laplacian's). A failed factorization raises it kRegularizationGrowth
 // times, up to kMaxRegularization.
 constexpr double kRegularization = 1e-4;
+constexpr double kRegularizationGrowth = 100.0;
+constexpr double kMaxRegularization = 1e4;
 // Conjugate gradient iterations on the Hessian as it is, per Newton step
 // (truncated_newton_direction), and the relative residual that ends them.
 // Iterations to converge, local/global ones included, with projected Newton
@@ -100,8 +102,6 @@ constexpr double kPcgResidual = 1e-2;
 // the Hessian curves down, or its positive part overestimates the
 // curvature, Newton's step falls short.
 constexpr double kMaxStretch = 8.0;
-constexpr double kRegularizationGrowth = 100.0;
-constexpr double kMaxRegularization = 1e4;
 // Pivots of the unit-diagonal Hessian at or below this are not positive;
 // the identity multiples tried when one is (NewtonSystem::factor).
 constexpr double kPivotFloor = 1e-14;

@@ -90,7 +90,6 @@ LaplacianSolver::LaplacianSolver(const Eigen::SparseMatrix<double>& L, std::vect
   factor(L);
 }
 
-
 void LaplacianSolver::factor(const Eigen::SparseMatrix<double>& L) {
   Impl& im = *impl_;
   const int nf = static_cast<int>(im.free_vertices.size());
