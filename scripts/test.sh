@@ -6,7 +6,8 @@
 #
 # One native build serves the Catch2 suite, the CLI the Node tests compare
 # against, and the fuzzer: clang with AddressSanitizer + UndefinedBehavior-
-# Sanitizer, the core at -O2 (the test files at -O0), line tables only.
+# Sanitizer (UBSan not inside Eigen: cmake/sanitizer-ignorelist.txt), the
+# core at -O2 (the test files at -O0), line tables only.
 # Every test therefore runs with the sanitizers' checks; the optimised release configuration is what the WASM
 # module ships (tested in Node and Playwright) and what the benchmark builds
 # (bench/README.md).
