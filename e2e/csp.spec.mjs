@@ -133,3 +133,19 @@ test('the policy is enforced and the guard sees violations and off-origin reques
   await page.waitForTimeout(300);
   await csp.take();
 });
+
+test('the server revalidates: an unchanged file is answered 304 with the policy, any other validator gets it in full', async () => {
+  // A 304 keeps the browser's cache entry, and V8's compiled code with it,
+  // so a reload does not compile the solver's WASM again (scripts/serve-static.mjs).
+  const first = await fetch(`${origin}/index.html`);
+  expect(first.status).toBe(200);
+  const etag = first.headers.get('etag');
+  expect(etag).toBeTruthy();
+  expect(first.headers.get('cache-control')).toBe('no-cache');
+  const unchanged = await fetch(`${origin}/index.html`, { headers: { 'If-None-Match': etag } });
+  expect(unchanged.status).toBe(304);
+  expect(unchanged.headers.get('content-security-policy')).toContain(CONTENT_SECURITY_POLICY);
+  const other = await fetch(`${origin}/index.html`, { headers: { 'If-None-Match': '"stale"' } });
+  expect(other.status).toBe(200);
+  expect((await other.text()).length).toBeGreaterThan(0);
+});
