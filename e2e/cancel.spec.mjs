@@ -72,7 +72,8 @@ async function cancelLongEdit(page, stop) {
 }
 
 function expectKept(result) {
-  // The core's progress: iterations done of the 2000 allowed (or the factorization).
+  // The core's progress: the iterations done of the 2000 allowed, or how far the
+  // energy change has fallen towards the tolerance (or the factorization).
   expect(result.progress).toMatch(/(Solving|Preparing the solver) \d+ %/);
   expect(result.ended.outcome).toBe('rejected');
   expect(result.ended.code).toBe('cancelled');

@@ -88,7 +88,8 @@ struct ArapFlattenSettings {
                                // unfold it before giving up (the Flattener then
                                // starts again from a fold-free map)
   // Called after every iteration with (iteration, energy); returning false
-  // stops early (the map so far is kept).
+  // stops early (the map so far is kept). Also once, with a NaN energy, when
+  // the refinement starts: its energy is not the local/global iterations'.
   std::function<bool(int, double)> progress;
 };
 

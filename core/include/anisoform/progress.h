@@ -16,8 +16,10 @@ enum class ProgressStage {
 const char* progress_stage_name(ProgressStage stage);
 
 // Called from inside the work, on the caller's thread, with the fraction of
-// the stage done in [0, 1]. An iterative stage counts iterations against its
-// cap, so it may end early below 1; the call then reports 1 when it is done.
+// the stage done in [0, 1], never falling. An iterative stage reports the
+// larger of the share of its iteration cap used and how far its energy
+// change has fallen towards the tolerance (base/convergence_progress.h), so
+// it may end early below 1; the call then reports 1 when it is done.
 using ProgressFn = std::function<void(ProgressStage stage, double fraction)>;
 
 }  // namespace aniso

@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <cmath>
 #include <numeric>
 #include <optional>
 #include <sstream>
 #include <string>
 
+#include "base/convergence_progress.h"
 #include "deform/anarap.h"
 #include "deform/andefgrad.h"
 #include "anisoform/direction_field.h"
@@ -427,8 +429,12 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
     }
     for (int p : request.pins) result.V.row(p) = unit_.V.row(p);
     const int steps = stepped ? request.rotation_steps : request.max_iterations;
+    ConvergenceProgress solve_progress(steps, stepped ? -1.0 : request.tolerance);
     const auto on_iteration = [&](int done) {
-      if (progress_) progress_(ProgressStage::Solve, static_cast<double>(done) / steps);
+      if (!progress_) return;
+      const double energy = result.energy_history.empty() ? std::numeric_limits<double>::quiet_NaN()
+                                                          : result.energy_history.back();
+      progress_(ProgressStage::Solve, solve_progress.update(done, energy));
     };
     result.iterations = iterations->run(solver, result.V, steps, stepped ? -1.0 : request.tolerance,
                                         result.energy_history, request.final_energy,

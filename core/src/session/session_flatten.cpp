@@ -11,6 +11,7 @@
 #include "anisoform/op.h"
 #include "anisoform/pattern_export.h"
 #include "anisoform/session.h"
+#include "base/convergence_progress.h"
 #include "session/session_flatten_state.h"
 
 namespace aniso {
@@ -111,10 +112,16 @@ SessionFlattenResult Session::flatten(const SessionFlatten& given) {
   Flattener& flattener = built ? *built : *state.flattener;
 
   FlattenOptions options = flatten_options(request);
+  ConvergenceProgress flatten_progress(options.solver.max_iterations, options.solver.tolerance);
+  // Before a refinement the local/global iterations are its start: they
+  // converge in a few iterations and the refinement's take the time, so the
+  // bar counts energy changes from the refinement's start (its NaN energy) on.
+  bool counting = options.method == FlattenMethod::UniformBaseline || !options.solver.refine;
   if (progress_) {
-    const int cap = options.solver.max_iterations;
-    options.solver.progress = [this, cap](int iteration, double) {
-      report(ProgressStage::Flatten, std::min(1.0, static_cast<double>(iteration) / cap));
+    options.solver.progress = [this, &flatten_progress, &counting](int iteration, double energy) {
+      if (std::isnan(energy)) counting = true;
+      const double counted = counting ? energy : std::numeric_limits<double>::quiet_NaN();
+      report(ProgressStage::Flatten, flatten_progress.update(iteration, counted));
       return true;
     };
   }

@@ -1,0 +1,71 @@
+// The progress bar of iterations that stop at a cap or at a tolerance on the
+// relative energy change (base/convergence_progress.h), on made-up energy
+// sequences whose changes are known, and on a real flattening.
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "anisoform/session.h"
+#include "anisoform/session_flatten.h"
+#include "base/convergence_progress.h"
+#include "test_support.h"
+
+using namespace aniso;
+
+TEST_CASE("convergence progress: without a tolerance it is the share of the cap", "[progress]") {
+  ConvergenceProgress progress(8, 0.0);
+  for (int k = 1; k <= 8; ++k) CHECK(progress.update(k, 1.0 + std::pow(0.5, k)) == Approx(k / 8.0));
+}
+
+TEST_CASE("convergence progress: a change falling geometrically to the tolerance fills the bar evenly", "[progress]") {
+  // E_k = 1 + 0.1^k: relative changes fall tenfold per iteration, from 9e-2
+  // to the tolerance 1e-8 in 7 more iterations, on a cap of 500.
+  ConvergenceProgress progress(500, 1e-8);
+  std::vector<double> fractions;
+  for (int k = 1; k <= 10; ++k) fractions.push_back(progress.update(k, 1.0 + std::pow(0.1, k)));
+  CHECK(fractions[0] == Approx(1.0 / 500));  // no change measured yet
+  for (std::size_t k = 1; k < fractions.size(); ++k) CHECK(fractions[k] >= fractions[k - 1]);
+  // Halfway down the log scale (4 of the 8 decades to 1e-8) is about halfway.
+  CHECK(fractions[5] == Approx(0.5).margin(0.1));
+  CHECK(fractions[8] > 0.9);
+  CHECK(fractions.back() < 1.0);  // 1 only when the caller says the iterations ended
+}
+
+TEST_CASE("convergence progress: it never goes back, and a new stage starts its own scale", "[progress]") {
+  ConvergenceProgress progress(100, 1e-8);
+  progress.update(1, 2.0);
+  progress.update(2, 1.0);    // first change 0.5
+  const double reached = progress.update(3, 1.0 - 1e-5);
+  CHECK(reached > 0.5);
+  CHECK(progress.update(4, 0.5) == reached);  // a large change again: the bar stays
+  // A stage whose energy is measured differently (the flattening's refinement).
+  CHECK(progress.update(4, std::numeric_limits<double>::quiet_NaN()) == reached);
+  CHECK(progress.update(5, 40.0) == reached);  // 40 against 0.5 is no change of this stage
+  CHECK(progress.update(6, 20.0) == reached);  // its first change, 0.5
+  CHECK(progress.update(7, 20.0 * (1.0 - 1e-7)) > reached);
+}
+
+TEST_CASE("convergence progress: a flattening that converges early fills most of its bar before it ends",
+          "[progress][flatten]") {
+  // The hemisphere converges at about 80 of the 500 iterations allowed:
+  // counted against the cap the bar stood at 16 % when the pattern came.
+  Session session;
+  session.adopt_mesh(test::load("open/hemisphere.obj"), {});
+  std::vector<double> fractions;
+  session.set_progress([&fractions](ProgressStage stage, double fraction) {
+    if (stage == ProgressStage::Flatten) fractions.push_back(fraction);
+  });
+  SessionFlatten request;
+  request.su = 0.8;
+  request.direction_given = false;  // the longest axis, as the app's default
+  const SessionFlattenResult result = session.flatten(request);
+  REQUIRE(result.metrics.converged);
+  REQUIRE(fractions.size() >= 3);
+  for (std::size_t k = 1; k < fractions.size(); ++k) CHECK(fractions[k] >= fractions[k - 1]);
+  CHECK(fractions.back() == 1.0);
+  const double before_the_end = fractions[fractions.size() - 2];
+  INFO(result.metrics.iterations << " iterations of 500; last fraction before the end " << before_the_end);
+  CHECK(before_the_end > 0.5);
+}
