@@ -127,3 +127,34 @@ for (const width of [390, 320]) {
     expect(pageErrors).toEqual([]);
   });
 }
+
+test('390 px: a long warning shows three lines and More, which opens the rest and folds it again', async ({ page }) => {
+  // The hand's flatten warning ran to eight lines over the 3D view's top.
+  const pageErrors = await openApp(page);
+  expect((await uploadFile(page, meshPath('open/hand_lowres.obj'))).ok).toBe(true);
+  const notice = page.getByTestId('notice');
+  await expect(notice).toBeVisible();  // one line: no More
+  await expect(notice.getByTestId('message-more')).toBeHidden();
+  await page.getByTestId('mode-flatten').tap();
+  await page.getByTestId('flatten-run').tap();
+  const warning = page.getByTestId('warning');
+  await expect(warning).toContainText('This patch needs a dart or a cut here');
+  const text = warning.locator('.message-text');
+  const lineHeight = await text.evaluate((element) => Number.parseFloat(getComputedStyle(element).lineHeight));
+  const heightOf = async () => (await text.boundingBox()).height;
+  expect(await heightOf()).toBeLessThanOrEqual(3 * lineHeight + 1);
+  const more = warning.getByTestId('message-more');
+  await expect(more).toHaveText('More');
+  await expect(more).toHaveAttribute('aria-expanded', 'false');
+  await expectTidy(page, 'a long warning, folded');
+  await more.tap();
+  await expect(more).toHaveText('Less');
+  await expect(more).toHaveAttribute('aria-expanded', 'true');
+  expect(await heightOf()).toBeGreaterThan(5 * lineHeight);
+  await expectTidy(page, 'a long warning, opened');
+  await saveScreenshot(page, 'phone-390-warning-opened');
+  await more.tap();
+  await expect(more).toHaveText('More');
+  expect(await heightOf()).toBeLessThanOrEqual(3 * lineHeight + 1);
+  expect(pageErrors).toEqual([]);
+});

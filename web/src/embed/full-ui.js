@@ -49,7 +49,7 @@ export function installFullUi(layout, { api, editor, settings, tools, viewer, pi
   panelSheetToggle(layout.sidePanel);
   patternPane(layout.patternPane, { editor, settings, lifetime });
   statusBar(layout.statusBar, { editor, viewer, lifetime });
-  installMessages(layout.viewport, { editor });
+  installMessages(layout.viewport, { editor, lifetime });
   installDropZone(layout.root, layout.dropOverlay, { api, reportError, lifetime });
   frameButton(layout.viewport, { api });
   const dialog = shortcutDialog(layout.root, { tools });

@@ -4,16 +4,31 @@
 // full list on demand; warnings say that the last edit (or the live preview)
 // folded triangles over, until the positions change again, or that the last
 // flattening is not usable as one piece, until the pattern changes. All can be
-// dismissed.
+// dismissed. On a narrow screen a long one shows three lines and a More
+// button (narrow-layout.css): the flatten warning's eight lines covered most
+// of a phone's 3D view.
 import { foldOverWarning } from '../editor/edit-wording.js';
 
-export function installMessages(root, { editor }) {
+export function installMessages(root, { editor, lifetime }) {
   const error = root.querySelector('[data-testid=error]');
   const notice = root.querySelector('[data-testid=notice]');
   const warning = root.querySelector('[data-testid=warning]');
+  const messages = [error, notice, warning];
+  // Whether the text is cut short depends on the width: checked again when it changes.
+  const resized = new ResizeObserver(() => messages.forEach(fitMoreButton));
+  messages.forEach((element) => resized.observe(element));
+  lifetime.defer(() => resized.disconnect());
   const show = (element, text, details = []) => {
-    const body = Object.assign(document.createElement('span'), { textContent: text });
+    const more = Object.assign(document.createElement('button'), { className: 'message-more', type: 'button' });
+    more.dataset.testid = 'message-more';
+    more.onclick = () => {
+      element.classList.toggle('expanded');
+      fitMoreButton(element);
+    };
+    const body = Object.assign(document.createElement('span'), { className: 'message-body' });
+    body.append(Object.assign(document.createElement('span'), { className: 'message-text', textContent: text }), more);
     if (details.length > 0) body.append(detailsList(details));
+    element.classList.remove('expanded');
     element.replaceChildren(
       body,
       Object.assign(document.createElement('button'), {
@@ -24,6 +39,7 @@ export function installMessages(root, { editor }) {
       }),
     );
     element.hidden = false;
+    fitMoreButton(element);
   };
   const hideAll = () => {
     error.hidden = true;
@@ -57,6 +73,17 @@ export function installMessages(root, { editor }) {
   editor.on('loading', hideAll);
   editor.on('mesh', hideAll);
   return { showError: (text) => show(error, text) };
+}
+
+// More while the text is cut short (only where the layout clamps it), Less once opened.
+function fitMoreButton(element) {
+  const text = element.querySelector('.message-text');
+  const more = element.querySelector('.message-more');
+  if (!text || !more || element.hidden) return;
+  const expanded = element.classList.contains('expanded');
+  more.hidden = !expanded && !(text.scrollHeight > text.clientHeight + 1);
+  more.textContent = expanded ? 'Less' : 'More';
+  more.setAttribute('aria-expanded', String(expanded));
 }
 
 function detailsList(lines) {
