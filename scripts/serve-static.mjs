@@ -101,9 +101,9 @@ export function serveStatic({ root, port, host = '127.0.0.1', log = (line) => pr
     }
     // Every use revalidates (no-cache: a rebuilt site is never stale), and an
     // unchanged file is answered 304. That keeps the browser's cache entry,
-    // and with it V8's compiled code: a reload skips compiling the WASM
-    // module (1.7 s of CPU a page open, a third of the end-to-end suite's)
-    // and the scripts again.
+    // and with it V8's compiled code: a reload does not compile the solver's
+    // WASM module (about 1.7 s of CPU here) and the scripts again. (The
+    // end-to-end tests' browser contexts keep no such cache.)
     const etag = `"${stats.size.toString(16)}-${Math.trunc(stats.mtimeMs).toString(16)}"`;
     const validators = { ETag: etag, 'Last-Modified': stats.mtime.toUTCString(), 'Cache-Control': 'no-cache' };
     if (request.headers['if-none-match'] === etag) {
