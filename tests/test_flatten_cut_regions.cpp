@@ -85,11 +85,12 @@ TEST_CASE("flatten: a plane and a garment panel need no cut", "[flatten]") {
   }
 }
 
-TEST_CASE("flatten: a pattern with folded triangles says so first, converged or not", "[flatten]") {
+TEST_CASE("flatten: a pattern with folded triangles says so first, converged or not, and a non-manifold edge why",
+          "[flatten]") {
   // Three faces on one edge cannot lie flat without overlapping: every start
   // folds, the refinement cannot run, and the local/global stage gives up
   // unconverged. The warning named only the non-convergence; the folds are
-  // what makes the pattern unusable.
+  // what makes the pattern unusable, and the edge is why.
   const Mesh mesh = test::load("malformed/bad_nonmanifold_edge.obj");
   FlattenOptions options;
   options.su = 0.8;
@@ -99,6 +100,10 @@ TEST_CASE("flatten: a pattern with folded triangles says so first, converged or 
   INFO(problem);
   CHECK(problem.find("(" + std::to_string(metrics.flipped) + " triangle(s) folded over") != std::string::npos);
   if (!metrics.converged) CHECK(problem.find(" and the solver did not converge in ") != std::string::npos);
+  // And why: the fin's edge (file vertices 67 and 45) borders three faces.
+  CHECK(metrics.non_manifold_edges == 1);
+  CHECK(problem.find("; 1 edge(s) shared by three or more faces, which no flat piece can hold): select the faces "
+                     "on one side of each such edge") != std::string::npos);
 }
 
 TEST_CASE("flatten: ours beats the uniform baseline on the open meshes, on the combined error and on compression alone",

@@ -131,6 +131,7 @@ struct FlattenMetrics {
   int components = 0;
   int boundary_loops = 0;
   int flipped = 0;                       // folded-over triangles (count_folded)
+  int non_manifold_edges = 0;            // patch edges shared by 3 or more faces (check_mesh)
   double compression_error_mean = 0.0;   // area-weighted mean of |along/su - 1|
   double compression_error_max = 0.0;    // max of |along/su - 1|
   double cross_error_mean = 0.0;         // area-weighted mean of |across/sv - 1|
@@ -149,8 +150,9 @@ struct FlattenMetrics {
 
 // Empty when the flattening is usable as one piece; otherwise why not and
 // what to do, in plain words for the user (naming the worst region of
-// suggested_cuts, if any, by a vertex). Not one piece: the solver did not
-// converge, triangles folded over, or the area is off by more than
+// suggested_cuts, if any, by a vertex). Not one piece: the patch has
+// non-manifold edges, the solver did not converge, triangles folded over, or
+// the area is off by more than
 // kMaxUsableAreaDistortion on average (a hemisphere, about the most curved
 // patch still cut whole, is 18 %; an open box or a hand is 36 % and more).
 constexpr double kMaxUsableAreaDistortion = 0.25;

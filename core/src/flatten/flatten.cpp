@@ -3,6 +3,7 @@
 #include <chrono>
 #include <optional>
 
+#include "anisoform/mesh_check.h"
 #include "flatten/flatten_pipeline.h"
 
 namespace aniso {
@@ -22,6 +23,7 @@ struct Flattener::Impl {
   std::unique_ptr<ArapFlattening> arap;
   Eigen::MatrixX2d conformal_start;
   std::optional<Eigen::MatrixX2d> fold_free_start;  // built the first time it is needed
+  int non_manifold_edges = 0;  // the patch's, for the user's warning (flatten_problem)
 
   struct Solved {
     Eigen::MatrixX2d uv;
@@ -84,6 +86,7 @@ Flattener::Flattener(const Mesh& mesh, const std::vector<char>& vertex_mask)
   im.charts = triangle_charts(im.patch.mesh);
   im.arap = std::make_unique<ArapFlattening>(im.patch, im.charts);
   lscm_free_boundary(im.patch, im.charts, im.conformal_start);
+  im.non_manifold_edges = check_mesh(im.patch.mesh).non_manifold_edges;
 }
 
 Flattener::~Flattener() = default;
@@ -136,6 +139,7 @@ FlattenResult Flattener::flatten(const FlattenOptions& options) {
   metrics.components = patch.num_components;
   metrics.boundary_loops = static_cast<int>(patch.boundary_loops.size());
   metrics.flipped = count_folded(F, im.charts, result.uv);
+  metrics.non_manifold_edges = im.non_manifold_edges;
   metrics.iterations = solved.iterations;
   metrics.energy = solved.report.energy;
   metrics.converged = converged;

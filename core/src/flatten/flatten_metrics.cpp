@@ -86,14 +86,24 @@ std::string flatten_problem(const FlattenMetrics& metrics) {
     reason += (reason.empty() ? "" : " and ") + std::string("the solver did not converge in ") +
               std::to_string(metrics.iterations) + " iterations";
   }
+  // Why, when the patch itself cannot lie flat: the folds are its symptom,
+  // and the advice to cut along a seam would not say where.
+  if (metrics.non_manifold_edges > 0) {
+    reason += (reason.empty() ? "" : "; ") + std::to_string(metrics.non_manifold_edges) +
+              " edge(s) shared by three or more faces, which no flat piece can hold";
+  }
   if (reason.empty() && !(metrics.area_distortion_mean <= kMaxUsableAreaDistortion)) {
     reason = "its area is off by " + std::to_string(static_cast<int>(std::lround(100.0 * metrics.area_distortion_mean))) +
              " % on average";
   }
   if (reason.empty()) return "";
-  return "the patch does not flatten as one piece (" + reason +
-         "): cut it along a seam or add darts where it curves most (select part of it and flatten the "
-         "Selection), then flatten each piece";
+  const std::string advice =
+      metrics.non_manifold_edges > 0
+          ? "select the faces on one side of each such edge (the mesh check names them) and flatten the "
+            "Selection, then the rest"
+          : "cut it along a seam or add darts where it curves most (select part of it and flatten the "
+            "Selection), then flatten each piece";
+  return "the patch does not flatten as one piece (" + reason + "): " + advice;
 }
 
 void summarize_stretch(const TriangleCharts& charts, const FlattenTargets& targets,
