@@ -152,9 +152,9 @@ struct FlattenMetrics {
 // what to do, in plain words for the user (naming the worst region of
 // suggested_cuts, if any, by a vertex). Not one piece: the patch has
 // non-manifold edges, the solver did not converge, triangles folded over, or
-// the area is off by more than
-// kMaxUsableAreaDistortion on average (a hemisphere, about the most curved
-// patch still cut whole, is 18 %; an open box or a hand is 36 % and more).
+// the area is off by more than kMaxUsableAreaDistortion on average (a
+// hemisphere, about the most curved patch still cut whole, is 18 %; an open
+// box or a hand is 36 % and more).
 constexpr double kMaxUsableAreaDistortion = 0.25;
 std::string flatten_problem(const FlattenMetrics& metrics);
 
