@@ -88,8 +88,9 @@ struct ArapFlattenSettings {
                                // unfold it before giving up (the Flattener then
                                // starts again from a fold-free map)
   // Called after every iteration with (iteration, energy); returning false
-  // stops early (the map so far is kept). Also once, with a NaN energy, when
-  // the refinement starts: its energy is not the local/global iterations'.
+  // stops early (the map so far is kept). The energy is NaN for the
+  // local/global iterations a refinement follows: they are only its start,
+  // and their energy is not the refinement's.
   std::function<bool(int, double)> progress;
 };
 

@@ -17,10 +17,9 @@ class ConvergenceProgress {
 
   // After iteration `done` (1, 2, ...) with energy `energy`: a fraction in
   // [0, 1], never below one returned before; 1 only at the cap (the caller
-  // reports 1 when the iterations end earlier). A non-finite energy marks
-  // the start of a stage whose energy is not comparable with the last one
-  // (a flattening's refinement after its local/global iterations): the log
-  // scale starts again there.
+  // reports 1 when the iterations end earlier). A non-finite energy counts
+  // only against the cap, and the log scale starts again after it (a
+  // flattening's local/global iterations before its refinement report NaN).
   double update(int done, double energy);
 
  private:

@@ -1,6 +1,7 @@
 // The Flattener: keeps what depends only on the patch (charts, start maps, the
 // one factorization) and runs a flattening per request, ours or the baseline.
 #include <chrono>
+#include <limits>
 #include <optional>
 
 #include "anisoform/mesh_check.h"
@@ -108,9 +109,19 @@ FlattenResult Flattener::flatten(const FlattenOptions& options) {
   // The baseline flattens the same field without compression first.
   const FlattenTargets solved_targets =
       baseline ? with_uniform_amounts(result.targets, 1.0, 1.0) : result.targets;
-  Impl::Solved solved = im.solve(solved_targets, options.solver);
+  const bool refining = !baseline && options.solver.refine;
+  // Before a refinement the local/global iterations are only its start: they
+  // end in a few steps, and their energy is not the one the refinement
+  // converges, so progress hears them without it (ArapFlattenSettings).
+  ArapFlattenSettings stage = options.solver;
+  if (refining && stage.progress) {
+    stage.progress = [&options](int iteration, double) {
+      return options.solver.progress(iteration, std::numeric_limits<double>::quiet_NaN());
+    };
+  }
+  Impl::Solved solved = im.solve(solved_targets, stage);
   bool converged = solved.report.converged;
-  if (!baseline && options.solver.refine) {
+  if (refining) {
     const StretchRefineReport refined =
         refine_stretch(patch, im.charts, solved_targets, im.arap->pinned(), options.solver,
                        solved.iterations, im.refinement_starts(solved.uv, solved_targets), solved.uv);

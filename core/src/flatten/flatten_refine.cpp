@@ -505,10 +505,6 @@ StretchRefineReport refine_stretch(const FlattenPatch& patch, const TriangleChar
   if (report.start < 0) return report;
   Eigen::MatrixXd uv = starts[report.start];
   report.energy_history.push_back(energy);
-  // Its energy is not the local/global one: a host's progress starts a new
-  // scale here (ArapFlattenSettings::progress). A stop asked for here comes
-  // at the first iteration.
-  if (settings.progress) settings.progress(iterations_before, std::numeric_limits<double>::quiet_NaN());
   bool majorize = true;
   NewtonSystem system(F, static_cast<int>(uv.rows()), terms.active, pinned);
   double regularization = kRegularization;

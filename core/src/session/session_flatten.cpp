@@ -113,15 +113,9 @@ SessionFlattenResult Session::flatten(const SessionFlatten& given) {
 
   FlattenOptions options = flatten_options(request);
   ConvergenceProgress flatten_progress(options.solver.max_iterations, options.solver.tolerance);
-  // Before a refinement the local/global iterations are its start: they
-  // converge in a few iterations and the refinement's take the time, so the
-  // bar counts energy changes from the refinement's start (its NaN energy) on.
-  bool counting = options.method == FlattenMethod::UniformBaseline || !options.solver.refine;
   if (progress_) {
-    options.solver.progress = [this, &flatten_progress, &counting](int iteration, double energy) {
-      if (std::isnan(energy)) counting = true;
-      const double counted = counting ? energy : std::numeric_limits<double>::quiet_NaN();
-      report(ProgressStage::Flatten, flatten_progress.update(iteration, counted));
+    options.solver.progress = [this, &flatten_progress](int iteration, double energy) {
+      report(ProgressStage::Flatten, flatten_progress.update(iteration, energy));
       return true;
     };
   }
