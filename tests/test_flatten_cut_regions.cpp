@@ -106,65 +106,87 @@ TEST_CASE("flatten: a pattern with folded triangles says so first, converged or 
                      "on one side of each such edge") != std::string::npos);
 }
 
-TEST_CASE("flatten: ours beats the uniform baseline on the open meshes, on the combined error and on compression alone",
+namespace {
+
+// su = 0.8 along each patch's longest bounding-box axis (the CLI's default
+// direction). The baseline (isometric flattening scaled once) is nearly
+// exact on a panel whose direction barely turns, and the ARAP energy alone
+// lost to it there (torso: 2.65 % against 2.48 % compression error): it
+// also penalises shear, which the errors do not count, and spreads the
+// curvature's distortion differently. The stretch refinement minimises the
+// errors themselves. Demosthenes and the bunny (17k and 69k triangles) are
+// measured in the README (scripts/flatten-survey.mjs), not here: a Newton
+// step factors a matrix, and under the sanitizers demosthenes' 265 take
+// minutes.
+// The hand and spothead are nearly closed: their start maps squeeze most
+// triangles to almost nothing, and the refinement's Newton steps
+// un-squeeze them and converge (L-BFGS preconditioned by a map-weighted
+// Laplacian stopped at the 500 cap with 0.33 and 0.40 of the baseline's
+// error; the hand ended at 0.97 of it with the fixed Laplacian); spothead
+// owes part of its share to the stretch-reweighted Tutte start.
+// The errors measure the images of two directions, not the angle between
+// them: a triangle sheared nearly flat meets both lengths, and with the
+// refinement's barrier at a tenth of the wanted area 35 % of the cube's
+// pattern area, 52 % of the hand's and 21 % of spothead's ended below a
+// tenth of it (smallest ratios 0.085, 0.047, 0.058). A pattern must cover
+// what it is cut for: under 1 % of the area may end there, and no triangle
+// below 0.05.
+// The compression error bounds are ours as measured, plus a little: the
+// smoothing stages of the refinement (flatten_refine.cpp) lowered the
+// hand's from 0.202 to 0.190 and spothead's from 0.199 to 0.184.
+struct BaselineCase {
+  const char* name;
+  double share;        // ours is under this share of the baseline's combined error
+  double compression;  // and our mean compression error under this
+};
+
+void check_beats_baseline(const BaselineCase& c) {
+  const Mesh mesh = test::load(c.name);
+  Eigen::Vector3d extent = mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff();
+  Eigen::Index longest = 0;
+  extent.maxCoeff(&longest);
+  Flattener flattener(mesh);
+  FlattenOptions options;
+  options.su = 0.8;
+  options.directions.global = Eigen::Vector3d::Unit(longest);
+  const FlattenResult result = flattener.flatten(options);
+  const FlattenMetrics& ours = result.metrics;
+  const auto [squeezed, smallest] = squeezed_area(flattener, result);
+  options.method = FlattenMethod::UniformBaseline;
+  const FlattenMetrics base = flattener.flatten(options).metrics;
+  const double ours_combined = ours.compression_error_mean + ours.cross_error_mean;
+  const double base_combined = base.compression_error_mean + base.cross_error_mean;
+  std::printf("[flatten] %-40s ours %.4f + %.4f, %d it%s, %.1f %% of the area below a tenth (smallest %.3f) | baseline %.4f + %.4f\n",
+              c.name, ours.compression_error_mean, ours.cross_error_mean, ours.iterations,
+              ours.converged ? "" : " (not converged)", 100.0 * squeezed, smallest, base.compression_error_mean,
+              base.cross_error_mean);
+  INFO(c.name << ": ours " << ours_combined << " baseline " << base_combined);
+  CHECK(ours.flipped == 0);
+  CHECK(ours_combined < base_combined);
+  CHECK(ours.compression_error_mean < base.compression_error_mean);
+  CHECK(ours.converged);
+  CHECK(ours_combined < c.share * base_combined);  // measured 0.15-0.35 of it; the hand 0.32, spothead 0.33
+  CHECK(ours.compression_error_mean < c.compression);
+  CHECK(squeezed < 0.01);
+  CHECK(smallest > 0.05);
+}
+
+}  // namespace
+
+TEST_CASE("flatten: ours beats the uniform baseline on the panels and the cube, on the combined error and on compression alone",
           "[flatten]") {
-  // su = 0.8 along each patch's longest bounding-box axis (the CLI's default
-  // direction). The baseline (isometric flattening scaled once) is nearly
-  // exact on a panel whose direction barely turns, and the ARAP energy alone
-  // lost to it there (torso: 2.65 % against 2.48 % compression error): it
-  // also penalises shear, which the errors do not count, and spreads the
-  // curvature's distortion differently. The stretch refinement minimises the
-  // errors themselves. Demosthenes and the bunny (17k and 69k triangles) are
-  // measured in the README, not here: a Newton step factors a matrix, and
-  // under the sanitizers demosthenes' 310 take minutes.
-  // The hand and spothead are nearly closed: their start maps squeeze most
-  // triangles to almost nothing, and the refinement's Newton steps
-  // un-squeeze them and converge (L-BFGS preconditioned by a map-weighted
-  // Laplacian stopped at the 500 cap with 0.33 and 0.40 of the baseline's
-  // error; the hand ended at 0.97 of it with the fixed Laplacian); spothead
-  // owes part of its share to the stretch-reweighted Tutte start.
-  // The errors measure the images of two directions, not the angle between
-  // them: a triangle sheared nearly flat meets both lengths, and with the
-  // refinement's barrier at a tenth of the wanted area 35 % of the cube's
-  // pattern area, 52 % of the hand's and 21 % of spothead's ended below a
-  // tenth of it (smallest ratios 0.085, 0.047, 0.058). A pattern must cover
-  // what it is cut for: under 1 % of the area may end there, and no triangle
-  // below 0.05.
-  struct Case {
-    const char* name;
-    bool converges;
-    double share;  // ours is under this share of the baseline's combined error
-  };
-  for (const Case& c : {Case{"open/human_woman_torso_front_patch.obj", true, 0.5}, Case{"open/nefertiti_face.off", true, 0.5},
-                        Case{"open/hemisphere.obj", true, 0.5}, Case{"open/cube_no_bottom.obj", true, 0.5},
-                        Case{"open/hand_lowres.obj", true, 0.35}, Case{"open/spothead.obj", true, 0.45}}) {
-    const Mesh mesh = test::load(c.name);
-    Eigen::Vector3d extent = mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff();
-    Eigen::Index longest = 0;
-    extent.maxCoeff(&longest);
-    Flattener flattener(mesh);
-    FlattenOptions options;
-    options.su = 0.8;
-    options.directions.global = Eigen::Vector3d::Unit(longest);
-    const FlattenResult result = flattener.flatten(options);
-    const FlattenMetrics& ours = result.metrics;
-    const auto [squeezed, smallest] = squeezed_area(flattener, result);
-    options.method = FlattenMethod::UniformBaseline;
-    const FlattenMetrics base = flattener.flatten(options).metrics;
-    const double ours_combined = ours.compression_error_mean + ours.cross_error_mean;
-    const double base_combined = base.compression_error_mean + base.cross_error_mean;
-    std::printf("[flatten] %-40s ours %.4f + %.4f, %d it%s, %.1f %% of the area below a tenth (smallest %.3f) | baseline %.4f + %.4f\n",
-                c.name, ours.compression_error_mean, ours.cross_error_mean, ours.iterations,
-                ours.converged ? "" : " (not converged)", 100.0 * squeezed, smallest, base.compression_error_mean,
-                base.cross_error_mean);
-    INFO(c.name << ": ours " << ours_combined << " baseline " << base_combined);
-    CHECK(ours.flipped == 0);
-    CHECK(ours_combined < base_combined);
-    CHECK(ours.compression_error_mean < base.compression_error_mean);
-    if (c.converges) CHECK(ours.converged);
-    CHECK(ours_combined < c.share * base_combined);  // measured 0.17-0.40 of it; the hand 0.33, spothead 0.40
-    CHECK(squeezed < 0.01);
-    CHECK(smallest > 0.05);
+  for (const BaselineCase& c : {BaselineCase{"open/human_woman_torso_front_patch.obj", 0.5, 0.009},
+                                BaselineCase{"open/nefertiti_face.off", 0.5, 0.015},
+                                BaselineCase{"open/hemisphere.obj", 0.5, 0.024},
+                                BaselineCase{"open/cube_no_bottom.obj", 0.5, 0.085}}) {
+    check_beats_baseline(c);
+  }
+}
+
+// Apart from the others: the slowest pair, so that the test runner can run them beside the rest.
+TEST_CASE("flatten: ours beats the uniform baseline on the nearly closed hand and spothead", "[flatten]") {
+  for (const BaselineCase& c : {BaselineCase{"open/hand_lowres.obj", 0.35, 0.195}, BaselineCase{"open/spothead.obj", 0.4, 0.19}}) {
+    check_beats_baseline(c);
   }
 }
 
@@ -209,10 +231,13 @@ TEST_CASE("flatten: the stretch refinement lowers the energy at every step and c
       refine_stretch(patch, charts, targets, arap.pinned(), ArapFlattenSettings{}, 0, {start}, uv);
   REQUIRE(report.start == 0);
   CHECK(report.converged);
-  // Newton: one factorization per step (and one for the step that finds
-  // nothing left to gain); preconditioned L-BFGS took about 240 steps here.
-  CHECK(report.iterations < 80);  // measured 55
-  CHECK(report.factorizations == report.iterations + 1);
+  // Newton: one factorization per step (and, per stage of the smoothing,
+  // at most one for the step that finds nothing left to gain);
+  // preconditioned L-BFGS took about 240 steps here.
+  CHECK(report.iterations < 80);  // measured 39, 16 of them with rho smoothed more
+  CHECK(report.factorizations >= report.iterations);
+  CHECK(report.factorizations <= report.iterations + 3);
+  CHECK(report.coarse_iterations < report.iterations);
   REQUIRE(report.energy_history.size() > 10);
   for (std::size_t k = 1; k < report.energy_history.size(); ++k) {
     INFO("step " << k);

@@ -165,19 +165,21 @@ double fold_free_step_fraction(const Triangles& F, const TriangleCharts& charts,
 
 struct StretchRefineReport {
   int start = -1;          // which of the starts it ran from; -1: none is fold-free (uv unchanged)
-  int iterations = 0;
+  int iterations = 0;      // all stages'
+  int coarse_iterations = 0;  // of them, the stages with rho smoothed more (flatten_refine.cpp)
   double energy = 0.0;     // the refinement's energy at the end (about the mean errors)
   bool converged = false;  // Newton's predicted or the actual relative decrease fell below the tolerance
   bool stalled = false;    // the fold guard or the line search blocked every step
   int factorizations = 0;  // of Newton's system (one per step, more when one needed more regularization)
-  std::vector<double> energy_history;
+  std::vector<double> energy_history;  // the final stage's: its start, then after each iteration
 };
 
 // Writes to uv (#P by 2) the map that minimises the smoothed mean of
 // |along/su - 1| + |across/sv - 1| plus a small area term (the file's head
 // says exactly what), by projected Newton with a fold-free backtracking line
-// search, from the fold-free one of `starts` with the lowest energy:
-// monotone, and no triangle folds. `pinned`: one vertex per component, held
+// search, from the fold-free one of `starts` with the lowest energy, first
+// with the absolute values smoothed more (stages, flatten_refine.cpp):
+// monotone within each stage, and no triangle folds. `pinned`: one vertex per component, held
 // (the energy does not see where a piece lies). Runs at most settings.max_iterations -
 // iterations_before iterations; progress is called with the iteration counted
 // from iterations_before.
