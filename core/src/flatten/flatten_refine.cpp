@@ -21,7 +21,7 @@
 // positive semidefinite by clamping its eigenvalues at 0, the sum (plus a
 // small multiple of the chart Laplacian, which removes the rotation the
 // energy does not see) is factored, and a backtracking line search inside
-// the fold guard's step bound takes the step: the energy falls at every
+// the fold guard's step bound takes the step: the energy (of the stage) falls at every
 // iteration and no triangle ever folds. Near the optimum a few conjugate
 // gradient iterations on the Hessian as it is correct each step for the
 // clamped curvature (truncated_newton_direction), and a full step that
