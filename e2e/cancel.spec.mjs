@@ -103,6 +103,8 @@ test('api.cancel() stops a long commit at once; the next edit, undo and a replay
     // The solver holds the state on screen again: a new edit applies on it...
     await api.deform({ method: 'anarap', direction: { type: 'global', vector: [1, 0, 0] }, transform: { scale: [1.15, 1] } });
     const edited = Array.from(api.positions());
+    // ...and the notice that the cancel kept the state goes with that state.
+    const noticeAfterEdit = !window.document.querySelector('[data-testid="notice"]').hidden;
     let moved = 0;
     for (let i = 0; i < kept.length; i++) moved = Math.max(moved, Math.abs(edited[i] - kept[i]));
     // ...undo brings back exactly the state the cancel kept...
@@ -116,10 +118,11 @@ test('api.cancel() stops a long commit at once; the next edit, undo and a replay
     const before = Array.from(api.positions());
     await api.open(document);
     const replayed = Array.from(api.positions()).every((x, i) => Object.is(x, before[i]));
-    return { idle, moved, undone, back, replayed, ops: api.document().ops.length, height: window.__height, events: window.__events };
+    return { idle, moved, noticeAfterEdit, undone, back, replayed, ops: api.document().ops.length, height: window.__height, events: window.__events };
   });
   expect(after.idle).toBe(false);
   expect(after.moved).toBeGreaterThan(0.01 * after.height);
+  expect(after.noticeAfterEdit).toBe(false);
   expect(after.undone).toBe(true);
   expect(after.back).toBe(true);
   expect(after.replayed).toBe(true);

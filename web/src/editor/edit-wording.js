@@ -31,7 +31,7 @@ export function reporter(emit) {
     // A cancel is the user's own doing, not a failure: a notice says so,
     // without the context's "failed".
     const message = context && code !== 'cancelled' ? `${context}: ${detail}` : detail;
-    if (code === 'cancelled') emit('notice', { message });
+    if (code === 'cancelled') emit('notice', { message, source: 'cancel' });
     else emit('error', { code, message });
     const wrapped = Object.assign(new Error(message), { code, cause: error });
     reported.add(wrapped);

@@ -18,8 +18,10 @@
 //   'error'      {code, message}: every refusal and failure, in plain words
 //                that say what to do (report() is the one way in)
 //   'loading'    {name}: a load started; old messages no longer apply
-//   'notice'     {message, details}: what a load repaired or found (plain
-//                words; details: the full list, one sentence each)
+//   'notice'     {message, details, source}: what a load repaired or found
+//                (source 'load'; plain words; details: the full list, one
+//                sentence each), or that the user stopped a solve (source
+//                'cancel', until something committed changes again)
 //   'warning'    {message, source}: a committed edit folded triangles over
 //                (source 'edit'), or the last flattening is not usable as
 //                one piece (source 'flatten'); a live preview's folds are
@@ -173,7 +175,7 @@ export class Editor extends EventEmitter {
     this.ops.adoptMesh(payload, name);
     this.emit('mesh', this.document);
     const notice = describeProblems(info);
-    if (notice) this.emit('notice', notice);
+    if (notice) this.emit('notice', { ...notice, source: 'load' });
     this.emit('change', { reason: 'load' });
     // The load's progress ends here; the background factorization shows its
     // own once it runs long (else the bar kept the load's last words, e.g.

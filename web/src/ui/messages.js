@@ -1,7 +1,7 @@
 // The error, notice and warning banners over the viewport. Errors say in
 // plain words what went wrong and what to do (a load error also says the
 // current mesh was kept); notices say what a load repaired or found, with the
-// full list on demand; warnings say that the last edit (or the live preview)
+// full list on demand, or that the user stopped a solve; warnings say that the last edit (or the live preview)
 // folded triangles over, until the positions change again, or that the last
 // flattening is not usable as one piece, until the pattern changes. All can be
 // dismissed. On a narrow screen a long one shows three lines and a More
@@ -47,7 +47,13 @@ export function installMessages(root, { editor, lifetime }) {
     warning.hidden = true;
   };
   editor.on('error', ({ message }) => show(error, message.replace(/\.?\s*$/, '.')));
-  editor.on('notice', ({ message, details }) => show(notice, message, details));
+  editor.on('notice', ({ message, details, source }) => {
+    show(notice, message, details);
+    notice.dataset.source = source;
+  });
+  // "Cancelled: ... as they were" holds until a later edit, undo or
+  // flattening changes them; then it would speak of the wrong state.
+  const clearCancelNotice = () => notice.dataset.source === 'cancel' && (notice.hidden = true);
   // An edit's warning comes after its 'change'; undo, redo and the next edit clear it.
   // warning.dataset.source: 'edit', 'preview' or 'flatten', what put it there.
   const warn = (message, source) => {
@@ -57,7 +63,11 @@ export function installMessages(root, { editor, lifetime }) {
   const clearWarning = (source) => {
     if (warning.dataset.source === source) warning.hidden = true;
   };
-  editor.on('change', ({ reason }) => reason === 'positions' && (warning.hidden = true));
+  editor.on('change', ({ reason }) => {
+    if (reason !== 'positions') return;
+    warning.hidden = true;
+    clearCancelNotice();
+  });
   editor.on('warning', ({ message, source = 'edit' }) => warn(message, source));
   // The live preview warns while it folds; the commit's own warning follows its 'change'.
   editor.on('stats', ({ live, inverted }) => {
@@ -67,7 +77,10 @@ export function installMessages(root, { editor, lifetime }) {
   });
   editor.on('gesture', (active) => !active && clearWarning('preview'));
   // A new flattening (its own warning follows) or none: the last one's warning is moot.
-  editor.on('pattern', () => clearWarning('flatten'));
+  editor.on('pattern', (pattern) => {
+    clearWarning('flatten');
+    if (pattern) clearCancelNotice();
+  });
   // A new load makes the old messages moot, whether it succeeds (its notice
   // comes after) or fails (its error comes after).
   editor.on('loading', hideAll);
