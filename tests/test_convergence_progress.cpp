@@ -49,7 +49,7 @@ TEST_CASE("convergence progress: it never goes back, and a new stage starts its 
 
 TEST_CASE("convergence progress: a flattening that converges early fills most of its bar before it ends",
           "[progress][flatten]") {
-  // The hemisphere converges at about 75 of the 1,000 iterations allowed:
+  // The hemisphere converges at about 70 of the 1,000 iterations allowed:
   // counted against the cap the bar stood at 7 % when the pattern came (at
   // 16 % with the 500 cap of the time).
   Session session;
