@@ -14,6 +14,7 @@
 #include <optional>
 #include <utility>
 
+#include "anisoform/deform_request.h"
 #include "anisoform/direction_field.h"
 #include "anisoform/op.h"
 #include "cli_common.h"
@@ -334,8 +335,9 @@ void add_deform_options(CLI::App& deform, DeformArguments& args) {
       ->type_name("REGION");
   deform.add_option("--move", args.move, "Offset of the --handle vertices")->type_name("DX,DY,DZ");
   deform.add_option("--iterations", args.iterations,
-                    "AnARAP/ARAP iteration cap, >= 1 (default 50); with --rotations steps and a "
-                    "rotation, twist or shear, the number of steps")
+                    "AnARAP/ARAP iteration cap, >= 1 (default " +
+                        std::to_string(aniso::DeformRequest().max_iterations) +
+                        "); with --rotations steps and a rotation, twist or shear, the number of steps")
       ->type_name("N");
   deform.add_option("--tolerance", args.tolerance,
                     "Relative energy change that ends the iterations, >= 0 (default 1e-6)")

@@ -263,7 +263,9 @@ void add_flatten_options(CLI::App& command, FlattenArguments& args) {
   command.add_option("--mm-per-unit", args.mm_per_unit,
                      "Millimetres per model unit for SVG/DXF (default 1)")
       ->type_name("K");
-  command.add_option("--iterations", args.iterations, "Iteration cap of the ARAP iterations and the stretch refinement together, >= 1 (default 500)")
+  command.add_option("--iterations", args.iterations,
+                     "Iteration cap of the ARAP iterations and the stretch refinement together, >= 1 (default " +
+                         std::to_string(aniso::ArapFlattenSettings().max_iterations) + ")")
       ->type_name("N");
   command.add_option("--tolerance", args.tolerance,
                      "Relative energy change that ends the iterations, >= 0 (default 1e-8)")

@@ -12,6 +12,8 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include "anisoform/deform_request.h"
+#include "anisoform/flatten.h"
 #include "anisoform/mesh_io.h"
 #include "cli_runner.h"
 #include "test_support.h"
@@ -367,6 +369,12 @@ TEST_CASE("cli: --help succeeds with the usage on stdout", "[cli]") {
     CHECK(contains(run.out, "Usage"));
   }
   CHECK(contains(run_expecting({"deform", "--help"}, 0).out, "--thicken"));
+  // The defaults the help states are the core's (the flatten cap read 500
+  // after the core's became 1,000).
+  CHECK(contains(run_expecting({"deform", "--help"}, 0).out,
+                 "(default " + std::to_string(aniso::DeformRequest().max_iterations) + ")"));
+  CHECK(contains(run_expecting({"flatten", "--help"}, 0).out,
+                 "(default " + std::to_string(aniso::ArapFlattenSettings().max_iterations) + ")"));
 }
 
 TEST_CASE("cli: deform prints every contract key with its type", "[cli]") {

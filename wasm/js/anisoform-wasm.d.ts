@@ -247,7 +247,7 @@ export interface FlattenOptions {
   baseline?: 'uniform';
   /** 'mesh' (default): every triangle; 'selection': the triangles whose 3 vertices have weight > 0. */
   patch?: 'mesh' | 'selection';
-  /** Iteration cap of the ARAP iterations and the stretch refinement together (default 500). */
+  /** Iteration cap of the ARAP iterations and the stretch refinement together (default 1000). */
   maxIterations?: number;
   /** Relative energy change that ends the iterations (default 1e-8). */
   tolerance?: number;
