@@ -179,10 +179,10 @@ struct StretchRefineReport {
 // says exactly what), by projected Newton with a fold-free backtracking line
 // search, from the fold-free one of `starts` with the lowest energy, first
 // with the absolute values smoothed more (stages, flatten_refine.cpp):
-// monotone within each stage, and no triangle folds. `pinned`: one vertex per component, held
-// (the energy does not see where a piece lies). Runs at most settings.max_iterations -
-// iterations_before iterations; progress is called with the iteration counted
-// from iterations_before.
+// monotone within each stage, and no triangle folds. `pinned`: one vertex per
+// component, held (the energy does not see where a piece lies). Runs at most
+// settings.max_iterations - iterations_before iterations; progress is called
+// with the iteration counted from iterations_before.
 StretchRefineReport refine_stretch(const FlattenPatch& patch, const TriangleCharts& charts,
                                    const FlattenTargets& targets, const std::vector<int>& pinned,
                                    const ArapFlattenSettings& settings, int iterations_before,

@@ -21,11 +21,11 @@
 // positive semidefinite by clamping its eigenvalues at 0, the sum (plus a
 // small multiple of the chart Laplacian, which removes the rotation the
 // energy does not see) is factored, and a backtracking line search inside
-// the fold guard's step bound takes the step: the energy (of the stage) falls at every
-// iteration and no triangle ever folds. Near the optimum a few conjugate
-// gradient iterations on the Hessian as it is correct each step for the
-// clamped curvature (truncated_newton_direction), and a full step that
-// lowers the energy is tried longer. Why not a first-order method: the
+// the fold guard's step bound takes the step: the energy (of the stage)
+// falls at every iteration and no triangle ever folds. Near the optimum a
+// few conjugate gradient iterations on the Hessian as it is correct each
+// step for the clamped curvature (truncated_newton_direction), and a full
+// step that lowers the energy is tried longer. Why not a first-order method: the
 // smoothed kink has a curvature of 1/d = 100 where a triangle meets its
 // target and the barrier grows without bound near it, so the problem is
 // badly conditioned exactly where it ends. Preconditioned L-BFGS needed 971

@@ -1,10 +1,11 @@
 // The error, notice and warning banners over the viewport. Errors say in
 // plain words what went wrong and what to do (a load error also says the
 // current mesh was kept); notices say what a load repaired or found, with the
-// full list on demand, or that the user stopped a solve; warnings say that the last edit (or the live preview)
-// folded triangles over, until the positions change again, or that the last
-// flattening is not usable as one piece, until the pattern changes. All can be
-// dismissed. On a narrow screen a long one shows three lines and a More
+// full list on demand, or that the user stopped a solve, until the positions
+// or the pattern change; warnings say that the last edit (or the live
+// preview) folded triangles over, until the positions change again, or that
+// the last flattening is not usable as one piece, until the pattern changes.
+// All can be dismissed. On a narrow screen a long one shows three lines and a More
 // button (narrow-layout.css): the flatten warning's eight lines covered most
 // of a phone's 3D view.
 import { foldOverWarning } from '../editor/edit-wording.js';
@@ -51,18 +52,20 @@ export function installMessages(root, { editor, lifetime }) {
     show(notice, message, details);
     notice.dataset.source = source;
   });
+  // element.dataset.source: what put the message there (a notice: 'load' or
+  // 'cancel'; a warning: 'edit', 'preview' or 'flatten').
+  const hideFrom = (element, source) => {
+    if (element.dataset.source === source) element.hidden = true;
+  };
   // "Cancelled: ... as they were" holds until a later edit, undo or
   // flattening changes them; then it would speak of the wrong state.
-  const clearCancelNotice = () => notice.dataset.source === 'cancel' && (notice.hidden = true);
+  const clearCancelNotice = () => hideFrom(notice, 'cancel');
   // An edit's warning comes after its 'change'; undo, redo and the next edit clear it.
-  // warning.dataset.source: 'edit', 'preview' or 'flatten', what put it there.
   const warn = (message, source) => {
     show(warning, message);
     warning.dataset.source = source;
   };
-  const clearWarning = (source) => {
-    if (warning.dataset.source === source) warning.hidden = true;
-  };
+  const clearWarning = (source) => hideFrom(warning, source);
   editor.on('change', ({ reason }) => {
     if (reason !== 'positions') return;
     warning.hidden = true;
