@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstring>
 #include <string>
 #include <utility>
 
@@ -11,41 +12,89 @@ namespace aniso {
 
 namespace {
 
-// Rows of a supernode's block taken together in the sweeps: their sums are
-// independent, so the multiply-adds of different rows overlap instead of
-// waiting on one running sum.
-constexpr int kRowBlock = 4;
+// Rows of a supernode's block taken together in the sweeps: each value of
+// the right-hand side loaded serves them all.
+constexpr int kRowBlock = 2;
 // Columns copied together into the row-major block: a cache line of each
 // destination row per pass, each source column read in order.
 constexpr int kCopyTile = 8;
 
-// Forward: y[R[i]] -= B_i x for Rows rows B_i (w values each, consecutive).
+// Two doubles in one vector register (SSE2 natively, simd128 in WASM): the
+// sweeps' multiply-adds run on pairs of consecutive columns k, k+1 of a
+// supernode, so each instruction does two. GCC and clang both compile the
+// vector extension; loads and stores through memcpy are unaligned ones.
+using Pair = double __attribute__((vector_size(16)));
+
+inline Pair load_pair(const double* p) {
+  Pair v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+inline void store_pair(double* p, Pair v) { std::memcpy(p, &v, sizeof v); }
+
+// sum_k a[k] b[k] over k < w, with even and odd k summed apart (two lanes)
+// and added last: a fixed order, the same on every platform.
+inline double dot(const double* a, const double* b, int w) {
+  Pair acc = {0.0, 0.0};
+  int k = 0;
+  for (; k + 2 <= w; k += 2) acc += load_pair(a + k) * load_pair(b + k);
+  double sum = acc[0] + acc[1];
+  if (k < w) sum += a[k] * b[k];
+  return sum;
+}
+
+// Forward: y[R[i]] -= B_i x for Rows rows B_i (w values each, consecutive);
+// xt holds x by column (column c's w values at xt + c w).
 template <int K, int Rows>
-void subtract_rows(const double* b, int w, const double* x, const int* R, double* y) {
-  double sum[Rows][K] = {};
-  for (int k = 0; k < w; ++k) {
+void subtract_rows(const double* b, int w, const double* xt, const int* R, double* y) {
+  Pair acc[Rows][K] = {};
+  int k = 0;
+  for (; k + 2 <= w; k += 2) {
+    Pair xk[K];
+    for (int c = 0; c < K; ++c) xk[c] = load_pair(xt + c * w + k);
     for (int i = 0; i < Rows; ++i) {
-      for (int c = 0; c < K; ++c) sum[i][c] += b[i * w + k] * x[k * K + c];
+      const Pair bk = load_pair(b + i * w + k);
+      for (int c = 0; c < K; ++c) acc[i][c] += bk * xk[c];
     }
   }
   for (int i = 0; i < Rows; ++i) {
     double* yi = y + static_cast<std::ptrdiff_t>(R[i]) * K;
-    for (int c = 0; c < K; ++c) yi[c] -= sum[i][c];
+    for (int c = 0; c < K; ++c) {
+      double sum = acc[i][c][0] + acc[i][c][1];
+      if (k < w) sum += b[i * w + k] * xt[c * w + k];
+      yi[c] -= sum;
+    }
   }
 }
 
-// Backward: acc += sum_i B_i^T y[R[i]] over Rows rows.
+// Backward: acc += sum_i B_i^T y[R[i]] over Rows rows, acc by column (column
+// c's w sums at acc + c w), each sum taking the rows in order.
 template <int K, int Rows>
 void gather_rows(const double* b, int w, const int* R, const double* y, double* acc) {
   double yr[Rows][K];
+  Pair yp[Rows][K];
   for (int i = 0; i < Rows; ++i) {
-    for (int c = 0; c < K; ++c) yr[i][c] = y[static_cast<std::ptrdiff_t>(R[i]) * K + c];
-  }
-  for (int k = 0; k < w; ++k) {
     for (int c = 0; c < K; ++c) {
-      double a = acc[k * K + c];
+      yr[i][c] = y[static_cast<std::ptrdiff_t>(R[i]) * K + c];
+      yp[i][c] = Pair{yr[i][c], yr[i][c]};
+    }
+  }
+  int k = 0;
+  for (; k + 2 <= w; k += 2) {
+    Pair bk[Rows];
+    for (int i = 0; i < Rows; ++i) bk[i] = load_pair(b + i * w + k);
+    for (int c = 0; c < K; ++c) {
+      Pair a = load_pair(acc + c * w + k);
+      for (int i = 0; i < Rows; ++i) a += bk[i] * yp[i][c];
+      store_pair(acc + c * w + k, a);
+    }
+  }
+  if (k < w) {
+    for (int c = 0; c < K; ++c) {
+      double a = acc[c * w + k];
       for (int i = 0; i < Rows; ++i) a += b[i * w + k] * yr[i][c];
-      acc[k * K + c] = a;
+      acc[c * w + k] = a;
     }
   }
 }
@@ -90,6 +139,9 @@ void SupernodalFactor::store(int s, const int* R, int r, const Entry& entry) {
 template <int K>
 void SupernodalFactor::sweeps(const Eigen::VectorXd& inv_d, double* y) const {
   const int count = supernodes();
+  // A wide supernode's own columns, by column (column c at xt + c w), so
+  // that the pair loops read them contiguously; and the backward sums.
+  std::vector<double> xt(static_cast<std::size_t>(widest_) * K), acc(xt.size());
   // Forward: L z = y, supernode by supernode.
   for (int s = 0; s < count; ++s) {
     const int c0 = first_column_[s], w = first_column_[s + 1] - c0;
@@ -104,21 +156,32 @@ void SupernodalFactor::sweeps(const Eigen::VectorXd& inv_d, double* y) const {
       }
       continue;
     }
+    for (int k = 0; k < w; ++k) {
+      for (int c = 0; c < K; ++c) xt[c * w + k] = x[k * K + c];
+    }
+    // The triangle, column by column: column k's entries (rows k+1 .. w-1)
+    // are contiguous, and so are the values they update.
     const double* t = values_.data() + triangle_start_[s];
-    for (int k = 0; k + 1 < w; ++k) {
-      for (int m = k + 1; m < w; ++m, ++t) {
-        for (int c = 0; c < K; ++c) x[m * K + c] -= *t * x[k * K + c];
+    for (int k = 0; k + 1 < w; t += w - 1 - k, ++k) {
+      for (int c = 0; c < K; ++c) {
+        double* column = xt.data() + c * w;
+        const double xk = column[k];
+        for (int m = k + 1; m < w; ++m) column[m] -= t[m - k - 1] * xk;
       }
     }
+    for (int k = 0; k < w; ++k) {
+      for (int c = 0; c < K; ++c) x[k * K + c] = xt[c * w + k];
+    }
     int i = 0;
-    for (; i + kRowBlock <= r; i += kRowBlock, b += kRowBlock * w) subtract_rows<K, kRowBlock>(b, w, x, R + i, y);
-    for (; i < r; ++i, b += w) subtract_rows<K, 1>(b, w, x, R + i, y);
+    for (; i + kRowBlock <= r; i += kRowBlock, b += kRowBlock * w) {
+      subtract_rows<K, kRowBlock>(b, w, xt.data(), R + i, y);
+    }
+    for (; i < r; ++i, b += w) subtract_rows<K, 1>(b, w, xt.data(), R + i, y);
   }
   for (int j = 0; j < n_; ++j) {
     for (int c = 0; c < K; ++c) y[static_cast<std::ptrdiff_t>(j) * K + c] *= inv_d[j];
   }
   // Backward: L^T x = z, supernodes in reverse.
-  std::vector<double> acc(static_cast<std::size_t>(widest_) * K);
   for (int s = count - 1; s >= 0; --s) {
     const int c0 = first_column_[s], w = first_column_[s + 1] - c0;
     double* x = y + static_cast<std::ptrdiff_t>(c0) * K;
@@ -143,15 +206,16 @@ void SupernodalFactor::sweeps(const Eigen::VectorXd& inv_d, double* y) const {
       gather_rows<K, kRowBlock>(b, w, R + i, y, acc.data());
     }
     for (; i < r; ++i, b += w) gather_rows<K, 1>(b, w, R + i, y, acc.data());
-    for (int q = 0; q < w * K; ++q) x[q] -= acc[q];
+    for (int k = 0; k < w; ++k) {
+      for (int c = 0; c < K; ++c) xt[c * w + k] = x[k * K + c] - acc[c * w + k];
+    }
     const double* triangle = values_.data() + triangle_start_[s];
     for (int k = w - 2; k >= 0; --k) {
       const double* t = triangle + k * (w - 1) - k * (k - 1) / 2;
-      double sum[K] = {};
-      for (int m = k + 1; m < w; ++m) {
-        for (int c = 0; c < K; ++c) sum[c] += t[m - k - 1] * x[m * K + c];
-      }
-      for (int c = 0; c < K; ++c) x[k * K + c] -= sum[c];
+      for (int c = 0; c < K; ++c) xt[c * w + k] -= dot(t, xt.data() + c * w + k + 1, w - 1 - k);
+    }
+    for (int k = 0; k < w; ++k) {
+      for (int c = 0; c < K; ++c) x[k * K + c] = xt[c * w + k];
     }
   }
 }
