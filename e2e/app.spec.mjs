@@ -24,3 +24,20 @@ test('the default mesh is drawn and ready to edit', async ({ page }) => {
   await expect(page.getByTestId('error')).toBeHidden();
   expect(pageErrors).toEqual([]);
 });
+
+// An embedder can tell a settled edit from one cut off by its iteration cap.
+test('deform resolves whether its solve converged before the iteration cap', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const [capped, settled] = await page.evaluate(async () => {
+    const api = window.anisoform;
+    await api.select({ box: { min: [-1e9, 0, -1e9], max: [1e9, 1e9, 1e9] } });
+    const op = { method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.3, 1] } };
+    const cut = await api.deform({ ...op, maxIterations: 2 });
+    await api.undo();
+    return [cut, await api.deform(op)];
+  });
+  expect(capped).toMatchObject({ iterations: 2, converged: false });
+  expect(settled.converged).toBe(true);
+  expect(settled.iterations).toBeLessThan(50);
+  expect(pageErrors).toEqual([]);
+});

@@ -55,7 +55,8 @@ export type Direction = GlobalDirection | CurvatureDirection | PageScreenDirecti
  */
 export type DeformOp = Omit<SessionDeformOp, 'direction' | 'preview' | 'warmStart'> & { direction?: Direction };
 
-export type DeformResult = Pick<SessionDeformResult, 'iterations' | 'energy' | 'ms' | 'inverted'>;
+/** `converged`: false when the solve stopped at its iteration cap (`maxIterations`) before the tolerance. */
+export type DeformResult = Pick<SessionDeformResult, 'iterations' | 'energy' | 'ms' | 'inverted' | 'converged'>;
 
 export type FlattenResult = Pick<SessionFlattenResult,
   'uv' | 'metrics' | 'triangles' | 'compressionError' | 'crossError' | 'grainlines'>;

@@ -20,7 +20,9 @@ export class EditCommits {
     try {
       if (editor.document !== document) return null; // a new mesh arrived meanwhile
       const stats = await this.ops.commit(solverOp, label);
-      return stats && { iterations: stats.iterations, energy: stats.energy, ms: stats.ms, inverted: stats.inverted };
+      return stats && {
+        iterations: stats.iterations, energy: stats.energy, ms: stats.ms, inverted: stats.inverted, converged: stats.converged,
+      };
     } catch (error) {
       throw editor.report(error, `${label} failed`);
     }
