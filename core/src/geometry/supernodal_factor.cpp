@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <cstring>
 #include <string>
 #include <utility>
 
 #include "anisoform/error.h"
+#include "base/simd_pair.h"
 
 namespace aniso {
 
@@ -19,19 +19,8 @@ constexpr int kRowBlock = 2;
 // destination row per pass, each source column read in order.
 constexpr int kCopyTile = 8;
 
-// Two doubles in one vector register (SSE2 natively, simd128 in WASM): the
-// sweeps' multiply-adds run on pairs of consecutive columns k, k+1 of a
-// supernode, so each instruction does two. GCC and clang both compile the
-// vector extension; loads and stores through memcpy are unaligned ones.
-using Pair = double __attribute__((vector_size(16)));
-
-inline Pair load_pair(const double* p) {
-  Pair v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-
-inline void store_pair(double* p, Pair v) { std::memcpy(p, &v, sizeof v); }
+// The sweeps multiply and add two consecutive columns k, k+1 of a
+// supernode at a time (base/simd_pair.h).
 
 // sum_k a[k] b[k] over k < w, with even and odd k summed apart (two lanes)
 // and added last: a fixed order, the same on every platform.
