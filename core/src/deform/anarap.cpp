@@ -26,6 +26,91 @@ constexpr int kAndersonWindow = 5;
 // third steps were a sixth of an iteration (cyl50k).
 constexpr double kFitStep = 0.1;
 
+// The rotation fits' Newton step (fit_rotation below), written once for T =
+// double (one cell) and T = Pair (two cells, one per lane: first_steps).
+template <typename T>
+struct Quat {
+  T w, x, y, z;
+};
+
+template <typename T>
+using Mat3 = T[3][3];
+
+inline double root(double v) { return std::sqrt(v); }
+inline Pair root(Pair v) { return Pair{std::sqrt(v[0]), std::sqrt(v[1])}; }
+
+// q as a rotation matrix (Eigen's toRotationMatrix).
+template <typename T>
+void to_matrix(const Quat<T>& q, Mat3<T>& R) {
+  const T tx = q.x + q.x, ty = q.y + q.y, tz = q.z + q.z;
+  const T twx = tx * q.w, twy = ty * q.w, twz = tz * q.w, txx = tx * q.x, txy = ty * q.x, txz = tz * q.x,
+          tyy = ty * q.y, tyz = tz * q.y, tzz = tz * q.z;
+  R[0][0] = 1.0 - (tyy + tzz), R[0][1] = txy - twz, R[0][2] = txz + twy;
+  R[1][0] = txy + twz, R[1][1] = 1.0 - (txx + tzz), R[1][2] = tyz - twx;
+  R[2][0] = txz - twy, R[2][1] = tyz + twx, R[2][2] = 1.0 - (txx + tyy);
+}
+
+// sum of A .* B, f(A) when B = S.
+template <typename T>
+T inner(const Mat3<T>& A, const Mat3<T>& B) {
+  T sum = A[0][0] * B[0][0];
+  for (int k = 1; k < 9; ++k) sum += A[k / 3][k % 3] * B[k / 3][k % 3];
+  return sum;
+}
+
+// The Newton system at R: M = R^T S, its gradient g, tr M, and
+// H = tr(M) I - sym(M) by its adjugate (H^-1 g = adj_g / det), with the
+// leading minors h00, minor2, det for Sylvester's criterion.
+template <typename T>
+struct NewtonSystem {
+  T g[3], trace, h00, minor2, det, adj_g[3];
+};
+
+template <typename T>
+NewtonSystem<T> newton_system(const Mat3<T>& R, const Mat3<T>& S) {
+  Mat3<T> M;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) M[i][j] = R[0][i] * S[0][j] + R[1][i] * S[1][j] + R[2][i] * S[2][j];
+  }
+  NewtonSystem<T> sys;
+  sys.g[0] = M[2][1] - M[1][2], sys.g[1] = M[0][2] - M[2][0], sys.g[2] = M[1][0] - M[0][1];
+  sys.trace = M[0][0] + M[1][1] + M[2][2];
+  const T h00 = sys.trace - M[0][0], h11 = sys.trace - M[1][1], h22 = sys.trace - M[2][2];
+  const T h01 = -0.5 * (M[0][1] + M[1][0]), h02 = -0.5 * (M[0][2] + M[2][0]), h12 = -0.5 * (M[1][2] + M[2][1]);
+  const T c00 = h11 * h22 - h12 * h12, c01 = h02 * h12 - h01 * h22, c02 = h01 * h12 - h02 * h11;
+  const T c11 = h00 * h22 - h02 * h02, c12 = h01 * h02 - h00 * h12;
+  sys.h00 = h00;
+  sys.minor2 = h00 * h11 - h01 * h01;
+  sys.det = h00 * c00 + h01 * c01 + h02 * c02;
+  const T* g = sys.g;
+  sys.adj_g[0] = c00 * g[0] + c01 * g[1] + c02 * g[2];
+  sys.adj_g[1] = c01 * g[0] + c11 * g[1] + c12 * g[2];
+  sys.adj_g[2] = c02 * g[0] + c12 * g[1] + sys.minor2 * g[2];
+  return sys;
+}
+
+// q exp([d]x) to first order, normalized: q (1, d/2) / |q (1, d/2)|. The
+// angle comes out as 2 atan(|d| / 2) = |d| - |d|^3 / 12 + ..., exact enough
+// for a Newton step (which shrinks quadratically) and free of trigonometry,
+// which would cost more than the rest of the step.
+template <typename T>
+Quat<T> turned(const Quat<T>& q, const T d[3]) {
+  const T bx = 0.5 * d[0], by = 0.5 * d[1], bz = 0.5 * d[2];
+  Quat<T> r{q.w - q.x * bx - q.y * by - q.z * bz, q.w * bx + q.x + q.y * bz - q.z * by,
+            q.w * by + q.y + q.z * bx - q.x * bz, q.w * bz + q.z + q.x * by - q.y * bx};
+  const T inverse_norm = 1.0 / root(r.w * r.w + r.x * r.x + r.y * r.y + r.z * r.z);
+  r.w *= inverse_norm, r.x *= inverse_norm, r.y *= inverse_norm, r.z *= inverse_norm;
+  return r;
+}
+
+Eigen::Matrix3d as_matrix(const Mat3<double>& A) {
+  Eigen::Matrix3d m;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) m(i, j) = A[i][j];
+  }
+  return m;
+}
+
 // Rotation maximizing f(R) = tr(R^T S), warm-started from q; returns R (q as
 // a matrix). Each step perturbs on the right, R = R0 exp([d]x), with M = R0^T S:
 //   f = tr M + g.d - 1/2 d^T H d + O(|d|^3),
@@ -37,56 +122,44 @@ constexpr double kFitStep = 0.1;
 // stops after a step shorter than kFitStep that raised f, so that f never
 // falls: the local step never raises the energy. The rotation stays exactly
 // orthonormal (a unit quaternion) whatever S is: no SVD, no reflection.
-Eigen::Matrix3d fit_rotation(const Eigen::Matrix3d& S, Eigen::Quaterniond& q) {
-  Eigen::Matrix3d R = q.toRotationMatrix();
-  const double scale = S.cwiseAbs().sum();
-  if (!(scale > 0.0)) return R;
-  for (int it = 0; it < 24; ++it) {
-    const Eigen::Matrix3d M = R.transpose() * S;
-    const Eigen::Vector3d g(M(2, 1) - M(1, 2), M(0, 2) - M(2, 0), M(1, 0) - M(0, 1));
-    const double trace = M.trace();
-    // H = tr(M) I - sym(M), symmetric: solved by its adjugate, with
-    // Sylvester's criterion (leading minors positive) for definiteness.
-    const double h00 = trace - M(0, 0), h11 = trace - M(1, 1), h22 = trace - M(2, 2);
-    const double h01 = -0.5 * (M(0, 1) + M(1, 0)), h02 = -0.5 * (M(0, 2) + M(2, 0)),
-                 h12 = -0.5 * (M(1, 2) + M(2, 1));
-    const double c00 = h11 * h22 - h12 * h12, c01 = h02 * h12 - h01 * h22, c02 = h01 * h12 - h02 * h11;
-    const double det = h00 * c00 + h01 * c01 + h02 * c02;
-    const double minor2 = h00 * h11 - h01 * h01;
-    const double tiny = 1e-12 * scale;
-    Eigen::Vector3d d;
-    if (h00 > tiny && minor2 > tiny * tiny && det > tiny * tiny * tiny) {
-      const double c11 = h00 * h22 - h02 * h02, c12 = h01 * h02 - h00 * h12;
-      d = Eigen::Vector3d(c00 * g.x() + c01 * g.y() + c02 * g.z(),  //
-                          c01 * g.x() + c11 * g.y() + c12 * g.z(),  //
-                          c02 * g.x() + c12 * g.y() + minor2 * g.z()) /
-          det;
-    } else {
-      d = g / (std::abs(trace) + tiny);
-    }
-    const double step = d.squaredNorm();
-    if (!std::isfinite(step)) return R;
-    // First-order exponential, normalized: the angle comes out as
-    // 2 atan(|d| / 2) = |d| - |d|^3 / 12 + ..., exact enough for a Newton step
-    // (which shrinks quadratically) and free of trigonometry, which would cost
-    // more than the rest of the step.
-    const Eigen::Quaterniond delta(1.0, 0.5 * d.x(), 0.5 * d.y(), 0.5 * d.z());
-    const Eigen::Quaterniond before = q;
-    q = (q * delta).normalized();
-    const Eigen::Matrix3d next = q.toRotationMatrix();
-    // f(next) = sum of next .* S, nine products: the check that keeps f rising.
-    const double raised = (next.array() * S.array()).sum();
-    if (step < kFitStep * kFitStep) {
-      if (raised >= trace) return next;
-      // Converged, and f fell by round-off only: keep the rotation it had.
-      if (step < 1e-12) {
-        q = before;
-        return R;
-      }
-    }
-    R = next;
+Eigen::Matrix3d fit_rotation(const Eigen::Matrix3d& S_in, Eigen::Quaterniond& q) {
+  Mat3<double> S, R;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) S[i][j] = S_in(i, j);
   }
-  return R;
+  Quat<double> current{q.w(), q.x(), q.y(), q.z()};
+  to_matrix(current, R);
+  const double scale = S_in.cwiseAbs().sum();
+  if (!(scale > 0.0)) return as_matrix(R);
+  const double tiny = 1e-12 * scale;
+  for (int it = 0; it < 24; ++it) {
+    const NewtonSystem<double> sys = newton_system(R, S);
+    double d[3];
+    for (int k = 0; k < 3; ++k) {
+      d[k] = sys.h00 > tiny && sys.minor2 > tiny * tiny && sys.det > tiny * tiny * tiny
+                 ? sys.adj_g[k] / sys.det
+                 : sys.g[k] / (std::abs(sys.trace) + tiny);
+    }
+    const double step = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    if (!std::isfinite(step)) break;
+    const Quat<double> next_q = turned(current, d);
+    Mat3<double> next;
+    to_matrix(next_q, next);
+    // The check that keeps f rising.
+    const double raised = inner(next, S);
+    if (step < kFitStep * kFitStep) {
+      if (raised >= sys.trace) {
+        q = Eigen::Quaterniond(next_q.w, next_q.x, next_q.y, next_q.z);
+        return as_matrix(next);
+      }
+      // Converged, and f fell by round-off only: keep the rotation it had.
+      if (step < 1e-12) break;
+    }
+    current = next_q;
+    std::memcpy(R, next, sizeof R);
+  }
+  q = Eigen::Quaterniond(current.w, current.x, current.y, current.z);
+  return as_matrix(R);
 }
 
 // fit_rotation's first Newton step for two cells at once, one per lane:
@@ -97,53 +170,26 @@ Eigen::Matrix3d fit_rotation(const Eigen::Matrix3d& S, Eigen::Quaterniond& q) {
 // kFitStep, f raised. Otherwise its q is left as it was, for fit_rotation.
 void first_steps(const Eigen::Matrix3d* const S[2], Eigen::Quaterniond* const q[2], Eigen::Matrix3d* const out[2],
                  bool done[2]) {
-  const Pair w = {q[0]->w(), q[1]->w()}, x = {q[0]->x(), q[1]->x()}, y = {q[0]->y(), q[1]->y()},
-             z = {q[0]->z(), q[1]->z()};
-  // R = q as a matrix (Eigen's toRotationMatrix).
-  const auto rotation = [](Pair qw, Pair qx, Pair qy, Pair qz, Pair R[3][3]) {
-    const Pair tx = qx + qx, ty = qy + qy, tz = qz + qz;
-    const Pair twx = tx * qw, twy = ty * qw, twz = tz * qw, txx = tx * qx, txy = ty * qx, txz = tz * qx,
-               tyy = ty * qy, tyz = tz * qy, tzz = tz * qz;
-    R[0][0] = 1.0 - (tyy + tzz), R[0][1] = txy - twz, R[0][2] = txz + twy;
-    R[1][0] = txy + twz, R[1][1] = 1.0 - (txx + tzz), R[1][2] = tyz - twx;
-    R[2][0] = txz - twy, R[2][1] = tyz + twx, R[2][2] = 1.0 - (txx + tyy);
-  };
-  Pair Sm[3][3], R[3][3], M[3][3];
+  const Quat<Pair> current{{q[0]->w(), q[1]->w()}, {q[0]->x(), q[1]->x()}, {q[0]->y(), q[1]->y()},
+                           {q[0]->z(), q[1]->z()}};
+  Mat3<Pair> Sp, R, next;
   for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) Sm[i][j] = Pair{(*S[0])(i, j), (*S[1])(i, j)};
+    for (int j = 0; j < 3; ++j) Sp[i][j] = Pair{(*S[0])(i, j), (*S[1])(i, j)};
   }
-  rotation(w, x, y, z, R);
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) M[i][j] = R[0][i] * Sm[0][j] + R[1][i] * Sm[1][j] + R[2][i] * Sm[2][j];
-  }
-  const Pair gx = M[2][1] - M[1][2], gy = M[0][2] - M[2][0], gz = M[1][0] - M[0][1];
-  const Pair trace = M[0][0] + M[1][1] + M[2][2];
-  const Pair h00 = trace - M[0][0], h11 = trace - M[1][1], h22 = trace - M[2][2];
-  const Pair h01 = -0.5 * (M[0][1] + M[1][0]), h02 = -0.5 * (M[0][2] + M[2][0]), h12 = -0.5 * (M[1][2] + M[2][1]);
-  const Pair c00 = h11 * h22 - h12 * h12, c01 = h02 * h12 - h01 * h22, c02 = h01 * h12 - h02 * h11;
-  const Pair det = h00 * c00 + h01 * c01 + h02 * c02;
-  const Pair minor2 = h00 * h11 - h01 * h01;
-  const Pair c11 = h00 * h22 - h02 * h02, c12 = h01 * h02 - h00 * h12;
-  const Pair dx = (c00 * gx + c01 * gy + c02 * gz) / det, dy = (c01 * gx + c11 * gy + c12 * gz) / det,
-             dz = (c02 * gx + c12 * gy + minor2 * gz) / det;
-  const Pair step = dx * dx + dy * dy + dz * dz;
-  // q * (1, d/2), normalized (Eigen's quaternion product).
-  const Pair bx = 0.5 * dx, by = 0.5 * dy, bz = 0.5 * dz;
-  Pair nw = w - x * bx - y * by - z * bz, nx = w * bx + x + y * bz - z * by, ny = w * by + y + z * bx - x * bz,
-       nz = w * bz + z + x * by - y * bx;
-  const Pair norm2 = nw * nw + nx * nx + ny * ny + nz * nz;
-  const Pair inverse_norm = 1.0 / Pair{std::sqrt(norm2[0]), std::sqrt(norm2[1])};
-  nw *= inverse_norm, nx *= inverse_norm, ny *= inverse_norm, nz *= inverse_norm;
-  Pair next[3][3];
-  rotation(nw, nx, ny, nz, next);
-  Pair raised = next[0][0] * Sm[0][0];
-  for (int k = 1; k < 9; ++k) raised += next[k / 3][k % 3] * Sm[k / 3][k % 3];
+  to_matrix(current, R);
+  const NewtonSystem<Pair> sys = newton_system(R, Sp);
+  const Pair d[3] = {sys.adj_g[0] / sys.det, sys.adj_g[1] / sys.det, sys.adj_g[2] / sys.det};
+  const Pair step = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+  const Quat<Pair> next_q = turned(current, d);
+  to_matrix(next_q, next);
+  const Pair raised = inner(next, Sp);
   for (int lane = 0; lane < 2; ++lane) {
     const double tiny = 1e-12 * S[lane]->cwiseAbs().sum();
-    done[lane] = h00[lane] > tiny && minor2[lane] > tiny * tiny && det[lane] > tiny * tiny * tiny &&
-                 step[lane] < kFitStep * kFitStep && raised[lane] >= trace[lane] && tiny > 0.0;
+    done[lane] = tiny > 0.0 && sys.h00[lane] > tiny && sys.minor2[lane] > tiny * tiny &&
+                 sys.det[lane] > tiny * tiny * tiny && step[lane] < kFitStep * kFitStep &&
+                 raised[lane] >= sys.trace[lane];
     if (!done[lane]) continue;
-    *q[lane] = Eigen::Quaterniond(nw[lane], nx[lane], ny[lane], nz[lane]);
+    *q[lane] = Eigen::Quaterniond(next_q.w[lane], next_q.x[lane], next_q.y[lane], next_q.z[lane]);
     for (int i = 0; i < 3; ++i) {
       for (int j = 0; j < 3; ++j) (*out[lane])(i, j) = next[i][j][lane];
     }
