@@ -8,9 +8,12 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 #include <deque>
 #include <utility>
 #include <vector>
+
+#include "base/vector_kernels.h"
 
 namespace aniso {
 
@@ -27,7 +30,14 @@ class LbfgsMemory {
     curvatures_.clear();
   }
 
-  static double dot(const Matrix& a, const Matrix& b) { return (a.array() * b.array()).sum(); }
+  static double dot(const Matrix& a, const Matrix& b) {
+    return aniso::dot(a.data(), b.data(), static_cast<std::size_t>(a.size()));
+  }
+
+  // a . (b - c), without a temporary for b - c.
+  static double dot_difference(const Matrix& a, const Matrix& b, const Matrix& c) {
+    return aniso::dot_difference(a.data(), b.data(), c.data(), static_cast<std::size_t>(a.size()));
+  }
 
   // Keeps the pair if its curvature s.y = `sy` is clearly positive (only such
   // pairs keep H positive definite), dropping the oldest when full. Returns
@@ -46,19 +56,26 @@ class LbfgsMemory {
   }
 
   // direction = -H gradient. `apply_h0(q, r)` sets r = H0 q (r arrives as
-  // the caller's scratch matrix of q's shape).
+  // the caller's scratch matrix of q's shape). Each update of the direction
+  // also takes the dot product the next step of its loop needs (axpy_dot).
   template <class ApplyH0>
   void direction(const Matrix& gradient, Matrix& direction, Matrix& scratch, ApplyH0&& apply_h0) {
+    const int m = static_cast<int>(steps_.size());
+    const auto n = static_cast<std::size_t>(gradient.size());
     direction = -gradient;
     coefficients_.resize(steps_.size());
-    for (int k = static_cast<int>(steps_.size()) - 1; k >= 0; --k) {
-      coefficients_[k] = curvatures_[k] * dot(steps_[k], direction);
-      direction -= coefficients_[k] * changes_[k];
+    double projection = m > 0 ? dot(steps_[m - 1], direction) : 0.0;  // s_k . q
+    for (int k = m - 1; k >= 0; --k) {
+      coefficients_[k] = curvatures_[k] * projection;
+      projection = axpy_dot(direction.data(), -coefficients_[k], changes_[k].data(),
+                            k > 0 ? steps_[k - 1].data() : nullptr, n);
     }
     apply_h0(direction, scratch);
     direction.swap(scratch);
-    for (std::size_t k = 0; k < steps_.size(); ++k) {
-      direction += (coefficients_[k] - curvatures_[k] * dot(changes_[k], direction)) * steps_[k];
+    double along = m > 0 ? dot(changes_[0], direction) : 0.0;  // y_k . r
+    for (int k = 0; k < m; ++k) {
+      along = axpy_dot(direction.data(), coefficients_[k] - curvatures_[k] * along, steps_[k].data(),
+                       k + 1 < m ? changes_[k + 1].data() : nullptr, n);
     }
   }
 

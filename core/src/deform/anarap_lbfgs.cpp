@@ -117,7 +117,7 @@ int AnArapSolver::run_lbfgs(const LaplacianSolver& solver, Positions& V, int max
     energy_gradient(trial, pinned, next_b, next_g);
     Positions s = trial - V, y = next_g - g;
     const double sy = dot(s, y);
-    const double s_L_s = sy + (s.array() * (next_b.array() - b.array())).sum();  // L s = y + (b' - b) on the free rows
+    const double s_L_s = sy + LbfgsMemory<Positions>::dot_difference(s, next_b, b);  // L s = y + (b' - b) on the free rows
     if (memory.push(std::move(s), std::move(y), sy)) scale = std::clamp(s_L_s / sy, 1.0, kMaxScale);
     V.swap(trial);
     g.swap(next_g);

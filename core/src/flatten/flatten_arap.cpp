@@ -272,7 +272,7 @@ struct ArapFlattening::Impl {
       Eigen::MatrixXd s = trial - uv, y = next_gradient - gradient;
       const double sy = memory.dot(s, y);
       // L s = y + (b' - b): s is zero on the pinned rows, where y and b differ.
-      const double s_L_s = sy + memory.dot(s, next_rhs - rhs);
+      const double s_L_s = sy + memory.dot_difference(s, next_rhs, rhs);
       if (memory.push(std::move(s), std::move(y), sy)) scale = std::clamp(s_L_s / sy, 1.0, kMaxScale);
       uv = trial;
       rhs.swap(next_rhs);
