@@ -28,8 +28,12 @@ class LaplacianSolver;  // geometry/laplacian_solver.h (internal)
 
 class Deformer {
  public:
-  // Checks the mesh (Error(BadMesh) unless solvable) and computes the
-  // cotangent weights; factorizations happen lazily, once per pin set.
+  // Checks the mesh (Error(BadMesh) unless solvable). The rest is lazy: the
+  // unit copy, its cotangent weights and Laplacian at the first deform(),
+  // factorizations once per pin set. Why: a commit makes a new rest pose,
+  // and building them (a fifth of a second at 200k vertices in WASM) held
+  // up the commit's result; now the next edit, or the app's background
+  // preparation after the commit, builds them.
   explicit Deformer(Mesh rest);
   ~Deformer();
 
@@ -43,6 +47,7 @@ class Deformer {
 
  private:
   struct Workspace;
+  void prepare();  // unit_, order_, rank_, cotan_weights_, laplacian_ (once)
   const LaplacianSolver& solver_for(std::vector<int> pins, double* precompute_ms);
   DeformResult deform_unit(const DeformRequest& request);  // on unit_, in its units
 
@@ -61,6 +66,7 @@ class Deformer {
   double diagonal_ = 0.0;
   CotanWeights cotan_weights_;
   Eigen::SparseMatrix<double> laplacian_;
+  bool prepared_ = false;
   std::map<std::vector<int>, std::unique_ptr<LaplacianSolver>> solvers_;
   int factorizations_ = 0;
   std::unique_ptr<Workspace> workspace_;

@@ -236,23 +236,36 @@ Deformer::Deformer(Mesh rest) : rest_(std::move(rest)) {
   require_solvable(rest_);  // also bounds the coordinates (limits.h), so the diagonal is finite
   diagonal_ = bounding_box(rest_.V).diagonal();
   scale_ = unit_scale(diagonal_);
+}
+
+void Deformer::prepare() {
+  if (prepared_) return;
+  // Built in locals and moved in at the end: running out of memory here
+  // leaves the Deformer unprepared, not half prepared.
   const int n = rest_.num_vertices();
-  order_ = breadth_first_order(rest_.F, n);
-  rank_.resize(static_cast<std::size_t>(n));
-  for (int k = 0; k < n; ++k) rank_[order_[k]] = k;
-  unit_.V.resize(n, 3);
-  for (int k = 0; k < n; ++k) unit_.V.row(k) = rest_.V.row(order_[k]) / scale_;
+  std::vector<int> order = breadth_first_order(rest_.F, n);
+  std::vector<int> rank(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) rank[order[k]] = k;
+  Mesh unit;
+  unit.V.resize(n, 3);
+  for (int k = 0; k < n; ++k) unit.V.row(k) = rest_.V.row(order[k]) / scale_;
   // The faces in the order of their lowest (renumbered) vertex, so that the per-triangle
   // passes (targets, weights) read and write nearby vertices too.
-  const Triangles renamed = rest_.F.unaryExpr([this](int v) { return rank_[v]; });
+  const Triangles renamed = rest_.F.unaryExpr([&rank](int v) { return rank[v]; });
   std::vector<int> faces(static_cast<std::size_t>(renamed.rows()));
   std::iota(faces.begin(), faces.end(), 0);
   std::stable_sort(faces.begin(), faces.end(),
                    [&renamed](int a, int b) { return renamed.row(a).minCoeff() < renamed.row(b).minCoeff(); });
-  unit_.F.resize(renamed.rows(), 3);
-  for (std::size_t f = 0; f < faces.size(); ++f) unit_.F.row(static_cast<Eigen::Index>(f)) = renamed.row(faces[f]);
-  cotan_weights_ = cotangent_weights(unit_);
-  laplacian_ = cotangent_laplacian(unit_, cotan_weights_);
+  unit.F.resize(renamed.rows(), 3);
+  for (std::size_t f = 0; f < faces.size(); ++f) unit.F.row(static_cast<Eigen::Index>(f)) = renamed.row(faces[f]);
+  CotanWeights weights = cotangent_weights(unit);
+  Eigen::SparseMatrix<double> laplacian = cotangent_laplacian(unit, weights);
+  order_ = std::move(order);
+  rank_ = std::move(rank);
+  unit_ = std::move(unit);
+  cotan_weights_ = std::move(weights);
+  laplacian_ = std::move(laplacian);
+  prepared_ = true;
 }
 
 Deformer::~Deformer() = default;
@@ -272,6 +285,7 @@ const LaplacianSolver& Deformer::solver_for(std::vector<int> pins, double* preco
 }
 
 DeformResult Deformer::deform(const DeformRequest& request) {
+  prepare();
   const auto start = Clock::now();
   const int n = rest_.num_vertices();
   validate_request(request, n);
