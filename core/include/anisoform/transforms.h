@@ -71,11 +71,14 @@ struct Amounts {
 };
 
 // T for one element: frame columns (cu, cv, n), selection weight s in [0, 1],
-// rest position p, and the amounts to use for su / sv.
+// rest position p, and the amounts to use for su / sv. noexcept (fixed-size
+// arithmetic only): called once per triangle side, and in WASM a call that
+// may throw from a function with cleanups goes through a JS trampoline
+// (emscripten's exception handling), 1.2 million round trips at 200k vertices.
 Eigen::Matrix3d element_transform(const TransformSpec& spec, const Eigen::Vector3d& cu,
                                   const Eigen::Vector3d& cv, const Eigen::Vector3d& n,
                                   double weight, const Eigen::Vector3d& position,
-                                  const Amounts& amounts);
+                                  const Amounts& amounts) noexcept;
 
 // Where a twist starts when the user gives no origin: the axis line passes
 // through the selection's weighted centroid (weights = selection weights), so
@@ -89,8 +92,8 @@ Eigen::Vector3d default_twist_origin(const Positions& V, const Eigen::VectorXd& 
 
 // The twist's rotation Rot(a, s k (p - o).a) and the Jacobian of the twist map
 // at p (identity without a twist).
-Eigen::Matrix3d twist_rotation(const TransformSpec& spec, double weight, const Eigen::Vector3d& position);
-Eigen::Matrix3d twist_jacobian(const TransformSpec& spec, double weight, const Eigen::Vector3d& position);
+Eigen::Matrix3d twist_rotation(const TransformSpec& spec, double weight, const Eigen::Vector3d& position) noexcept;
+Eigen::Matrix3d twist_jacobian(const TransformSpec& spec, double weight, const Eigen::Vector3d& position) noexcept;
 
 // The symmetric positive part P of the polar decomposition T = Q P
 // (METHOD §5: the AnARAP local step fits rotations against P, not T).

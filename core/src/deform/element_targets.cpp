@@ -1,6 +1,7 @@
 #include "deform/element_targets.h"
 
 #include <map>
+#include <new>
 #include <optional>
 #include <utility>
 
@@ -260,7 +261,11 @@ ElementTargets side_targets(const Mesh& mesh, const SideFrames& frames, const Tr
       const Eigen::Vector3d midpoint = 0.5 * (mesh.V.row(a) + mesh.V.row(b)).transpose();
       Amounts amounts{spec.su, spec.sv};
       if (su.size() > 0) amounts = {0.5 * (su[a] + su[b]), 0.5 * (sv[a] + sv[b])};
-      out.T[3 * static_cast<std::size_t>(t) + k] = element_transform(spec, u, v, normal, w, midpoint, amounts);
+      // Made in place (the prvalue initializes the element): assigned, the
+      // result went through a temporary whose 72 bytes were then copied,
+      // and in WASM that copy is a call to memcpy, once per side.
+      ::new (static_cast<void*>(&out.T[3 * static_cast<std::size_t>(t) + k]))
+          Eigen::Matrix3d(element_transform(spec, u, v, normal, w, midpoint, amounts));
     }
   }
   return out;

@@ -83,7 +83,7 @@ void validate_twist(const TransformSpec& spec, double mesh_diagonal) {
 Eigen::Matrix3d element_transform(const TransformSpec& spec, const Eigen::Vector3d& cu,
                                   const Eigen::Vector3d& cv, const Eigen::Vector3d& n,
                                   double weight, const Eigen::Vector3d& position,
-                                  const Amounts& amounts) {
+                                  const Amounts& amounts) noexcept {
   const double s = weight;
   if (s <= 0.0) return Eigen::Matrix3d::Identity();
   Eigen::Matrix3d local = Eigen::Matrix3d::Zero();
@@ -111,14 +111,14 @@ Eigen::Matrix3d element_transform(const TransformSpec& spec, const Eigen::Vector
   return T;
 }
 
-Eigen::Matrix3d twist_rotation(const TransformSpec& spec, double weight, const Eigen::Vector3d& position) {
+Eigen::Matrix3d twist_rotation(const TransformSpec& spec, double weight, const Eigen::Vector3d& position) noexcept {
   if (!spec.twist || weight <= 0.0) return Eigen::Matrix3d::Identity();
   const Eigen::Vector3d axis = spec.twist_axis.normalized();
   const double rate = weight * spec.twist_degrees_per_unit * kDegToRad;
   return Eigen::AngleAxisd(rate * (position - spec.twist_origin).dot(axis), axis).toRotationMatrix();
 }
 
-Eigen::Matrix3d twist_jacobian(const TransformSpec& spec, double weight, const Eigen::Vector3d& position) {
+Eigen::Matrix3d twist_jacobian(const TransformSpec& spec, double weight, const Eigen::Vector3d& position) noexcept {
   if (!spec.twist || weight <= 0.0) return Eigen::Matrix3d::Identity();
   const Eigen::Vector3d axis = spec.twist_axis.normalized();
   const double rate = weight * spec.twist_degrees_per_unit * kDegToRad;

@@ -88,7 +88,7 @@ int count_inverted(const Mesh& rest, const Positions& deformed) {
 int InversionCounter::count(const Mesh& rest, const Positions& deformed) const {
   require_same_vertex_count(rest, deformed, "inverted count");
   const Positions& rest_normals = rest_normals_;
-  const Positions normals = triangle_normals(Mesh{deformed, rest.F});
+  const Positions normals = triangle_normals(deformed, rest.F);
   // Only a triangle whose normal turned past 90 deg in world space can be
   // folded; most edits have none, and then no rotation is fitted at all.
   std::vector<int> candidates;
@@ -96,7 +96,8 @@ int InversionCounter::count(const Mesh& rest, const Positions& deformed) const {
     if (has_area_[t] && rest_normals.row(t).dot(normals.row(t)) < 0.0) candidates.push_back(t);
   }
   if (candidates.empty()) return 0;
-  const VertexAdjacency adjacency = vertex_adjacency(rest.F, rest.num_vertices());
+  if (!adjacency_) adjacency_ = std::make_shared<const VertexAdjacency>(vertex_adjacency(rest.F, rest.num_vertices()));
+  const VertexAdjacency& adjacency = *adjacency_;
   std::vector<Eigen::Matrix3d> rotation(static_cast<std::size_t>(rest.num_vertices()));
   std::vector<char> fitted(rotation.size(), 0);
   int inverted = 0;

@@ -11,13 +11,15 @@
 
 namespace aniso {
 
-Positions triangle_normals(const Mesh& mesh) {
-  const int m = mesh.num_triangles();
+Positions triangle_normals(const Mesh& mesh) { return triangle_normals(mesh.V, mesh.F); }
+
+Positions triangle_normals(const Positions& V, const Triangles& F) {
+  const auto m = F.rows();
   Positions N(m, 3);
-  for (int t = 0; t < m; ++t) {
-    const Eigen::Vector3d a = mesh.V.row(mesh.F(t, 0));
-    const Eigen::Vector3d b = mesh.V.row(mesh.F(t, 1));
-    const Eigen::Vector3d c = mesh.V.row(mesh.F(t, 2));
+  for (Eigen::Index t = 0; t < m; ++t) {
+    const Eigen::Vector3d a = V.row(F(t, 0));
+    const Eigen::Vector3d b = V.row(F(t, 1));
+    const Eigen::Vector3d c = V.row(F(t, 2));
     const Eigen::Vector3d cr = (b - a).cross(c - a);
     const double len = cr.norm();
     N.row(t) = (len > 0.0 && std::isfinite(len)) ? Eigen::Vector3d(cr / len) : Eigen::Vector3d::Zero();

@@ -14,6 +14,8 @@ namespace aniso {
 
 // Unit triangle normals (#F by 3); zero rows for zero-area triangles.
 Positions triangle_normals(const Mesh& mesh);
+// The same for positions V with triangles F (no Mesh to copy them into).
+Positions triangle_normals(const Positions& V, const Triangles& F);
 
 // Area-weighted unit vertex normals (#V by 3); a vertex whose faces are all
 // degenerate (or that has none) takes the mean normal of its neighbours, else +z.
