@@ -7,6 +7,7 @@
 
 #include "anisoform/error.h"
 #include "base/simd_pair.h"
+#include "base/vector_kernels.h"
 
 namespace aniso {
 
@@ -21,17 +22,6 @@ constexpr int kCopyTile = 8;
 
 // The sweeps multiply and add two consecutive columns k, k+1 of a
 // supernode at a time (base/simd_pair.h).
-
-// sum_k a[k] b[k] over k < w, with even and odd k summed apart (two lanes)
-// and added last: a fixed order, the same on every platform.
-inline double dot(const double* a, const double* b, int w) {
-  Pair acc = {0.0, 0.0};
-  int k = 0;
-  for (; k + 2 <= w; k += 2) acc += load_pair(a + k) * load_pair(b + k);
-  double sum = acc[0] + acc[1];
-  if (k < w) sum += a[k] * b[k];
-  return sum;
-}
 
 // Forward: y[R[i]] -= B_i x for Rows rows B_i (w values each, consecutive);
 // xt holds x by column (column c's w values at xt + c w).
@@ -201,7 +191,7 @@ void SupernodalFactor::sweeps(const Eigen::VectorXd& inv_d, double* y) const {
     const double* triangle = values_.data() + triangle_start_[s];
     for (int k = w - 2; k >= 0; --k) {
       const double* t = triangle + k * (w - 1) - k * (k - 1) / 2;
-      for (int c = 0; c < K; ++c) xt[c * w + k] -= dot(t, xt.data() + c * w + k + 1, w - 1 - k);
+      for (int c = 0; c < K; ++c) xt[c * w + k] -= dot(t, xt.data() + c * w + k + 1, static_cast<std::size_t>(w - 1 - k));
     }
     for (int k = 0; k < w; ++k) {
       for (int c = 0; c < K; ++c) x[k * K + c] = xt[c * w + k];
