@@ -267,8 +267,9 @@ AnArapSolver::AnArapSolver(const Mesh& rest, const CotanWeights& weights,
     for (std::size_t q = 0; q < neighbors_.size(); ++q) {
       if (sides_per_spoke[q] > 0) spoke_share_[q] = 1.0 / sides_per_spoke[q];
     }
+    // The identity's targets; the polar ones are made by set_targets,
+    // the first to need them.
     spoke_target_ = spoke_edge_;
-    spoke_polar_ = spoke_edge_;
   } else {
     side_edge_.resize(3 * static_cast<Eigen::Index>(m), 3);
     for (int t = 0; t < m; ++t) {
@@ -280,7 +281,6 @@ AnArapSolver::AnArapSolver(const Mesh& rest, const CotanWeights& weights,
       }
     }
     side_target_ = side_edge_;
-    side_polar_ = side_edge_;
   }
   energy_scale_ = 0.0;
   for (int i = 0; i < n_; ++i) energy_scale_ += std::abs(fan_size[i]);
@@ -300,7 +300,7 @@ AnArapSolver::AnArapSolver(const Mesh& rest, const CotanWeights& weights,
   }
 }
 
-void AnArapSolver::set_targets(const std::vector<Eigen::Matrix3d>& T) {
+void AnArapSolver::set_targets(const SideTargets& T) {
   // The polar parts, once per side; P of a mean is taken as the mean of the
   // P's (equal where the sides' maps are, which is everywhere but at creases).
   // Consecutive sides often carry the very same map (the identity all over
@@ -319,21 +319,26 @@ void AnArapSolver::set_targets(const std::vector<Eigen::Matrix3d>& T) {
     if ((last_P - Ts).cwiseAbs().maxCoeff() > 1e-12 * (1.0 + Ts.cwiseAbs().maxCoeff())) polar_differs_ = true;
     return last_P;
   };
+  Eigen::Matrix3d maps[3];
+  const int m = rest_.num_triangles();
   if (elements_ == ArapElements::Spokes) {
     // A spoke's map is the mean of its sides' maps: each side adds its share
     // of T e (a spoke on no side keeps the identity). In side order: the
-    // maps are read in order, the spoke rows written nearly so (gathering
-    // the maps per spoke read them at random, a third of a live preview's
-    // time at 26k vertices).
-    spoke_target_.setZero();
-    spoke_polar_.setZero();
-    for (std::size_t s = 0; s < T.size(); ++s) {
-      const Eigen::Matrix3d P = polar_of(T[s]);
-      for (int k = side_spoke_offsets_[s]; k < side_spoke_offsets_[s + 1]; ++k) {
-        const int q = side_spokes_[k];
-        const Eigen::Vector3d e = spoke_share_[q] * spoke_edge_.row(q).transpose();
-        spoke_target_.row(q) += (T[s] * e).transpose();
-        spoke_polar_.row(q) += (P * e).transpose();
+    // spoke rows are written nearly in order (gathering the maps per spoke
+    // read them at random, a third of a live preview's time at 26k vertices).
+    spoke_target_.setZero(spoke_edge_.rows(), 3);
+    spoke_polar_.setZero(spoke_edge_.rows(), 3);
+    for (int t = 0; t < m; ++t) {
+      T(t, maps);
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t s = 3 * static_cast<std::size_t>(t) + k;
+        const Eigen::Matrix3d P = polar_of(maps[k]);
+        for (int j = side_spoke_offsets_[s]; j < side_spoke_offsets_[s + 1]; ++j) {
+          const int q = side_spokes_[j];
+          const Eigen::Vector3d e = spoke_share_[q] * spoke_edge_.row(q).transpose();
+          spoke_target_.row(q) += (maps[k] * e).transpose();
+          spoke_polar_.row(q) += (P * e).transpose();
+        }
       }
     }
     for (std::size_t q = 0; q < spoke_share_.size(); ++q) {
@@ -342,12 +347,28 @@ void AnArapSolver::set_targets(const std::vector<Eigen::Matrix3d>& T) {
       spoke_polar_.row(q) = spoke_edge_.row(q);
     }
   } else {
-    for (int s = 0; s < 3 * rest_.num_triangles(); ++s) {
-      const Eigen::Vector3d e = side_edge_.row(s).transpose();
-      side_target_.row(s) = (T[s] * e).transpose();
-      side_polar_.row(s) = (polar_of(T[s]) * e).transpose();
+    side_polar_.resize(side_edge_.rows(), 3);
+    for (int t = 0; t < m; ++t) {
+      T(t, maps);
+      for (int k = 0; k < 3; ++k) {
+        const int s = 3 * t + k;
+        const Eigen::Vector3d e = side_edge_.row(s).transpose();
+        side_target_.row(s) = (maps[k] * e).transpose();
+        side_polar_.row(s) = (polar_of(maps[k]) * e).transpose();
+      }
     }
   }
+  update_target_energy();
+}
+
+void AnArapSolver::set_identity_targets() {
+  if (elements_ == ArapElements::Spokes) {
+    spoke_target_ = spoke_edge_;
+  } else {
+    side_target_ = side_edge_;
+  }
+  // The polar targets are not read while polar_differs_ is false.
+  polar_differs_ = false;
   update_target_energy();
 }
 

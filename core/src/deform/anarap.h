@@ -51,6 +51,7 @@
 #include "anisoform/laplacian.h"
 #include "geometry/laplacian_solver.h"
 #include "anisoform/mesh.h"
+#include "deform/element_targets.h"
 
 namespace aniso {
 
@@ -59,9 +60,12 @@ class AnArapSolver {
   AnArapSolver(const Mesh& rest, const CotanWeights& weights,
                  const Eigen::SparseMatrix<double>& laplacian, ArapElements elements);
 
-  // Per-side targets (3 #F, side_targets in element_targets.h). Keeps the
-  // current rotations (warm start).
-  void set_targets(const std::vector<Eigen::Matrix3d>& T);
+  // Per-side targets (SideTargets in element_targets.h: triangle t's three
+  // maps, for its sides 3t, 3t + 1, 3t + 2). Keeps the current rotations
+  // (warm start).
+  void set_targets(const SideTargets& T);
+  // Every side's map the identity (ARAP): the targets are the rest edges.
+  void set_identity_targets();
   // Scale-only targets (TransformSpec::scales_only, the same amounts on every
   // side) are affine in the amounts: a side of weight w in a frame (u, v, n)
   // maps e to e + w (su - 1) u (u.e) + w (sv - 1) v (v.e) (transforms.h; the

@@ -250,14 +250,15 @@ void Deformer::prepare() {
   unit.V.resize(n, 3);
   for (int k = 0; k < n; ++k) unit.V.row(k) = rest_.V.row(order[k]) / scale_;
   // The faces in the order of their lowest (renumbered) vertex, so that the per-triangle
-  // passes (targets, weights) read and write nearby vertices too.
+  // passes (targets, weights) read and write nearby vertices too. A counting sort on that
+  // vertex, stable: a comparison sort took 4 % of a 200k mesh's first-edit set-up in WASM.
   const Triangles renamed = rest_.F.unaryExpr([&rank](int v) { return rank[v]; });
-  std::vector<int> faces(static_cast<std::size_t>(renamed.rows()));
-  std::iota(faces.begin(), faces.end(), 0);
-  std::stable_sort(faces.begin(), faces.end(),
-                   [&renamed](int a, int b) { return renamed.row(a).minCoeff() < renamed.row(b).minCoeff(); });
-  unit.F.resize(renamed.rows(), 3);
-  for (std::size_t f = 0; f < faces.size(); ++f) unit.F.row(static_cast<Eigen::Index>(f)) = renamed.row(faces[f]);
+  const Eigen::Index m = renamed.rows();
+  std::vector<int> start(static_cast<std::size_t>(n) + 1, 0);
+  for (Eigen::Index f = 0; f < m; ++f) ++start[renamed.row(f).minCoeff() + 1];
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  unit.F.resize(m, 3);
+  for (Eigen::Index f = 0; f < m; ++f) unit.F.row(start[renamed.row(f).minCoeff()]++) = renamed.row(f);
   CotanWeights weights = cotangent_weights(unit);
   Eigen::SparseMatrix<double> laplacian = cotangent_laplacian(unit, weights);
   order_ = std::move(order);
@@ -399,8 +400,7 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
     }
     bool rotational = false;
     if (isotropic) {
-      iterations->set_targets(std::vector<Eigen::Matrix3d>(3 * static_cast<std::size_t>(unit_.num_triangles()),
-                                                           Eigen::Matrix3d::Identity()));
+      iterations->set_identity_targets();
     } else {
       if (!ws.frames_source || !same_frames_source(*ws.frames_source, request.direction)) {
         SideFrames built = side_frames(ws.targets, request.direction);
@@ -428,7 +428,7 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
         }
         iterations->set_scale_targets(request.transform.su, request.transform.sv);
       } else {
-        iterations->set_targets(side_targets(unit_, frames, request.transform, w).T);
+        iterations->set_targets(SideTargets(unit_, frames, request.transform, w));
       }
     }
     std::string key = std::string(method_name(request.method)) + ":" +

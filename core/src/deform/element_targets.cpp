@@ -243,32 +243,25 @@ SideFrames side_frames(TargetContext& context, const DirectionSource& source) {
   return out;
 }
 
-ElementTargets side_targets(const Mesh& mesh, const SideFrames& frames, const TransformSpec& spec,
-                            const Eigen::VectorXd& weights) {
-  const int m = mesh.num_triangles();
-  ElementTargets out;
-  out.filled = frames.frames.filled;
-  out.T.resize(3 * static_cast<std::size_t>(m));
-  const Eigen::Vector3d orientation = shear_orientation(mesh, spec, weights);
-  const Eigen::VectorXd& su = frames.su;
-  const Eigen::VectorXd& sv = frames.sv;
+SideTargets::SideTargets(const Mesh& rest, const SideFrames& frames, const TransformSpec& spec,
+                         const Eigen::VectorXd& weights)
+    : rest_(rest), frames_(frames), spec_(spec), weights_(weights),
+      orientation_(shear_orientation(rest, spec, weights)) {}
+
+void SideTargets::operator()(int t, Eigen::Matrix3d T[3]) const {
   Eigen::Vector3d u, v, normal;
-  for (int t = 0; t < m; ++t) {
-    oriented_frame(frames.frames, t, orientation, u, v, normal);
-    for (int k = 0; k < 3; ++k) {
-      const int a = mesh.F(t, (k + 1) % 3), b = mesh.F(t, (k + 2) % 3);
-      const double w = side_weight(mesh, weights, t, k);
-      const Eigen::Vector3d midpoint = 0.5 * (mesh.V.row(a) + mesh.V.row(b)).transpose();
-      Amounts amounts{spec.su, spec.sv};
-      if (su.size() > 0) amounts = {0.5 * (su[a] + su[b]), 0.5 * (sv[a] + sv[b])};
-      // Made in place (the prvalue initializes the element): assigned, the
-      // result went through a temporary whose 72 bytes were then copied,
-      // and in WASM that copy is a call to memcpy, once per side.
-      ::new (static_cast<void*>(&out.T[3 * static_cast<std::size_t>(t) + k]))
-          Eigen::Matrix3d(element_transform(spec, u, v, normal, w, midpoint, amounts));
-    }
+  oriented_frame(frames_.frames, t, orientation_, u, v, normal);
+  for (int k = 0; k < 3; ++k) {
+    const int a = rest_.F(t, (k + 1) % 3), b = rest_.F(t, (k + 2) % 3);
+    const double w = side_weight(rest_, weights_, t, k);
+    const Eigen::Vector3d midpoint = 0.5 * (rest_.V.row(a) + rest_.V.row(b)).transpose();
+    Amounts amounts{spec_.su, spec_.sv};
+    if (frames_.su.size() > 0) amounts = {0.5 * (frames_.su[a] + frames_.su[b]), 0.5 * (frames_.sv[a] + frames_.sv[b])};
+    // Made in place (the prvalue initializes the element): assigned, the
+    // result went through a temporary whose 72 bytes were then copied, and
+    // in WASM that copy is a call to memcpy, once per side.
+    ::new (static_cast<void*>(&T[k])) Eigen::Matrix3d(element_transform(spec_, u, v, normal, w, midpoint, amounts));
   }
-  return out;
 }
 
 Eigen::VectorXd side_weights(const Mesh& mesh, const Eigen::VectorXd& weights) {

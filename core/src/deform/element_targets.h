@@ -77,8 +77,22 @@ SideFrames side_frames(TargetContext& context, const DirectionSource& source);
 // mean of its sides' maps: an edge inside a flat part takes that part's map,
 // and the spokes of a vertex on a crease are each transformed by the faces
 // they lie on, not by one map of the vertex's averaged normal.
-ElementTargets side_targets(const Mesh& rest, const SideFrames& frames, const TransformSpec& spec,
-                            const Eigen::VectorXd& weights);
+// Made triangle by triangle for a caller that uses each map once
+// (AnArapSolver::set_targets): all 3 #F maps at once were 86 MB at 200k
+// vertices, written and read back on every edit.
+class SideTargets {
+ public:
+  SideTargets(const Mesh& rest, const SideFrames& frames, const TransformSpec& spec, const Eigen::VectorXd& weights);
+  // Triangle t's three maps: T[k] for its side opposite corner k.
+  void operator()(int t, Eigen::Matrix3d T[3]) const;
+
+ private:
+  const Mesh& rest_;
+  const SideFrames& frames_;
+  const TransformSpec& spec_;
+  const Eigen::VectorXd& weights_;
+  Eigen::Vector3d orientation_;
+};
 
 // A side's weight (side_targets): the mean of its two vertices' weights.
 // Side 3t + k is opposite corner k of triangle t.
