@@ -4,7 +4,7 @@
 //   E(v', R) = sum_i sum_{j in N(i)} w_ij || e'_ij - R_i T_ij e_ij ||^2
 //
 // T_ij, the target map of the spoke ij, is the mean of the maps of the
-// triangle sides the spoke lies on (side_targets, element_targets.h: each
+// triangle sides the spoke lies on (SideTargets, element_targets.h: each
 // triangle's own frame). METHOD §5 writes one T_i per fan, built on the vertex
 // normal; on a vertex of a crease (the spool's rims, where every vertex of its
 // flanges and core lies) that normal averages the faces' normals, the
@@ -132,7 +132,8 @@ class AnArapSolver {
   Positions spoke_edge_;
   // Spokes: the spokes each triangle side lies on (CSR over sides), 1 / the
   // number of sides per spoke (0: on none), and the target edges
-  // t_ij = T_ij e_ij and P_ij e_ij, T_ij the mean of its sides' maps.
+  // t_ij = T_ij e_ij and P_ij e_ij, T_ij the mean of its sides' maps (the
+  // P_ij e_ij made by set_targets, and read only while polar_differs_).
   std::vector<int> side_spoke_offsets_, side_spokes_;
   std::vector<double> spoke_share_;
   Positions spoke_target_, spoke_polar_;

@@ -94,7 +94,7 @@ class SideTargets {
   Eigen::Vector3d orientation_;
 };
 
-// A side's weight (side_targets): the mean of its two vertices' weights.
+// A side's weight (SideTargets): the mean of its two vertices' weights.
 // Side 3t + k is opposite corner k of triangle t.
 inline double side_weight(const Mesh& mesh, const Eigen::VectorXd& weights, int t, int k) {
   return 0.5 * (weights[mesh.F(t, (k + 1) % 3)] + weights[mesh.F(t, (k + 2) % 3)]);
