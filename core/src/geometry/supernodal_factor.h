@@ -4,8 +4,8 @@
 // A supernode is a run of consecutive columns c0..c0+w-1 whose patterns
 // below the run are one row set R: each column's first entry is the next
 // column, and it has one entry more than the next. Its values are a small
-// unit lower triangle and a dense r-by-w block (r = |R|), kept here row by
-// row. Why: the simplicial sweep reads a row index and updates one scattered
+// unit lower triangle and a dense r-by-w block (r = |R|), kept here by rows,
+// in groups of rows read together (supernodal_factor.cpp, block_offset). Why: the simplicial sweep reads a row index and updates one scattered
 // row of the right-hand side per nonzero; here a row of R costs one index and
 // one scattered update for all w columns, and the multiply-adds run over
 // contiguous values. An ARAP iteration is mostly these sweeps (on the 50k
@@ -53,7 +53,7 @@ class SupernodalFactor {
   std::vector<int> row_start_;       // its rows R: rows_[row_start_[s] .. row_start_[s+1]-1]
   std::vector<int> rows_;
   std::vector<int> triangle_start_;  // its triangle, column by column (column k: the w-1-k entries below k)
-  std::vector<int> block_start_;     // its r-by-w block, row by row
+  std::vector<int> block_start_;     // its r-by-w block, by groups of rows
   std::vector<double> values_;
 };
 
