@@ -60,7 +60,11 @@ void subtract_rows(const double* b, int w, const double* xt, const int* R, doubl
 }
 
 // Backward: acc += sum_i B_i^T y[R[i]] over a group of Rows rows, acc by
-// column (column c's w sums at acc + c w), each sum taking the rows in order.
+// column (column c's w sums at acc + c w). The group's values are read from
+// the last down, as the whole backward sweep reads the factor: one stream
+// of falling addresses. Read upwards within each small block, the hardware
+// prefetch lost it (200k cylinder, natively: 3 to 7.5 cycles per value on
+// blocks of up to 16 columns, against 1.2 to 3 now).
 template <int K, int Rows>
 void gather_rows(const double* b, int w, const int* R, const double* y, double* acc) {
   double yr[Rows][K];
@@ -71,21 +75,23 @@ void gather_rows(const double* b, int w, const int* R, const double* y, double* 
       yp[i][c] = Pair{yr[i][c], yr[i][c]};
     }
   }
-  int k = 0;
-  for (; k + 2 <= w; k += 2, b += 2 * Rows) {
+  const int paired = w & ~1;
+  if (paired < w) {
+    const double* last = b + static_cast<std::ptrdiff_t>(paired) * Rows;
+    for (int c = 0; c < K; ++c) {
+      double a = acc[c * w + paired];
+      for (int i = Rows - 1; i >= 0; --i) a += last[i] * yr[i][c];
+      acc[c * w + paired] = a;
+    }
+  }
+  for (int k = paired - 2; k >= 0; k -= 2) {
+    const double* values = b + static_cast<std::ptrdiff_t>(k) * Rows;
     Pair bk[Rows];
-    for (int i = 0; i < Rows; ++i) bk[i] = load_pair(b + 2 * i);
+    for (int i = Rows - 1; i >= 0; --i) bk[i] = load_pair(values + 2 * i);
     for (int c = 0; c < K; ++c) {
       Pair a = load_pair(acc + c * w + k);
       for (int i = 0; i < Rows; ++i) a += bk[i] * yp[i][c];
       store_pair(acc + c * w + k, a);
-    }
-  }
-  if (k < w) {
-    for (int c = 0; c < K; ++c) {
-      double a = acc[c * w + k];
-      for (int i = 0; i < Rows; ++i) a += b[i] * yr[i][c];
-      acc[c * w + k] = a;
     }
   }
 }
@@ -113,25 +119,27 @@ void subtract_column(const double* t, int n, int w, double* xk) {
 }
 
 // The triangle's column k, backward: x_c[k] -= t . x_c[k+1 .. k+n] for each
-// of the K columns, reading t once; two partial sums of pairs per column
-// (elements m mod 4), added at the end, then the tail.
+// of the K columns, reading t once, from its end down (as gather_rows); two
+// partial sums of pairs per column, added at the end.
 template <int K>
 void subtract_dots(const double* t, int n, int w, double* xk) {
   const double* below = xk + 1;
   Pair s0[K] = {}, s1[K] = {};
-  int m = 0;
-  for (; m + 4 <= n; m += 4) {
-    const Pair t0 = load_pair(t + m), t1 = load_pair(t + m + 2);
+  double tail[K] = {};
+  const int quads = n & ~3;
+  for (int j = n - 1; j >= quads; --j) {
+    for (int c = 0; c < K; ++c) tail[c] += t[j] * below[c * w + j];
+  }
+  for (int m = quads - 4; m >= 0; m -= 4) {
+    const Pair t1 = load_pair(t + m + 2), t0 = load_pair(t + m);
     for (int c = 0; c < K; ++c) {
-      s0[c] += t0 * load_pair(below + c * w + m);
       s1[c] += t1 * load_pair(below + c * w + m + 2);
+      s0[c] += t0 * load_pair(below + c * w + m);
     }
   }
   for (int c = 0; c < K; ++c) {
     const Pair sum = s0[c] + s1[c];
-    double total = sum[0] + sum[1];
-    for (int j = m; j < n; ++j) total += t[j] * below[c * w + j];
-    xk[c * w] -= total;
+    xk[c * w] -= (sum[0] + sum[1]) + tail[c];
   }
 }
 
@@ -216,7 +224,8 @@ void SupernodalFactor::sweeps(const Eigen::VectorXd& inv_d, double* y) const {
   for (int j = 0; j < n_; ++j) {
     for (int c = 0; c < K; ++c) y[static_cast<std::ptrdiff_t>(j) * K + c] *= inv_d[j];
   }
-  // Backward: L^T x = z, supernodes in reverse.
+  // Backward: L^T x = z, supernodes in reverse, each one's values read from
+  // its last down (gather_rows).
   for (int s = count - 1; s >= 0; --s) {
     const int c0 = first_column_[s], w = first_column_[s + 1] - c0;
     double* x = y + static_cast<std::ptrdiff_t>(c0) * K;
@@ -225,7 +234,7 @@ void SupernodalFactor::sweeps(const Eigen::VectorXd& inv_d, double* y) const {
     const double* b = values_.data() + block_start_[s];
     if (w == 1) {
       double sum[K] = {};
-      for (int i = 0; i < r; ++i) {
+      for (int i = r - 1; i >= 0; --i) {
         const double* yi = y + static_cast<std::ptrdiff_t>(R[i]) * K;
         for (int c = 0; c < K; ++c) sum[c] += b[i] * yi[c];
       }
@@ -236,11 +245,14 @@ void SupernodalFactor::sweeps(const Eigen::VectorXd& inv_d, double* y) const {
     // first; column k's entries follow the (w-1) + ... + (w-k) of the
     // columns before it.
     std::fill(acc.begin(), acc.begin() + w * K, 0.0);
-    int i = 0;
-    for (; i + kRowBlock <= r; i += kRowBlock, b += kRowBlock * w) {
-      gather_rows<K, kRowBlock>(b, w, R + i, y, acc.data());
+    // The rows after the last group first (they are stored last).
+    const int grouped = r - r % kRowBlock;
+    for (int i = r - 1; i >= grouped; --i) {
+      gather_rows<K, 1>(b + static_cast<std::ptrdiff_t>(i) * w, w, R + i, y, acc.data());
     }
-    for (; i < r; ++i, b += w) gather_rows<K, 1>(b, w, R + i, y, acc.data());
+    for (int i = grouped - kRowBlock; i >= 0; i -= kRowBlock) {
+      gather_rows<K, kRowBlock>(b + static_cast<std::ptrdiff_t>(i) * w, w, R + i, y, acc.data());
+    }
     for (int k = 0; k < w; ++k) {
       for (int c = 0; c < K; ++c) xt[c * w + k] = x[k * K + c] - acc[c * w + k];
     }
