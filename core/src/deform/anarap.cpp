@@ -444,6 +444,7 @@ void AnArapSolver::reset_rotations() {
 void AnArapSolver::covariance_spokes(const Positions& V, bool with_polar, Eigen::VectorXd& edge_energy) {
   for (int i = 0; i < n_; ++i) {
     Eigen::Matrix3d full = Eigen::Matrix3d::Zero(), polar = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d pull = Eigen::Vector3d::Zero();  // sum w (v_j - v_i) = -(L V)_i
     double energy = 0.0;
     const Eigen::RowVector3d vi = V.row(i);
     for (int q = offsets_[i]; q < offsets_[i + 1]; ++q) {
@@ -452,15 +453,18 @@ void AnArapSolver::covariance_spokes(const Positions& V, bool with_polar, Eigen:
       full.noalias() += weighted * spoke_target_.row(q);
       if (with_polar) polar.noalias() += weighted * spoke_polar_.row(q);
       energy += weighted.dot(deformed);
+      pull += weighted;
     }
     target_covariance_[i] = full;
     if (with_polar) polar_covariance_[i] = polar;
     edge_energy[i] = energy;
+    laplacian_v_.row(i) = -pull.transpose();
   }
 }
 
 void AnArapSolver::covariance_spokes_rims(const Positions& V, bool with_polar, Eigen::VectorXd& edge_energy) {
   std::fill(target_covariance_.begin(), target_covariance_.end(), Eigen::Matrix3d::Zero());
+  laplacian_v_.setZero();
   if (with_polar) std::fill(polar_covariance_.begin(), polar_covariance_.end(), Eigen::Matrix3d::Zero());
   edge_energy.setZero();
   for (int t = 0; t < rest_.num_triangles(); ++t) {
@@ -473,6 +477,8 @@ void AnArapSolver::covariance_spokes_rims(const Positions& V, bool with_polar, E
       full.noalias() += (w * deformed) * side_target_.row(3 * t + k);
       if (with_polar) polar.noalias() += (w * deformed) * side_polar_.row(3 * t + k);
       energy += w * deformed.squaredNorm();
+      laplacian_v_.row(a) -= w * deformed.transpose();
+      laplacian_v_.row(b) += w * deformed.transpose();
     }
     for (int k = 0; k < 3; ++k) {
       target_covariance_[rest_.F(t, k)] += full;
@@ -487,6 +493,7 @@ double AnArapSolver::local_step(const Positions& V) {
   target_covariance_.resize(n_);
   polar_covariance_.resize(n_);
   edge_energy.resize(n_);
+  laplacian_v_.resize(n_, 3);
   // The paper's scheme fits the rotations to the polar targets; where those
   // are the targets (no rotational part), or with coupled rotations (fitted
   // to the whole targets), the polar covariance is not needed.

@@ -110,10 +110,10 @@ class AnArapSolver {
   // run() with Acceleration::Lbfgs (anarap_lbfgs.cpp says how and why).
   int run_lbfgs(const LaplacianSolver& solver, Positions& V, int max_iterations, double tolerance,
                 std::vector<double>& history, bool final_energy, const std::function<void(int)>& on_iteration);
-  // g = L V - b for the current rotations' b (written to `b`), zero on the
-  // solver's pinned rows: E's gradient over the free vertices, up to a
-  // constant factor (the global step solves g = 0).
-  void energy_gradient(const Positions& V, const std::vector<char>& pinned, Positions& b, Positions& g) const;
+  // g = L V - b at the V of the last local step, for the current rotations'
+  // b (written to `b`), zero on the solver's pinned rows: E's gradient over
+  // the free vertices, up to a constant factor (the global step solves g = 0).
+  void energy_gradient(const std::vector<char>& pinned, Positions& b, Positions& g) const;
   // S_i = sum w e' t^T (full targets) and with the polar targets, per cell.
   // The polar covariance only `with_polar`.
   void update_target_energy();
@@ -150,6 +150,10 @@ class AnArapSolver {
   // Scratch of the local step, kept to avoid reallocating every iteration.
   std::vector<Eigen::Matrix3d> target_covariance_, polar_covariance_;
   Eigen::VectorXd edge_energy_;
+  // L V at the V of the last local step, summed from the deformed edges it
+  // reads anyway (energy_gradient's; a pass of its own over every spoke was
+  // a thirtieth of a 200k commit in WASM).
+  Positions laplacian_v_;
   bool polar_differs_ = false;  // some target has a rotational part (P != T)
   double coupling_ = 0.0;                // alpha; 0: the paper's scheme
   std::vector<double> spoke_coupling_;   // k_ij / alpha per spoke

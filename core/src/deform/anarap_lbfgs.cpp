@@ -46,19 +46,15 @@ double dot(const Positions& a, const Positions& b) { return LbfgsMemory<Position
 
 }  // namespace
 
-void AnArapSolver::energy_gradient(const Positions& V, const std::vector<char>& pinned, Positions& b,
-                                   Positions& g) const {
+void AnArapSolver::energy_gradient(const std::vector<char>& pinned, Positions& b, Positions& g) const {
   global_rhs(b);
   g.resize(n_, 3);
-  // L V on the spokes (L_ii = sum_j w_ij, L_ij = -w_ij), minus b.
   for (int i = 0; i < n_; ++i) {
     if (pinned[i]) {
       g.row(i).setZero();
-      continue;
+    } else {
+      g.row(i) = laplacian_v_.row(i) - b.row(i);
     }
-    Eigen::RowVector3d acc = -b.row(i);
-    for (int q = offsets_[i]; q < offsets_[i + 1]; ++q) acc += spoke_weight_[q] * (V.row(i) - V.row(neighbors_[q]));
-    g.row(i) = acc;
   }
 }
 
@@ -85,7 +81,7 @@ int AnArapSolver::run_lbfgs(const LaplacianSolver& solver, Positions& V, int max
   };
   std::vector<Eigen::Quaterniond> kept_rotations;
   double previous = local_step(V);
-  energy_gradient(V, pinned, b, g);
+  energy_gradient(pinned, b, g);
   int iterations = 0, small_steps = 0;
   for (int it = 0; it < max_iterations; ++it) {
     if (!final_energy && it + 1 == max_iterations) {
@@ -114,7 +110,7 @@ int AnArapSolver::run_lbfgs(const LaplacianSolver& solver, Positions& V, int max
       solver.solve(b, trial);
       energy = local_step(trial);
     }
-    energy_gradient(trial, pinned, next_b, next_g);
+    energy_gradient(pinned, next_b, next_g);
     Positions s = trial - V, y = next_g - g;
     const double sy = dot(s, y);
     const double s_L_s = sy + LbfgsMemory<Positions>::dot_difference(s, next_b, b);  // L s = y + (b' - b) on the free rows
