@@ -6,8 +6,7 @@
 // path), and a two-loop recursion of 5 pairs reads the 200k-vertex iterate
 // 20 times an iteration; fused, 12.
 // Summation order: four partial sums of pairs (elements i mod 8), added
-// pairwise at the end, then the tail; fixed on every platform. The
-// supernodal sweeps take their dot products here too.
+// pairwise at the end, then the tail; fixed on every platform.
 #pragma once
 
 #include <cstddef>

@@ -90,7 +90,7 @@ void gather_rows(const double* b, int w, const int* R, const double* y, double* 
     for (int i = Rows - 1; i >= 0; --i) bk[i] = load_pair(values + 2 * i);
     for (int c = 0; c < K; ++c) {
       Pair a = load_pair(acc + c * w + k);
-      for (int i = 0; i < Rows; ++i) a += bk[i] * yp[i][c];
+      for (int i = Rows - 1; i >= 0; --i) a += bk[i] * yp[i][c];
       store_pair(acc + c * w + k, a);
     }
   }
