@@ -34,25 +34,20 @@ class LbfgsMemory {
     return aniso::dot(a.data(), b.data(), static_cast<std::size_t>(a.size()));
   }
 
-  // a . (b - c), without a temporary for b - c.
-  static double dot_difference(const Matrix& a, const Matrix& b, const Matrix& c) {
-    return aniso::dot_difference(a.data(), b.data(), c.data(), static_cast<std::size_t>(a.size()));
-  }
-
-  // Keeps the pair if its curvature s.y = `sy` is clearly positive (only such
-  // pairs keep H positive definite), dropping the oldest when full. Returns
-  // whether it was kept.
-  bool push(Matrix s, Matrix y, double sy) {
-    if (!(sy > 1e-14 * std::sqrt(dot(s, s) * dot(y, y)))) return false;
-    if (static_cast<int>(steps_.size()) == capacity_) {
-      steps_.pop_front();
-      changes_.pop_front();
-      curvatures_.pop_front();
-    }
-    steps_.push_back(std::move(s));
-    changes_.push_back(std::move(y));
-    curvatures_.push_back(1.0 / sy);
-    return true;
+  // The pair of a step from iterate x0 to x1 with gradients g0 -> g1
+  // (s = x1 - x0, y = g1 - g0), kept if its curvature s.y is clearly
+  // positive (only such pairs keep H positive definite), dropping the oldest
+  // when full. The gradients are L x - b with the Laplacian as H0: returns
+  // the step's s.L s / s.y (L s = y + (b1 - b0) on the free rows, where s is
+  // not zero), or 0 when the pair was not kept.
+  double push_step(const Matrix& x0, const Matrix& x1, const Matrix& g0, const Matrix& g1, const Matrix& b0,
+                   const Matrix& b1) {
+    Matrix s(x1.rows(), x1.cols()), y(x1.rows(), x1.cols());
+    const StepProducts p = step_pair(x1.data(), x0.data(), g1.data(), g0.data(), b1.data(), b0.data(), s.data(),
+                                     y.data(), static_cast<std::size_t>(s.size()));
+    if (!(p.sy > 1e-14 * std::sqrt(p.ss * p.yy))) return 0.0;
+    keep(std::move(s), std::move(y), p.sy);
+    return (p.sy + p.s_db) / p.sy;
   }
 
   // direction = -H gradient. `apply_h0(q, r)` sets r = H0 q (r arrives as
@@ -80,6 +75,17 @@ class LbfgsMemory {
   }
 
  private:
+  void keep(Matrix s, Matrix y, double sy) {
+    if (static_cast<int>(steps_.size()) == capacity_) {
+      steps_.pop_front();
+      changes_.pop_front();
+      curvatures_.pop_front();
+    }
+    steps_.push_back(std::move(s));
+    changes_.push_back(std::move(y));
+    curvatures_.push_back(1.0 / sy);
+  }
+
   int capacity_;
   std::deque<Matrix> steps_, changes_;  // s_k, y_k
   std::deque<double> curvatures_;       // 1 / (y_k . s_k)

@@ -47,13 +47,6 @@ inline double dot(const double* a, const double* b, std::size_t n) {
       a, n, [b](std::size_t i) { return load_pair(b + i); }, [b](std::size_t i) { return b[i]; });
 }
 
-// a . (b - c) over n doubles (b - c rounded first, as written).
-inline double dot_difference(const double* a, const double* b, const double* c, std::size_t n) {
-  return vector_kernels_detail::sum_of_products(
-      a, n, [b, c](std::size_t i) { return load_pair(b + i) - load_pair(c + i); },
-      [b, c](std::size_t i) { return b[i] - c[i]; });
-}
-
 // x += alpha y over n doubles, and returns z . x (the updated x); with z
 // null, only the update (and 0).
 inline double axpy_dot(double* x, double alpha, const double* y, const double* z, std::size_t n) {
@@ -85,6 +78,47 @@ inline double axpy_dot(double* x, double alpha, const double* y, const double* z
     sum += z[i] * x[i];
   }
   return sum;
+}
+
+// The pair of an L-BFGS step in one pass: s = x1 - x0 and y = g1 - g0 (each
+// rounded as written), and the products s.y, s.(b1 - b0), s.s and y.y, each
+// with two partial sums of pairs (elements i mod 4), added at the end, then
+// the tail. Why: as separate passes (two differences, four dot products)
+// they read the 50k-cylinder iterate's vectors 16 times.
+struct StepProducts {
+  double sy = 0.0, s_db = 0.0, ss = 0.0, yy = 0.0;
+};
+
+inline StepProducts step_pair(const double* x1, const double* x0, const double* g1, const double* g0,
+                              const double* b1, const double* b0, double* s, double* y, std::size_t n) {
+  Pair sy[2] = {}, s_db[2] = {}, ss[2] = {}, yy[2] = {};
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    for (int h = 0; h < 2; ++h) {
+      const std::size_t j = i + 2 * h;
+      const Pair sj = load_pair(x1 + j) - load_pair(x0 + j), yj = load_pair(g1 + j) - load_pair(g0 + j);
+      store_pair(s + j, sj);
+      store_pair(y + j, yj);
+      sy[h] += sj * yj;
+      s_db[h] += sj * (load_pair(b1 + j) - load_pair(b0 + j));
+      ss[h] += sj * sj;
+      yy[h] += yj * yj;
+    }
+  }
+  const auto total = [](const Pair (&p)[2]) {
+    const Pair sum = p[0] + p[1];
+    return sum[0] + sum[1];
+  };
+  StepProducts out{total(sy), total(s_db), total(ss), total(yy)};
+  for (; i < n; ++i) {
+    s[i] = x1[i] - x0[i];
+    y[i] = g1[i] - g0[i];
+    out.sy += s[i] * y[i];
+    out.s_db += s[i] * (b1[i] - b0[i]);
+    out.ss += s[i] * s[i];
+    out.yy += y[i] * y[i];
+  }
+  return out;
 }
 
 }  // namespace aniso

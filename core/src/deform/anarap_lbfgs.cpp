@@ -42,8 +42,6 @@ constexpr double kMaxScale = 2.0;
 // quasi-Newton steps of the cyl50k stretch; with two, 5 in 250 iterations).
 constexpr int kHalvings = 2;
 
-double dot(const Positions& a, const Positions& b) { return LbfgsMemory<Positions>::dot(a, b); }
-
 }  // namespace
 
 void AnArapSolver::energy_gradient(const std::vector<char>& pinned, Positions& b, Positions& g) const {
@@ -111,10 +109,8 @@ int AnArapSolver::run_lbfgs(const LaplacianSolver& solver, Positions& V, int max
       energy = local_step(trial);
     }
     energy_gradient(pinned, next_b, next_g);
-    Positions s = trial - V, y = next_g - g;
-    const double sy = dot(s, y);
-    const double s_L_s = sy + LbfgsMemory<Positions>::dot_difference(s, next_b, b);  // L s = y + (b' - b) on the free rows
-    if (memory.push(std::move(s), std::move(y), sy)) scale = std::clamp(s_L_s / sy, 1.0, kMaxScale);
+    const double curvature_ratio = memory.push_step(V, trial, g, next_g, b, next_b);
+    if (curvature_ratio > 0.0) scale = std::clamp(curvature_ratio, 1.0, kMaxScale);
     V.swap(trial);
     g.swap(next_g);
     b.swap(next_b);

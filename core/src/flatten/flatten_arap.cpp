@@ -269,11 +269,9 @@ struct ArapFlattening::Impl {
       if (shortened) ++report.shortened_steps;
       Eigen::MatrixXd next_rhs = global_rhs(q, rotation, n);
       Eigen::MatrixXd next_gradient = energy_gradient(trial, next_rhs);
-      Eigen::MatrixXd s = trial - uv, y = next_gradient - gradient;
-      const double sy = memory.dot(s, y);
-      // L s = y + (b' - b): s is zero on the pinned rows, where y and b differ.
-      const double s_L_s = sy + memory.dot_difference(s, next_rhs, rhs);
-      if (memory.push(std::move(s), std::move(y), sy)) scale = std::clamp(s_L_s / sy, 1.0, kMaxScale);
+      const Eigen::MatrixXd start = uv;
+      const double curvature_ratio = memory.push_step(start, trial, gradient, next_gradient, rhs, next_rhs);
+      if (curvature_ratio > 0.0) scale = std::clamp(curvature_ratio, 1.0, kMaxScale);
       uv = trial;
       rhs.swap(next_rhs);
       gradient.swap(next_gradient);
