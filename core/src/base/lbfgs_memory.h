@@ -40,8 +40,13 @@ class LbfgsMemory {
   // when full. The gradients are L x - b with the Laplacian as H0: returns
   // the step's s.L s / s.y (L s = y + (b1 - b0) on the free rows, where s is
   // not zero), or 0 when the pair was not kept.
-  double push_step(const Matrix& x0, const Matrix& x1, const Matrix& g0, const Matrix& g1, const Matrix& b0,
+  // x0 may be of another matrix type with x1's size and storage order (the
+  // flattening's iterate is n by 2 at compile time, its trial not).
+  template <class Iterate>
+  double push_step(const Iterate& x0, const Matrix& x1, const Matrix& g0, const Matrix& g1, const Matrix& b0,
                    const Matrix& b1) {
+    static_assert(static_cast<bool>(Iterate::IsRowMajor) == static_cast<bool>(Matrix::IsRowMajor),
+                  "x0 and x1 must store their entries in the same order");
     Matrix s(x1.rows(), x1.cols()), y(x1.rows(), x1.cols());
     const StepProducts p = step_pair(x1.data(), x0.data(), g1.data(), g0.data(), b1.data(), b0.data(), s.data(),
                                      y.data(), static_cast<std::size_t>(s.size()));

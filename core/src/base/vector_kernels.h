@@ -22,29 +22,21 @@ inline double total(Pair a, Pair b, Pair c, Pair d) {
   return sum[0] + sum[1];
 }
 
-// sum_i a[i] b_i over n doubles, b's pairs and values given by pair_at(i)
-// and value_at(i): four partial sums of pairs, added pairwise, then the tail.
-template <class PairAt, class ValueAt>
-double sum_of_products(const double* a, std::size_t n, PairAt pair_at, ValueAt value_at) {
-  Pair s0 = {0, 0}, s1 = s0, s2 = s0, s3 = s0;
-  std::size_t i = 0;
-  for (; i + 8 <= n; i += 8) {
-    s0 += load_pair(a + i) * pair_at(i);
-    s1 += load_pair(a + i + 2) * pair_at(i + 2);
-    s2 += load_pair(a + i + 4) * pair_at(i + 4);
-    s3 += load_pair(a + i + 6) * pair_at(i + 6);
-  }
-  double sum = total(s0, s1, s2, s3);
-  for (; i < n; ++i) sum += a[i] * value_at(i);
-  return sum;
-}
-
 }  // namespace vector_kernels_detail
 
 // a . b over n doubles.
 inline double dot(const double* a, const double* b, std::size_t n) {
-  return vector_kernels_detail::sum_of_products(
-      a, n, [b](std::size_t i) { return load_pair(b + i); }, [b](std::size_t i) { return b[i]; });
+  Pair s0 = {0, 0}, s1 = s0, s2 = s0, s3 = s0;
+  std::size_t i = 0;
+  for (; i + 8 <= n; i += 8) {
+    s0 += load_pair(a + i) * load_pair(b + i);
+    s1 += load_pair(a + i + 2) * load_pair(b + i + 2);
+    s2 += load_pair(a + i + 4) * load_pair(b + i + 4);
+    s3 += load_pair(a + i + 6) * load_pair(b + i + 6);
+  }
+  double sum = vector_kernels_detail::total(s0, s1, s2, s3);
+  for (; i < n; ++i) sum += a[i] * b[i];
+  return sum;
 }
 
 // x += alpha y over n doubles, and returns z . x (the updated x); with z

@@ -269,8 +269,7 @@ struct ArapFlattening::Impl {
       if (shortened) ++report.shortened_steps;
       Eigen::MatrixXd next_rhs = global_rhs(q, rotation, n);
       Eigen::MatrixXd next_gradient = energy_gradient(trial, next_rhs);
-      const Eigen::MatrixXd start = uv;
-      const double curvature_ratio = memory.push_step(start, trial, gradient, next_gradient, rhs, next_rhs);
+      const double curvature_ratio = memory.push_step(uv, trial, gradient, next_gradient, rhs, next_rhs);
       if (curvature_ratio > 0.0) scale = std::clamp(curvature_ratio, 1.0, kMaxScale);
       uv = trial;
       rhs.swap(next_rhs);
