@@ -42,9 +42,10 @@ const char* kUsage =
     "  --clock KIND    wall (default) or cpu: this thread's CPU time, robust on a\n"
     "                  loaded machine (see bench/README.md for what changes)\n"
     "  --verbose       per-run details on stderr\n"
-    "  --converge TOL  instead: ARAP and AnARAP solved to the relative energy change\n"
-    "                  TOL, plain local/global and Anderson-accelerated: iterations,\n"
-    "                  ms and energy per row (cap --max-iterations, default 5000)\n"
+    "  --converge TOL  instead: ARAP, AnARAP and the flattening solved to the relative\n"
+    "                  energy change TOL, plain local/global and accelerated: iterations,\n"
+    "                  ms and energy per row (cap --max-iterations, default 5000);\n"
+    "                  --only then takes anisoform-arap, anisoform-anarap, anisoform-flatten\n"
     "Run natively with GLIBC_TUNABLES=glibc.malloc.mmap_max=0:glibc.malloc.trim_threshold=68719476736\n"
     "(without it, the equivalent mallopt() settings are applied at start-up).\n";
 
@@ -167,7 +168,12 @@ int main(int argc, char** argv) {
   const int n = problem.mesh.num_vertices();
   if (runs == 0) runs = n > 100000 ? 3 : 5;
 
-  if (converge_tolerance > 0.0) return aniso_bench::run_convergence(problem, converge_tolerance, runs, max_iterations);
+  if (converge_tolerance > 0.0) {
+    for (const std::string& name : only) {
+      if (!aniso_bench::is_convergence_row(name)) usage_error("unknown row '" + name + "' in --only for --converge");
+    }
+    return aniso_bench::run_convergence(problem, converge_tolerance, runs, max_iterations, only);
+  }
 
   const int solves = 5;   // eigen-ldlt solves per run (median)
   const int changes = 4;  // andefgrad changes of amount per run (median)
