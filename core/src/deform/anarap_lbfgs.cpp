@@ -33,10 +33,12 @@ namespace {
 
 // (s, y) pairs kept: 5 measured as well as 12 or 25 on the cylinders.
 constexpr int kMemory = 5;
-// Largest scale of H0 = scale L^-1 (see run_lbfgs): with up to 10 the
-// longer first steps needed more halvings than they saved (armadillo AnARAP
-// 62 iterations with 2, 63 with 10, and more time).
-constexpr double kMaxScale = 2.0;
+// Largest scale of H0 = scale L^-1 (see run_lbfgs). Iterations to 1e-6 with
+// the cap at 2 / 3 / 4 / 6: cyl50k ARAP 41 / 39 / 40 / 41, AnARAP 164 / 141 /
+// 151 / 153; armadillo ARAP 72 / 63 / 63 / 74, AnARAP 62 / 58 / 58 / 63;
+// cyl200k ARAP 609 / 510, AnARAP 406 / 418. Above 3 the longer steps need
+// more halvings than they save.
+constexpr double kMaxScale = 3.0;
 // Halvings of a quasi-Newton step that raised the energy before the plain
 // step is taken instead (without them a plain step followed most
 // quasi-Newton steps of the cyl50k stretch; with two, 5 in 250 iterations).
