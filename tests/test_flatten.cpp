@@ -365,7 +365,7 @@ struct ArapProblem {
       : patch(extract_flatten_patch(mesh, {})), charts(triangle_charts(patch.mesh)) {
     FlattenDirections directions;
     directions.global = direction;
-    targets = flatten_targets(mesh, patch, charts, directions, su, sv);
+    targets = flatten_targets(mesh, patch, charts, TriangleNeighbours(patch), directions, su, sv);
     lscm_free_boundary(patch, charts, start);
     scale_to_area(patch, charts.area.cwiseProduct(targets.su).cwiseProduct(targets.sv), start);
   }

@@ -206,7 +206,7 @@ struct RefineProblem {
         patch(extract_flatten_patch(mesh, {})),
         charts(triangle_charts(patch.mesh)),
         directions{with_global(Eigen::Vector3d::UnitY())},
-        targets(flatten_targets(mesh, patch, charts, directions, 0.8, 1.0)),
+        targets(flatten_targets(mesh, patch, charts, TriangleNeighbours(patch), directions, 0.8, 1.0)),
         arap(patch, charts) {}
 
   static FlattenDirections with_global(const Eigen::Vector3d& axis) {

@@ -20,6 +20,7 @@ Eigen::VectorXd target_areas(const TriangleCharts& charts, const FlattenTargets&
 struct Flattener::Impl {
   Mesh input;
   FlattenPatch patch;
+  TriangleNeighbours neighbours{patch};
   TriangleCharts charts;
   std::unique_ptr<ArapFlattening> arap;
   Eigen::MatrixX2d conformal_start;
@@ -103,7 +104,7 @@ FlattenResult Flattener::flatten(const FlattenOptions& options) {
   const Triangles& F = patch.mesh.F;
 
   FlattenResult result;
-  result.targets = flatten_targets(im.input, patch, im.charts, options.directions, options.su,
+  result.targets = flatten_targets(im.input, patch, im.charts, im.neighbours, options.directions, options.su,
                                    options.sv);
   const bool baseline = options.method == FlattenMethod::UniformBaseline;
   // The baseline flattens the same field without compression first.
@@ -157,7 +158,7 @@ FlattenResult Flattener::flatten(const FlattenOptions& options) {
   metrics.filled_directions = result.targets.filled_directions;
   metrics.initialization = solved.initialization;
   metrics.method = baseline ? "uniform-baseline" : "anisotropic";
-  metrics.suggested_cuts = find_cut_regions(patch, im.charts, result.targets, result.stretch);
+  metrics.suggested_cuts = find_cut_regions(patch, im.charts, im.neighbours, result.targets, result.stretch);
   metrics.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return result;

@@ -7,6 +7,7 @@
 // global step is its exact minimizer for fixed rotations.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -91,7 +92,14 @@ struct ArapFlattening::Impl {
       // angle atan2(S10 - S01, S00 + S11), taken as a normalized vector (no
       // trigonometry); always a proper rotation.
       const double along = S(0, 0) + S(1, 1), across = S(1, 0) - S(0, 1);
-      const double length = std::hypot(along, across);
+      // The square root of the squares, and std::hypot only where they over-
+      // or underflow: glibc's exactly rounded hypot took a tenth of the
+      // flattening's time.
+      const double squares = along * along + across * across;
+      const double length = squares > std::numeric_limits<double>::min() &&
+                                    squares < std::numeric_limits<double>::infinity()
+                                ? std::sqrt(squares)
+                                : std::hypot(along, across);
       const double c = length > 0.0 ? along / length : 1.0;
       const double s = length > 0.0 ? across / length : 0.0;
       rotation.row(t) = Eigen::RowVector2d(c, s);

@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "flatten/flatten_pipeline.h"
-#include "geometry/frames.h"
 
 namespace aniso {
 
@@ -16,6 +15,7 @@ double cut_region_error(const FlattenTargets& targets, const TriangleStretch& st
 }
 
 std::vector<FlattenRegion> find_cut_regions(const FlattenPatch& patch, const TriangleCharts& charts,
+                                            const TriangleNeighbours& neighbours,
                                             const FlattenTargets& targets,
                                             const TriangleStretch& stretch) {
   const Triangles& F = patch.mesh.F;
@@ -31,9 +31,10 @@ std::vector<FlattenRegion> find_cut_regions(const FlattenPatch& patch, const Tri
   // Linear in size for any topology: the faces of an edge shared by k > 2
   // are linked in a ring, not all pairs (k^2: 192 million links for a face
   // repeated 8000 times, 12.6 s of the sanitizer build's flatten).
-  std::vector<int> offsets, neighbours;
-  triangle_adjacency(F, static_cast<int>(patch.mesh.V.rows()), offsets, neighbours);
+  const std::vector<int>& offsets = neighbours.get().offsets;
+  const std::vector<int>& adjacent = neighbours.get().neighbors;
   std::vector<char> visited(m, 0);
+  std::vector<int> region_of_vertex(patch.mesh.num_vertices(), -1);
   std::vector<std::pair<double, FlattenRegion>> found;  // (3D area, region)
   for (int seed = 0; seed < m; ++seed) {
     if (!above[seed] || visited[seed]) continue;
@@ -43,7 +44,7 @@ std::vector<FlattenRegion> find_cut_regions(const FlattenPatch& patch, const Tri
       const int t = stack.back();
       stack.pop_back();
       for (int k = offsets[t]; k < offsets[t + 1]; ++k) {
-        const int n = neighbours[k];
+        const int n = adjacent[k];
         if (above[n] && !visited[n]) {
           visited[n] = 1;
           faces.push_back(n);
@@ -53,6 +54,9 @@ std::vector<FlattenRegion> find_cut_regions(const FlattenPatch& patch, const Tri
     }
     double area = 0.0, error = 0.0;
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    // The region's vertices, each once (marked with the region's seed rather
+    // than sorted out of all corners: sorting those took a tenth of a 50k
+    // flatten call).
     std::vector<int> corners;
     for (int t : faces) {
       const double a = charts.area[t];
@@ -60,7 +64,10 @@ std::vector<FlattenRegion> find_cut_regions(const FlattenPatch& patch, const Tri
       error += a * cut_region_error(targets, stretch, t);
       for (int k = 0; k < 3; ++k) {
         centroid += a / 3.0 * patch.mesh.V.row(F(t, k)).transpose();
-        corners.push_back(F(t, k));
+        if (region_of_vertex[F(t, k)] != seed) {
+          region_of_vertex[F(t, k)] = seed;
+          corners.push_back(F(t, k));
+        }
       }
     }
     if (!(area >= kCutRegionMinArea * patch_area)) continue;
@@ -68,8 +75,7 @@ std::vector<FlattenRegion> find_cut_regions(const FlattenPatch& patch, const Tri
     region.triangles = static_cast<int>(faces.size());
     region.centroid = centroid / area;
     region.error_mean = error / area;
-    std::sort(corners.begin(), corners.end());
-    corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+    std::sort(corners.begin(), corners.end());  // the nearest vertex's ties go to the lowest index
     double nearest = HUGE_VAL;
     for (int i : corners) {
       const double d = (patch.mesh.V.row(i).transpose() - region.centroid).squaredNorm();

@@ -9,6 +9,7 @@
 #include "anisoform/error.h"
 #include "flatten/flatten_pipeline.h"
 #include "anisoform/mesh_check.h"
+#include "geometry/frames.h"
 #include "mesh/topology.h"
 
 namespace aniso {
@@ -126,6 +127,14 @@ TriangleCharts triangle_charts(const Mesh& mesh) {
     charts.area[t] = 0.5 * twice_area;
   }
   return charts;
+}
+
+const VertexAdjacency& TriangleNeighbours::get() const {
+  if (!adjacency_) {
+    adjacency_.emplace();
+    triangle_adjacency(patch_->mesh.F, patch_->mesh.num_vertices(), adjacency_->offsets, adjacency_->neighbors);
+  }
+  return *adjacency_;
 }
 
 }  // namespace aniso

@@ -38,12 +38,14 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "anisoform/flatten.h"
 #include "anisoform/mesh.h"
+#include "mesh/topology.h"
 
 namespace aniso {
 
@@ -57,6 +59,21 @@ class LaplacianSolver;
 // patch is not finite, and Error(BadMesh) "the patch is closed: flattening needs
 // a boundary; select a part of the mesh" when a component has no boundary loop.
 FlattenPatch extract_flatten_patch(const Mesh& mesh, const std::vector<char>& vertex_mask);
+
+// The patch's triangles' neighbours through shared edges (triangle_adjacency,
+// geometry/frames.h), built the first time a stage asks and then kept: the
+// targets' direction filling and the cut regions both walk them, and every
+// request of a Flattener shares one (built twice per call, they took a
+// quarter of the 50k cylinder's flatten call). Holds a pointer to `patch`.
+class TriangleNeighbours {
+ public:
+  explicit TriangleNeighbours(const FlattenPatch& patch) : patch_(&patch) {}
+  const VertexAdjacency& get() const;
+
+ private:
+  const FlattenPatch* patch_;
+  mutable std::optional<VertexAdjacency> adjacency_;
+};
 
 // ---- per-triangle charts ---------------------------------------------------
 
@@ -77,8 +94,8 @@ constexpr double kDegenerateAreaFraction = 1e-12;
 // everywhere. Throws Error(BadParameter) for a non-positive or non-finite
 // amount, a zero global direction, or a constraint vertex outside the patch.
 FlattenTargets flatten_targets(const Mesh& input, const FlattenPatch& patch,
-                               const TriangleCharts& charts, const FlattenDirections& directions,
-                               double su, double sv);
+                               const TriangleCharts& charts, const TriangleNeighbours& neighbours,
+                               const FlattenDirections& directions, double su, double sv);
 
 // The same directions with other amounts everywhere (the baseline's isometric
 // flattening uses su = sv = 1 on the same field).
@@ -210,6 +227,7 @@ double cut_region_error(const FlattenTargets& targets, const TriangleStretch& st
 // The regions of the patch that need a dart or a cut (FlattenRegion, flatten.h),
 // in input-mesh vertex indices, largest (by 3D area) first.
 std::vector<FlattenRegion> find_cut_regions(const FlattenPatch& patch, const TriangleCharts& charts,
+                                            const TriangleNeighbours& neighbours,
                                             const FlattenTargets& targets,
                                             const TriangleStretch& stretch);
 

@@ -38,13 +38,10 @@ Eigen::Vector3d corner_line_mean(const Positions& vertex_directions, const Trian
 // 3D directions per triangle into unit chart vectors, the degenerate ones
 // (direction along the normal, or none) filled from neighbouring triangles.
 void directions_into_charts(const FlattenPatch& patch, const TriangleCharts& charts,
-                            const Positions& triangle_directions, FlattenTargets& targets) {
-  const Triangles& F = patch.mesh.F;
-  VertexAdjacency adjacency;  // built only if some direction needs filling
-  const Frames frames = build_frames(triangle_normals(patch.mesh), triangle_directions, [&]() -> const VertexAdjacency& {
-    triangle_adjacency(F, patch.mesh.num_vertices(), adjacency.offsets, adjacency.neighbors);
-    return adjacency;
-  });
+                            const TriangleNeighbours& neighbours, const Positions& triangle_directions,
+                            FlattenTargets& targets) {
+  const Frames frames = build_frames(triangle_normals(patch.mesh), triangle_directions,
+                                     [&]() -> const VertexAdjacency& { return neighbours.get(); });
   const int m = patch.mesh.num_triangles();
   targets.direction.resize(m, 2);
   targets.filled_directions = frames.filled;
@@ -68,8 +65,8 @@ FlattenTargets with_uniform_amounts(const FlattenTargets& targets, double su, do
 }
 
 FlattenTargets flatten_targets(const Mesh& input, const FlattenPatch& patch,
-                               const TriangleCharts& charts, const FlattenDirections& directions,
-                               double su, double sv) {
+                               const TriangleCharts& charts, const TriangleNeighbours& neighbours,
+                               const FlattenDirections& directions, double su, double sv) {
   validate_scale(su, "the stretch along the direction su");
   validate_scale(sv, "the stretch across the direction sv");
   const int m = patch.mesh.num_triangles();
@@ -83,7 +80,7 @@ FlattenTargets flatten_targets(const Mesh& input, const FlattenPatch& patch,
       fail(ErrorCode::BadParameter, "the global direction must be a finite non-zero vector");
     }
     triangle_directions.rowwise() = directions.global.normalized().transpose();
-    directions_into_charts(patch, charts, triangle_directions, targets);
+    directions_into_charts(patch, charts, neighbours, triangle_directions, targets);
     return targets;
   }
 
@@ -115,7 +112,7 @@ FlattenTargets flatten_targets(const Mesh& input, const FlattenPatch& patch,
       targets.sv[t] = across / 3.0;
     }
   }
-  directions_into_charts(patch, charts, triangle_directions, targets);
+  directions_into_charts(patch, charts, neighbours, triangle_directions, targets);
   return targets;
 }
 
