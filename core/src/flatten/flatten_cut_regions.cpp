@@ -28,9 +28,10 @@ std::vector<FlattenRegion> find_cut_regions(const FlattenPatch& patch, const Tri
   }
   if (!any) return {};
   const double patch_area = charts.area.sum();
-  // Linear in size for any topology: the faces of an edge shared by k > 2
-  // are linked in a ring, not all pairs (k^2: 192 million links for a face
-  // repeated 8000 times, 12.6 s of the sanitizer build's flatten).
+  // The neighbours are linear in size for any topology: the faces of an edge
+  // shared by k > 2 are linked in a ring, not all pairs (k^2: 192 million
+  // links for a face repeated 8000 times, 12.6 s of the sanitizer build's
+  // flatten).
   const std::vector<int>& offsets = neighbours.get().offsets;
   const std::vector<int>& adjacent = neighbours.get().neighbors;
   std::vector<char> visited(m, 0);
