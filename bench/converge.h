@@ -1,10 +1,13 @@
 // anisoform_bench --converge TOL: time to converge, plain local/global against
 // Anderson acceleration and L-BFGS (issue 11, goal 1), for ARAP and AnARAP on
-// the standard problem (impls.h), and plain against L-BFGS for the flattening. One JSON line per method and acceleration:
+// the standard problem (impls.h), and plain against L-BFGS for the
+// flattening. One JSON line per method and acceleration:
 //   {"mesh":..., "vertices":..., "impl":..., "acceleration":..., "tolerance":...,
 //    "iterations":..., "converged":..., "ms":..., "energy":...}
 // (medians over the runs of iterations and ms; the energy of the last run),
-// then per method the same-run ratios plain/accelerated on stderr.
+// then per method the same-run ratios plain/accelerated on stderr; then each
+// accelerated solve timed to the plain run's final energy ("to":
+// "plain-energy" rows, bench/README.md).
 #pragma once
 
 #include <set>
