@@ -1,11 +1,12 @@
 // LbfgsMemory (base/lbfgs_memory.h), the L-BFGS memory of AnARAP/ARAP and
 // the flattening: its fused direction passes give the textbook two-loop
 // recursion's direction (Nocedal & Wright, Algorithm 7.4) as pairs come and
-// the oldest go, it obeys the secant equation H y = s for the newest pair, and a
-// pair without positive curvature is not kept. The pairs come from spot's
+// the oldest go, it obeys the secant equation H y = s for the newest pair,
+// and a pair without positive curvature is not kept. The pairs come from spot's
 // cotangent Laplacian L with H0 = scale L^-1, as in the solvers.
 #include <cmath>
 #include <deque>
+#include <memory>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -112,7 +113,8 @@ TEST_CASE("L-BFGS memory: the direction is the two-loop recursion's, pairs kept 
     const Positions step = problem.step(k);
     const Positions change = problem.change(step);
     const double ratio = memory.push_step(zero, step, zero, change, zero, zero);
-    CHECK(ratio == Approx(1.0));  // b does not change: s.L s / s.y - see push_step
+    // b0 = b1 here, so s.L s / s.y = (s.y + s.(b1 - b0)) / s.y is 1.
+    CHECK(ratio == Approx(1.0));
     s.push_back(step);
     y.push_back(change);
     if (static_cast<int>(s.size()) > kCapacity) {
