@@ -117,20 +117,34 @@ SupernodalStructure order_and_analyse(const Eigen::SparseMatrix<double>& A, Perm
 struct SupernodalSymbolic {
   Permutation P;
   SupernodalStructure s;
+  // C = P A P^T's lower triangle by columns, and for each of its entries the
+  // entry of A it comes from: a factorization of new values gathers them
+  // instead of permuting A again (the flattening refinement factors once
+  // per step). Used when A is compressed with the analysed count of entries.
+  // Both are scratch of factor(): one analysis factors one matrix at a time.
+  Eigen::SparseMatrix<double> C;
+  std::vector<int> source;
+  Eigen::Index entries = -1;
+  // The panels' memory, kept from one factorization to the next.
+  std::vector<double> panels;
 };
 
 SupernodalAnalysis::SupernodalAnalysis(const Eigen::SparseMatrix<double>& A)
     : symbolic_(std::make_unique<SupernodalSymbolic>()) {
   SupernodalSymbolic& sym = *symbolic_;
   sym.s = order_and_analyse(A, sym.P);
+  if (!A.isCompressed()) return;
+  // A's entries numbered (exactly: doubles hold integers to 2^53) and
+  // permuted as factor_panels permutes values.
+  Eigen::SparseMatrix<double> numbered = A;
+  for (Eigen::Index k = 0; k < numbered.nonZeros(); ++k) numbered.valuePtr()[k] = static_cast<double>(k);
+  sym.C = permuted_upper(numbered, sym.P).adjoint();
+  sym.source.assign(sym.C.valuePtr(), sym.C.valuePtr() + sym.C.nonZeros());
+  sym.entries = A.nonZeros();
 }
 
 SupernodalAnalysis::~SupernodalAnalysis() = default;
 
-
-SupernodalLdlt supernodal_ldlt(const Eigen::SparseMatrix<double>& A, double pivot_floor) {
-  return SupernodalAnalysis(A).factor(A, pivot_floor);
-}
 
 namespace {
 
@@ -139,13 +153,13 @@ namespace {
 // SupernodalStructure::rows) and the real pivots d. Returns the first column
 // whose pivot fails the test (above pivot_floor, or for `any_sign` above it
 // in magnitude), or -1.
+// C: P A P^T's lower triangle, by columns.
 template <typename Scalar>
-int factor_panels(const SupernodalStructure& s, const Permutation& P, const Eigen::SparseMatrix<Scalar>& A,
-                  double pivot_floor, bool any_sign, Scalar* panels, Eigen::VectorXd& d) {
+int factor_panels(const SupernodalStructure& s, const Eigen::SparseMatrix<Scalar>& C, double pivot_floor,
+                  bool any_sign, Scalar* panels, Eigen::VectorXd& d) {
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   using PanelOf = Eigen::Map<Matrix, 0, Eigen::OuterStride<>>;
-  const int n = static_cast<int>(A.cols());
-  const Eigen::SparseMatrix<Scalar> C = permuted_upper(A, P).adjoint();  // the lower triangle, by columns
+  const int n = static_cast<int>(C.cols());
   const int supernodes = static_cast<int>(s.first_column.size()) - 1;
   d.setZero(n);
   // Left-looking: the supernodes K whose rows reach supernode J wait in J's
@@ -215,16 +229,40 @@ int factor_panels(const SupernodalStructure& s, const Permutation& P, const Eige
 
 }  // namespace
 
-SupernodalLdlt SupernodalAnalysis::factor(const Eigen::SparseMatrix<double>& A, double pivot_floor) const {
-  const SupernodalStructure& s = symbolic_->s;
-  const int n = static_cast<int>(A.cols());
+namespace {
+
+// P A P^T = L D L^T from C = P A P^T's lower triangle by columns, into
+// `panels` (scratch of the structure's size), then the solves' layout.
+SupernodalLdlt factor_lower(const SupernodalStructure& s, const Permutation& P, const Eigen::SparseMatrix<double>& C,
+                            double pivot_floor, std::vector<double>& panels) {
+  const int n = static_cast<int>(C.cols());
   SupernodalLdlt result;
-  result.perm.assign(symbolic_->P.indices().data(), symbolic_->P.indices().data() + n);
-  const std::unique_ptr<double[]> panels(new double[s.panel_offsets.back()]);
-  result.bad_pivot = factor_panels(s, symbolic_->P, A, pivot_floor, false, panels.get(), result.d);
+  result.perm.assign(P.indices().data(), P.indices().data() + n);
+  panels.resize(s.panel_offsets.back());
+  result.bad_pivot = factor_panels(s, C, pivot_floor, false, panels.data(), result.d);
   if (result.bad_pivot >= 0) return result;
-  result.L = SupernodalFactor(n, s.first_column, s.row_offsets, s.rows, s.panel_offsets, panels.get());
+  result.L = SupernodalFactor(n, s.first_column, s.row_offsets, s.rows, s.panel_offsets, panels.data());
   return result;
+}
+
+}  // namespace
+
+SupernodalLdlt SupernodalAnalysis::factor(const Eigen::SparseMatrix<double>& A, double pivot_floor) const {
+  SupernodalSymbolic& sym = *symbolic_;
+  if (!A.isCompressed() || A.nonZeros() != sym.entries) {
+    return factor_lower(sym.s, sym.P, permuted_upper(A, sym.P).adjoint(), pivot_floor, sym.panels);
+  }
+  const double* values = A.valuePtr();
+  double* gathered = sym.C.valuePtr();
+  for (std::size_t k = 0; k < sym.source.size(); ++k) gathered[k] = values[sym.source[k]];
+  return factor_lower(sym.s, sym.P, sym.C, pivot_floor, sym.panels);
+}
+
+SupernodalLdlt supernodal_ldlt(const Eigen::SparseMatrix<double>& A, double pivot_floor) {
+  Permutation P;
+  const SupernodalStructure s = order_and_analyse(A, P);
+  std::vector<double> panels;
+  return factor_lower(s, P, permuted_upper(A, P).adjoint(), pivot_floor, panels);
 }
 
 template <typename Scalar>
@@ -237,7 +275,8 @@ int supernodal_solve(const Eigen::SparseMatrix<Scalar>& A, double pivot_floor,
   const SupernodalStructure s = order_and_analyse(A.real(), P);  // the pattern is all it reads
   const std::unique_ptr<Scalar[]> panels(new Scalar[s.panel_offsets.back()]);
   Eigen::VectorXd d;
-  const int bad = factor_panels(s, P, A, pivot_floor, true, panels.get(), d);
+  const int bad = factor_panels(s, Eigen::SparseMatrix<Scalar>(permuted_upper(A, P).adjoint()), pivot_floor, true,
+                                panels.get(), d);
   if (bad >= 0) return bad;
   Matrix Y(n, X.cols());
   for (int i = 0; i < n; ++i) Y.row(P.indices()[i]) = X.row(i);

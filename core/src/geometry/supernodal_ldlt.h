@@ -42,7 +42,9 @@ class SupernodalAnalysis {
   SupernodalAnalysis& operator=(const SupernodalAnalysis&) = delete;
 
   // A with that pattern. pivot_floor: pivots at or below it stop the
-  // factorization (bad_pivot).
+  // factorization (bad_pivot). A compressed A's values are gathered into
+  // the permuted order through a map made once, and the panels' memory is
+  // reused: one analysis factors one matrix at a time (not thread-safe).
   SupernodalLdlt factor(const Eigen::SparseMatrix<double>& A, double pivot_floor) const;
 
  private:
