@@ -5,9 +5,12 @@
 #include <complex>
 #include <cstddef>
 #include <memory>
+#include <type_traits>
 
 #include <Eigen/Dense>
 #include <Eigen/OrderingMethods>
+
+#include "base/product_kernel.h"
 
 namespace aniso {
 
@@ -24,6 +27,32 @@ struct SupernodalStructure {
 namespace {
 
 using Permutation = Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int>;
+
+// Columns of a supernode factored together (factor_panels).
+constexpr int kPanelBlock = 32;
+
+// out = A B^H, A and B column blocks of panels (B's rows: out's columns);
+// for doubles by base/product_kernel.h.
+template <typename BlockA, typename Scalar>
+void product(const BlockA& A, const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>& B,
+             Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>& out) {
+  if constexpr (std::is_same_v<Scalar, double>) {
+    out.resize(A.rows(), B.rows());
+    multiply_by_transpose(A.data(), static_cast<int>(A.outerStride()), B.data(), static_cast<int>(B.rows()),
+                          static_cast<int>(A.rows()), static_cast<int>(B.rows()), static_cast<int>(A.cols()),
+                          out.data(), static_cast<int>(A.rows()));
+  } else {
+    out.noalias() = A * B.adjoint();
+  }
+}
+
+// C -= A B^H (`scratch` holds the product).
+template <typename BlockA, typename BlockC, typename Scalar>
+void subtract_product(const BlockA& A, const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>& B, BlockC C,
+                      Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>& scratch) {
+  product(A, B, scratch);
+  C -= scratch;
+}
 
 // C's upper triangle by columns.
 template <typename Scalar>
@@ -194,7 +223,7 @@ int factor_panels(const SupernodalStructure& s, const Eigen::SparseMatrix<Scalar
       const PanelOf LK(panels + s.panel_offsets[K], km, kw, Eigen::OuterStride<>(km));
       const auto dK = d.segment(s.first_column[K], kw).template cast<Scalar>();
       scaled.noalias() = LK.middleRows(p0, p1 - p0) * dK.asDiagonal();
-      update.noalias() = LK.middleRows(p0, km - p0) * scaled.adjoint();
+      product(LK.middleRows(p0, km - p0), scaled, update);
       for (int b = 0; b < p1 - p0; ++b) {
         const int column = krows[p0 + b] - c0;
         for (int a = b; a < km - p0; ++a) X(local[krows[p0 + a]], column) -= update(a, b);
@@ -206,16 +235,28 @@ int factor_panels(const SupernodalStructure& s, const Eigen::SparseMatrix<Scalar
         head[target] = K;
       }
     }
-    // The panel's own LDL^H, column by column.
-    for (int k = 0; k < w; ++k) {
-      if (k > 0) {
-        const Matrix weighted = X.block(k, 0, 1, k).adjoint().cwiseProduct(d.segment(c0, k).template cast<Scalar>());
-        X.block(k, k, m - k, 1).noalias() -= X.block(k, 0, m - k, k) * weighted;
+    // The panel's own LDL^H by blocks of kPanelBlock columns: the columns
+    // before a block update it in one matrix product, then its columns are
+    // factored one by one against each other. Column by column against all
+    // the columns before, the wide supernodes at the top of the tree were
+    // matrix-vector products, one double at a time in WASM.
+    for (int k0 = 0; k0 < w; k0 += kPanelBlock) {
+      const int k1 = std::min(w, k0 + kPanelBlock);
+      if (k0 > 0) {
+        scaled.noalias() = X.block(k0, 0, k1 - k0, k0) * d.segment(c0, k0).template cast<Scalar>().asDiagonal();
+        subtract_product(X.block(k0, 0, m - k0, k0), scaled, X.block(k0, k0, m - k0, k1 - k0), update);
       }
-      const double pivot = Eigen::numext::real(X(k, k));
-      if (!((any_sign ? std::abs(pivot) : pivot) > pivot_floor)) return c0 + k;
-      d[c0 + k] = pivot;
-      X.block(k + 1, k, m - k - 1, 1) /= Scalar(pivot);
+      for (int k = k0; k < k1; ++k) {
+        if (k > k0) {
+          const Matrix weighted =
+              X.block(k, k0, 1, k - k0).adjoint().cwiseProduct(d.segment(c0 + k0, k - k0).template cast<Scalar>());
+          X.block(k, k, m - k, 1).noalias() -= X.block(k, k0, m - k, k - k0) * weighted;
+        }
+        const double pivot = Eigen::numext::real(X(k, k));
+        if (!((any_sign ? std::abs(pivot) : pivot) > pivot_floor)) return c0 + k;
+        d[c0 + k] = pivot;
+        X.block(k + 1, k, m - k - 1, 1) /= Scalar(pivot);
+      }
     }
     if (w < m) {
       next_row[J] = w;
