@@ -195,6 +195,7 @@ int factor_panels(const SupernodalStructure& s, const Eigen::SparseMatrix<Scalar
   // list; next_row[K] is K's first row position not used yet.
   std::vector<int> head(supernodes, -1), next(supernodes, -1), next_row(supernodes, 0);
   std::vector<int> local(n, -1);  // row -> its position in the current supernode
+  std::vector<int> place;
   Matrix update, scaled;
   for (int J = 0; J < supernodes; ++J) {
     const int c0 = s.first_column[J], w = s.first_column[J + 1] - c0;
@@ -224,9 +225,15 @@ int factor_panels(const SupernodalStructure& s, const Eigen::SparseMatrix<Scalar
       const auto dK = d.segment(s.first_column[K], kw).template cast<Scalar>();
       scaled.noalias() = LK.middleRows(p0, p1 - p0) * dK.asDiagonal();
       product(LK.middleRows(p0, km - p0), scaled, update);
+      // Each row of the update's place in J's panel, found once for all
+      // its columns.
+      const int reach = km - p0;
+      place.resize(reach);
+      for (int a = 0; a < reach; ++a) place[a] = local[krows[p0 + a]];
       for (int b = 0; b < p1 - p0; ++b) {
-        const int column = krows[p0 + b] - c0;
-        for (int a = b; a < km - p0; ++a) X(local[krows[p0 + a]], column) -= update(a, b);
+        Scalar* column = &X(0, krows[p0 + b] - c0);
+        const Scalar* from = &update(0, b);
+        for (int a = b; a < reach; ++a) column[place[a]] -= from[a];
       }
       next_row[K] = p1;
       if (p1 < km) {
