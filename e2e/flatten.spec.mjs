@@ -188,3 +188,22 @@ test('the export buttons download SVG and DXF patterns', async ({ page }) => {
   await expect(page.getByTestId('pattern-view')).toHaveAttribute('data-triangles', '0');
   await expect(page.getByTestId('export-svg')).toBeDisabled();
 });
+
+test('on a closed mesh with a part selected, the panel flattens the selection and shows it as the patch', async ({ page }) => {
+  // Spot (the default mesh) is closed: flattened whole it is refused; with a
+  // part selected and Patch left at Whole mesh, Flatten flattens that part.
+  const pageErrors = await openApp(page);
+  const selected = await page.evaluate(() => window.anisoform.select({ sphere: { center: [0, 0.5, 0.6], radius: 0.4 } }));
+  expect(selected).toBeGreaterThan(20);
+  await page.getByTestId('mode-flatten').click();
+  await expect(page.locator('#flatten-patch')).toHaveValue('mesh');
+  await page.getByTestId('flatten-run').click();
+  await expect(page.getByTestId('metric-flipped')).toHaveText('0');
+  await expect(page.locator('#flatten-patch')).toHaveValue('selection');
+  await expect(page.getByTestId('error')).toBeHidden();
+  const triangles = Number(await page.getByTestId('pattern-view').getAttribute('data-triangles'));
+  const info = await page.evaluate(() => window.anisoform.info());
+  expect(triangles).toBeGreaterThan(20);
+  expect(triangles).toBeLessThan(info.triangles);
+  expect(pageErrors).toEqual([]);
+});

@@ -77,10 +77,16 @@ export function flattenFromSettings({ api, editor, settings, reportError }) {
     reportError(error, 'Flatten was not run');
     return;
   }
+  // A closed mesh has no boundary to flatten whole: with a part selected,
+  // the panel flattens that part and shows Selection as its patch (left at
+  // Whole mesh, the user's selection met a refusal that asked for one).
+  if (values.flatten.patch === 'mesh' && document.info.boundaryLoops === 0 && document.selectionCount > 0) {
+    settings.update('flatten', { patch: 'selection' });
+  }
   const options = {
     compress: [values.flatten.along, values.flatten.across],
     direction,
-    patch: values.flatten.patch,
+    patch: settings.values.flatten.patch,
   };
   if (values.flatten.baseline) options.baseline = 'uniform';
   api.flatten(options)
