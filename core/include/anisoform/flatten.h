@@ -77,6 +77,8 @@ struct ArapFlattenSettings {
   // (the bunny, the slowest, at 319 of them; README, Flattening refinement).
   int max_iterations = 1000;
   double tolerance = 1e-8;   // stop when the relative energy change falls below
+                             // (the refinement's stages also stop where 10 steps
+                             // together gained less than 3e-4: flatten_refine.cpp)
   bool guard_folds = true;   // shorten a global step that would fold a triangle
                              // over, whenever the current map has none folded
   // L-BFGS on the ARAP energy from a fold-free map (flatten_arap.cpp);
