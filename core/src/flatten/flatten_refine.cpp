@@ -96,9 +96,9 @@ constexpr int kQuietSteps = 2;
 // errors that no longer changed where they are shown: the koala's head
 // (30k vertices) took 249 iterations with it and 125 now, compression /
 // cross error 0.01633 / 0.00923 then, 0.01648 / 0.00927 now; the bunny 564
-// -> 319 (0.1984 / 0.1185 -> 0.1990 / 0.1190), demosthenes 249 -> 186
-// (0.0959 / 0.2586 -> 0.0957 / 0.2592), spothead 191 -> 168, the hand 156
-// -> 149 (errors within 0.1 %); the torso, hemisphere, cube and Nefertiti
+// -> 315 (0.1984 / 0.1185 -> 0.1991 / 0.1190), demosthenes 249 -> 185
+// (0.0959 / 0.2586 -> 0.0957 / 0.2593), spothead 191 -> 168, the hand 156
+// -> 138 (errors within 0.3 %); the torso, hemisphere, cube and Nefertiti
 // end as before. The coarse stages end by their tolerance first. A rate of
 // 1e-4 in the coarse stages too saved a tenth more on the bunny, spothead
 // and demosthenes for up to 1 % more error; 3e-4, up to 2 %.
@@ -626,12 +626,13 @@ class NewtonStage {
       quiet = small_change && !cut_short ? quiet + 1 : 0;
       blocked = small_change && cut_short ? blocked + 1 : 0;
       if (quiet >= kQuietSteps) return StageEnd::Converged;
+      // Steps the guard held back are a stall, not slow progress: checked first.
+      if (blocked >= kBlockedSteps) return StageEnd::Stalled;
       stage_energies.push_back(energy);
       if (stage_energies.size() > kProgressWindow) {
         const double before = stage_energies[stage_energies.size() - 1 - kProgressWindow];
         if (before - energy <= kProgressWindow * kSlowProgress * energy) return StageEnd::Converged;
       }
-      if (blocked >= kBlockedSteps) return StageEnd::Stalled;
     }
     return StageEnd::Capped;
   }

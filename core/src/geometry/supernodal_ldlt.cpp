@@ -177,12 +177,11 @@ SupernodalAnalysis::~SupernodalAnalysis() = default;
 
 namespace {
 
-// The numeric factorization P A P^T = L D L^H on the analysed pattern, into
-// panels (each supernode's m-by-w block of L, column-major, its rows as
-// SupernodalStructure::rows) and the real pivots d. Returns the first column
-// whose pivot fails the test (above pivot_floor, or for `any_sign` above it
-// in magnitude), or -1.
-// C: P A P^T's lower triangle, by columns.
+// The numeric factorization P A P^T = L D L^H on the analysed pattern, from
+// C = P A P^T's lower triangle by columns, into panels (each supernode's
+// m-by-w block of L, column-major, its rows as SupernodalStructure::rows) and
+// the real pivots d. Returns the first column whose pivot fails the test
+// (above pivot_floor, or for `any_sign` above it in magnitude), or -1.
 template <typename Scalar>
 int factor_panels(const SupernodalStructure& s, const Eigen::SparseMatrix<Scalar>& C, double pivot_floor,
                   bool any_sign, Scalar* panels, Eigen::VectorXd& d) {
@@ -274,10 +273,6 @@ int factor_panels(const SupernodalStructure& s, const Eigen::SparseMatrix<Scalar
   }
   return -1;
 }
-
-}  // namespace
-
-namespace {
 
 // P A P^T = L D L^T from C = P A P^T's lower triangle by columns, into
 // `panels` (scratch of the structure's size), then the solves' layout.
