@@ -46,14 +46,6 @@ void product(const BlockA& A, const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen:
   }
 }
 
-// C -= A B^H (`scratch` holds the product).
-template <typename BlockA, typename BlockC, typename Scalar>
-void subtract_product(const BlockA& A, const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>& B, BlockC C,
-                      Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>& scratch) {
-  product(A, B, scratch);
-  C -= scratch;
-}
-
 // C's upper triangle by columns.
 template <typename Scalar>
 Eigen::SparseMatrix<Scalar> permuted_upper(const Eigen::SparseMatrix<Scalar>& A, const Permutation& P) {
@@ -250,7 +242,8 @@ int factor_panels(const SupernodalStructure& s, const Eigen::SparseMatrix<Scalar
       const int k1 = std::min(w, k0 + kPanelBlock);
       if (k0 > 0) {
         scaled.noalias() = X.block(k0, 0, k1 - k0, k0) * d.segment(c0, k0).template cast<Scalar>().asDiagonal();
-        subtract_product(X.block(k0, 0, m - k0, k0), scaled, X.block(k0, k0, m - k0, k1 - k0), update);
+        product(X.block(k0, 0, m - k0, k0), scaled, update);
+        X.block(k0, k0, m - k0, k1 - k0) -= update;
       }
       for (int k = k0; k < k1; ++k) {
         if (k > k0) {
