@@ -14,7 +14,7 @@ namespace {
 
 // Rows of a supernode's block taken together in the sweeps: each value of
 // the right-hand side loaded serves them all. The rows of a group are stored
-// interleaved by pairs of columns (block_offset), so that the sweeps read
+// interleaved by pairs of columns (the block layout below), so that the sweeps read
 // one contiguous stream: reading the rows side by side from their own
 // places was two streams, and the sweeps over the large blocks ran at half
 // the speed (200k cylinder, natively: 2.9 -> 1.2 cycles per value forward).
@@ -23,19 +23,17 @@ constexpr int kRowBlock = 2;
 // destination row per pass, each source column read in order.
 constexpr int kCopyTile = 8;
 
-// Position of row i's value in column k within a group of `rows` rows (w
-// values each): pairs of columns k, k+1 of the group's rows side by side,
-// then a last odd column's values, one per row.
-inline std::size_t block_offset(int i, int k, int w, int rows) {
-  const int paired = w & ~1;
-  return k < paired ? static_cast<std::size_t>(k / 2) * 2 * rows + 2 * i + (k & 1)
-                    : static_cast<std::size_t>(paired) * rows + i;
-}
+// The block layout: a group of `rows` rows (w values each) holds row i's
+// value in column k at
+//   (k / 2) * 2 rows + 2 i + (k & 1)  for k below paired = w & ~1,
+//   paired rows + i                   for an odd last column k = paired:
+// pairs of columns k, k+1 of the group's rows side by side, then a last odd
+// column's values, one per row (store writes it, the sweeps read it).
 
 // The sweeps multiply and add two consecutive columns k, k+1 of a
 // supernode at a time (base/simd_pair.h).
 
-// Forward: y[R[i]] -= B_i x for a group of Rows rows B_i (block_offset);
+// Forward: y[R[i]] -= B_i x for a group of Rows rows B_i (the block layout);
 // xt holds x by column (column c's w values at xt + c w).
 template <int K, int Rows>
 void subtract_rows(const double* b, int w, const double* xt, const int* R, double* y) {
@@ -165,35 +163,53 @@ SupernodalFactor::SupernodalFactor(int n, std::vector<int> first_column, const s
   for (int s = 0; s < supernodes(); ++s) {
     const int w = first_column_[s + 1] - first_column_[s];
     const int m = row_offsets[s + 1] - row_offsets[s];
-    const double* panel = panels + panel_offsets[s];
-    store(s, rows.data() + row_offsets[s] + w, m - w,
-          [&](int p, int k) { return panel[static_cast<std::size_t>(k) * m + p]; });
+    store(s, rows.data() + row_offsets[s] + w, m - w, panels + panel_offsets[s], m);
   }
   row_start_.push_back(static_cast<int>(rows_.size()));
 }
 
-template <typename Entry>
-void SupernodalFactor::store(int s, const int* R, int r, const Entry& entry) {
+void SupernodalFactor::store(int s, const int* R, int r, const double* panel, int m) {
   const int w = first_column_[s + 1] - first_column_[s];
   widest_ = std::max(widest_, w);
   row_start_.push_back(static_cast<int>(rows_.size()));
   rows_.insert(rows_.end(), R, R + r);
   triangle_start_.push_back(static_cast<int>(values_.size()));
   for (int k = 0; k + 1 < w; ++k) {
-    for (int p = k + 1; p < w; ++p) values_.push_back(entry(p, k));
+    const double* column = panel + static_cast<std::size_t>(k) * m;
+    values_.insert(values_.end(), column + k + 1, column + w);
   }
   block_start_.push_back(static_cast<int>(values_.size()));
   values_.resize(values_.size() + static_cast<std::size_t>(r) * w);
   double* block = values_.data() + block_start_.back();
-  // Groups of kRowBlock rows, then the last rows one by one (a group of one:
-  // row-major).
+  // The block's entry (i, k) is below[k m + i]. Written in the block layout
+  // without computing the offset per value: each pair of rows is
+  // 2-by-2 tiles of pairs of columns (then a last odd column's two
+  // values), and a last odd row stands alone, row-major. The index
+  // arithmetic per value was most of this copy's time (in WASM, 5 % of a
+  // 30k-vertex flatten, which factors once per refinement step).
+  const double* below = panel + w;
+  const int paired = w & ~1, grouped = r - r % kRowBlock;
+  static_assert(kRowBlock == 2, "the copy below writes groups of two rows");
   for (int k0 = 0; k0 < w; k0 += kCopyTile) {
-    const int k1 = std::min(w, k0 + kCopyTile);
-    for (int i = 0; i < r; ++i) {
-      const int group = i - i % kRowBlock, rows = group + kRowBlock <= r ? kRowBlock : 1;
-      const int first = rows == 1 ? i : group;
-      double* values = block + static_cast<std::size_t>(first) * w;
-      for (int k = k0; k < k1; ++k) values[block_offset(i - first, k, w, rows)] = entry(w + i, k);
+    const int k1 = std::min(w, k0 + kCopyTile), pairs_end = std::min(k1, paired);
+    for (int i = 0; i < grouped; i += 2) {
+      double* out = block + static_cast<std::size_t>(i) * w;
+      for (int k = k0; k < pairs_end; k += 2) {
+        const double* left = below + static_cast<std::size_t>(k) * m + i;
+        const double* right = left + m;
+        out[2 * k] = left[0];
+        out[2 * k + 1] = right[0];
+        out[2 * k + 2] = left[1];
+        out[2 * k + 3] = right[1];
+      }
+      if (pairs_end < k1) {  // the odd last column
+        const double* last = below + static_cast<std::size_t>(paired) * m + i;
+        out[2 * paired] = last[0];
+        out[2 * paired + 1] = last[1];
+      }
+    }
+    for (int i = grouped; i < r; ++i) {
+      for (int k = k0; k < k1; ++k) block[static_cast<std::size_t>(i) * w + k] = below[static_cast<std::size_t>(k) * m + i];
     }
   }
 }

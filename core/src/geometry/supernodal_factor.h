@@ -5,8 +5,9 @@
 // below the run are one row set R: each column's first entry is the next
 // column, and it has one entry more than the next. Its values are a small
 // unit lower triangle and a dense r-by-w block (r = |R|), kept here by rows,
-// in groups of rows read together (supernodal_factor.cpp, block_offset). Why: the simplicial sweep reads a row index and updates one scattered
-// row of the right-hand side per nonzero; here a row of R costs one index and
+// in groups of rows read together (supernodal_factor.cpp, the block layout).
+// Why: the simplicial sweep reads a row index and updates one scattered row
+// of the right-hand side per nonzero; here a row of R costs one index and
 // one scattered update for all w columns, and the multiply-adds run over
 // contiguous values. An ARAP iteration is mostly these sweeps (on the 50k
 // cylinder they take 1.5 times less than the simplicial ones).
@@ -42,10 +43,9 @@ class SupernodalFactor {
  private:
   template <int K>
   void sweeps(const Eigen::VectorXd& inv_d, double* y) const;
-  // Appends supernode s's values: entry(p, k) is L's entry at its row p
-  // (0 .. w-1 its own columns, then R) in its column k, for p > k.
-  template <typename Entry>
-  void store(int s, const int* R, int r, const Entry& entry);
+  // Appends supernode s's values from its panel: m rows (its own w
+  // columns', then R's r = m - w), column-major.
+  void store(int s, const int* R, int r, const double* panel, int m);
 
   int n_ = 0;
   int widest_ = 0;
