@@ -31,19 +31,36 @@ using Permutation = Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int
 // Columns of a supernode factored together (factor_panels).
 constexpr int kPanelBlock = 32;
 
-// out = A B^H, A and B column blocks of panels (B's rows: out's columns);
-// for doubles by base/product_kernel.h.
-template <typename BlockA, typename Scalar>
-void product(const BlockA& A, const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>& B,
-             Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>& out) {
+// A dense matrix in memory kept from one use to the next: an Eigen matrix
+// reallocates whenever its size changes, and the factorization's scratch
+// changes size with every supernode (for the flattening refinement's system,
+// allocations and frees were 2.5 % of a WASM flatten).
+template <typename Scalar>
+class Scratch {
+ public:
+  using Shaped = Eigen::Map<Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>>;
+  Shaped shaped(Eigen::Index rows, Eigen::Index cols) {
+    if (memory_.size() < static_cast<std::size_t>(rows * cols)) memory_.resize(static_cast<std::size_t>(rows * cols));
+    return Shaped(memory_.data(), rows, cols);
+  }
+
+ private:
+  std::vector<Scalar> memory_;
+};
+
+// out = A B^H, A and B column blocks of panels (B's rows: out's columns),
+// out in `memory`; for doubles by base/product_kernel.h.
+template <typename BlockA, typename MatrixB, typename Scalar>
+typename Scratch<Scalar>::Shaped product(const BlockA& A, const MatrixB& B, Scratch<Scalar>& memory) {
+  typename Scratch<Scalar>::Shaped out = memory.shaped(A.rows(), B.rows());
   if constexpr (std::is_same_v<Scalar, double>) {
-    out.resize(A.rows(), B.rows());
     multiply_by_transpose(A.data(), static_cast<int>(A.outerStride()), B.data(), static_cast<int>(B.rows()),
                           static_cast<int>(A.rows()), static_cast<int>(B.rows()), static_cast<int>(A.cols()),
                           out.data(), static_cast<int>(A.rows()));
   } else {
     out.noalias() = A * B.adjoint();
   }
+  return out;
 }
 
 // C's upper triangle by columns.
@@ -187,7 +204,7 @@ int factor_panels(const SupernodalStructure& s, const Eigen::SparseMatrix<Scalar
   std::vector<int> head(supernodes, -1), next(supernodes, -1), next_row(supernodes, 0);
   std::vector<int> local(n, -1);  // row -> its position in the current supernode
   std::vector<int> place;
-  Matrix update, scaled;
+  Scratch<Scalar> update_memory, scaled_memory, weighted_memory;
   for (int J = 0; J < supernodes; ++J) {
     const int c0 = s.first_column[J], w = s.first_column[J + 1] - c0;
     const int m = s.row_offsets[J + 1] - s.row_offsets[J];
@@ -214,8 +231,9 @@ int factor_panels(const SupernodalStructure& s, const Eigen::SparseMatrix<Scalar
       while (p1 < km && krows[p1] < c0 + w) ++p1;
       const PanelOf LK(panels + s.panel_offsets[K], km, kw, Eigen::OuterStride<>(km));
       const auto dK = d.segment(s.first_column[K], kw).template cast<Scalar>();
+      auto scaled = scaled_memory.shaped(p1 - p0, kw);
       scaled.noalias() = LK.middleRows(p0, p1 - p0) * dK.asDiagonal();
-      product(LK.middleRows(p0, km - p0), scaled, update);
+      const auto update = product(LK.middleRows(p0, km - p0), scaled, update_memory);
       // Each row of the update's place in J's panel, found once for all
       // its columns.
       const int reach = km - p0;
@@ -241,13 +259,14 @@ int factor_panels(const SupernodalStructure& s, const Eigen::SparseMatrix<Scalar
     for (int k0 = 0; k0 < w; k0 += kPanelBlock) {
       const int k1 = std::min(w, k0 + kPanelBlock);
       if (k0 > 0) {
+        auto scaled = scaled_memory.shaped(k1 - k0, k0);
         scaled.noalias() = X.block(k0, 0, k1 - k0, k0) * d.segment(c0, k0).template cast<Scalar>().asDiagonal();
-        product(X.block(k0, 0, m - k0, k0), scaled, update);
-        X.block(k0, k0, m - k0, k1 - k0) -= update;
+        X.block(k0, k0, m - k0, k1 - k0) -= product(X.block(k0, 0, m - k0, k0), scaled, update_memory);
       }
       for (int k = k0; k < k1; ++k) {
         if (k > k0) {
-          const Matrix weighted =
+          auto weighted = weighted_memory.shaped(k - k0, 1);
+          weighted.noalias() =
               X.block(k, k0, 1, k - k0).adjoint().cwiseProduct(d.segment(c0 + k0, k - k0).template cast<Scalar>());
           X.block(k, k, m - k, 1).noalias() -= X.block(k, k0, m - k, k - k0) * weighted;
         }
