@@ -47,6 +47,19 @@ inline void multiply_by_transpose(const double* A, int lda, const double* B, int
   }
   for (; j < cols; ++j) {  // the last columns, one by one
     int i = 0;
+    // Eight rows at a time: four independent sums, not one chain of
+    // additions each waiting for the last (a matrix-vector product: the
+    // factorization's column updates within a panel block).
+    for (; i + 8 <= rows; i += 8) {
+      Pair c[4] = {};
+      for (int k = 0; k < depth; ++k) {
+        const double bk = B[j + static_cast<long>(k) * ldb];
+        const Pair b = {bk, bk};
+        const double* a = A + i + static_cast<long>(k) * lda;
+        for (int h = 0; h < 4; ++h) c[h] += load_pair(a + 2 * h) * b;
+      }
+      for (int h = 0; h < 4; ++h) store_pair(C + i + 2 * h + static_cast<long>(j) * ldc, c[h]);
+    }
     for (; i + 2 <= rows; i += 2) {
       Pair c = {0.0, 0.0};
       for (int k = 0; k < depth; ++k) {

@@ -204,7 +204,7 @@ int factor_panels(const SupernodalStructure& s, const Eigen::SparseMatrix<Scalar
   std::vector<int> head(supernodes, -1), next(supernodes, -1), next_row(supernodes, 0);
   std::vector<int> local(n, -1);  // row -> its position in the current supernode
   std::vector<int> place;
-  Scratch<Scalar> update_memory, scaled_memory, weighted_memory;
+  Scratch<Scalar> update_memory, scaled_memory, weighted_memory, column_memory;
   for (int J = 0; J < supernodes; ++J) {
     const int c0 = s.first_column[J], w = s.first_column[J + 1] - c0;
     const int m = s.row_offsets[J + 1] - s.row_offsets[J];
@@ -268,7 +268,14 @@ int factor_panels(const SupernodalStructure& s, const Eigen::SparseMatrix<Scalar
           auto weighted = weighted_memory.shaped(k - k0, 1);
           weighted.noalias() =
               X.block(k, k0, 1, k - k0).adjoint().cwiseProduct(d.segment(c0 + k0, k - k0).template cast<Scalar>());
-          X.block(k, k, m - k, 1).noalias() -= X.block(k, k0, m - k, k - k0) * weighted;
+          if constexpr (std::is_same_v<Scalar, double>) {
+            // The product kernel's last-column loop: each row's sum in
+            // Eigen's order, two rows at a time (Eigen's matrix-vector
+            // product runs one double at a time in WASM).
+            X.block(k, k, m - k, 1) -= product(X.block(k, k0, m - k, k - k0), weighted.transpose(), column_memory);
+          } else {
+            X.block(k, k, m - k, 1).noalias() -= X.block(k, k0, m - k, k - k0) * weighted;
+          }
         }
         const double pivot = Eigen::numext::real(X(k, k));
         if (!((any_sign ? std::abs(pivot) : pivot) > pivot_floor)) return c0 + k;
