@@ -12,12 +12,16 @@
 namespace aniso {
 
 // C (rows by cols, leading dimension ldc) = A (rows by depth, lda) times the
-// transpose of B (cols by depth, ldb); C is overwritten.
+// transpose of B (cols by depth, ldb); C is overwritten. With `lower`, only
+// where C's lower triangle (row >= column) needs it: the register blocks
+// wholly above the diagonal are skipped and those entries left as they were
+// (the factorization's updates are symmetric, and a quarter of their blocks
+// lay there for the 30k-vertex koala head's flattening).
 inline void multiply_by_transpose(const double* A, int lda, const double* B, int ldb, int rows, int cols, int depth,
-                                  double* C, int ldc) {
+                                  double* C, int ldc, bool lower = false) {
   int j = 0;
   for (; j + 4 <= cols; j += 4) {
-    int i = 0;
+    int i = lower ? j : 0;
     for (; i + 4 <= rows; i += 4) {
       Pair c[2][4] = {};
       const double* a = A + i;
@@ -46,7 +50,7 @@ inline void multiply_by_transpose(const double* A, int lda, const double* B, int
     }
   }
   for (; j < cols; ++j) {  // the last columns, one by one
-    int i = 0;
+    int i = lower ? j & ~1 : 0;
     // Eight rows at a time: four independent sums, not one chain of
     // additions each waiting for the last (a matrix-vector product: the
     // factorization's column updates within a panel block).

@@ -49,14 +49,16 @@ class Scratch {
 };
 
 // out = A B^H, A and B column blocks of panels (B's rows: out's columns),
-// out in `memory`; for doubles by base/product_kernel.h.
+// out in `memory`; for doubles by base/product_kernel.h, and with `lower`
+// only as much as its lower triangle needs (the rest is left undefined).
 template <typename BlockA, typename MatrixB, typename Scalar>
-typename Scratch<Scalar>::Shaped product(const BlockA& A, const MatrixB& B, Scratch<Scalar>& memory) {
+typename Scratch<Scalar>::Shaped product(const BlockA& A, const MatrixB& B, Scratch<Scalar>& memory,
+                                         bool lower = false) {
   typename Scratch<Scalar>::Shaped out = memory.shaped(A.rows(), B.rows());
   if constexpr (std::is_same_v<Scalar, double>) {
     multiply_by_transpose(A.data(), static_cast<int>(A.outerStride()), B.data(), static_cast<int>(B.rows()),
                           static_cast<int>(A.rows()), static_cast<int>(B.rows()), static_cast<int>(A.cols()),
-                          out.data(), static_cast<int>(A.rows()));
+                          out.data(), static_cast<int>(A.rows()), lower);
   } else {
     out.noalias() = A * B.adjoint();
   }
@@ -233,7 +235,8 @@ int factor_panels(const SupernodalStructure& s, const Eigen::SparseMatrix<Scalar
       const auto dK = d.segment(s.first_column[K], kw).template cast<Scalar>();
       auto scaled = scaled_memory.shaped(p1 - p0, kw);
       scaled.noalias() = LK.middleRows(p0, p1 - p0) * dK.asDiagonal();
-      const auto update = product(LK.middleRows(p0, km - p0), scaled, update_memory);
+      // Only its lower triangle is subtracted below.
+      const auto update = product(LK.middleRows(p0, km - p0), scaled, update_memory, true);
       // Each row of the update's place in J's panel, found once for all
       // its columns.
       const int reach = km - p0;
