@@ -74,7 +74,7 @@ struct FlattenTargets {
 
 struct ArapFlattenSettings {
   // A safety stop, not a budget: every open test mesh converges below it
-  // (the bunny, the slowest, at 315 of them; README, Flattening refinement).
+  // (the bunny, the slowest, at 318 of them; README, Flattening refinement).
   int max_iterations = 1000;
   double tolerance = 1e-8;   // stop when the relative energy change falls below
                              // (the refinement's stages also stop where 10 steps
