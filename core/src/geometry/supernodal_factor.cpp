@@ -209,7 +209,8 @@ void SupernodalFactor::store(int s, const int* R, int r, const double* panel, in
       }
     }
     for (int i = grouped; i < r; ++i) {
-      for (int k = k0; k < k1; ++k) block[static_cast<std::size_t>(i) * w + k] = below[static_cast<std::size_t>(k) * m + i];
+      double* out = block + static_cast<std::size_t>(i) * w;
+      for (int k = k0; k < k1; ++k) out[k] = below[static_cast<std::size_t>(k) * m + i];
     }
   }
 }

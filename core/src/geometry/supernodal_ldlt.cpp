@@ -273,7 +273,7 @@ int factor_panels(const SupernodalStructure& s, const Eigen::SparseMatrix<Scalar
               X.block(k, k0, 1, k - k0).adjoint().cwiseProduct(d.segment(c0 + k0, k - k0).template cast<Scalar>());
           if constexpr (std::is_same_v<Scalar, double>) {
             // The product kernel's last-column loop: each row's sum in
-            // Eigen's order, two rows at a time (Eigen's matrix-vector
+            // Eigen's order, eight rows at a time (Eigen's matrix-vector
             // product runs one double at a time in WASM).
             X.block(k, k, m - k, 1) -= product(X.block(k, k0, m - k, k - k0), weighted.transpose(), column_memory);
           } else {
