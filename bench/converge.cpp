@@ -114,7 +114,13 @@ void run_flatten_convergence(const Problem& problem, double tolerance, int runs,
       options.solver.max_iterations = cap;
       if (flattener->flatten(options).metrics.energy <= plain.result.energy) at = cap;
     }
-    if (at == 0) return;
+    if (at == 0) {
+      std::fprintf(stderr,
+                   "converge %s anisoform-flatten lbfgs never reached the plain run's energy (%.10g; it ended at "
+                   "%.10g)\n",
+                   problem.name.c_str(), plain.result.energy, lbfgs.result.energy);
+      return;
+    }
     options.solver.max_iterations = at;
     for (int r = 0; r < runs; ++r) {
       const double start = now_ms();
@@ -212,7 +218,13 @@ int run_convergence(const Problem& problem, double tolerance, int runs, int max_
     for (std::size_t k = 1; k < variants.size(); ++k) {
       const Variant& v = variants[k];
       const int at = first_iteration_at(v.result.energy_history, plain.energy);
-      if (at == 0) continue;
+      if (at == 0) {
+        // No row: it stalled or settled in another local minimum (README,
+        // Accelerated iterations).
+        std::fprintf(stderr, "converge %s %s %s never reached the plain run's energy (%.10g; it ended at %.10g)\n",
+                     problem.name.c_str(), row.impl, v.name, plain.energy, v.result.energy);
+        continue;
+      }
       aniso::DeformRequest to_energy = request;
       to_energy.acceleration = v.acceleration;
       to_energy.max_iterations = at;
