@@ -10,6 +10,8 @@
 import { heatColor } from './pattern-colors.js';
 
 const PADDING_PX = 24;
+// The legend's height from the bottom edge (its label's top, #drawLegend).
+const LEGEND_PX = 38;
 
 export class PatternView {
   #pattern = null;
@@ -67,12 +69,18 @@ export class PatternView {
     }
     const [minU, minV, maxU, maxV] = uvBounds(pattern.uv, pattern.triangles);
     const spanU = Math.max(maxU - minU, 1e-12), spanV = Math.max(maxV - minV, 1e-12);
-    const scale = Math.min((width - 2 * PADDING_PX) / spanU, (height - 2 * PADDING_PX) / spanV);
+    // Between the summary over the top (one or two lines, as wide as the
+    // pane) and the legend at the bottom: fitted to the whole height, a tall
+    // pattern ran under both (the koala's head).
+    if (this.#hovered < 0) this.readout.textContent = summary(pattern.metrics);
+    const top = Math.max(PADDING_PX, this.readout.offsetTop + this.readout.offsetHeight + PADDING_PX / 2);
+    const bottom = LEGEND_PX + PADDING_PX / 2;
+    const scale = Math.min((width - 2 * PADDING_PX) / spanU, Math.max(1, height - top - bottom) / spanV);
     // v up on screen, as in the SVG/DXF files.
     this.#view = {
       scale,
       x: width / 2 - scale * (minU + maxU) / 2,
-      y: height / 2 + scale * (minV + maxV) / 2,
+      y: top + (height - top - bottom) / 2 + scale * (minV + maxV) / 2,
     };
     this.draw();
   }
