@@ -33,10 +33,14 @@ test('deform resolves whether its solve converged before the iteration cap', asy
     await api.select({ box: { min: [-1e9, 0, -1e9], max: [1e9, 1e9, 1e9] } });
     const op = { method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.3, 1] } };
     const cut = await api.deform({ ...op, maxIterations: 2 });
+    const cutStatus = document.querySelector('[data-testid="status-solve"]').textContent;
     await api.undo();
-    return [cut, await api.deform(op)];
+    return [{ ...cut, status: cutStatus }, await api.deform(op)];
   });
   expect(capped).toMatchObject({ iterations: 2, converged: false });
+  // The user is told too, where the solve's figures are.
+  expect(capped.status).toMatch(/^solve [\d.]+ ms · 2 it · stopped at the cap$/);
+  await expect(page.getByTestId('status-solve')).not.toContainText('cap');
   expect(settled.converged).toBe(true);
   expect(settled.iterations).toBeLessThan(50);
   expect(pageErrors).toEqual([]);

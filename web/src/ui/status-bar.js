@@ -1,4 +1,5 @@
-// Status bar: mesh size, selection, last solve time, frames per second, and
+// Status bar: mesh size, selection, last solve time (and whether it reached
+// its iteration cap), frames per second, and
 // progress of loading / factorizing (a bar with a fraction, or an
 // indeterminate one when the worker cannot tell how far it is).
 import { h } from './dom.js';
@@ -20,8 +21,15 @@ export function statusBar(container, { editor, viewer, lifetime }) {
   editor.on('mesh', (document) => {
     mesh.textContent = `${document.vertexCount.toLocaleString()} vertices · ${document.triangleCount.toLocaleString()} triangles`;
   });
-  editor.on('stats', ({ ms, iterations, live }) => {
-    solve.textContent = `${live ? 'preview' : 'solve'} ${ms.toFixed(1)} ms · ${iterations} it`;
+  editor.on('stats', ({ ms, iterations, live, converged }) => {
+    // A committed solve cut off by its iteration cap says so: on a large
+    // mesh the default cap can end an edit before its energy settles.
+    // (A live preview runs one iteration by design.)
+    const capped = !live && converged === false;
+    solve.textContent = `${live ? 'preview' : 'solve'} ${ms.toFixed(1)} ms · ${iterations} it${capped ? ' · stopped at the cap' : ''}`;
+    solve.title = capped
+      ? 'The solve stopped at its iteration cap before the energy settled: raise Iterations (Method) for a closer result'
+      : '';
   });
   editor.on('progress', ({ stage, message, fraction }) => {
     // A background step (the solver's preparation) ending during a
