@@ -242,6 +242,11 @@ int run_deform(const DeformArguments& args) {
   // What the session will solve, for the counts echoed below.
   const DeformRequest resolved = resolve_edit(edit, mesh.V, info.report.bbox, session.selection());
   const DeformOpResult result = session.deform(edit);
+  // As the app's status line: a cut-off solve is not the edit's converged shape.
+  if (!result.converged) {
+    warnings.push_back("stopped at the iteration cap (" + std::to_string(result.iterations) +
+                       ") before the energy settled: raise --iterations for a closer result");
+  }
 
   write_mesh(args.output, Mesh{session.positions(), mesh.F}, plan.write);
   std::string direction = plan.direction_description;

@@ -215,11 +215,15 @@ TEST_CASE("cli robustness: --iterations sets the steps of a rotation and twist, 
   const auto capped = deform_with(scale, "1");
   const auto longer = deform_with(scale, "5");
   CHECK(max_position_difference(capped.first, longer.first) > 1e-4 * size);
+  // Cut off by the cap, and told so.
+  CHECK(capped.second["converged"] == false);
+  CHECK(capped.second["warnings"].dump().find("stopped at the iteration cap (1)") != std::string::npos);
   // Converged: a larger cap changes nothing.
   const auto converged = deform_with(scale, "300");
   const auto more = deform_with(scale, "600");
   CHECK(converged.second["converged"] == true);
   CHECK(converged.second["iterations"] < 300);
+  CHECK(converged.second["warnings"].dump().find("iteration cap") == std::string::npos);
   CHECK(max_position_difference(converged.first, more.first) == 0.0);
 }
 
