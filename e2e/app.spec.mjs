@@ -39,7 +39,7 @@ test('deform resolves whether its solve converged before the iteration cap', asy
   });
   expect(capped).toMatchObject({ iterations: 2, converged: false });
   // The user is told too, where the solve's figures are.
-  expect(capped.status).toMatch(/^solve [\d.]+ ms · 2 it · stopped at the cap$/);
+  expect(capped.status).toMatch(/^solve [\d.]+ ms · 2 it · cap reached$/);
   await expect(page.getByTestId('status-solve')).not.toContainText('cap');
   expect(settled.converged).toBe(true);
   expect(settled.iterations).toBeLessThan(50);

@@ -26,7 +26,7 @@ export function statusBar(container, { editor, viewer, lifetime }) {
     // mesh the default cap can end an edit before its energy settles.
     // (A live preview runs one iteration by design.)
     const capped = !live && converged === false;
-    solve.textContent = `${live ? 'preview' : 'solve'} ${ms.toFixed(1)} ms · ${iterations} it${capped ? ' · stopped at the cap' : ''}`;
+    solve.textContent = `${live ? 'preview' : 'solve'} ${ms.toFixed(1)} ms · ${iterations} it${capped ? ' · cap reached' : ''}`;
     solve.title = capped
       ? 'The solve stopped at its iteration cap before the energy settled: raise Iterations (Method) for a closer result'
       : '';
