@@ -554,9 +554,9 @@ double AnArapSolver::coupled_rotations() {
 }
 
 void AnArapSolver::global_rhs(Positions& b) const {
-  b.setZero(n_, 3);
   const std::vector<Eigen::Matrix3d>& R = rotation_matrices_;
   if (elements_ == ArapElements::Spokes) {
+    b.resize(n_, 3);  // every row is written below
     // b_i = -1/2 sum_j w_ij (R_i + R_j) t_ij: a spoke's target t_ij = T_ij e_ij
     // is the same map seen from both ends (t_ji = -t_ij). The R_i part is R_i
     // times the cell's weighted target sum, which changes with the targets only.
@@ -569,6 +569,7 @@ void AnArapSolver::global_rhs(Positions& b) const {
     }
     return;
   }
+  b.setZero(n_, 3);
   for (int t = 0; t < rest_.num_triangles(); ++t) {
     const Eigen::Matrix3d M = (R[rest_.F(t, 0)] + R[rest_.F(t, 1)] + R[rest_.F(t, 2)]) / 3.0;
     for (int k = 0; k < 3; ++k) {
