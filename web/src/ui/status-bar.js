@@ -1,7 +1,7 @@
 // Status bar: mesh size, selection, last solve time (and whether it reached
-// its iteration cap), frames per second, and
-// progress of loading / factorizing (a bar with a fraction, or an
-// indeterminate one when the worker cannot tell how far it is).
+// its iteration cap), frames per second, and progress of loading /
+// factorizing (a bar with a fraction, or an indeterminate one when the
+// worker cannot tell how far it is).
 import { h } from './dom.js';
 
 export function statusBar(container, { editor, viewer, lifetime }) {
