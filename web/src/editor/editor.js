@@ -12,7 +12,7 @@
 //   'selection'  {weights, count, live}: committed weights, or a brush stroke in progress
 //   'history'    {canUndo, canRedo, undoLabel, redoLabel}
 //   'stats'      {ms, iterations, live, factorizations, converged}: converged false
-//                when a committed solve ended at its iteration cap
+//                when the solve ended at its iteration cap (a live preview's one does)
 //   'progress'   {stage, message, fraction?}; stage 'done' ends it
 //   'busy'       boolean: a committed edit is being solved
 //   'gesture'    boolean: a live edit started or ended
