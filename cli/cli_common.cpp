@@ -200,6 +200,11 @@ std::string read_text_file(const std::string& path, const std::string& option) {
   return naming_option(option, [&] { return read_regular_file(path, ErrorCode::BadParameter); });
 }
 
+std::vector<DirectionConstraint> read_direction_field(const std::string& path) {
+  const std::string text = read_text_file(path, "--direction");
+  return naming_option("--direction", [&] { return parse_direction_constraints(text, path); });
+}
+
 ReadReport load_into_session(Session& session, const std::string& path) {
   ReadResult read = read_input_mesh(path);
   try {

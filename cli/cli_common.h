@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "anisoform/deformer.h"
+#include "anisoform/direction_field.h"
 #include "anisoform/error.h"
 #include "anisoform/file_io.h"
 #include "anisoform/mesh.h"
@@ -126,6 +127,11 @@ std::vector<int> region_vertices(const Mesh& mesh, const Region& region,
 // open PATH ..." or "OPTION: PATH is a directory, not a regular file" when it
 // cannot be read (files named by options are parameters).
 std::string read_text_file(const std::string& path, const std::string& option);
+
+// The direction constraints of `--direction field:PATH` (the format of
+// parse_direction_constraints), every problem named "--direction: ..." once,
+// for deform and flatten alike.
+std::vector<DirectionConstraint> read_direction_field(const std::string& path);
 
 // Reads the input mesh: an unknown extension is Error(BadParameter); a missing,
 // unreadable or non-regular file Error(BadFile) ("cannot open PATH: ...",

@@ -121,9 +121,7 @@ DeformOp edit_from_flags(const DeformArguments& args, DeformPlan& plan) {
     request.direction.kind = choice.kind;
     request.direction.vector = choice.vector;
     if (choice.kind == DirectionSource::Kind::Constraints) {
-      request.direction.constraints = naming_option("--direction", [&] {
-        return parse_direction_constraints(read_text_file(choice.field_path, "--direction"), choice.field_path);
-      });
+      request.direction.constraints = read_direction_field(choice.field_path);
     }
   }
   if (!args.handle.empty() && request.method != Method::Arap) {
@@ -370,14 +368,7 @@ void register_deform(CLI::App& app, Action& action) {
   auto args = std::make_shared<DeformArguments>();
   CLI::App* deform = app.add_subcommand("deform", kDeformHelp);
   add_deform_options(*deform, *args);
-  deform->callback([args, deform, &action] {
-    action = [args, deform] {
-      return run_reporting_errors("deform", [&] {
-        refuse_empty_values(*deform);
-        return run_deform(*args);
-      });
-    };
-  });
+  run_when_chosen(deform, args, action, run_deform);
 }
 
 }  // namespace aniso::cli

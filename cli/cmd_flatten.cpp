@@ -98,8 +98,7 @@ FlattenPlan plan_flatten(const FlattenArguments& args) {
     FlattenDirections& directions = plan.request.directions;
     if (direction.kind == DirectionSource::Kind::Constraints) {
       directions.kind = FlattenDirections::Kind::Constraints;
-      directions.constraints =
-          parse_direction_constraints(read_text_file(direction.field_path, "--direction"), direction.field_path);
+      directions.constraints = read_direction_field(direction.field_path);
     } else if (direction.kind == DirectionSource::Kind::Global) {
       directions.global = direction.vector;
     } else {
@@ -282,14 +281,7 @@ void register_flatten(CLI::App& app, Action& action) {
   auto args = std::make_shared<FlattenArguments>();
   CLI::App* command = app.add_subcommand("flatten", kFlattenHelp);
   add_flatten_options(*command, *args);
-  command->callback([args, command, &action] {
-    action = [args, command] {
-      return run_reporting_errors("flatten", [&] {
-        refuse_empty_values(*command);
-        return run_flatten(*args);
-      });
-    };
-  });
+  run_when_chosen(command, args, action, run_flatten);
 }
 
 }  // namespace aniso::cli

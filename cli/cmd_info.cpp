@@ -75,9 +75,7 @@ void register_info(CLI::App& app, Action& action) {
       "reader did: polygons triangulated, vertices welded, elements skipped, notes). "
       "A mesh that parses always gives exit 0; its problems are reported.");
   info->add_option("MESH", *path, "Mesh file: .obj .off .ply .stl")->required();
-  info->callback([path, &action] {
-    action = [path] { return run_reporting_errors("info", [&] { return run_info(*path); }); };
-  });
+  run_when_chosen(info, path, action, run_info);
 }
 
 }  // namespace aniso::cli

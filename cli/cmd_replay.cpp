@@ -31,9 +31,9 @@ std::string path_beside(const std::string& path, const std::string& name) {
 }
 
 int run_replay(const ReplayArguments& args) {
-  const EditDocument document = naming_option("DOC", [&] {
-    return document_from_text(read_text_file(args.document, "DOC"));
-  });
+  // Read, then parsed: each names DOC once.
+  const std::string text = read_text_file(args.document, "DOC");
+  const EditDocument document = naming_option("DOC", [&] { return document_from_text(text); });
   check_output_path(args.output);
   const std::string mesh_path = args.mesh.empty() ? path_beside(args.document, document.mesh_name) : args.mesh;
   const std::string bytes = read_regular_file(mesh_path);
@@ -69,14 +69,7 @@ void register_replay(CLI::App& app, Action& action) {
   replay->add_option("OUT", args->output, "Output mesh: .obj .off .ply .stl")->required();
   replay->add_option("--mesh", args->mesh, "Base mesh (default: the document's mesh.name beside DOC)");
   replay->add_flag("--ascii", args->ascii, "Write PLY/STL as text");
-  replay->callback([args, replay, &action] {
-    action = [args, replay] {
-      return run_reporting_errors("replay", [&] {
-        refuse_empty_values(*replay);
-        return run_replay(*args);
-      });
-    };
-  });
+  run_when_chosen(replay, args, action, run_replay);
 }
 
 }  // namespace aniso::cli

@@ -176,6 +176,14 @@ TEST_CASE("cli robustness: empty, hexadecimal and directory values are refused n
       {{"deform", in, out, "--select", "file:" + dir.file("selection")},
        "--select: " + dir.file("selection") + " is a directory, not a regular file"},
       {{"deform", in, out, "--select", "sphere:0,0,0,0x1p0"}, "sphere number 4: '0x1p0' is a hexadecimal number"},
+      // Files named by options are named once, by deform and flatten alike.
+      {{"flatten", in, dir.file("p.svg"), "--direction", "field:" + hex_field},
+       "flatten: error: --direction: " + hex_field + " line 2: DX: '0x1p0' is a hexadecimal number"},
+      {{"deform", in, out, "--direction", "field:" + dir.file("none.txt")},
+       "deform: error: --direction: cannot open " + dir.file("none.txt")},
+      {{"flatten", in, dir.file("p.svg"), "--direction", "field:" + dir.file("none.txt")},
+       "flatten: error: --direction: cannot open " + dir.file("none.txt")},
+      {{"replay", dir.file("none.json"), out}, "replay: error: DOC: cannot open " + dir.file("none.json")},
   };
   for (const auto& [args, message] : cases) {
     const CliRun run = run_expecting(args, 2);
