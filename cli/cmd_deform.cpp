@@ -68,14 +68,27 @@ ArapElements parse_elements(const std::string& text) {
        "--elements: '" + text + "' is not one of spokes, spokes-rims");
 }
 
+// An option's amounts (`read` sets its fields of a spec), checked by the
+// core's rule (validate) on a spec that holds only them, so that an error
+// names the option as well as the amount, then set on `spec`.
+template <typename Read>
+void read_transform_option(const std::string& option, const std::string& text, TransformSpec& spec, Read read) {
+  if (text.empty()) return;
+  TransformSpec only;
+  read(only);
+  naming_option(option, [&] { validate(only); });
+  read(spec);
+}
+
 TransformSpec parse_transform(const DeformArguments& args) {
   TransformSpec spec;
-  if (!args.scale.empty()) parse_scale(args.scale, spec);
-  if (!args.thicken.empty()) spec.sn = parse_number(args.thicken, "--thicken");
-  if (!args.shear.empty()) spec.shear = parse_number(args.shear, "--shear");
-  if (!args.rotate.empty()) parse_rotation(args.rotate, spec);
-  if (!args.twist.empty()) parse_twist(args.twist, spec);
-  validate(spec);  // non-positive scales and the like, named by the core
+  read_transform_option("--scale", args.scale, spec, [&](TransformSpec& s) { parse_scale(args.scale, s); });
+  read_transform_option("--thicken", args.thicken, spec,
+                        [&](TransformSpec& s) { s.sn = parse_number(args.thicken, "--thicken"); });
+  read_transform_option("--shear", args.shear, spec,
+                        [&](TransformSpec& s) { s.shear = parse_number(args.shear, "--shear"); });
+  read_transform_option("--rotate", args.rotate, spec, [&](TransformSpec& s) { parse_rotation(args.rotate, s); });
+  read_transform_option("--twist", args.twist, spec, [&](TransformSpec& s) { parse_twist(args.twist, s); });
   return spec;
 }
 

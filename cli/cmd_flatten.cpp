@@ -81,7 +81,7 @@ double positive_number(const std::string& text, const std::string& option) {
 FlattenPlan plan_flatten(const FlattenArguments& args) {
   FlattenPlan plan;
   plan.format = check_pattern_output(args.output);
-  plan.selection = parse_region(args.select);
+  plan.selection = naming_option("--select", [&] { return parse_region(args.select); });
   if (!args.compress.empty()) {
     const std::vector<double> amounts = parse_number_list(args.compress, "--compress");
     if (amounts.empty() || amounts.size() > 2) {
@@ -89,7 +89,12 @@ FlattenPlan plan_flatten(const FlattenArguments& args) {
     }
     plan.request.su = amounts[0];
     if (amounts.size() > 1) plan.request.sv = amounts[1];
-    // Their range is the core's rule (validate_scale, limits.h), checked by flatten().
+    // Their range is the core's rule (validate_scale, limits.h), which
+    // flatten() applies too; here the error also names the option.
+    naming_option("--compress", [&] {
+      validate_scale(plan.request.su, "su");
+      validate_scale(plan.request.sv, "sv");
+    });
   }
   plan.request.direction_given = !args.direction.empty();
   if (plan.request.direction_given) {
@@ -132,7 +137,7 @@ FlattenPlan plan_flatten(const FlattenArguments& args) {
 // Selected vertices as a mask (empty: everything).
 std::vector<char> selection_mask(const Mesh& mesh, const Region& region) {
   if (region.kind == Region::Kind::All) return {};
-  const Eigen::VectorXd weights = region_weights(mesh, region);
+  const Eigen::VectorXd weights = naming_option("--select", [&] { return region_weights(mesh, region); });
   std::vector<char> mask(mesh.num_vertices(), 0);
   for (int i = 0; i < mesh.num_vertices(); ++i) mask[i] = weights[i] > 0.0;
   return mask;

@@ -184,6 +184,12 @@ TEST_CASE("cli robustness: empty, hexadecimal and directory values are refused n
       {{"flatten", in, dir.file("p.svg"), "--direction", "field:" + dir.file("none.txt")},
        "flatten: error: --direction: cannot open " + dir.file("none.txt")},
       {{"replay", dir.file("none.json"), out}, "replay: error: DOC: cannot open " + dir.file("none.json")},
+      {{"flatten", in, dir.file("p.svg"), "--select", "file:" + dir.file("none.txt")},
+       "flatten: error: --select: cannot open " + dir.file("none.txt")},
+      // Amounts out of the core's range name their option too.
+      {{"flatten", in, dir.file("p.svg"), "--compress", "0"}, "flatten: error: --compress: su must be positive, got 0"},
+      {{"deform", in, out, "--scale", "1,0"}, "deform: error: --scale: scale sv must be positive, got 0"},
+      {{"deform", in, out, "--shear", "1000"}, "deform: error: --shear: shear = 1000 is out of range (-100 .. 100)"},
   };
   for (const auto& [args, message] : cases) {
     const CliRun run = run_expecting(args, 2);
