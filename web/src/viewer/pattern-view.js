@@ -10,8 +10,14 @@
 import { heatColor } from './pattern-colors.js';
 
 const PADDING_PX = 24;
-// The legend's height from the bottom edge (its label's top, #drawLegend).
-const LEGEND_PX = 38;
+// The colour legend (#drawLegend): its bar's top this far above the bottom
+// edge, its label's baseline that far above the bar, in type of that size.
+const LEGEND_BAR_PX = 22;
+const LEGEND_LABEL_GAP_PX = 4;
+const LEGEND_FONT_PX = 11;
+// The legend's height from the bottom edge (its label's top), which Fit keeps
+// the pattern above.
+const LEGEND_PX = LEGEND_BAR_PX + LEGEND_LABEL_GAP_PX + LEGEND_FONT_PX + 1;
 
 export class PatternView {
   #pattern = null;
@@ -170,16 +176,16 @@ export class PatternView {
 
   #drawLegend(context) {
     const { height } = this.#size();
-    const x = 12, y = height - 22, width = 120;
+    const x = 12, y = height - LEGEND_BAR_PX, width = 120;
     for (let i = 0; i < width; i++) {
       context.fillStyle = heatColor((i / (width - 1)) * this.#range, this.#range);
       context.fillRect(x + i, y, 1, 8);
     }
     context.fillStyle = '#e6e8eb';
-    context.font = '11px system-ui, sans-serif';
-    context.fillText('0 %', x, y - 4);
+    context.font = `${LEGEND_FONT_PX}px system-ui, sans-serif`;
+    context.fillText('0 %', x, y - LEGEND_LABEL_GAP_PX);
     const label = `${this.#colorBy === 'cross' ? 'cross' : 'compression'} error ≥ ${formatPercent(this.#range)}`;
-    context.fillText(label, x + width - context.measureText(label).width / 2, y - 4);
+    context.fillText(label, x + width - context.measureText(label).width / 2, y - LEGEND_LABEL_GAP_PX);
   }
 
   #toScreen(uv, vertex) {
