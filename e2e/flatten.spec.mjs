@@ -207,3 +207,23 @@ test('on a closed mesh with a part selected, the panel flattens the selection an
   expect(triangles).toBeLessThan(info.triangles);
   expect(pageErrors).toEqual([]);
 });
+
+test('after a committed edit, the panel still flattens the part selected', async ({ page }) => {
+  // A commit replays the document in the worker, which leaves its session
+  // with no selection: the page's selection must go again (it failed with
+  // "the selection holds no whole triangle").
+  const pageErrors = await openApp(page);
+  await page.evaluate(() => window.anisoform.select({ box: { min: [-1e9, 0, -1e9], max: [1e9, 1e9, 1e9] } }));
+  await page.evaluate(() => window.anisoform.deform({
+    method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.3, 1] }, maxIterations: 3,
+  }));
+  await page.getByTestId('mode-flatten').click();
+  await page.getByTestId('flatten-run').click();
+  await expect(page.getByTestId('metric-flipped')).toHaveText('0');
+  await expect(page.locator('#flatten-patch')).toHaveValue('selection');
+  await expect(page.getByTestId('error')).toBeHidden();
+  const triangles = Number(await page.getByTestId('pattern-view').getAttribute('data-triangles'));
+  expect(triangles).toBeGreaterThan(20);
+  expect(triangles).toBeLessThan((await page.evaluate(() => window.anisoform.info())).triangles);
+  expect(pageErrors).toEqual([]);
+});

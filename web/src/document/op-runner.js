@@ -44,6 +44,9 @@ export class OpRunner {
    * `distortion`: the heat map's kind to send back (default: the one shown).
    */
   replay(from, to, { json = this.#document().toJSON(), preview = false, distortion = this.#editor.heatMapKind } = {}) {
+    // The core's replay leaves the session with no selection (replay_document):
+    // the page's goes again before the next edit or flattening that uses it.
+    this.#editor.selectionState.forget();
     return this.#client.request(Request.replay, { document: json, from, to, preview, distortion });
   }
 
