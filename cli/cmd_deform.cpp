@@ -17,6 +17,7 @@
 #include "anisoform/deform_request.h"
 #include "anisoform/direction_field.h"
 #include "anisoform/op.h"
+#include "anisoform/transforms.h"
 #include "cli_common.h"
 #include "commands.h"
 
@@ -250,6 +251,10 @@ int run_deform(const DeformArguments& args) {
     warnings.push_back("--method arap is isotropic ARAP with handles: the local transform "
                        "(--scale, --shear, --rotate, --twist, --thicken) is not used");
   }
+  // The twist's range depends on the mesh, so the core checks it at the
+  // solve; checked here first by the same rule, to name where it came from.
+  naming_option(args.op.empty() ? "--twist" : "--op",
+                [&] { validate_twist(edit.request.transform, info.report.bbox.diagonal()); });
   // What the session will solve, for the counts echoed below.
   const DeformRequest resolved = resolve_edit(edit, mesh.V, info.report.bbox, session.selection());
   const DeformOpResult result = session.deform(edit);

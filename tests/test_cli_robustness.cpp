@@ -190,6 +190,9 @@ TEST_CASE("cli robustness: empty, hexadecimal and directory values are refused n
       {{"flatten", in, dir.file("p.svg"), "--compress", "0"}, "flatten: error: --compress: su must be positive, got 0"},
       {{"deform", in, out, "--scale", "1,0"}, "deform: error: --scale: scale sv must be positive, got 0"},
       {{"deform", in, out, "--shear", "1000"}, "deform: error: --shear: shear = 1000 is out of range (-100 .. 100)"},
+      // The twist's range depends on the mesh (its bounding-box diagonal).
+      {{"deform", in, out, "--twist", "0,1,0:1e6"},
+       "deform: error: --twist: twist rate = 1e+06 degrees per unit turns the mesh by"},
   };
   for (const auto& [args, message] : cases) {
     const CliRun run = run_expecting(args, 2);

@@ -108,6 +108,11 @@ TEST_CASE("op parity: --op refuses the edit's flags beside it and names bad fiel
   const std::string bad = test::write_temp_text("bad.json", R"({"transform":{"scale":["NaN"]}})");
   const test::CliRun refused = run_expecting({"deform", in, temp_path("o.obj"), "--op", bad}, 2);
   CHECK(refused.err.find("--op: op.transform.scale[0] must be a finite number, got 'NaN'") != std::string::npos);
+  // The twist's mesh-dependent range, named as the op's too.
+  const std::string twist = test::write_temp_text(
+      "twist.json", R"({"transform":{"twist":{"axis":[0,1,0],"degreesPerUnit":1e6}}})");
+  CHECK(run_expecting({"deform", in, temp_path("o.obj"), "--op", twist, "--select", "all"}, 2)
+            .err.find("--op: twist rate = 1e+06 degrees per unit") != std::string::npos);
   const std::string broken = test::write_temp_text("broken.json", "{\"method\":");
   CHECK(run_expecting({"deform", in, temp_path("o.obj"), "--op", broken}, 2).err.find("is not valid JSON") !=
         std::string::npos);
