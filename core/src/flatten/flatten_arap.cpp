@@ -257,8 +257,7 @@ struct ArapFlattening::Impl {
       bool shortened = false;
       trial = uv + direction;
       if (!trial.allFinite()) {
-        if (memory.empty()) fail(ErrorCode::Numerical, "the flattening's global step produced a non-finite position");
-        trial = uv;  // a quasi-Newton step that overflowed gains nothing: the plain step below
+        fail(ErrorCode::Numerical, "the flattening's global step produced a non-finite position");
       }
       bool moved = guard_step(uv, trial, shortened);
       double trial_energy = fit_rotations(q, trial, rotation);
