@@ -129,37 +129,6 @@ TEST_CASE("laplacian solver: one-sweep multi-column solve matches Eigen's LDLT",
   }
 }
 
-TEST_CASE("laplacian solver: the single-precision solve is the double one to float accuracy", "[laplacian]") {
-  // The same meshes as above (the armadillo's supernodes run from one to
-  // over 64 columns, odd and even, with a last row alone or not): every
-  // path of the float sweeps. A wrong lane or layout is off by O(1).
-  for (const char* name : {"closed/torus.obj", "closed/armadillo.off"}) {
-    const Mesh mesh = test::load(name);
-    const Eigen::SparseMatrix<double> L = cotangent_laplacian(mesh, cotangent_weights(mesh));
-    const std::vector<int> pins = {0, 100, 2000};
-    LaplacianSolver solver(L, pins);
-    const int n = mesh.num_vertices();
-    for (const int k : {1, 2, 3, 5}) {
-      INFO(name << ", " << k << " columns");
-      const Eigen::MatrixXd b = Eigen::MatrixXd::Random(n, k);
-      Eigen::MatrixXd exact = Eigen::MatrixXd::Zero(n, k);
-      Eigen::MatrixXd approximate = exact;
-      solver.solve(b, exact);
-      solver.solve_approximate(b, approximate);
-      const double error = (approximate - exact).norm() / exact.norm();
-      CHECK(error < 1e-5);  // measured: 2e-7 at most
-      CHECK(error > 0.0);  // rounded to float on the way: not the double sweeps
-      for (int p : pins) CHECK(approximate.row(p).isZero());
-    }
-    // Row-major positions, the deformers' layout.
-    const Positions b = Positions::Random(n, 3);
-    Positions exact = Positions::Zero(n, 3), approximate = exact;
-    solver.solve(b, exact);
-    solver.solve_approximate(b, approximate);
-    CHECK((approximate - exact).norm() / exact.norm() < 1e-5);
-  }
-}
-
 TEST_CASE("supernodal LDL^T: the ordering, pivots and solutions of Eigen's SimplicialLDLT", "[laplacian]") {
   // A closed scan and an open patch, one vertex held (the free-free block).
   for (const char* name : {"closed/armadillo.off", "open/human_woman_torso_front_patch.obj"}) {

@@ -1,8 +1,7 @@
 // Two doubles in one vector register: SSE2 natively, simd128 in WASM (the
 // GCC/clang vector extension; arithmetic is lane by lane, so each lane
 // rounds as the scalar code would). The supernodal sweeps run on pairs of
-// columns, the rotation fits on pairs of cells. Four floats (Quad) serve the
-// single-precision sweeps: twice the multiply-adds per instruction.
+// columns, the rotation fits on pairs of cells.
 #pragma once
 #include <cmath>
 #include <cstring>
@@ -35,24 +34,6 @@ inline Pair sqrt_pair(Pair v) {
 #else
   return Pair{std::sqrt(v[0]), std::sqrt(v[1])};
 #endif
-}
-
-using Quad = float __attribute__((vector_size(16)));
-
-inline Quad load_quad(const float* p) {
-  Quad v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-
-inline void store_quad(float* p, Quad v) { std::memcpy(p, &v, sizeof v); }
-
-// {p[0], p[1], p[0], p[1]}: one 64-bit load splatted (v128.load64_splat in
-// WASM, movddup natively).
-inline Quad load_pair_twice(const float* p) {
-  double both;
-  std::memcpy(&both, p, sizeof both);
-  return reinterpret_cast<Quad>(Pair{both, both});
 }
 
 }  // namespace aniso

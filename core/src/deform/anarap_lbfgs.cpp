@@ -73,18 +73,10 @@ int AnArapSolver::run_lbfgs(const LaplacianSolver& solver, Positions& V, int max
   LbfgsMemory<Positions> memory(kMemory);
   // r is the caller's scratch: the solve writes every free row and reads the
   // pinned ones, which must be zero (r = 0 there), so only those are zeroed.
-  // With pairs, H0 is applied in single precision (solve_approximate): the
-  // step is checked against the energy anyway, and the sweeps take half
-  // the time. Without pairs the step must be exactly the plain one (it is
-  // taken unchecked), so that solve is exact.
   const auto apply_h0 = [&](const Positions& q, Positions& r) {
     r.resize(n_, 3);
     for (const int p : solver.pinned()) r.row(p).setZero();
-    if (memory.empty()) {
-      solver.solve(q, r);
-    } else {
-      solver.solve_approximate(q, r);
-    }
+    solver.solve(q, r);
     r *= scale;
   };
   std::vector<Eigen::Quaterniond> kept_rotations;

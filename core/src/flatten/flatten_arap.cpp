@@ -234,14 +234,9 @@ struct ArapFlattening::Impl {
     Eigen::MatrixXd gradient = energy_gradient(uv, rhs);
     LbfgsMemory<Eigen::MatrixXd> memory(kMemory);
     double scale = 1.0;
-    // With pairs in single precision, as AnARAP's H0 (deform/anarap_lbfgs.cpp).
     const auto apply_h0 = [&](const Eigen::MatrixXd& v, Eigen::MatrixXd& r) {
       r = Eigen::MatrixXd::Zero(n, 2);
-      if (memory.empty()) {
-        solver->solve(v, r);
-      } else {
-        solver->solve_approximate(v, r);
-      }
+      solver->solve(v, r);
       r *= scale;
     };
     int quiet_steps = 0, stagnant_steps = 0;

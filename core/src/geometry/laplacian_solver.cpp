@@ -8,7 +8,6 @@
 #include <cstddef>
 #include <memory>
 #include <string>
-#include <type_traits>
 #include <utility>
 
 #include "anisoform/error.h"
@@ -32,7 +31,6 @@ struct LaplacianSolver::Impl {
   // The factor L D L^T of P L_ff P^T: L by supernodes and 1 / D.
   SupernodalFactor factor;
   Eigen::VectorXd inv_d;
-  Eigen::VectorXf inv_d_single;  // for solve_approximate (the factor's float copy)
 };
 
 namespace {
@@ -144,29 +142,19 @@ void LaplacianSolver::factor(const Eigen::SparseMatrix<double>& L) {
     im.band_offsets.push_back(static_cast<int>(im.band_vertices.size()));
   }
   im.inv_d = ldlt.d.cwiseInverse();
-  im.inv_d_single = im.inv_d.cast<float>();
   im.factor = std::move(ldlt.L);
-  im.factor.make_single();
 }
 
 LaplacianSolver::~LaplacianSolver() = default;
 
-// The shared body of the solve() overloads; B and X are #V by k dense
-// matrices of any storage order. Scalar: the sweeps' precision (double, or
-// float on the factor's float copy), whatever B's and X's.
-template <typename Scalar, typename B, typename X>
+// The shared body of both solve() overloads; B and X are #V by k dense
+// matrices of any storage order.
+template <typename B, typename X>
 void solve_pinned(const LaplacianSolver::Impl& im, const B& b, X& x) {
   const int nf = static_cast<int>(im.free_vertices.size());
   const int k = static_cast<int>(b.cols());
   if (nf == 0) return;
-  using RowMatrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  const auto& inv_d = [&]() -> const auto& {
-    if constexpr (std::is_same_v<Scalar, float>) {
-      return im.inv_d_single;
-    } else {
-      return im.inv_d;
-    }
-  }();
+  using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   // Right-hand side of the free rows in factor order, minus the pinned columns' contribution.
   RowMatrix rhs(nf, k);
   // Positions (#V by 3, row-major) are gathered and scattered by pointer:
@@ -176,15 +164,15 @@ void solve_pinned(const LaplacianSolver::Impl& im, const B& b, X& x) {
                                  X::ColsAtCompileTime == 3;
   if constexpr (rows_of_three) {
     const double* from = b.data();
-    Scalar* to = rhs.data();
+    double* to = rhs.data();
     for (int pos = 0; pos < nf; ++pos) {
       const double* row = from + 3 * static_cast<std::ptrdiff_t>(im.vertex_at[pos]);
-      to[3 * pos] = static_cast<Scalar>(row[0]);
-      to[3 * pos + 1] = static_cast<Scalar>(row[1]);
-      to[3 * pos + 2] = static_cast<Scalar>(row[2]);
+      to[3 * pos] = row[0];
+      to[3 * pos + 1] = row[1];
+      to[3 * pos + 2] = row[2];
     }
   } else {
-    for (int pos = 0; pos < nf; ++pos) rhs.row(pos) = b.row(im.vertex_at[pos]).template cast<Scalar>();
+    for (int pos = 0; pos < nf; ++pos) rhs.row(pos) = b.row(im.vertex_at[pos]);
   }
   Eigen::RowVectorXd coupled(k);
   for (std::size_t r = 0; r < im.band_positions.size(); ++r) {
@@ -192,19 +180,19 @@ void solve_pinned(const LaplacianSolver::Impl& im, const B& b, X& x) {
     for (int e = im.band_offsets[r]; e < im.band_offsets[r + 1]; ++e) {
       coupled += im.band_values[e] * x.row(im.band_vertices[e]);
     }
-    rhs.row(im.band_positions[r]) -= coupled.template cast<Scalar>();
+    rhs.row(im.band_positions[r]) -= coupled;
   }
   if (k >= 1 && k <= 3) {
-    im.factor.solve(inv_d, rhs.data(), k);
+    im.factor.solve(im.inv_d, rhs.data(), k);
   } else {
     for (int c = 0; c < k; ++c) {
-      Eigen::Matrix<Scalar, Eigen::Dynamic, 1> col = rhs.col(c);
-      im.factor.solve(inv_d, col.data(), 1);
+      Eigen::VectorXd col = rhs.col(c);
+      im.factor.solve(im.inv_d, col.data(), 1);
       rhs.col(c) = col;
     }
   }
   if constexpr (rows_of_three) {
-    const Scalar* from = rhs.data();
+    const double* from = rhs.data();
     double* to = x.data();
     for (int pos = 0; pos < nf; ++pos) {
       double* row = to + 3 * static_cast<std::ptrdiff_t>(im.vertex_at[pos]);
@@ -213,26 +201,17 @@ void solve_pinned(const LaplacianSolver::Impl& im, const B& b, X& x) {
       row[2] = from[3 * pos + 2];
     }
   } else {
-    for (int pos = 0; pos < nf; ++pos) x.row(im.vertex_at[pos]) = rhs.row(pos).template cast<double>();
+    for (int pos = 0; pos < nf; ++pos) x.row(im.vertex_at[pos]) = rhs.row(pos);
   }
 }
 
 void LaplacianSolver::solve(const Eigen::Ref<const Eigen::MatrixXd>& b,
                             Eigen::Ref<Eigen::MatrixXd> x) const {
-  solve_pinned<double>(*impl_, b, x);
+  solve_pinned(*impl_, b, x);
 }
 
 void LaplacianSolver::solve(const Positions& b, Positions& x) const {
-  solve_pinned<double>(*impl_, b, x);
-}
-
-void LaplacianSolver::solve_approximate(const Eigen::Ref<const Eigen::MatrixXd>& b,
-                                        Eigen::Ref<Eigen::MatrixXd> x) const {
-  solve_pinned<float>(*impl_, b, x);
-}
-
-void LaplacianSolver::solve_approximate(const Positions& b, Positions& x) const {
-  solve_pinned<float>(*impl_, b, x);
+  solve_pinned(*impl_, b, x);
 }
 
 }  // namespace aniso

@@ -31,14 +31,6 @@ class LaplacianSolver {
   // Row-major #V by 3 convenience for positions.
   void solve(const Positions& b, Positions& x) const;
 
-  // The same solve with the factor's sweeps in single precision (half the
-  // memory traffic, twice the multiply-adds per vector instruction):
-  // relative error about 1e-7 times L_ff's condition number. For a
-  // preconditioner (the L-BFGS initial inverse Hessian, whose steps are
-  // checked against the energy), never for a global step.
-  void solve_approximate(const Eigen::Ref<const Eigen::MatrixXd>& b, Eigen::Ref<Eigen::MatrixXd> x) const;
-  void solve_approximate(const Positions& b, Positions& x) const;
-
   const std::vector<int>& pinned() const { return pinned_; }
   int num_vertices() const { return n_; }
 

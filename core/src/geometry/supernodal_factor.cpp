@@ -94,181 +94,51 @@ void gather_rows(const double* b, int w, const int* R, const double* y, double* 
   }
 }
 
-// Single precision, the same block layout: a group's pair of columns k, k+1
-// is one Quad (row 0's two values, then row 1's), multiplied by x's values
-// at k, k+1 twice over, so lanes 0-1 sum row 0 and lanes 2-3 row 1.
-template <int K, int Rows>
-void subtract_rows(const float* b, int w, const float* xt, const int* R, float* y) {
-  static_assert(Rows == 1 || Rows == 2, "groups of two rows, or one row alone");
-  Quad acc[K] = {};
-  float sum[Rows][K];
-  int k = 0;
-  if constexpr (Rows == 2) {
-    for (; k + 2 <= w; k += 2, b += 4) {
-      const Quad bk = load_quad(b);
-      for (int c = 0; c < K; ++c) acc[c] += bk * load_pair_twice(xt + c * w + k);
-    }
-    for (int c = 0; c < K; ++c) {
-      sum[0][c] = acc[c][0] + acc[c][1];
-      sum[1][c] = acc[c][2] + acc[c][3];
-      if (k < w) {  // the odd last column, one value per row
-        sum[0][c] += b[0] * xt[c * w + k];
-        sum[1][c] += b[1] * xt[c * w + k];
-      }
-    }
-  } else {  // a row alone is stored in order: four columns at a time
-    for (; k + 4 <= w; k += 4) {
-      const Quad bk = load_quad(b + k);
-      for (int c = 0; c < K; ++c) acc[c] += bk * load_quad(xt + c * w + k);
-    }
-    for (int c = 0; c < K; ++c) {
-      sum[0][c] = (acc[c][0] + acc[c][1]) + (acc[c][2] + acc[c][3]);
-      for (int j = k; j < w; ++j) sum[0][c] += b[j] * xt[c * w + j];
-    }
-  }
-  for (int i = 0; i < Rows; ++i) {
-    float* yi = y + static_cast<std::ptrdiff_t>(R[i]) * K;
-    for (int c = 0; c < K; ++c) yi[c] -= sum[i][c];
-  }
-}
-
-// Backward in single precision: the group's products are summed lane by
-// lane into `pairs` (column c's pair p at pairs + 4 (c (w / 2) + p), row 0's
-// sums in lanes 0-1, row 1's in 2-3) and folded into acc once per
-// supernode (fold_pairs); the odd last column goes to acc directly.
-template <int K, int Rows>
-void gather_rows(const float* b, int w, const int* R, const float* y, float* pairs, float* acc) {
-  static_assert(Rows == 1 || Rows == 2, "groups of two rows, or one row alone");
-  float yr[Rows][K];
-  for (int i = 0; i < Rows; ++i) {
-    for (int c = 0; c < K; ++c) yr[i][c] = y[static_cast<std::ptrdiff_t>(R[i]) * K + c];
-  }
-  if constexpr (Rows == 1) {
-    for (int k = w - 1; k >= 0; --k) {
-      for (int c = 0; c < K; ++c) acc[c * w + k] += b[k] * yr[0][c];
-    }
-    return;
-  } else {
-    const int paired = w & ~1, count = paired / 2;
-    if (paired < w) {
-      for (int c = 0; c < K; ++c) acc[c * w + paired] += b[2 * paired + 1] * yr[1][c] + b[2 * paired] * yr[0][c];
-    }
-    Quad yq[K];
-    for (int c = 0; c < K; ++c) yq[c] = Quad{yr[0][c], yr[0][c], yr[1][c], yr[1][c]};
-    for (int p = count - 1; p >= 0; --p) {
-      const Quad bk = load_quad(b + 4 * p);
-      for (int c = 0; c < K; ++c) {
-        float* sum = pairs + 4 * (c * count + p);
-        store_quad(sum, load_quad(sum) + bk * yq[c]);
-      }
-    }
-  }
-}
-
-template <int K>
-void fold_pairs(const float* pairs, int w, float* acc) {
-  const int count = w / 2;
-  for (int c = 0; c < K; ++c) {
-    for (int p = 0; p < count; ++p) {
-      const float* sum = pairs + 4 * (c * count + p);
-      acc[c * w + 2 * p] += sum[0] + sum[2];
-      acc[c * w + 2 * p + 1] += sum[1] + sum[3];
-    }
-  }
-}
-
-// The backward sweep over a supernode's block (r rows R), into acc (by
-// column, zeroed): the rows after the last group first (they are stored
-// last), then the groups from the last down.
-template <int K>
-void gather_block(const double* b, int w, int r, const int* R, const double* y, double* /*pairs*/, double* acc) {
-  const int grouped = r - r % kRowBlock;
-  for (int i = r - 1; i >= grouped; --i) gather_rows<K, 1>(b + static_cast<std::ptrdiff_t>(i) * w, w, R + i, y, acc);
-  for (int i = grouped - kRowBlock; i >= 0; i -= kRowBlock) {
-    gather_rows<K, kRowBlock>(b + static_cast<std::ptrdiff_t>(i) * w, w, R + i, y, acc);
-  }
-}
-
-template <int K>
-void gather_block(const float* b, int w, int r, const int* R, const float* y, float* pairs, float* acc) {
-  const int grouped = r - r % kRowBlock;
-  std::fill(pairs, pairs + 4 * K * (w / 2), 0.0f);
-  for (int i = r - 1; i >= grouped; --i) {
-    gather_rows<K, 1>(b + static_cast<std::ptrdiff_t>(i) * w, w, R + i, y, pairs, acc);
-  }
-  for (int i = grouped - kRowBlock; i >= 0; i -= kRowBlock) {
-    gather_rows<K, kRowBlock>(b + static_cast<std::ptrdiff_t>(i) * w, w, R + i, y, pairs, acc);
-  }
-  fold_pairs<K>(pairs, w, acc);
-}
-
-// The vector registers of each precision, for the triangle kernels.
-template <typename Scalar>
-struct Lanes;
-template <>
-struct Lanes<double> {
-  using Vector = Pair;
-  static constexpr int size = 2;
-  static Vector load(const double* p) { return load_pair(p); }
-  static void store(double* p, Vector v) { store_pair(p, v); }
-  static Vector splat(double x) { return Vector{x, x}; }
-  static double sum(Vector v) { return v[0] + v[1]; }
-};
-template <>
-struct Lanes<float> {
-  using Vector = Quad;
-  static constexpr int size = 4;
-  static Vector load(const float* p) { return load_quad(p); }
-  static void store(float* p, Vector v) { store_quad(p, v); }
-  static Vector splat(float x) { return Vector{x, x, x, x}; }
-  static float sum(Vector v) { return (v[0] + v[1]) + (v[2] + v[3]); }
-};
-
 // The triangle's column k, forward: x_c[k+1+m] -= t[m] x_c[k] for its n
 // entries t and each of the K columns x_c (x_c = xk + c w, xk at row k),
 // reading t once for all of them.
-template <int K, typename Scalar>
-void subtract_column(const Scalar* t, int n, int w, Scalar* xk) {
-  using L = Lanes<Scalar>;
-  Scalar xs[K];
-  typename L::Vector xv[K];
+template <int K>
+void subtract_column(const double* t, int n, int w, double* xk) {
+  double xs[K];
+  Pair xp[K];
   for (int c = 0; c < K; ++c) {
     xs[c] = xk[c * w];
-    xv[c] = L::splat(xs[c]);
+    xp[c] = Pair{xs[c], xs[c]};
   }
-  Scalar* below = xk + 1;
+  double* below = xk + 1;
   int m = 0;
-  for (; m + L::size <= n; m += L::size) {
-    const typename L::Vector tm = L::load(t + m);
-    for (int c = 0; c < K; ++c) L::store(below + c * w + m, L::load(below + c * w + m) - tm * xv[c]);
+  for (; m + 2 <= n; m += 2) {
+    const Pair tm = load_pair(t + m);
+    for (int c = 0; c < K; ++c) store_pair(below + c * w + m, load_pair(below + c * w + m) - tm * xp[c]);
   }
-  for (; m < n; ++m) {
+  if (m < n) {
     for (int c = 0; c < K; ++c) below[c * w + m] -= t[m] * xs[c];
   }
 }
 
 // The triangle's column k, backward: x_c[k] -= t . x_c[k+1 .. k+n] for each
 // of the K columns, reading t once, from its end down (as gather_rows); two
-// partial sums of vectors per column, added at the end.
-template <int K, typename Scalar>
-void subtract_dots(const Scalar* t, int n, int w, Scalar* xk) {
-  using L = Lanes<Scalar>;
-  constexpr int step = 2 * L::size;
-  const Scalar* below = xk + 1;
-  typename L::Vector s0[K] = {}, s1[K] = {};
-  Scalar tail[K] = {};
-  const int blocks = n - n % step;
-  for (int j = n - 1; j >= blocks; --j) {
+// partial sums of pairs per column, added at the end.
+template <int K>
+void subtract_dots(const double* t, int n, int w, double* xk) {
+  const double* below = xk + 1;
+  Pair s0[K] = {}, s1[K] = {};
+  double tail[K] = {};
+  const int quads = n & ~3;
+  for (int j = n - 1; j >= quads; --j) {
     for (int c = 0; c < K; ++c) tail[c] += t[j] * below[c * w + j];
   }
-  for (int m = blocks - step; m >= 0; m -= step) {
-    const typename L::Vector t1 = L::load(t + m + L::size), t0 = L::load(t + m);
+  for (int m = quads - 4; m >= 0; m -= 4) {
+    const Pair t1 = load_pair(t + m + 2), t0 = load_pair(t + m);
     for (int c = 0; c < K; ++c) {
-      s1[c] += t1 * L::load(below + c * w + m + L::size);
-      s0[c] += t0 * L::load(below + c * w + m);
+      s1[c] += t1 * load_pair(below + c * w + m + 2);
+      s0[c] += t0 * load_pair(below + c * w + m);
     }
   }
-  for (int c = 0; c < K; ++c) xk[c * w] -= L::sum(s0[c] + s1[c]) + tail[c];
+  for (int c = 0; c < K; ++c) {
+    const Pair sum = s0[c] + s1[c];
+    xk[c * w] -= (sum[0] + sum[1]) + tail[c];
+  }
 }
 
 }  // namespace
@@ -345,23 +215,22 @@ void SupernodalFactor::store(int s, const int* R, int r, const double* panel, in
   }
 }
 
-template <typename Scalar, int K>
-void SupernodalFactor::sweeps(const Scalar* values, const Scalar* inv_d, Scalar* y) const {
+template <int K>
+void SupernodalFactor::sweeps(const Eigen::VectorXd& inv_d, double* y) const {
   const int count = supernodes();
   // A wide supernode's own columns, by column (column c at xt + c w), so
-  // that the vector loops read them contiguously; the backward sums, and
-  // the single precision's lane sums (gather_block).
-  std::vector<Scalar> xt(static_cast<std::size_t>(widest_) * K), acc(xt.size()), pairs(4 * xt.size());
+  // that the pair loops read them contiguously; and the backward sums.
+  std::vector<double> xt(static_cast<std::size_t>(widest_) * K), acc(xt.size());
   // Forward: L z = y, supernode by supernode.
   for (int s = 0; s < count; ++s) {
     const int c0 = first_column_[s], w = first_column_[s + 1] - c0;
-    Scalar* x = y + static_cast<std::ptrdiff_t>(c0) * K;
+    double* x = y + static_cast<std::ptrdiff_t>(c0) * K;
     const int* R = rows_.data() + row_start_[s];
     const int r = row_start_[s + 1] - row_start_[s];
-    const Scalar* b = values + block_start_[s];
+    const double* b = values_.data() + block_start_[s];
     if (w == 1) {  // most supernodes (the leaves): the simplicial column
       for (int i = 0; i < r; ++i) {
-        Scalar* yi = y + static_cast<std::ptrdiff_t>(R[i]) * K;
+        double* yi = y + static_cast<std::ptrdiff_t>(R[i]) * K;
         for (int c = 0; c < K; ++c) yi[c] -= b[i] * x[c];
       }
       continue;
@@ -371,7 +240,7 @@ void SupernodalFactor::sweeps(const Scalar* values, const Scalar* inv_d, Scalar*
     }
     // The triangle, column by column: column k's entries (rows k+1 .. w-1)
     // are contiguous, and so are the values they update.
-    const Scalar* t = values + triangle_start_[s];
+    const double* t = values_.data() + triangle_start_[s];
     for (int k = 0; k + 1 < w; t += w - 1 - k, ++k) subtract_column<K>(t, w - 1 - k, w, xt.data() + k);
     for (int k = 0; k < w; ++k) {
       for (int c = 0; c < K; ++c) x[k * K + c] = xt[c * w + k];
@@ -389,14 +258,14 @@ void SupernodalFactor::sweeps(const Scalar* values, const Scalar* inv_d, Scalar*
   // its last down (gather_rows).
   for (int s = count - 1; s >= 0; --s) {
     const int c0 = first_column_[s], w = first_column_[s + 1] - c0;
-    Scalar* x = y + static_cast<std::ptrdiff_t>(c0) * K;
+    double* x = y + static_cast<std::ptrdiff_t>(c0) * K;
     const int* R = rows_.data() + row_start_[s];
     const int r = row_start_[s + 1] - row_start_[s];
-    const Scalar* b = values + block_start_[s];
+    const double* b = values_.data() + block_start_[s];
     if (w == 1) {
-      Scalar sum[K] = {};
+      double sum[K] = {};
       for (int i = r - 1; i >= 0; --i) {
-        const Scalar* yi = y + static_cast<std::ptrdiff_t>(R[i]) * K;
+        const double* yi = y + static_cast<std::ptrdiff_t>(R[i]) * K;
         for (int c = 0; c < K; ++c) sum[c] += b[i] * yi[c];
       }
       for (int c = 0; c < K; ++c) x[c] -= sum[c];
@@ -405,12 +274,19 @@ void SupernodalFactor::sweeps(const Scalar* values, const Scalar* inv_d, Scalar*
     // The block first (R's rows are final), then the triangle, last column
     // first; column k's entries follow the (w-1) + ... + (w-k) of the
     // columns before it.
-    std::fill(acc.begin(), acc.begin() + w * K, Scalar(0));
-    gather_block<K>(b, w, r, R, y, pairs.data(), acc.data());
+    std::fill(acc.begin(), acc.begin() + w * K, 0.0);
+    // The rows after the last group first (they are stored last).
+    const int grouped = r - r % kRowBlock;
+    for (int i = r - 1; i >= grouped; --i) {
+      gather_rows<K, 1>(b + static_cast<std::ptrdiff_t>(i) * w, w, R + i, y, acc.data());
+    }
+    for (int i = grouped - kRowBlock; i >= 0; i -= kRowBlock) {
+      gather_rows<K, kRowBlock>(b + static_cast<std::ptrdiff_t>(i) * w, w, R + i, y, acc.data());
+    }
     for (int k = 0; k < w; ++k) {
       for (int c = 0; c < K; ++c) xt[c * w + k] = x[k * K + c] - acc[c * w + k];
     }
-    const Scalar* triangle = values + triangle_start_[s];
+    const double* triangle = values_.data() + triangle_start_[s];
     for (int k = w - 2; k >= 0; --k) {
       subtract_dots<K>(triangle + k * (w - 1) - k * (k - 1) / 2, w - 1 - k, w, xt.data() + k);
     }
@@ -422,22 +298,9 @@ void SupernodalFactor::sweeps(const Scalar* values, const Scalar* inv_d, Scalar*
 
 void SupernodalFactor::solve(const Eigen::VectorXd& inv_d, double* y, int columns) const {
   switch (columns) {
-    case 1: sweeps<double, 1>(values_.data(), inv_d.data(), y); break;
-    case 2: sweeps<double, 2>(values_.data(), inv_d.data(), y); break;
-    case 3: sweeps<double, 3>(values_.data(), inv_d.data(), y); break;
-    default:
-      fail(ErrorCode::BadParameter, "SupernodalFactor::solve takes 1, 2 or 3 columns, not " + std::to_string(columns));
-  }
-}
-
-void SupernodalFactor::make_single() { single_values_.assign(values_.begin(), values_.end()); }
-
-void SupernodalFactor::solve(const Eigen::VectorXf& inv_d, float* y, int columns) const {
-  if (!has_single()) fail(ErrorCode::Numerical, "SupernodalFactor: the single-precision copy was not made");
-  switch (columns) {
-    case 1: sweeps<float, 1>(single_values_.data(), inv_d.data(), y); break;
-    case 2: sweeps<float, 2>(single_values_.data(), inv_d.data(), y); break;
-    case 3: sweeps<float, 3>(single_values_.data(), inv_d.data(), y); break;
+    case 1: sweeps<1>(inv_d, y); break;
+    case 2: sweeps<2>(inv_d, y); break;
+    case 3: sweeps<3>(inv_d, y); break;
     default:
       fail(ErrorCode::BadParameter, "SupernodalFactor::solve takes 1, 2 or 3 columns, not " + std::to_string(columns));
   }

@@ -37,21 +37,12 @@ class SupernodalFactor {
   // row-major), with inv_d = 1 / diag(D).
   void solve(const Eigen::VectorXd& inv_d, double* y, int columns) const;
 
-  // The same sweeps in single precision, on a float copy of L that
-  // make_single() makes (half as much again as L's memory): twice the
-  // multiply-adds per vector instruction, for approximate solves whose
-  // relative error is about 1e-7 times the condition number (the L-BFGS
-  // initial inverse Hessian, not a global step).
-  void make_single();
-  bool has_single() const { return !single_values_.empty() || values_.empty(); }
-  void solve(const Eigen::VectorXf& inv_d, float* y, int columns) const;
-
   int size() const { return n_; }
   int supernodes() const { return first_column_.empty() ? 0 : static_cast<int>(first_column_.size()) - 1; }
 
  private:
-  template <typename Scalar, int K>
-  void sweeps(const Scalar* values, const Scalar* inv_d, Scalar* y) const;
+  template <int K>
+  void sweeps(const Eigen::VectorXd& inv_d, double* y) const;
   // Appends supernode s's values from its panel: m rows (its own w
   // columns', then R's r = m - w), column-major.
   void store(int s, const int* R, int r, const double* panel, int m);
@@ -64,7 +55,6 @@ class SupernodalFactor {
   std::vector<int> triangle_start_;  // its triangle, column by column (column k: the w-1-k entries below k)
   std::vector<int> block_start_;     // its r-by-w block, by groups of rows
   std::vector<double> values_;
-  std::vector<float> single_values_;  // values_ rounded, in the same layout
 };
 
 }  // namespace aniso
