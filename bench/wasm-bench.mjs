@@ -1,6 +1,5 @@
 // node bench/wasm-bench.mjs --mesh cyl1k|cyl10k|cyl50k|cyl200k|PATH [--runs N]
 //                           [--iterations N] [--only IMPL,...] [--verbose]
-//                           [--against DIR]
 //
 // The native anisoform_bench's problems and timings (bench/problems.cpp,
 // bench/impls.cpp, bench/main.cpp), run on the WASM module in Node, with the
@@ -34,14 +33,6 @@
 //                        iteration: the commit, Session.replay of the op as a
 //                        one-op document (a cold AnARAP stretch of the top
 //                        half, box region, to the default tolerance)
-// --against DIR runs every row on a second build too (DIR: a folder as
-// web/src/wasm, e.g. a copy of it built from another commit), the two
-// alternating run by run, and stderr adds each row's per-run ratio. Why: a
-// 200k commit's median moved by 10 % between invocations minutes apart on
-// the same build, more than most changes gain; compared that way, two
-// changes seemed to gain 13 % and 2 % that, interleaved, gained nothing.
-// Read the ratio: both modules' memories are live at once, and the
-// absolute times run above a build's own run (200k commit: about 10 %).
 // Environment: ANISO_WASM_DIR (default web/src/wasm), as the tests.
 import { readFileSync } from 'node:fs';
 import path from 'node:path';
@@ -49,14 +40,12 @@ import path from 'node:path';
 import { loadAnisoform } from '../wasm/node-support.mjs';
 
 const USAGE = `usage: node bench/wasm-bench.mjs --mesh cyl1k|cyl10k|cyl50k|cyl200k|PATH [--runs N]
-                                 [--iterations N] [--only IMPL[,IMPL...]] [--verbose] [--against DIR]
+                                 [--iterations N] [--only IMPL[,IMPL...]] [--verbose]
   --runs N        runs per implementation (medians); default 5, 3 above 100k vertices
   --iterations N  ARAP/AnARAP iterations per timed call (default 10)
   --only LIST     eigen-ldlt, anisoform-arap, anisoform-anarap, anisoform-andefgrad,
                   anisoform-preview, anisoform-commit (default: all)
   --verbose       per-run details on stderr
-  --against DIR   also run every row on the build in DIR (as web/src/wasm), alternating
-                  with this one run by run; stderr adds the per-run ratios DIR / this
 `;
 const IMPLS = ['eigen-ldlt', 'anisoform-arap', 'anisoform-anarap', 'anisoform-andefgrad', 'anisoform-preview',
   'anisoform-commit'];
@@ -71,7 +60,7 @@ function usageError(message) {
 }
 
 function parseArguments(argv) {
-  const options = { mesh: null, runs: 0, iterations: 10, only: new Set(), verbose: false, against: null };
+  const options = { mesh: null, runs: 0, iterations: 10, only: new Set(), verbose: false };
   const positive = (name, text) => {
     const value = Number(text);
     if (!Number.isInteger(value) || value < 1) usageError(`${name} needs a positive integer, got '${text}'`);
@@ -85,7 +74,6 @@ function parseArguments(argv) {
     else if (arg === '--iterations') options.iterations = positive(arg, value());
     else if (arg === '--only') value().split(',').forEach((name) => options.only.add(name));
     else if (arg === '--verbose') options.verbose = true;
-    else if (arg === '--against') options.against = value();
     else if (arg === '--help' || arg === '-h') {
       process.stdout.write(USAGE);
       process.exit(0);
@@ -266,14 +254,11 @@ async function main() {
   const options = parseArguments(process.argv.slice(2));
   const { wasm } = await loadAnisoform({ bench: true });
   const problem = loadProblem(wasm, options.mesh);
-  // The builds compared: this one first (its rows go to stdout), then --against's.
-  const builds = [wasm];
-  if (options.against) builds.push((await loadAnisoform({ bench: true, dir: path.resolve(options.against) })).wasm);
   // Every sample in a session of its own: a session keeps its previous rest
   // pose's Deformer (undo), so setPositions of positions it had before would
   // reuse that factorization and time no precompute.
-  const inFreshSession = (build, run) => {
-    const session = new build.Session();
+  const inFreshSession = (run) => {
+    const session = new wasm.Session();
     try {
       problem.load(session);
       return run(session);
@@ -283,12 +268,12 @@ async function main() {
   };
   const runs = options.runs || (problem.vertices > 100000 ? 3 : 5);
   const impls = {
-    'eigen-ldlt': (build) => inFreshSession(build, (session) => runEigenLdlt(build, session, problem)),
-    'anisoform-arap': (build) => inFreshSession(build, (session) => runArap(session, problem, options.iterations)),
-    'anisoform-anarap': (build) => inFreshSession(build, (session) => runAnarap(session, problem, options.iterations)),
-    'anisoform-andefgrad': (build) => inFreshSession(build, (session) => runAndefgrad(session, problem)),
-    'anisoform-preview': (build) => inFreshSession(build, (session) => runPreview(session, problem)),
-    'anisoform-commit': (build) => inFreshSession(build, (session) => runCommit(session, problem)),
+    'eigen-ldlt': () => inFreshSession((session) => runEigenLdlt(wasm, session, problem)),
+    'anisoform-arap': () => inFreshSession((session) => runArap(session, problem, options.iterations)),
+    'anisoform-anarap': () => inFreshSession((session) => runAnarap(session, problem, options.iterations)),
+    'anisoform-andefgrad': () => inFreshSession((session) => runAndefgrad(session, problem)),
+    'anisoform-preview': () => inFreshSession((session) => runPreview(session, problem)),
+    'anisoform-commit': () => inFreshSession((session) => runCommit(session, problem)),
   };
   const active = IMPLS.filter((name) => options.only.size === 0 || options.only.has(name));
   if (options.verbose) {
@@ -296,21 +281,15 @@ async function main() {
       + `(height ${problem.height}), move along ${'xyz'[problem.moveAxis]} by ${problem.offset[problem.moveAxis]}; `
       + `${problem.fixed.length} fixed, ${problem.moved.length} moved; ${runs} runs, ${options.iterations} iterations per call\n`);
   }
-  // Interleaved, as the native bench: a slow phase of the machine hits every
-  // row alike; and the builds alternate which goes first.
-  const samplesOf = builds.map(() => Object.fromEntries(active.map((name) => [name, []])));
-  const samples = samplesOf[0];
+  // Interleaved, as the native bench: a slow phase of the machine hits every row alike.
+  const samples = Object.fromEntries(active.map((name) => [name, []]));
   for (let r = 0; r < runs; ++r) {
     for (const name of active) {
-      const order = r % 2 === 0 ? builds.keys() : [...builds.keys()].reverse();
-      for (const b of order) {
-        const sample = impls[name](builds[b]);
-        samplesOf[b][name].push(sample);
-        if (options.verbose) {
-          process.stderr.write(`  run ${r} ${name.padEnd(20)}${b > 0 ? ' (against)' : ''} precompute `
-            + `${sample.precompute.toFixed(3).padStart(9)} ms  iteration ${sample.iteration.toFixed(3).padStart(8)} ms  `
-            + `(${sample.detail})\n`);
-        }
+      const sample = impls[name]();
+      samples[name].push(sample);
+      if (options.verbose) {
+        process.stderr.write(`  run ${r} ${name.padEnd(20)} precompute ${sample.precompute.toFixed(3).padStart(9)} ms  `
+          + `iteration ${sample.iteration.toFixed(3).padStart(8)} ms  (${sample.detail})\n`);
       }
     }
   }
@@ -343,19 +322,6 @@ async function main() {
   if (samples['anisoform-commit']) {
     const ms = median(samples['anisoform-commit'].map((s) => s.iteration));
     process.stderr.write(`commit ${problem.name}: ${ms.toFixed(0)} ms after a preview (issue 11 goal 4: <= 3000 at 200k vertices)\n`);
-  }
-  if (options.against) {
-    const other = samplesOf[1];
-    for (const name of active) {
-      const compare = (field) => {
-        const here = median(samples[name].map((s) => s[field]));
-        const there = median(other[name].map((s) => s[field]));
-        const ratio = median(other[name].map((s, k) => s[field] / samples[name][k][field]));
-        return `${field} ${here.toFixed(3)} ms here, ${there.toFixed(3)} ms there (${ratio.toFixed(3)})`;
-      };
-      process.stderr.write(`against ${options.against}: ${name} ${compare('precompute')}; ${compare('iteration')} `
-        + '(medians; in brackets the per-run ratio there / here)\n');
-    }
   }
 }
 

@@ -23,18 +23,17 @@ export const meshesDir = path.join(sharedDir, 'meshes');
 
 // {wasm: {Session, memoryUse}, AnisoformError}: the shipped module; with
 // {bench: true} the benchmarks' build, which adds LaplacianFloor and
-// cappedCylinder (js/anisoform-bench-wasm.mjs). `dir`: the folder of the
-// build (default wasmDir), e.g. a second build to compare against.
-export async function loadAnisoform({ bench = false, dir = wasmDir } = {}) {
+// cappedCylinder (js/anisoform-bench-wasm.mjs).
+export async function loadAnisoform({ bench = false } = {}) {
   const [layerName, binaryName, create] = bench
     ? ['anisoform-bench-wasm.mjs', 'anisoform-bench.wasm', 'createAnisoformBenchWasm']
     : ['anisoform-wasm.mjs', 'anisoform.wasm', 'createAnisoformWasm'];
-  const layer = path.join(dir, layerName);
+  const layer = path.join(wasmDir, layerName);
   if (!existsSync(layer)) {
     throw new Error(`${layer} does not exist: build the WASM module first, or set ANISO_WASM_DIR`);
   }
   const { [create]: createWasm, AnisoformError } = await import(pathToFileURL(layer).href);
-  const wasm = await createWasm({ wasmBinary: readFileSync(path.join(dir, binaryName)) });
+  const wasm = await createWasm({ wasmBinary: readFileSync(path.join(wasmDir, binaryName)) });
   return { wasm, AnisoformError };
 }
 
