@@ -38,6 +38,17 @@ constexpr int kMemory = 5;
 constexpr double kMaxScale = 2.0;
 constexpr int kHalvings = 2;
 constexpr int kQuietSteps = 3;
+// The per-triangle arrays the iterations stream through, one row per
+// triangle (and the map's corners, one row per vertex, in fit_rotations):
+// a triangle's values then share a cache line, where column-major Eigen
+// matrices spread them over one line per column (the local step read 12
+// lines per triangle). The same values in the same order: bit for bit the
+// iterations they were.
+using TargetEdges = Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor>;  // T_t x_k, edge k at 2k, 2k+1
+using Rotations = Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>;    // cos, sin per triangle
+using EdgeWeights = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+using Points = Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>;
+
 // One vertex per component: the global step is free up to a translation
 // per component (the rotations come from the local step).
 std::vector<int> one_pin_per_component(const FlattenPatch& patch) {
@@ -53,14 +64,14 @@ std::vector<int> one_pin_per_component(const FlattenPatch& patch) {
 struct ArapFlattening::Impl {
   Triangles F;
   TriangleCharts charts;
-  Eigen::MatrixX3d weight;  // #T by 3 half-cotangent weights
+  EdgeWeights weight;  // #T by 3 half-cotangent weights
   std::unique_ptr<LaplacianSolver> solver;
 
   // The target edges T_t x_k, #T by 6 (edge k at columns 2k, 2k+1).
-  Eigen::MatrixXd target_edges(const FlattenTargets& targets) const {
+  TargetEdges target_edges(const FlattenTargets& targets) const {
     const int m = static_cast<int>(F.rows());
     const Eigen::MatrixXd& corners = charts.corners;
-    Eigen::MatrixXd q(m, 6);
+    TargetEdges q(m, 6);
     for (int t = 0; t < m; ++t) {
       const Eigen::Vector2d cu = targets.direction.row(t);
       const Eigen::Vector2d cv(-cu.y(), cu.x());
@@ -78,8 +89,9 @@ struct ArapFlattening::Impl {
 
   // Local step: the best rotation per triangle (cos, sin in #T by 2), and the
   // energy of uv with them.
-  double fit_rotations(const Eigen::MatrixXd& q, const Eigen::MatrixX2d& uv,
-                       Eigen::MatrixX2d& rotation) const {
+  template <typename Map>
+  double fit_rotations(const TargetEdges& q, const Map& map, Rotations& rotation) const {
+    const Points uv = map;
     double energy = 0.0;
     for (int t = 0; t < F.rows(); ++t) {
       Eigen::Matrix2d S = Eigen::Matrix2d::Zero();
@@ -114,8 +126,8 @@ struct ArapFlattening::Impl {
 
   // The global step's right-hand side: L u = b, b_i = sum over edges
   // (i -> j) of -w R q, b_j += w R q.
-  Eigen::MatrixXd global_rhs(const Eigen::MatrixXd& q, const Eigen::MatrixX2d& rotation, int num_vertices) const {
-    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(num_vertices, 2);
+  Eigen::MatrixXd global_rhs(const TargetEdges& q, const Rotations& rotation, int num_vertices) const {
+    Points rhs = Points::Zero(num_vertices, 2);
     for (int t = 0; t < F.rows(); ++t) {
       const double c = rotation(t, 0), s = rotation(t, 1);
       for (int k = 0; k < 3; ++k) {
@@ -126,14 +138,16 @@ struct ArapFlattening::Impl {
         rhs.row(F(t, (k + 2) % 3)) += pull;
       }
     }
-    return rhs;
+    return Eigen::MatrixXd(rhs);
   }
 
   // E's gradient for the rotations fitted to uv (up to a factor 2): L uv - b,
   // zero on the pinned rows. L is assembled from the very weights of the
   // energy, edge by edge.
-  Eigen::MatrixXd energy_gradient(const Eigen::MatrixX2d& uv, const Eigen::MatrixXd& rhs) const {
-    Eigen::MatrixXd g = -rhs;
+  template <typename Map>
+  Eigen::MatrixXd energy_gradient(const Map& map, const Eigen::MatrixXd& rhs) const {
+    const Points uv = map;
+    Points g = -rhs;
     for (int t = 0; t < F.rows(); ++t) {
       for (int k = 0; k < 3; ++k) {
         const int a = F(t, (k + 1) % 3), b = F(t, (k + 2) % 3);
@@ -143,7 +157,7 @@ struct ArapFlattening::Impl {
       }
     }
     for (const int p : solver->pinned()) g.row(p).setZero();
-    return g;
+    return Eigen::MatrixXd(g);
   }
 
   // The fold guard: moves `candidate` back towards the fold-free `uv` until
@@ -170,8 +184,8 @@ struct ArapFlattening::Impl {
   }
 
   // Plain local/global iterations (the paper's). Returns the last energy.
-  double run_plain(const Eigen::MatrixXd& q, const ArapFlattenSettings& settings, double exact_energy,
-                   int folded, Eigen::MatrixX2d& uv, Eigen::MatrixX2d& rotation, double energy,
+  double run_plain(const TargetEdges& q, const ArapFlattenSettings& settings, double exact_energy,
+                   int folded, Eigen::MatrixX2d& uv, Rotations& rotation, double energy,
                    ArapFlattenReport& report) const {
     Eigen::MatrixXd candidate(uv.rows(), 2);
     int stagnant_steps = 0;
@@ -226,8 +240,8 @@ struct ArapFlattening::Impl {
   // Every step goes through the fold guard and is kept only if the energy
   // falls (halved up to kHalvings times, else the plain step from the last
   // rotations, which never raises it). Returns the last energy.
-  double run_lbfgs(const Eigen::MatrixXd& q, const ArapFlattenSettings& settings, double exact_energy,
-                   Eigen::MatrixX2d& uv, Eigen::MatrixX2d& rotation, double energy,
+  double run_lbfgs(const TargetEdges& q, const ArapFlattenSettings& settings, double exact_energy,
+                   Eigen::MatrixX2d& uv, Rotations& rotation, double energy,
                    ArapFlattenReport& report) const {
     const int n = static_cast<int>(uv.rows());
     Eigen::MatrixXd rhs = global_rhs(q, rotation, n);
@@ -248,7 +262,7 @@ struct ArapFlattening::Impl {
       }
       // direction = -H gradient (zero on the pins).
       memory.direction(gradient, direction, trial, apply_h0);
-      const Eigen::MatrixX2d kept_rotation = rotation;
+      const Rotations kept_rotation = rotation;
       bool shortened = false;
       trial = uv + direction;
       if (!trial.allFinite()) {
@@ -345,7 +359,7 @@ ArapFlattenReport ArapFlattening::solve(const FlattenTargets& targets,
   if (targets.direction.rows() != im.F.rows() || uv.rows() != im.solver->num_vertices()) {
     fail(ErrorCode::BadParameter, "the targets or the start map do not match the patch");
   }
-  const Eigen::MatrixXd q = im.target_edges(targets);
+  const TargetEdges q = im.target_edges(targets);
   double energy_scale = 0.0;
   for (int t = 0; t < im.F.rows(); ++t) {
     for (int k = 0; k < 3; ++k) {
@@ -355,7 +369,7 @@ ArapFlattenReport ArapFlattening::solve(const FlattenTargets& targets,
   const double exact_energy = kExactEnergyFraction * energy_scale;
 
   ArapFlattenReport report;
-  Eigen::MatrixX2d rotation(im.F.rows(), 2);
+  Rotations rotation(im.F.rows(), 2);
   double energy = im.fit_rotations(q, uv, rotation);
   report.energy_history.push_back(energy);
   const int folded = count_folded(im.F, im.charts, uv);
