@@ -43,6 +43,13 @@ void solve_once(aniso::Deformer& deformer, aniso::DeformRequest request, Converg
   out.converged = out.converged && result.converged;
 }
 
+// The flattened patch of the convergence rows: the top half, as a vertex mask.
+std::vector<char> top_half_mask(const Problem& problem) {
+  std::vector<char> mask(problem.mesh.num_vertices());
+  for (int i = 0; i < problem.mesh.num_vertices(); ++i) mask[i] = problem.top_half[i] > 0.0;
+  return mask;
+}
+
 // The flattening's ARAP phase (no refinement) from the LSCM start, plain
 // local/global then L-BFGS, interleaved run by run; the time is the whole
 // flatten call (targets and metrics included, the same for both), so the
@@ -65,9 +72,7 @@ void run_flatten_convergence(const Problem& problem, double tolerance, int runs,
   std::vector<Variant> variants = {{"none", false, {}, {}}, {"lbfgs", true, {}, {}}};
   std::optional<aniso::Flattener> flattener;
   try {
-    std::vector<char> top_half(problem.mesh.num_vertices());
-    for (int i = 0; i < problem.mesh.num_vertices(); ++i) top_half[i] = problem.top_half[i] > 0.0;
-    flattener.emplace(problem.mesh, top_half);
+    flattener.emplace(problem.mesh, top_half_mask(problem));
     for (int r = 0; r < runs; ++r) {
       for (Variant& v : variants) {
         options.solver.accelerate = v.accelerate;
@@ -153,9 +158,7 @@ void run_flatten_convergence(const Problem& problem, double tolerance, int runs,
 // the first iteration its history shows there) to the plain run's energy.
 void run_flatten_iterations(const Problem& problem, double tolerance, int runs, int max_iterations) {
   try {
-    std::vector<char> top_half(problem.mesh.num_vertices());
-    for (int i = 0; i < problem.mesh.num_vertices(); ++i) top_half[i] = problem.top_half[i] > 0.0;
-    const aniso::FlattenPatch patch = aniso::extract_flatten_patch(problem.mesh, top_half);
+    const aniso::FlattenPatch patch = aniso::extract_flatten_patch(problem.mesh, top_half_mask(problem));
     const aniso::TriangleCharts charts = aniso::triangle_charts(patch.mesh);
     aniso::FlattenDirections directions;
     directions.global = problem.direction;

@@ -48,7 +48,6 @@ constexpr int kQuietSteps = 3;
 using TargetEdges = Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor>;  // T_t x_k, edge k at 2k, 2k+1
 using Rotations = Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>;    // cos, sin per triangle
 using EdgeWeights = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
-using Points = Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>;
 
 // One vertex per component: the global step is free up to a translation
 // per component (the rotations come from the local step).
@@ -92,7 +91,7 @@ struct ArapFlattening::Impl {
   // energy of uv with them.
   template <typename Map>
   double fit_rotations(const TargetEdges& q, const Map& map, Rotations& rotation) const {
-    const Points uv = map;
+    const UvRows uv = map;
     double energy = 0.0;
     for (int t = 0; t < F.rows(); ++t) {
       Eigen::Matrix2d S = Eigen::Matrix2d::Zero();
@@ -128,7 +127,7 @@ struct ArapFlattening::Impl {
   // The global step's right-hand side: L u = b, b_i = sum over edges
   // (i -> j) of -w R q, b_j += w R q.
   Eigen::MatrixXd global_rhs(const TargetEdges& q, const Rotations& rotation, int num_vertices) const {
-    Points rhs = Points::Zero(num_vertices, 2);
+    UvRows rhs = UvRows::Zero(num_vertices, 2);
     for (int t = 0; t < F.rows(); ++t) {
       const double c = rotation(t, 0), s = rotation(t, 1);
       for (int k = 0; k < 3; ++k) {
@@ -147,8 +146,8 @@ struct ArapFlattening::Impl {
   // energy, edge by edge.
   template <typename Map>
   Eigen::MatrixXd energy_gradient(const Map& map, const Eigen::MatrixXd& rhs) const {
-    const Points uv = map;
-    Points g = -rhs;
+    const UvRows uv = map;
+    UvRows g = -rhs;
     for (int t = 0; t < F.rows(); ++t) {
       for (int k = 0; k < 3; ++k) {
         const int a = F(t, (k + 1) % 3), b = F(t, (k + 2) % 3);

@@ -45,10 +45,7 @@ double first_zero_area(double a0, double a1, double a2) {
 double fold_free_step_fraction(const Triangles& F, const TriangleCharts& charts,
                                const Eigen::Ref<const Eigen::MatrixXd>& from_map,
                                const Eigen::Ref<const Eigen::MatrixXd>& to_map) {
-  // Each vertex's u and v side by side: the triangles gather their corners
-  // from one cache line each instead of two (the same values).
-  using Points = Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>;
-  const Points from = from_map, to = to_map;
+  const UvRows from = from_map, to = to_map;  // the same values, gathered faster
   double fraction = 1.0;
   bool shortened = false;
   for (int t = 0; t < F.rows(); ++t) {

@@ -130,6 +130,11 @@ void tutte_embedding(const FlattenPatch& patch, const TriangleCharts& charts, Ei
 void scale_to_area(const FlattenPatch& patch, const Eigen::VectorXd& triangle_area,
                    Eigen::MatrixX2d& uv);
 
+// A map with each vertex's u and v side by side (#P by 2, row-major): the
+// passes over triangles gather their corners from a copy of this layout, one
+// cache line per corner where the column-major Eigen::MatrixX2d takes two.
+using UvRows = Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>;
+
 // ---- the local/global solver -----------------------------------------------
 
 struct ArapFlattenReport {
