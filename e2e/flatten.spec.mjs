@@ -227,3 +227,40 @@ test('after a committed edit, the panel still flattens the part selected', async
   expect(triangles).toBeLessThan((await page.evaluate(() => window.anisoform.info())).triangles);
   expect(pageErrors).toEqual([]);
 });
+
+test('the pattern view draws a large pattern with a path per colour, not a call per triangle', async ({ page }) => {
+  // A fill and a stroke per triangle held the page's thread for most of a
+  // minute after flattening the koala's head (96k triangles); spothead's 9k
+  // show the same count at a tenth of the cost.
+  const pageErrors = await openApp(page);
+  const loaded = await uploadFile(page, meshPath('open/spothead.obj'));
+  expect(loaded.ok).toBe(true);
+  await page.getByTestId('mode-flatten').click();
+  await page.getByTestId('flatten-run').click();
+  await expect(page.getByTestId('export-svg')).toBeEnabled();
+  const calls = await page.evaluate(async () => {
+    const canvas = document.querySelector('[data-testid="pattern-canvas"]');
+    const counts = { fill: 0, stroke: 0 };
+    const prototype = CanvasRenderingContext2D.prototype;
+    const originals = { fill: prototype.fill, stroke: prototype.stroke };
+    for (const name of ['fill', 'stroke']) {
+      prototype[name] = function counted(...args) {
+        if (this.canvas === canvas) counts[name] += 1;
+        return originals[name].apply(this, args);
+      };
+    }
+    const select = document.querySelector('#flatten-colorBy');
+    select.value = 'cross';
+    select.dispatchEvent(new Event('change', { bubbles: true }));
+    await new Promise((resolve) => requestAnimationFrame(resolve));
+    Object.assign(prototype, originals);
+    return counts;
+  });
+  const triangles = loaded.info.triangles;
+  expect(triangles).toBeGreaterThan(8000);
+  expect(calls.fill).toBeGreaterThan(0);
+  expect(calls.fill).toBeLessThan(triangles / 10);
+  expect(calls.stroke).toBeLessThan(triangles / 10);
+  expect((await differingPixelCount(page, 'pattern-canvas', [0x20, 0x24, 0x2b])).lit).toBeGreaterThan(2000);
+  expect(pageErrors).toEqual([]);
+});
