@@ -20,11 +20,12 @@ export function patternPane(container, { editor, settings, lifetime }) {
   );
   // The 3D heat map's range rule (Display panel: fixed or adapted), on the errors coloured here.
   let shown = null;
-  const syncColoring = () => {
+  const coloring = () => {
     const colorBy = settings.values.flatten.colorBy;
     const errors = shown ? (colorBy === 'cross' ? shown.crossError : shown.compressionError) : [];
-    view.setColoring(colorBy, heatRange('compression', errors, settings.values.display.heatRange).value);
+    return [colorBy, heatRange('compression', errors, settings.values.display.heatRange).value];
   };
+  const syncColoring = () => view.setColoring(...coloring());
   settings.on('change', ({ section }) => (section === 'flatten' || section === 'display') && syncColoring());
   syncColoring();
   // What the pane shows, for tests and assistive tools: pieces and triangles drawn.
@@ -32,8 +33,7 @@ export function patternPane(container, { editor, settings, lifetime }) {
     container.dataset.pieces = pattern ? String(pattern.grainlines.length) : '0';
     container.dataset.triangles = pattern ? String(pattern.triangles.length / 3) : '0';
     shown = pattern;
-    syncColoring();
-    view.show(pattern);
+    view.show(pattern, coloring());  // one drawing of the new pattern (96k triangles for the koala's head)
   };
   editor.on('pattern', show);
   const syncVisible = () => (container.hidden = settings.values.mode !== 'flatten');

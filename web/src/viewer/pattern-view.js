@@ -52,8 +52,14 @@ export class PatternView {
     this.#resize();
   }
 
-  /** @param {object|null} pattern  the editor's pattern (FlattenPayload), or null to clear */
-  show(pattern) {
+  /**
+   * @param {object|null} pattern  the editor's pattern (FlattenPayload), or null to clear
+   * @param {[string, number]} [coloring]  its colouring, as setColoring takes it (default: the current
+   *   one): set with the pattern, so that a new pattern is drawn once
+   */
+  show(pattern, [colorBy, range] = [this.#colorBy, this.#range]) {
+    this.#colorBy = colorBy;
+    this.#range = range;
     this.#pattern = pattern;
     this.#hovered = -1;
     this.fit();
