@@ -153,6 +153,12 @@ test('390 px: a long warning shows three lines and More, which opens the rest an
   await expect(more).toHaveAttribute('aria-expanded', 'true');
   expect(await heightOf()).toBeGreaterThan(5 * lineHeight);
   await expectTidy(page, 'a long warning, opened');
+  // Opened, the messages end above the 3D heat map's legend (they reached
+  // down over its title) and scroll within what is left.
+  const legend = await page.getByTestId('heatmap-legend').boundingBox();
+  const messages = await page.locator('.viewport-messages').boundingBox();
+  expect(legend).not.toBeNull();
+  expect(messages.y + messages.height).toBeLessThanOrEqual(legend.y);
   await saveScreenshot(page, 'phone-390-warning-opened');
   await more.tap();
   await expect(more).toHaveText('More');

@@ -31,8 +31,9 @@ export class HeatmapLegend {
       display: 'flex', flexDirection: 'column', pointerEvents: 'none',
     });
     this.element.append(this.title, this.bar, this.ends, this.range);
-    this.element.hidden = true;
+    this.viewport = viewport;
     viewport.append(this.element);
+    this.hide();
   }
 
   /**
@@ -55,10 +56,22 @@ export class HeatmapLegend {
       ? `Range adapted to the data (${Math.round(100 * ADAPTIVE_PERCENTILE)}th percentile)`
       : 'Fixed range';
     this.element.setAttribute('aria-label', `${palette.title}: ${values.map(format).join(' to ')}; ${this.range.textContent}`);
-    this.element.hidden = false;
+    this.setShown(true);
   }
 
   hide() {
-    this.element.hidden = true;
+    this.setShown(false);
+  }
+
+  // `hidden` alone would not hide it where no stylesheet says [hidden] is
+  // display: none (an embedder's page): the inline display wins. The space
+  // it takes from the bottom goes to --legend-space on the viewport, which
+  // the messages at the top keep clear of (on a phone the view is short
+  // and a long warning reached down over the legend's title).
+  setShown(shown) {
+    this.element.hidden = !shown;
+    this.element.style.display = shown ? 'flex' : 'none';
+    const space = shown ? this.viewport.clientHeight - this.element.offsetTop + 6 : 0;
+    this.viewport.style.setProperty('--legend-space', `${space}px`);
   }
 }
