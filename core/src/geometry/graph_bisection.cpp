@@ -37,7 +37,8 @@ class Random {
     z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
     return z ^ (z >> 31);
   }
-  int below(int n) { return static_cast<int>(next() % static_cast<std::uint64_t>(n)); }
+  // In [0, n): the high 32 bits scaled (Lemire's multiply-shift), no division.
+  int below(int n) { return static_cast<int>(((next() >> 32) * static_cast<std::uint64_t>(n)) >> 32); }
   std::vector<int> permutation(int n) {
     std::vector<int> p(n);
     for (int i = 0; i < n; ++i) p[i] = i;
@@ -91,41 +92,33 @@ struct Bisection {
   }
 };
 
-Bisection bisection_of(const WeightedGraph& g, std::vector<std::int8_t> side) {
-  Bisection b;
-  b.side = std::move(side);
-  for (int v = 0; v < g.size(); ++v) {
-    b.weight[b.side[v]] += g.vertex_weight[v];
-    for (int e = g.start[v]; e < g.start[v + 1]; ++e) {
-      if (b.side[g.neighbour[e]] != b.side[v]) b.cut += g.edge_weight[e];
-    }
-  }
-  b.cut /= 2;
-  return b;
-}
-
 // Fiduccia-Mattheyses refinement: per pass, the boundary vertex whose move
 // to the other side lowers the cut most (within the balance) moves and is
 // locked, its neighbours' gains follow, and the pass goes back to the best
 // bisection it passed through.
 class Refinement {
  public:
-  Refinement(const WeightedGraph& g, long long limit, Bisection& b)
-      : g_(g), limit_(limit), b_(b), internal_(g.size(), 0), external_(g.size(), 0), locked_(g.size(), 0) {
+  // The bisection of g with these sides: its weights, cut and gains.
+  Refinement(const WeightedGraph& g, long long limit, std::vector<std::int8_t> side)
+      : g_(g), limit_(limit), internal_(g.size(), 0), external_(g.size(), 0), locked_(g.size(), 0),
+        listed_(g.size(), 0) {
+    b_.side = std::move(side);
     for (int v = 0; v < g.size(); ++v) {
+      b_.weight[b_.side[v]] += g.vertex_weight[v];
       for (int e = g.start[v]; e < g.start[v + 1]; ++e) {
-        (b.side[g.neighbour[e]] == b.side[v] ? internal_[v] : external_[v]) += g.edge_weight[e];
+        (b_.side[g.neighbour[e]] == b_.side[v] ? internal_[v] : external_[v]) += g.edge_weight[e];
       }
+      if (external_[v] > 0) boundary_.push_back(v);
+      b_.cut += external_[v];
     }
+    b_.cut /= 2;
   }
 
-  void run() {
+  Bisection run() {
     const int patience = std::clamp(g_.size() / 100, kMinPatience, kMaxPatience);
     for (int pass = 0; pass < kRefinePasses; ++pass) {
       for (int s = 0; s < 2; ++s) heap_[s] = {};
-      for (int v = 0; v < g_.size(); ++v) {
-        if (external_[v] > 0) heap_[b_.side[v]].emplace(gain(v), v);
-      }
+      for (const int v : boundary_) heap_[b_.side[v]].emplace(gain(v), v);
       moved_.clear();
       long long best_cut = b_.cut, best_excess = b_.excess(limit_);
       std::size_t best_moves = 0;
@@ -149,10 +142,31 @@ class Refinement {
       for (const int v : moved_) locked_[v] = 0;
       for (std::size_t k = moved_.size(); k > best_moves; --k) move(moved_[k - 1]);
       if (best_moves == 0) break;
+      update_boundary();
     }
+    return std::move(b_);
   }
 
  private:
+  // The boundary after a pass: only the moved vertices and their neighbours
+  // can have joined or left it.
+  void update_boundary() {
+    std::vector<int> next;
+    auto consider = [&](int v) {
+      if (listed_[v] || external_[v] <= 0) return;
+      listed_[v] = 1;
+      next.push_back(v);
+    };
+    for (const int v : boundary_) consider(v);
+    for (std::size_t k = 0; k < moved_.size(); ++k) {
+      const int v = moved_[k];
+      consider(v);
+      for (int e = g_.start[v]; e < g_.start[v + 1]; ++e) consider(g_.neighbour[e]);
+    }
+    for (const int v : next) listed_[v] = 0;
+    boundary_ = std::move(next);
+  }
+
   int gain(int v) const { return external_[v] - internal_[v]; }
 
   // The move to make: each side's best valid entry (stale ones, of moved or
@@ -201,14 +215,17 @@ class Refinement {
 
   const WeightedGraph& g_;
   const long long limit_;
-  Bisection& b_;
+  Bisection b_;
   std::vector<int> internal_, external_;  // per vertex: its edges' weight to its own side, to the other
-  std::vector<char> locked_;
+  std::vector<char> locked_, listed_;
+  std::vector<int> boundary_;  // the vertices with an edge to the other side
   std::priority_queue<std::pair<int, int>> heap_[2];  // per side: (gain, vertex)
   std::vector<int> moved_;
 };
 
-void refine(const WeightedGraph& g, long long limit, Bisection& b) { Refinement(g, limit, b).run(); }
+Bisection refined(const WeightedGraph& g, long long limit, std::vector<std::int8_t> side) {
+  return Refinement(g, limit, std::move(side)).run();
+}
 
 // The coarsest graph's bisection: side A grown breadth-first from a random
 // vertex to half the weight (jumping to another component when one is
@@ -245,8 +262,7 @@ Bisection initial_bisection(const WeightedGraph& g, long long limit, Random& ran
         }
       }
     }
-    Bisection b = bisection_of(g, std::move(side));
-    refine(g, limit, b);
+    Bisection b = refined(g, limit, std::move(side));
     if (attempt == 0 || b.better_than(best, limit)) best = std::move(b);
   }
   return best;
@@ -400,9 +416,7 @@ std::vector<std::int8_t> vertex_separator(const WeightedGraph& g, std::uint64_t 
     const WeightedGraph& fine = level == 0 ? g : graphs[level - 1];
     std::vector<std::int8_t> side(fine.size());
     for (int v = 0; v < fine.size(); ++v) side[v] = b.side[groups[level][v]];
-    Bisection projected = bisection_of(fine, std::move(side));
-    refine(fine, limit, projected);
-    b = std::move(projected);
+    b = refined(fine, limit, std::move(side));
   }
   std::vector<std::int8_t> part = std::move(b.side);
   cover_cut(g, part);
