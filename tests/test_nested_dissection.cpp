@@ -181,3 +181,44 @@ TEST_CASE("supernodal analysis: kept, it orders by nested dissection where that 
     CHECK((x - expected).norm() <= 1e-9 * expected.norm());
   }
 }
+
+TEST_CASE("nested dissection: graphs no mesh makes stay ordered (isolated rows, a star, a clique, a path)",
+          "[ordering]") {
+  // Lower triangles, diagonally dominant where the degree is at most 2.
+  const auto pattern = [](int n, const std::vector<std::pair<int, int>>& edges) {
+    std::vector<Eigen::Triplet<double>> entries;
+    for (int i = 0; i < n; ++i) entries.emplace_back(i, i, 3.0);
+    for (const auto& [a, b] : edges) entries.emplace_back(std::max(a, b), std::min(a, b), 1.0);
+    Eigen::SparseMatrix<double> A(n, n);
+    A.setFromTriplets(entries.begin(), entries.end());
+    return A;
+  };
+  std::vector<std::pair<const char*, Eigen::SparseMatrix<double>>> cases;
+  cases.emplace_back("no edges", pattern(3000, {}));
+  std::vector<std::pair<int, int>> star, clique, path, mixed;
+  for (int i = 1; i < 3000; ++i) star.emplace_back(0, i);
+  cases.emplace_back("a star", pattern(3000, star));
+  for (int i = 0; i < 300; ++i) {
+    for (int j = 0; j < i; ++j) clique.emplace_back(i, j);
+  }
+  cases.emplace_back("a clique", pattern(300, clique));
+  for (int i = 1; i < 5000; ++i) path.emplace_back(i - 1, i);
+  cases.emplace_back("a path", pattern(5000, path));
+  // Half the rows isolated, the rest a path with a few long edges.
+  for (int i = 2; i < 4000; i += 2) mixed.emplace_back(i - 2, i);
+  for (int i = 0; i + 2000 < 4000; i += 398) mixed.emplace_back(i, i + 2000);
+  cases.emplace_back("isolated rows and a path", pattern(4000, mixed));
+  cases.emplace_back("empty", pattern(0, {}));
+  for (const auto& [name, A] : cases) {
+    INFO(name);
+    std::vector<int> order = nested_dissection_order(A);
+    REQUIRE(order.size() == static_cast<std::size_t>(A.rows()));
+    std::sort(order.begin(), order.end());
+    for (int k = 0; k < static_cast<int>(order.size()); ++k) REQUIRE(order[k] == k);
+  }
+  // A path's separators are single rows: eliminated, a stretch of it joins
+  // the two around it, so no column has more than two entries below the
+  // diagonal (an order with the separators first would fill whole columns).
+  const std::vector<int> path_order = nested_dissection_order(cases[3].second);
+  CHECK(factor_work(cases[3].second, path_order) <= 4.0 * 5000);
+}
