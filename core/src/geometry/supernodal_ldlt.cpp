@@ -156,9 +156,8 @@ SupernodalStructure order_and_analyse(const Eigen::SparseMatrix<double>& A, Perm
   return analyse(permuted_upper(A, P));
 }
 
-// The multiply-adds of a factorization by the structure (a column with c
-// entries below the diagonal updates c^2 / 2 entries of the rest, doubled
-// for L D L^T's two products), the measure the orderings are compared by.
+// The work of a factorization with this structure, to compare orderings by:
+// a column with c entries below the diagonal takes about c^2 multiply-adds.
 double factor_work(const SupernodalStructure& s) {
   double work = 0.0;
   for (const int c : s.count) work += static_cast<double>(c) * c;
