@@ -9,9 +9,9 @@ namespace aniso {
 
 namespace {
 
-// Coarsening stops at this many vertices (or when a matching no longer
-// shrinks the graph by kMinShrink), and no coarse vertex weighs more than
-// kMaxVertexShare of the whole over that: heavier ones would make the
+// Coarsening stops at this many vertices (or when a matching leaves more
+// than kMinShrink of them), and no coarse vertex weighs more than
+// kMaxVertexShare / kCoarsest of the whole: heavier ones would make the
 // coarsest bisections lopsided.
 constexpr int kCoarsest = 120;
 constexpr double kMinShrink = 0.9;
