@@ -61,6 +61,11 @@ test('two modellers on one page are independent', async ({ page }) => {
   await page.keyboard.press('Control+Shift+z');
   expect(await page.evaluate(() => Array.from(window.anisoformExample.modellers.spool.api.positions()))).toEqual(spoolNow);
 
+  // The spool's bare viewport has no stylesheet: its heat-map legend, with no
+  // heat map shown, is hidden all the same (it showed as an empty box).
+  const spoolLegend = page.getByTestId('host-spool').getByTestId('heatmap-legend');
+  await expect(spoolLegend).toHaveCount(1);
+  await expect(spoolLegend).toBeHidden();
   // Spot's panel lives inside its own container.
   await expect(page.getByTestId('host-spot').locator('.side-panel')).toBeVisible();
   await expect(page.getByTestId('host-spool').locator('.side-panel')).toHaveCount(0);
