@@ -114,10 +114,10 @@ TEST_CASE("vertex separator: separates, balances and stays short on a real patch
     }
   }
   INFO("sides " << count[0] << ", " << count[1] << ", separator " << count[2] << " of " << n);
-  // Each side within the balance (at most 55 % of the vertices), the
+  // Each side within the balance (at most 65 % of the vertices), the
   // separator of the order of sqrt(n) as on a planar graph.
-  CHECK(count[kSideA] <= 0.55 * n + 1);
-  CHECK(count[kSideB] <= 0.55 * n + 1);
+  CHECK(count[kSideA] <= 0.65 * n + 1);
+  CHECK(count[kSideB] <= 0.65 * n + 1);
   CHECK(count[kSideA] >= 0.3 * n);
   CHECK(count[kSideB] >= 0.3 * n);
   CHECK(count[kSeparator] <= 2.0 * std::sqrt(static_cast<double>(n)));
@@ -151,10 +151,10 @@ TEST_CASE("nested dissection: a permutation with far fewer operations than AMD o
   int apart = 0;
   for (int v = 0; v < n / 2; ++v) apart += std::abs(position[2 * v] - position[2 * v + 1]) != 1;
   CHECK(apart == 0);
-  // Measured when written: AMD 2.31e8, nested dissection 1.43e8.
+  // Measured when written: AMD 2.35e8, nested dissection 1.36e8.
   const double amd = factor_work(A, amd_order(A)), dissection = factor_work(A, order);
   INFO("AMD " << amd << ", nested dissection " << dissection);
-  CHECK(dissection < 0.75 * amd);
+  CHECK(dissection < 0.7 * amd);
 }
 
 TEST_CASE("supernodal analysis: kept, it orders by nested dissection where that is cheaper and solves as Eigen",
