@@ -13,19 +13,20 @@ namespace {
 
 // Pieces of at most this many vertices (after merging indistinguishable
 // ones) are ordered by minimum degree: their separators would save little.
-// METIS switches at about the same size. Operations of the koala head's
-// flattening system with leaves of 60 / 120 / 200: demosthenes 1.42e8 /
-// 1.43e8 / 1.42e8, the bunny 9.8e8 / 9.87e8 / 9.69e8, spothead 4.59e7 /
-// 4.75e7 / 4.86e7 (AMD: 2.31e8, 1.31e9, 5.51e7); leaves of 1,000 order the
-// 200k koala's Laplacian twice as fast for 3 % more operations.
+// METIS switches at about the same size. Operations of the flattening
+// refinement's systems (one separator a piece, sides within 55 %) with
+// leaves of 60 / 120 / 200: demosthenes 1.42e8 / 1.43e8 / 1.42e8, the bunny
+// 9.8e8 / 9.87e8 / 9.69e8, spothead 4.59e7 / 4.75e7 / 4.86e7 (AMD: 2.31e8,
+// 1.31e9, 5.51e7); leaves of 1,000 order the 200k koala's Laplacian twice
+// as fast for 3 % more operations.
 constexpr int kLeafSize = 120;
 // Pieces above this many vertices are bisected from kSeparatorTries seeds
 // and the smallest separator kept (METIS's nseps): each coarsening is a
 // random draw, and the separators they lead to differ by a tenth or more.
-// Operations of the refinement's systems with 1 / 3 / 5 tries: the koala
-// head 1.08e9 / 1.02e9 / 1.01e9, the bunny 9.4e8 / 8.3e8 / 8.4e8,
-// demosthenes 1.44e8 / 1.36e8 / 1.34e8; the koala head's ordering takes
-// 0.25 / 0.42 / 0.67 s, next to 228 factorizations of about 0.1 s.
+// Operations of the refinement's systems (sides within 65 %) with 1 / 3 / 5
+// tries: the koala head 1.08e9 / 1.02e9 / 1.01e9, the bunny 9.4e8 / 8.3e8 /
+// 8.4e8, demosthenes 1.44e8 / 1.36e8 / 1.34e8; the koala head's ordering
+// takes 0.25 / 0.42 / 0.67 s, next to 228 factorizations of about 0.1 s.
 constexpr int kRetriedAbove = 1000;
 constexpr int kSeparatorTries = 3;
 
