@@ -13,34 +13,29 @@
 #include "geometry/graph_bisection.h"
 #include "geometry/nested_dissection.h"
 #include "geometry/supernodal_ldlt.h"
+#include "mesh/topology.h"
 #include "test_support.h"
 
 using namespace aniso;
 
 namespace {
 
-// The mesh's vertex graph, unit weights.
+// The mesh's vertex graph (mesh/topology.h's adjacency), `copies` disjoint
+// copies of it, unit weights.
 WeightedGraph mesh_graph(const Mesh& mesh, int copies = 1) {
+  const VertexAdjacency adjacency = vertex_adjacency(mesh.F, mesh.num_vertices());
   const int n = mesh.num_vertices();
-  std::vector<std::vector<int>> adjacent(static_cast<std::size_t>(n) * copies);
+  WeightedGraph g;
   for (int copy = 0; copy < copies; ++copy) {
-    for (int t = 0; t < mesh.F.rows(); ++t) {
-      for (int k = 0; k < 3; ++k) {
-        const int a = copy * n + mesh.F(t, k), b = copy * n + mesh.F(t, (k + 1) % 3);
-        adjacent[a].push_back(b);
-        adjacent[b].push_back(a);
+    for (int v = 0; v < n; ++v) {
+      for (int k = adjacency.offsets[v]; k < adjacency.offsets[v + 1]; ++k) {
+        g.neighbour.push_back(copy * n + adjacency.neighbors[k]);
       }
+      g.start.push_back(static_cast<int>(g.neighbour.size()));
     }
   }
-  WeightedGraph g;
-  for (auto& list : adjacent) {
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
-    g.neighbour.insert(g.neighbour.end(), list.begin(), list.end());
-    g.start.push_back(static_cast<int>(g.neighbour.size()));
-  }
   g.edge_weight.assign(g.neighbour.size(), 1);
-  g.vertex_weight.assign(adjacent.size(), 1);
+  g.vertex_weight.assign(static_cast<std::size_t>(n) * copies, 1);
   return g;
 }
 
