@@ -155,7 +155,8 @@ SupernodalFactor::SupernodalFactor(int n, std::vector<int> first_column, const s
     const std::size_t m = row_offsets[s + 1] - row_offsets[s];
     values += w * (w - 1) / 2 + (m - w) * w;
   }
-  values_.reserve(values);
+  values_.resize(values);
+  std::size_t stored = 0;
   rows_.reserve(rows.size());
   row_start_.reserve(supernodes() + 1);
   triangle_start_.reserve(supernodes());
@@ -163,24 +164,25 @@ SupernodalFactor::SupernodalFactor(int n, std::vector<int> first_column, const s
   for (int s = 0; s < supernodes(); ++s) {
     const int w = first_column_[s + 1] - first_column_[s];
     const int m = row_offsets[s + 1] - row_offsets[s];
-    store(s, rows.data() + row_offsets[s] + w, m - w, panels + panel_offsets[s], m);
+    store(s, rows.data() + row_offsets[s] + w, m - w, panels + panel_offsets[s], m, stored);
   }
   row_start_.push_back(static_cast<int>(rows_.size()));
 }
 
-void SupernodalFactor::store(int s, const int* R, int r, const double* panel, int m) {
+void SupernodalFactor::store(int s, const int* R, int r, const double* panel, int m, std::size_t& stored) {
   const int w = first_column_[s + 1] - first_column_[s];
   widest_ = std::max(widest_, w);
   row_start_.push_back(static_cast<int>(rows_.size()));
   rows_.insert(rows_.end(), R, R + r);
-  triangle_start_.push_back(static_cast<int>(values_.size()));
+  triangle_start_.push_back(static_cast<int>(stored));
   for (int k = 0; k + 1 < w; ++k) {
     const double* column = panel + static_cast<std::size_t>(k) * m;
-    values_.insert(values_.end(), column + k + 1, column + w);
+    std::copy(column + k + 1, column + w, values_.data() + stored);
+    stored += w - 1 - k;
   }
-  block_start_.push_back(static_cast<int>(values_.size()));
-  values_.resize(values_.size() + static_cast<std::size_t>(r) * w);
-  double* block = values_.data() + block_start_.back();
+  block_start_.push_back(static_cast<int>(stored));
+  double* block = values_.data() + stored;
+  stored += static_cast<std::size_t>(r) * w;
   // The block's entry (i, k) is below[k m + i]. Written in the block layout
   // without computing the offset per value: each pair of rows is
   // 2-by-2 tiles of pairs of columns (then a last odd column's two

@@ -317,7 +317,9 @@ int factor_panels(const SupernodalStructure& s, const Eigen::SparseMatrix<Scalar
         const double pivot = Eigen::numext::real(X(k, k));
         if (!((any_sign ? std::abs(pivot) : pivot) > pivot_floor)) return c0 + k;
         d[c0 + k] = pivot;
-        X.block(k + 1, k, m - k - 1, 1) /= Scalar(pivot);
+        // One division, then multiplications: a division per entry of L was
+        // a tenth of this function's time.
+        X.block(k + 1, k, m - k - 1, 1) *= Scalar(1.0 / pivot);
       }
     }
     if (w < m) {
