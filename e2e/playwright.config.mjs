@@ -6,6 +6,23 @@ import { defineConfig } from '../web/node_modules/@playwright/test/index.mjs';
 import { rendererArgs } from './renderer.mjs';
 import { origin, port } from './server.mjs';
 
+// The specs whose figures or bounds depend on how fast the solver runs.
+const MEASURED_SPECS = [
+  'background-factorization', 'cancel', 'configurator', 'document', 'drag-50k', 'mesh-size-limit', 'responsive',
+].map((name) => `${name}.spec.mjs`);
+
+function launchOptions(extraArgs) {
+  return {
+    executablePath: process.env.ANISO_CHROMIUM ?? '/usr/bin/chromium',
+    // Composite on the (CPU-rasterised) GPU as a desktop browser does
+    // (renderer.mjs says which rasteriser, and why). Without these, headless
+    // Chromium composites in software and reads every WebGL frame back on
+    // the page's main thread: 0.6–0.9 s per frame of the 400k-triangle
+    // koala, which would measure the missing GPU, not the page.
+    args: [...rendererArgs, ...extraArgs],
+  };
+}
+
 export default defineConfig({
   testDir: '.',
   testMatch: '*.spec.mjs',
@@ -20,19 +37,29 @@ export default defineConfig({
   use: {
     baseURL: `${origin}/`,
     viewport: { width: 900, height: 600 },
-    launchOptions: {
-      executablePath: process.env.ANISO_CHROMIUM ?? '/usr/bin/chromium',
-      // Composite on the (CPU-rasterised) GPU as a desktop browser does
-      // (renderer.mjs says which rasteriser, and why). Without these, headless
-      // Chromium composites in software and reads every WebGL frame back on
-      // the page's main thread: 0.6–0.9 s per frame of the 400k-triangle
-      // koala, which would measure the missing GPU, not the page.
-      args: rendererArgs,
-    },
     headless: true,
     trace: 'off',
     screenshot: 'only-on-failure',
   },
+  // Two projects, one browser flag apart. Each test opens the app afresh, and
+  // with it V8 compiles the solver's WASM module: quickly (Liftoff), then
+  // again optimised (TurboFan) for its hot functions, about 0.9 s of CPU per
+  // page on this machine, in browser contexts that keep no compiled code.
+  // The specs that check behaviour, not speed, run with Liftoff only: the
+  // same WebAssembly semantics (so the same results, bit for bit), 2x slower
+  // solves of their small meshes, and a third less CPU (their 108 tests:
+  // 208 -> 151 s). The specs that measure or bound the solver's speed (frame
+  // rates, cancel and round-trip latencies, long tasks, the background
+  // factorization) run as a user's browser does, TurboFan included, and so
+  // do the Node tests of the module.
+  projects: [
+    {
+      name: 'behaviour',
+      testIgnore: MEASURED_SPECS,
+      use: { launchOptions: launchOptions(['--js-flags=--liftoff-only']) },
+    },
+    { name: 'speed', testMatch: MEASURED_SPECS, use: { launchOptions: launchOptions([]) } },
+  ],
   // The built site from the server `scripts/run.sh` uses, with the same
   // Content-Security-Policy header: support.mjs fails a test on any violation
   // (page events and the server's report endpoint, which also hears the
