@@ -46,9 +46,10 @@ export default defineConfig({
   // again optimised (TurboFan) for its hot functions, about 0.9 s of CPU per
   // page on this machine, in browser contexts that keep no compiled code.
   // The specs that check behaviour, not speed, run with Liftoff only: the
-  // same WebAssembly semantics (so the same results, bit for bit), 2x slower
-  // solves of their small meshes, and a third less CPU (their 108 tests:
-  // 208 -> 151 s). The specs that measure or bound the solver's speed (frame
+  // same WebAssembly semantics (so the same results, bit for bit), slower
+  // solves of their small meshes, and a third less CPU (run alone: 350 ->
+  // 236 CPU-s, 208 -> 151 s; in the whole run 185 -> 146 s of its 278 ->
+  // 243 s). The specs that measure or bound the solver's speed (frame
   // rates, cancel and round-trip latencies, long tasks, the background
   // factorization) run as a user's browser does, TurboFan included, and so
   // do the Node tests of the module.
