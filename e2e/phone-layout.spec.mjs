@@ -144,6 +144,13 @@ test('390 px: a long warning shows three lines and More, which opens the rest an
   const lineHeight = await text.evaluate((element) => Number.parseFloat(getComputedStyle(element).lineHeight));
   const heightOf = async () => (await text.boundingBox()).height;
   expect(await heightOf()).toBeLessThanOrEqual(3 * lineHeight + 1);
+  // The warning comes before the load's notice, and its first lines show in
+  // the short view: below the notice, demosthenes' warning was a strip with
+  // no text.
+  await expect(notice).toBeVisible();
+  expect((await warning.boundingBox()).y).toBeLessThan((await notice.boundingBox()).y);
+  const shown = await page.locator('.viewport-messages').boundingBox();
+  expect((await text.boundingBox()).y + 2 * lineHeight).toBeLessThanOrEqual(shown.y + shown.height);
   const more = warning.getByTestId('message-more');
   await expect(more).toHaveText('More');
   await expect(more).toHaveAttribute('aria-expanded', 'false');

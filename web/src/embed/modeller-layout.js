@@ -22,8 +22,11 @@ export function buildLayout(container, ui) {
       h('p', {}, 'Select a region, pick a direction, drag to deform.')));
   const message = (kind, role) => h('div', { className: `message message-${kind}`, 'data-testid': kind, role, hidden: true });
   const dropOverlay = h('div', { className: 'drop-overlay', 'data-testid': 'drop-overlay', hidden: true }, 'Drop a mesh file (OBJ, PLY, STL, OFF, GLB)');
+  // Most important first: where the view is short (a phone's, with the
+  // heat-map legend shown) only the first lines show, and a load's notice
+  // above a flattening's warning left the warning a strip with no text.
   const viewport = h('main', { className: 'viewport' },
-    h('div', { className: 'viewport-messages' }, message('error', 'alert'), message('notice', 'status'), message('warning', 'status')),
+    h('div', { className: 'viewport-messages' }, message('error', 'alert'), message('warning', 'status'), message('notice', 'status')),
     dropOverlay);
   const patternPane = h('section', {
     className: 'pattern-pane', 'data-testid': 'pattern-view', 'aria-label': 'Flattened pattern', hidden: true,
