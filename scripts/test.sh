@@ -33,7 +33,7 @@ bash scripts/setup.sh
 stage "native build (clang, ASan + UBSan, libFuzzer targets)"
 CC=clang CXX=clang++ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug \
   -DCMAKE_CXX_FLAGS_DEBUG="-O2 -gline-tables-only" -DANISO_SANITIZE=ON -DANISO_FUZZ=ON \
-  -DANISO_BENCH=OFF -DANISO_SHARED_DIR="$ANISO_SHARED_DIR" >/dev/null
+  -DANISO_BENCH=OFF -DANISO_UNITY_BATCHES="$JOBS" -DANISO_SHARED_DIR="$ANISO_SHARED_DIR" >/dev/null
 cmake --build build-asan -j"$JOBS"
 
 stage "native tests (ctest)"

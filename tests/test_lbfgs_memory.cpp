@@ -23,13 +23,13 @@ namespace {
 constexpr int kCapacity = 5;
 constexpr double kScale = 1.5;
 
-struct Problem {
+struct SpotSystem {
   Mesh mesh;
   std::vector<int> pins{0, 100};
   Eigen::SparseMatrix<double> L;
   std::unique_ptr<LaplacianSolver> solver;
 
-  Problem() : mesh(test::load("closed/spot_triangulated.obj")) {
+  SpotSystem() : mesh(test::load("closed/spot_triangulated.obj")) {
     L = cotangent_laplacian(mesh, cotangent_weights(mesh));
     solver = std::make_unique<LaplacianSolver>(L, pins);
   }
@@ -74,7 +74,7 @@ struct Problem {
 double dot(const Positions& a, const Positions& b) { return a.cwiseProduct(b).sum(); }
 
 // Nocedal & Wright's Algorithm 7.4, as written: -H g.
-Positions textbook_direction(const Problem& problem, const std::deque<Positions>& s, const std::deque<Positions>& y,
+Positions textbook_direction(const SpotSystem& problem, const std::deque<Positions>& s, const std::deque<Positions>& y,
                              const Positions& g) {
   const int m = static_cast<int>(s.size());
   std::vector<double> alpha(m), rho(m);
@@ -100,7 +100,7 @@ double relative_difference(const Positions& a, const Positions& b) { return (a -
 
 TEST_CASE("L-BFGS memory: the direction is the two-loop recursion's, pairs kept and dropped",
           "[lbfgs]") {
-  const Problem problem;
+  const SpotSystem problem;
   const Positions zero = Positions::Zero(problem.n(), 3);
   Positions gradient = problem.change(problem.mesh.V);
   LbfgsMemory<Positions> memory(kCapacity);
@@ -132,7 +132,7 @@ TEST_CASE("L-BFGS memory: the direction is the two-loop recursion's, pairs kept 
 }
 
 TEST_CASE("L-BFGS memory: a pair without positive curvature is not kept", "[lbfgs]") {
-  const Problem problem;
+  const SpotSystem problem;
   const Positions zero = Positions::Zero(problem.n(), 3);
   LbfgsMemory<Positions> memory(kCapacity);
   const Positions step = problem.step(0);

@@ -34,10 +34,10 @@ constexpr int kMaxStagnantSteps = 10;
 // scale of H0 = scale L^-1 (AnARAP's 3 measured no better here: cyl50k 9 ->
 // 10 iterations to 1e-6, the open bunny 22 -> 33, hemisphere 12 either way)
 // and the small changes in a row that end the iterations.
-constexpr int kMemory = 5;
-constexpr double kMaxScale = 2.0;
-constexpr int kHalvings = 2;
-constexpr int kQuietSteps = 3;
+constexpr int kFlattenMemory = 5;
+constexpr double kFlattenMaxScale = 2.0;
+constexpr int kFlattenHalvings = 2;
+constexpr int kFlattenQuietSteps = 3;
 // The per-triangle arrays the iterations stream through, one row per
 // triangle, and the map the local step, the right-hand side and the
 // gradient gather corners from, one row per vertex (a row-major copy): a
@@ -238,7 +238,7 @@ struct ArapFlattening::Impl {
   // (deform/anarap_lbfgs.cpp says why and how): H0 = scale L^-1 with the
   // prefactored Laplacian, so a step without pairs is exactly the plain one.
   // Every step goes through the fold guard and is kept only if the energy
-  // falls (halved up to kHalvings times, else the plain step from the last
+  // falls (halved up to kFlattenHalvings times, else the plain step from the last
   // rotations, which never raises it). Returns the last energy.
   double run_lbfgs(const TargetEdges& q, const ArapFlattenSettings& settings, double exact_energy,
                    Eigen::MatrixX2d& uv, Rotations& rotation, double energy,
@@ -246,7 +246,7 @@ struct ArapFlattening::Impl {
     const int n = static_cast<int>(uv.rows());
     Eigen::MatrixXd rhs = global_rhs(q, rotation, n);
     Eigen::MatrixXd gradient = energy_gradient(uv, rhs);
-    LbfgsMemory<Eigen::MatrixXd> memory(kMemory);
+    LbfgsMemory<Eigen::MatrixXd> memory(kFlattenMemory);
     double scale = 1.0;
     const auto apply_h0 = [&](const Eigen::MatrixXd& v, Eigen::MatrixXd& r) {
       r = Eigen::MatrixXd::Zero(n, 2);
@@ -270,7 +270,7 @@ struct ArapFlattening::Impl {
       }
       bool moved = guard_step(uv, trial, shortened);
       double trial_energy = fit_rotations(q, trial, rotation);
-      for (int h = 0; h < kHalvings && moved && !(trial_energy < energy) && !memory.empty(); ++h) {
+      for (int h = 0; h < kFlattenHalvings && moved && !(trial_energy < energy) && !memory.empty(); ++h) {
         trial = uv + (trial - uv) * 0.5;  // on the fold-free segment already checked
         trial_energy = fit_rotations(q, trial, rotation);
       }
@@ -308,7 +308,7 @@ struct ArapFlattening::Impl {
         scale = 1.0;
       } else {
         const double curvature_ratio = memory.push_step(uv, trial, gradient, next_gradient, rhs, next_rhs);
-        if (curvature_ratio > 0.0) scale = std::clamp(curvature_ratio, 1.0, kMaxScale);
+        if (curvature_ratio > 0.0) scale = std::clamp(curvature_ratio, 1.0, kFlattenMaxScale);
       }
       uv = trial;
       rhs.swap(next_rhs);
@@ -318,13 +318,13 @@ struct ArapFlattening::Impl {
       ++report.iterations;
       report.energy_history.push_back(energy);
       if (settings.progress && !settings.progress(report.iterations, energy)) break;
-      // As the plain loop's rule, with kQuietSteps small changes in a row:
+      // As the plain loop's rule, with kFlattenQuietSteps small changes in a row:
       // one quasi-Newton step that happened to gain little is no sign of
       // convergence by itself.
       const bool small_change = previous - energy <= settings.tolerance * previous;
       quiet_steps = small_change && !shortened ? quiet_steps + 1 : 0;
       stagnant_steps = small_change && shortened ? stagnant_steps + 1 : 0;
-      if (quiet_steps >= kQuietSteps || energy <= exact_energy) {
+      if (quiet_steps >= kFlattenQuietSteps || energy <= exact_energy) {
         report.converged = true;
         break;
       }

@@ -88,7 +88,7 @@ constexpr double kArmijo = 1e-4;        // sufficient decrease of the line searc
 constexpr int kMaxHalvings = 40;
 // Relative energy changes below the tolerance this many times in a row end
 // the iterations (also when Newton's predicted decrease is below it).
-constexpr int kQuietSteps = 2;
+constexpr int kRefineQuietSteps = 2;
 // A stage also ends when its last kProgressWindow steps together lowered its
 // energy by less than kProgressWindow * kSlowProgress of it, whatever the
 // tolerance. On patches far from developable the last stage otherwise
@@ -133,7 +133,7 @@ constexpr double kMaxRegularization = 1e4;
 // Iterations to converge, local/global ones included, with projected Newton
 // alone / with 10 of them / with them and the doubling below: hand 269 / 146
 // / 122, spothead 235 / 210 / 187, the cube 121 / 61 / 49, torso 68 / 55 / 48
-// (with the unit-diagonal scaling of NewtonSystem::factor, which moves the
+// (with the unit-diagonal scaling of PatternHessian::factor, which moves the
 // round-off: spothead 201, the cube 45).
 constexpr int kPcgIterations = 10;
 constexpr double kPcgResidual = 1e-2;
@@ -143,7 +143,7 @@ constexpr double kPcgResidual = 1e-2;
 // curvature, Newton's step falls short.
 constexpr double kMaxStretch = 8.0;
 // Pivots of the unit-diagonal Hessian at or below this are not positive;
-// the identity multiples tried when one is (NewtonSystem::factor).
+// the identity multiples tried when one is (PatternHessian::factor).
 constexpr double kPivotFloor = 1e-14;
 constexpr double kFirstShift = 1e-12;
 constexpr double kShiftGrowth = 100.0;
@@ -252,9 +252,9 @@ void make_positive(std::vector<Matrix4>& H) {
 // coordinates (u and v of every vertex that is not pinned, interleaved), of
 // one pattern for every iteration, so that the ordering and the symbolic
 // factorization are done once.
-class NewtonSystem {
+class PatternHessian {
  public:
-  NewtonSystem(const Triangles& F, int num_vertices, const std::vector<int>& active,
+  PatternHessian(const Triangles& F, int num_vertices, const std::vector<int>& active,
                const std::vector<int>& pinned)
       : F_(F), active_(active), coordinate_(2 * static_cast<std::size_t>(num_vertices), 0) {
     for (const int v : pinned) coordinate_[2 * v] = coordinate_[2 * v + 1] = -1;
@@ -450,7 +450,7 @@ struct StretchTerms {
   // triangle's Hessian in (Ju, Jv) as it is (not made positive), weighted,
   // plus the same regularization.
   double evaluate(const Triangles& F, const Eigen::MatrixXd& uv, Eigen::MatrixXd* gradient,
-                  NewtonSystem* hessian, double regularization, bool majorize,
+                  PatternHessian* hessian, double regularization, bool majorize,
                   std::vector<Matrix4>* exact = nullptr) const {
     if (gradient) gradient->setZero(uv.rows(), 2);
     if (exact) exact->resize(active.size());
@@ -521,7 +521,7 @@ double dot(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) { return a.cwiseP
 // far: conjugate gradients from 0 give descent directions until then). Where
 // H curves down at the first search direction, that direction itself.
 Eigen::MatrixXd truncated_newton_direction(const Triangles& F, const StretchTerms& terms,
-                                           const std::vector<Matrix4>& exact, const NewtonSystem& system,
+                                           const std::vector<Matrix4>& exact, const PatternHessian& system,
                                            const std::vector<int>& pinned, const Eigen::MatrixXd& gradient) {
   Eigen::MatrixXd residual = -gradient;
   for (const int v : pinned) residual.row(v).setZero();
@@ -557,7 +557,7 @@ enum class StageEnd { Converged, Stalled, Capped, Stopped };
 class NewtonStage {
  public:
   NewtonStage(const Triangles& F, const TriangleCharts& charts, const StretchTerms& terms,
-              const std::vector<int>& pinned, NewtonSystem& system, const ArapFlattenSettings& settings,
+              const std::vector<int>& pinned, PatternHessian& system, const ArapFlattenSettings& settings,
               int iterations_before, StretchRefineReport& report)
       : F_(F), charts_(charts), terms_(terms), pinned_(pinned), system_(system), settings_(settings),
         iterations_before_(iterations_before), report_(report),
@@ -641,7 +641,7 @@ class NewtonStage {
       const bool cut_short = bound < 1.0;
       quiet = small_change && !cut_short ? quiet + 1 : 0;
       blocked = small_change && cut_short ? blocked + 1 : 0;
-      if (quiet >= kQuietSteps) return StageEnd::Converged;
+      if (quiet >= kRefineQuietSteps) return StageEnd::Converged;
       // Steps the guard held back are a stall, not slow progress: checked first.
       if (blocked >= kBlockedSteps) return StageEnd::Stalled;
       stage_energies.push_back(energy);
@@ -658,7 +658,7 @@ class NewtonStage {
   const TriangleCharts& charts_;
   const StretchTerms& terms_;
   const std::vector<int>& pinned_;
-  NewtonSystem& system_;
+  PatternHessian& system_;
   const ArapFlattenSettings& settings_;
   const int iterations_before_;
   StretchRefineReport& report_;
@@ -691,7 +691,7 @@ StretchRefineReport refine_stretch(const FlattenPatch& patch, const TriangleChar
   }
   if (report.start < 0) return report;
   Eigen::MatrixXd uv = starts[report.start];
-  NewtonSystem system(F, static_cast<int>(uv.rows()), terms.active, pinned);
+  PatternHessian system(F, static_cast<int>(uv.rows()), terms.active, pinned);
   NewtonStage stage(F, charts, terms, pinned, system, settings, iterations_before, report);
   // A coarse stage that converged or stalled hands on to the next one.
   StageEnd end = StageEnd::Converged;
