@@ -1,6 +1,6 @@
 // The anisoform package embedded in an ordinary page (examples/embedding.html):
 // two modellers are independent, and dispose() leaves nothing running
-// (workers, observers, listeners and the render loop counted from outside by
+// (workers, observers, listeners and animation frames counted from outside by
 // resource-census.mjs).
 import { expect, test } from './support.mjs';
 import { installResourceCensus } from './resource-census.mjs';
@@ -16,11 +16,19 @@ async function openExample(page) {
   return pageErrors;
 }
 
-/** Frames requested during `ms` milliseconds of an idle page. */
-async function framesDuring(page, ms) {
+/** Frames requested during `ms` milliseconds, after `action` (none: an idle page). */
+async function framesDuring(page, ms, action = async () => {}) {
   const before = (await census(page)).frames;
+  await action();
   await page.waitForTimeout(ms);
   return (await census(page)).frames - before;
+}
+
+/** Gives the third modeller's host element a new height: a live modeller redraws its view. */
+function resizeThirdHost(page, height) {
+  return page.evaluate((value) => {
+    document.querySelector('[data-testid="host-third"]').style.height = value;
+  }, height);
 }
 
 test('two modellers on one page are independent', async ({ page }) => {
@@ -72,7 +80,7 @@ test('two modellers on one page are independent', async ({ page }) => {
   expect(pageErrors).toEqual([]);
 });
 
-test('dispose stops the worker, the render loop, the observers and every listener', async ({ page }) => {
+test('dispose stops the worker, the frames, the observers and every listener', async ({ page }) => {
   const pageErrors = await openExample(page);
   const withBoth = await census(page);
   expect(withBoth.workers).toBe(2);
@@ -111,12 +119,14 @@ test('dispose stops the worker, the render loop, the observers and every listene
   expect(withThird.workers).toBe(1);
   expect(withThird.listeners).toBeGreaterThan(none.listeners);
   expect(withThird.observers).toBeGreaterThan(0);
-  expect(await framesDuring(page, 300)).toBeGreaterThan(0);
+  // Frames are drawn on demand: none while idle, one when the view changes.
+  expect(await framesDuring(page, 400)).toBe(0);
+  expect(await framesDuring(page, 300, () => resizeThirdHost(page, '320px'))).toBeGreaterThan(0);
   await page.evaluate(() => window.third.dispose());
   expect(await census(page)).toMatchObject({ workers: 0, observers: 0, listeners: none.listeners });
   expect(await page.evaluate(() => window.third.held)).toBe(0);
   await expect(page.getByTestId('host-third')).toBeEmpty();
-  expect(await framesDuring(page, 400)).toBe(0);
+  expect(await framesDuring(page, 400, () => resizeThirdHost(page, '280px'))).toBe(0);
 
   // A disposed modeller's api refuses with a clear message.
   const refusal = await page.evaluate(() => window.third.api.select({ all: true }).then(() => 'resolved', (error) => error.message));

@@ -7,8 +7,8 @@
 //              document or an element still in the document
 //   detachedListeners  the same on elements no longer in the document
 //              (they go with the element; reported, not a leak)
-//   frames     requestAnimationFrame calls so far (a running render loop
-//              keeps adding to it)
+//   frames     requestAnimationFrame calls so far (a view that keeps
+//              redrawing adds to it)
 export function installResourceCensus() {
   const workers = new Set();
   const NativeWorker = window.Worker;

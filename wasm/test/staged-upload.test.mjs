@@ -27,7 +27,7 @@ class ViewerStub extends EventEmitter {
   requestRender() {
     this.renders++;
   }
-  /** The render loop: one frame, as Viewer draws it (then 'frame'). */
+  /** One animation frame, as Viewer draws it (then 'frame'). */
   drawFrame() {
     const drawn = this.scene.children.map((mesh) => ({
       buffers: [...Object.values(mesh.geometry.attributes), mesh.geometry.index].filter(Boolean),

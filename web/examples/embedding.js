@@ -1,6 +1,6 @@
 // Two modellers on one page through the anisoform package: the spool with no
 // panel, Spot with the full UI. Each "Dispose" button ends one of them
-// (worker, render loop, observers, listeners). window.anisoformExample holds
+// (worker, pending frame, observers, listeners). window.anisoformExample holds
 // both and createModeller, for the console and the end-to-end tests.
 import { createModeller } from 'anisoform';
 import 'anisoform/style.css';

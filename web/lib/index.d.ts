@@ -36,7 +36,7 @@ export interface Modeller {
   readonly api: Anisoform;
   /** Like api.load, and also takes a URL; failures are also 'error' events. */
   load(source: MeshSource, name?: string): Promise<{ vertices: number; triangles: number }>;
-  /** Stops the render loop, the ResizeObservers, the worker (and its WASM session) and removes every listener and element it added. */
+  /** Cancels the pending frame, stops the ResizeObservers, the worker (and its WASM session) and removes every listener and element it added. */
   dispose(): void;
   /** Listeners and clean-up steps the modeller still holds (0 after dispose). */
   readonly held: number;

@@ -2,7 +2,7 @@
 // modeller (solver worker, editor, viewer, interaction, tools, and with
 // ui 'full' the side panel) living inside `container`. Everything it holds
 // outside its own objects is registered in a Lifetime, so dispose() ends the
-// render loop, the ResizeObservers, the worker (and with it the WASM session)
+// pending frame, the ResizeObservers, the worker (and with it the WASM session)
 // and every listener it added; several modellers on a page are independent.
 import { createAnisoformApi } from '../api/create-api.js';
 import { Editor } from '../editor/editor.js';

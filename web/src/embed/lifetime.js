@@ -1,5 +1,5 @@
 // What one modeller holds outside its own objects: DOM listeners, timers and
-// clean-up steps (a render loop, a ResizeObserver, a Worker). dispose() undoes
+// clean-up steps (a pending animation frame, a ResizeObserver, a Worker). dispose() undoes
 // all of them, last first; `size` tells a test how many are still held.
 export class Lifetime {
   #listeners = new Set();

@@ -48,9 +48,11 @@ export function statusBar(container, { editor, viewer, lifetime }) {
       bar.classList.add('indeterminate');
     }
   });
-  // Frames are drawn on demand, so an idle view draws none.
+  // Frames are drawn on demand, so an idle view draws none. The text is
+  // only replaced when it changes: each replacement is a layout and a paint.
   lifetime.every(500, () => {
     const frames = viewer.framesPerSecond;
-    fps.textContent = frames > 0 ? `${frames} fps` : 'idle';
+    const text = frames > 0 ? `${frames} fps` : 'idle';
+    if (fps.textContent !== text) fps.textContent = text;
   });
 }
