@@ -4,7 +4,7 @@
 // meanwhile, and the next edit queues behind it and applies as usual.
 import { expect, meshPath, openApp, test, uploadFile, verticalRange } from './support.mjs';
 
-test('a commit starts the next factorization in the background, and the next edit still applies', async ({ page }) => {
+test('a commit starts the next factorization in the background, and the next edit still applies', { tag: '@speed' }, async ({ page }) => {
   test.setTimeout(120_000);
   const pageErrors = await openApp(page);
   // The load's own preparation (factorizing the new mesh) ends with 'done'

@@ -89,7 +89,7 @@ function expectKept(result) {
   expect(result.events).toEqual([]);
 }
 
-test('api.cancel() stops a long commit at once; the next edit, undo and a replay then work', async ({ page }) => {
+test('api.cancel() stops a long commit at once; the next edit, undo and a replay then work', { tag: '@speed' }, async ({ page }) => {
   test.setTimeout(180_000);
   const pageErrors = await setUp(page);
   const result = await cancelLongEdit(page, 'api');
@@ -131,7 +131,7 @@ test('api.cancel() stops a long commit at once; the next edit, undo and a replay
   expect(pageErrors).toEqual([]);
 });
 
-test('the Cancel button and Esc stop a long commit the same way', async ({ page }) => {
+test('the Cancel button and Esc stop a long commit the same way', { tag: '@speed' }, async ({ page }) => {
   test.setTimeout(180_000);
   const pageErrors = await setUp(page);
   expectKept(await cancelLongEdit(page, 'button'));

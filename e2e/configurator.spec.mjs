@@ -116,7 +116,7 @@ async function drag(page, name, amplitude) {
   }, { name, amplitude });
 }
 
-test('dragging a slider previews live through setParameter and commits the release in its op', async ({ page }) => {
+test('dragging a slider previews live through setParameter and commits the release in its op', { tag: '@speed' }, async ({ page }) => {
   const pageErrors = await openConfigurator(page);
   const initialOps = await ops(page);
   // height is the first op (a preview replays the three ops), thickness the

@@ -258,7 +258,7 @@ test('a bad document is refused with its code and the work is kept', async ({ pa
   expect(pageErrors).toEqual([]);
 });
 
-test('a slider on the last op updates the shape live at 20k vertices', async ({ page }) => {
+test('a slider on the last op updates the shape live at 20k vertices', { tag: '@speed' }, async ({ page }) => {
   test.setTimeout(120_000);
   const pageErrors = await openApp(page);
   const loaded = await uploadFile(page, meshPath('closed/armadillo.off'));

@@ -31,7 +31,7 @@ function tubeOff(around, rows) {
   return `${lines.join('\n')}\n`;
 }
 
-test('a 2 s stretch drag on a 50k-vertex mesh previews live and commits', async ({ page }) => {
+test('a 2 s stretch drag on a 50k-vertex mesh previews live and commits', { tag: '@speed' }, async ({ page }) => {
   test.setTimeout(180_000);
   const pageErrors = await openApp(page);
   const file = join(mkdtempSync(join(tmpdir(), 'aniso-50k-')), 'tube_50k.off');

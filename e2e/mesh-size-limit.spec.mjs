@@ -7,7 +7,7 @@ import { readFileSync, writeFileSync } from 'node:fs';
 import { binaryPly, readBinaryPly, subdivided } from '../wasm/subdivided-mesh.mjs';
 import { expect, meshPath, openApp, test } from './support.mjs';
 
-test('an 800k-vertex upload is refused at once naming the limit; the page stays responsive and keeps its mesh', async ({ page }) => {
+test('an 800k-vertex upload is refused at once naming the limit; the page stays responsive and keeps its mesh', { tag: '@speed' }, async ({ page }) => {
   test.setTimeout(120_000);
   const koala = readBinaryPly(readFileSync(meshPath('large/koala_loop1_200k.ply')));
   // On disk, and picked as a user picks it: a 30 MB buffer handed over

@@ -15,7 +15,7 @@ import { canvasCentre, expect, meshPath, openApp, test, uploadFile } from './sup
 
 const LIMIT_MS = 200;
 
-test('loading the 200k-vertex koala runs no main-thread task of 200 ms or more, and it can be picked at once', async ({ page }) => {
+test('loading the 200k-vertex koala runs no main-thread task of 200 ms or more, and it can be picked at once', { tag: '@speed' }, async ({ page }) => {
   test.setTimeout(120_000);
   const pageErrors = await openApp(page);
   await page.evaluate(() => {
@@ -47,7 +47,7 @@ test('loading the 200k-vertex koala runs no main-thread task of 200 ms or more, 
   expect(pageErrors).toEqual([]);
 });
 
-test('the page answers within 200 ms while a 200k-vertex solve runs', async ({ page }) => {
+test('the page answers within 200 ms while a 200k-vertex solve runs', { tag: '@speed' }, async ({ page }) => {
   test.setTimeout(240_000);
   await openApp(page);
   const outcome = await uploadFile(page, meshPath('large/koala_loop1_200k.ply'));
