@@ -14,7 +14,8 @@ function launchOptions(extraArgs) {
   return {
     executablePath: process.env.ANISO_CHROMIUM ?? '/usr/bin/chromium',
     // Composite on the (CPU-rasterised) GPU as a desktop browser does
-    // (renderer.mjs says which rasteriser, and why). Without these, headless
+    // (renderer.mjs says which rasteriser, and why; the behaviour project
+    // below turns GPU compositing off again). Without these, headless
     // Chromium composites in software and reads every WebGL frame back on
     // the page's main thread: 0.6–0.9 s per frame of the 400k-triangle
     // koala, which would measure the missing GPU, not the page.
@@ -40,7 +41,7 @@ export default defineConfig({
     trace: 'off',
     screenshot: 'only-on-failure',
   },
-  // Two projects, one browser flag apart. Each test opens the app afresh, and
+  // Two projects, two browser flags apart. Each test opens the app afresh, and
   // with it V8 compiles the solver's WASM module: quickly (Liftoff), then
   // again optimised (TurboFan) for its hot functions, about 0.9 s of CPU per
   // page on this machine, in browser contexts that keep no compiled code.
@@ -48,17 +49,22 @@ export default defineConfig({
   // same WebAssembly semantics (so the same results, bit for bit), slower
   // solves of their small meshes, and a third less CPU (run alone: 350 ->
   // 236 CPU-s, 208 -> 151 s; in the whole run 185 -> 146 s of its 278 ->
-  // 243 s). The tests that measure or bound the solver's speed (frame
+  // 243 s). They also composite the page in software, as Chromium does on a
+  // machine without a GPU (WebGL still draws on llvmpipe): compositing every
+  // frame of the whole page on the CPU rasteriser cost the GPU process 78
+  // CPU-s of the behaviour tests' 275, against 26 of 210 in software, and
+  // the run 182-191 -> 151 s; their small meshes' frames read back cheaply.
+  // The tests that measure or bound the solver's speed (frame
   // rates, cancel and round-trip latencies, long tasks, the background
-  // factorization), tagged '@speed', run as a user's browser does, TurboFan
-  // included, and so do the Node tests of the module. (Whole specs at first:
+  // factorization), tagged '@speed', run as a user's browser with a GPU does, TurboFan
+  // and GPU compositing included, and so do the Node tests of the module. (Whole specs at first:
   // the document and configurator specs' other tests, on their own, 34.6 ->
   // 27.1 s with Liftoff only.)
   projects: [
     {
       name: 'behaviour',
       grepInvert: SPEED,
-      use: { launchOptions: launchOptions(['--js-flags=--liftoff-only']) },
+      use: { launchOptions: launchOptions(['--js-flags=--liftoff-only', '--disable-gpu-compositing']) },
     },
     { name: 'speed', grep: SPEED, use: { launchOptions: launchOptions([]) } },
   ],
