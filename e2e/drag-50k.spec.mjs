@@ -5,9 +5,7 @@
 // anisoform-preview row times the same path in Node); the test checks that
 // the drag previews live, several times, and commits. Measured alone on this
 // machine: 3.4-4.5/s with 3 iterations a preview, 6.4/s with 1.
-import { writeFileSync, mkdtempSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { join } from 'node:path';
+import { writeFileSync } from 'node:fs';
 import { armChange, canvasCentre, expect, openApp, test, uploadFile } from './support.mjs';
 
 // An open tube, the benchmark's cyl50k shape: no real mesh in ../shared has
@@ -34,7 +32,9 @@ function tubeOff(around, rows) {
 test('a 2 s stretch drag on a 50k-vertex mesh previews live and commits', { tag: '@speed' }, async ({ page }) => {
   test.setTimeout(180_000);
   const pageErrors = await openApp(page);
-  const file = join(mkdtempSync(join(tmpdir(), 'aniso-50k-')), 'tube_50k.off');
+  // In the test's output folder, which Playwright empties (a temporary
+  // folder of its own was left behind, 3.2 MB a run).
+  const file = test.info().outputPath('tube_50k.off');
   writeFileSync(file, tubeOff(250, 200));
   const loaded = await uploadFile(page, file);
   expect(loaded.ok).toBe(true);
