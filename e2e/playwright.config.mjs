@@ -52,14 +52,15 @@ export default defineConfig({
   // 243 s). They also composite the page in software, as Chromium does on a
   // machine without a GPU (WebGL still draws on llvmpipe): compositing every
   // frame of the whole page on the CPU rasteriser cost the GPU process 78
-  // CPU-s of the behaviour tests' 275, against 26 of 210 in software, and
-  // the run 182-191 -> 151 s; their small meshes' frames read back cheaply.
-  // The tests that measure or bound the solver's speed (frame
-  // rates, cancel and round-trip latencies, long tasks, the background
-  // factorization), tagged '@speed', run as a user's browser with a GPU does, TurboFan
-  // and GPU compositing included, and so do the Node tests of the module. (Whole specs at first:
-  // the document and configurator specs' other tests, on their own, 34.6 ->
-  // 27.1 s with Liftoff only.)
+  // CPU-s of the behaviour tests' 275, against 26-33 of 210-266 in
+  // software (run alone: 182-191 s against 151-180 s on this noisy host;
+  // their small meshes' frames read back cheaply). The tests that measure
+  // or bound the solver's speed (frame rates, cancel and round-trip
+  // latencies, long tasks, the background factorization), tagged '@speed',
+  // run as a user's browser with a GPU does: TurboFan (as the Node tests of
+  // the module do) and GPU compositing. (Whole specs at first: the document
+  // and configurator specs' other tests, on their own, 34.6 -> 27.1 s with
+  // Liftoff only.)
   projects: [
     {
       name: 'behaviour',
