@@ -60,6 +60,8 @@ if [ "${halves[0]}" = 0 ]; then
   exit
 fi
 pids=()
+# An interrupted run (Ctrl-C, a failed CI step) ends both.
+trap 'kill "${pids[@]}" 2>/dev/null || true' EXIT
 for half in "${halves[@]}"; do
   run_fuzzer "$half" > "$build/fuzz/run-$half.log" 2>&1 &
   pids+=($!)
