@@ -326,7 +326,7 @@ class PatternHessian {
     }
     double shift = 0.0;
     while (true) {
-      ldlt_ = analysis_->factor(H_, kPivotFloor);
+      analysis_->factor(H_, kPivotFloor, ldlt_);
       if (ldlt_.bad_pivot < 0) break;
       const double next = shift > 0.0 ? kShiftGrowth * shift : kFirstShift;
       if (next > kMaxShift) return false;

@@ -143,10 +143,22 @@ void subtract_dots(const double* t, int n, int w, double* xk) {
 
 }  // namespace
 
-SupernodalFactor::SupernodalFactor(int n, std::vector<int> first_column, const std::vector<int>& row_offsets,
+SupernodalFactor::SupernodalFactor(int n, const std::vector<int>& first_column, const std::vector<int>& row_offsets,
                                    const std::vector<int>& rows, const std::vector<std::size_t>& panel_offsets,
-                                   const double* panels)
-    : n_(n), first_column_(std::move(first_column)) {
+                                   const double* panels) {
+  assign(n, first_column, row_offsets, rows, panel_offsets, panels);
+}
+
+void SupernodalFactor::assign(int n, const std::vector<int>& first_column, const std::vector<int>& row_offsets,
+                              const std::vector<int>& rows, const std::vector<std::size_t>& panel_offsets,
+                              const double* panels) {
+  n_ = n;
+  widest_ = 0;
+  first_column_ = first_column;
+  row_start_.clear();
+  rows_.clear();
+  triangle_start_.clear();
+  block_start_.clear();
   // Sized once: grown entry by entry, the values were copied over and over
   // (a few % of each of the flattening refinement's factorizations).
   std::size_t values = 0;

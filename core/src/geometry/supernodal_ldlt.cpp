@@ -333,37 +333,46 @@ int factor_panels(const SupernodalStructure& s, const Eigen::SparseMatrix<Scalar
 }
 
 // P A P^T = L D L^T from C = P A P^T's lower triangle by columns, into
-// `panels` (scratch of the structure's size), then the solves' layout.
-SupernodalLdlt factor_lower(const SupernodalStructure& s, const Permutation& P, const Eigen::SparseMatrix<double>& C,
-                            double pivot_floor, std::vector<double>& panels) {
+// `panels` (scratch of the structure's size), then the solves' layout, in
+// `result`'s memory.
+void factor_lower(const SupernodalStructure& s, const Permutation& P, const Eigen::SparseMatrix<double>& C,
+                  double pivot_floor, std::vector<double>& panels, SupernodalLdlt& result) {
   const int n = static_cast<int>(C.cols());
-  SupernodalLdlt result;
   result.perm.assign(P.indices().data(), P.indices().data() + n);
   panels.resize(s.panel_offsets.back());
   result.bad_pivot = factor_panels(s, C, pivot_floor, false, panels.data(), result.d);
-  if (result.bad_pivot >= 0) return result;
-  result.L = SupernodalFactor(n, s.first_column, s.row_offsets, s.rows, s.panel_offsets, panels.data());
-  return result;
+  if (result.bad_pivot >= 0) return;
+  result.L.assign(n, s.first_column, s.row_offsets, s.rows, s.panel_offsets, panels.data());
 }
 
 }  // namespace
 
 SupernodalLdlt SupernodalAnalysis::factor(const Eigen::SparseMatrix<double>& A, double pivot_floor) const {
+  SupernodalLdlt result;
+  factor(A, pivot_floor, result);
+  return result;
+}
+
+void SupernodalAnalysis::factor(const Eigen::SparseMatrix<double>& A, double pivot_floor,
+                                SupernodalLdlt& result) const {
   SupernodalSymbolic& sym = *symbolic_;
   if (!A.isCompressed() || A.nonZeros() != sym.entries) {
-    return factor_lower(sym.s, sym.P, permuted_upper(A, sym.P).adjoint(), pivot_floor, sym.panels);
+    factor_lower(sym.s, sym.P, permuted_upper(A, sym.P).adjoint(), pivot_floor, sym.panels, result);
+    return;
   }
   const double* values = A.valuePtr();
   double* gathered = sym.C.valuePtr();
   for (std::size_t k = 0; k < sym.source.size(); ++k) gathered[k] = values[sym.source[k]];
-  return factor_lower(sym.s, sym.P, sym.C, pivot_floor, sym.panels);
+  factor_lower(sym.s, sym.P, sym.C, pivot_floor, sym.panels, result);
 }
 
 SupernodalLdlt supernodal_ldlt(const Eigen::SparseMatrix<double>& A, double pivot_floor) {
   Permutation P;
   const SupernodalStructure s = order_and_analyse(A, P);
   std::vector<double> panels;
-  return factor_lower(s, P, permuted_upper(A, P).adjoint(), pivot_floor, panels);
+  SupernodalLdlt result;
+  factor_lower(s, P, permuted_upper(A, P).adjoint(), pivot_floor, panels, result);
+  return result;
 }
 
 template <typename Scalar>

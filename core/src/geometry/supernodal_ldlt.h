@@ -47,6 +47,9 @@ class SupernodalAnalysis {
   // the permuted order through a map made once, and the panels' memory is
   // reused: one analysis factors one matrix at a time (not thread-safe).
   SupernodalLdlt factor(const Eigen::SparseMatrix<double>& A, double pivot_floor) const;
+  // The same into `result`, in its memory: a factorization of every step
+  // (the flattening refinement's) reuses the last one's.
+  void factor(const Eigen::SparseMatrix<double>& A, double pivot_floor, SupernodalLdlt& result) const;
 
   // Whether the ordering is nested dissection's (else AMD's): see the constructor.
   bool nested_dissection() const;
