@@ -25,7 +25,8 @@ struct SupernodalLdlt {
   Eigen::VectorXd d;
   SupernodalFactor L;
   // The first column (in factor order) whose pivot was not above the floor,
-  // or -1; the factorization stops there (L and d are then incomplete).
+  // or -1; the factorization stops there (d is then incomplete, and L is
+  // not that matrix's: empty, or a reused result's earlier factor).
   int bad_pivot = -1;
 };
 
