@@ -2,7 +2,7 @@
 import { expect, litPixelCount, openApp, test } from './support.mjs';
 
 test('the default mesh is drawn and ready to edit', async ({ page }) => {
-  const pageErrors = await openApp(page);
+  const pageErrors = await openApp(page, { navigate: true });
   const info = await page.evaluate(() => window.anisoform.info());
   expect(info).toEqual({ vertices: 2930, triangles: 5856, components: 1, boundaryLoops: 0, unitGuess: { name: 'm', mmPerUnit: 1000 } });
 

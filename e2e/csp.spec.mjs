@@ -22,7 +22,7 @@ async function takeUntil(page, csp, done) {
 }
 
 test('load, edit, export and flatten run under the strict CSP with no request leaving the origin', async ({ page, csp }) => {
-  const [document] = await Promise.all([page.waitForResponse(`${origin}/`), openApp(page)]);
+  const [document] = await Promise.all([page.waitForResponse(`${origin}/`), openApp(page, { navigate: true })]);
   expect(await document.headerValue('content-security-policy')).toContain(CONTENT_SECURITY_POLICY);
   const pageErrors = [];
   page.on('pageerror', (error) => pageErrors.push(error.message));

@@ -186,7 +186,9 @@ test('a full storage quota is reported and the work in the page is kept', async 
   const pageErrors = await openApp(page);
   const outcome = await page.evaluate(async () => {
     const api = window.anisoform;
-    // The browser refuses every write, as with a full quota.
+    // The browser refuses every write, as with a full quota (until the end
+    // of this evaluation: the next test's app starts in this page).
+    const { put } = IDBObjectStore.prototype;
     IDBObjectStore.prototype.put = () => {
       throw new DOMException('The quota has been exceeded.', 'QuotaExceededError');
     };
@@ -197,8 +199,12 @@ test('a full storage quota is reported and the work in the page is kept', async 
       });
     });
     await api.select({ all: true });
-    await api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.2, 1] } });
-    return { error: await reported, ops: api.document().ops.length };
+    try {
+      await api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.2, 1] } });
+      return { error: await reported, ops: api.document().ops.length };
+    } finally {
+      IDBObjectStore.prototype.put = put;
+    }
   });
   expect(outcome.error.code).toBe('storage');
   expect(outcome.error.message).toContain('quota');

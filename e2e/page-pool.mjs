@@ -4,7 +4,9 @@
 // on two cores, a sixth of the suite, whatever the test does.
 //
 // Each test still starts from what a new page would give it:
-// - before the test, the page is on about:blank with its origin's storage
+// - before the test, the page is on about:blank, or on the site with its
+//   modeller stopped (openApp then starts a new one in place: support.mjs),
+//   with its origin's storage
 //   (the autosave's IndexedDB, any web storage, caches) and cookies cleared,
 //   its permissions reset and the last test's garbage collected, so every
 //   test opens the app afresh;
@@ -103,7 +105,41 @@ export const test = guarded.extend({
     await Promise.all(pool.context.pages().filter((other) => other !== page).map((other) => other.close()));
     await page.unrouteAll({ behavior: 'ignoreErrors' });
     // Leave the app now (its worker and solve end, before the CSP guard's
-    // check); a page that cannot leave it is not handed out again.
-    await page.goto('about:blank').catch(() => closePooled(pool));
+    // check): the site's modeller is stopped in place, so that the next
+    // test's openApp can start a new one without loading the page's code
+    // again; any other page goes to about:blank. A page that cannot leave is
+    // not handed out again.
+    if (!(await stopSite(page))) await page.goto('about:blank').catch(() => closePooled(pool));
   },
 });
+
+// Pages left on the site with its modeller stopped (stopSite), until taken.
+const stoppedSites = new WeakSet();
+
+/** Stops the site's modeller if `page` shows the site; true if it did. */
+async function stopSite(page) {
+  if (page.url() !== `${origin}/`) return false;
+  let timer;
+  const timeout = new Promise((resolve) => {
+    timer = setTimeout(() => resolve(false), 5_000);
+  });
+  // A dispose that fails is the test's failure: the error propagates.
+  const stopping = page.evaluate(() => {
+    if (!window.anisoformSite) return false;
+    window.anisoformSite.stop();
+    return true;
+  });
+  const stopped = await Promise.race([stopping, timeout]).finally(() => clearTimeout(timer));
+  if (stopped) stoppedSites.add(page);
+  return stopped;
+}
+
+/**
+ * True once if `page` was handed out still on the site with its modeller
+ * stopped (nothing navigated it since): support.mjs's openApp then starts a
+ * new modeller instead of loading the page.
+ */
+export function takeStoppedSite(page) {
+  const taken = stoppedSites.delete(page);
+  return taken && page.url() === `${origin}/`;
+}

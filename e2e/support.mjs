@@ -7,7 +7,7 @@ import { existsSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { expect } from '../web/node_modules/@playwright/test/index.mjs';
-import { test } from './page-pool.mjs';
+import { takeStoppedSite, test } from './page-pool.mjs';
 
 export { expect, test };
 
@@ -20,11 +20,28 @@ if (!existsSync(meshesDir)) {
 }
 export const meshPath = (relative) => resolve(meshesDir, relative);
 
-/** Opens the page and waits for the default mesh; fails on any page error. */
-export async function openApp(page) {
+/**
+ * Opens the app and waits for the default mesh; returns the page errors seen
+ * meanwhile and after. A page the last test left on the site gets a new
+ * modeller in place (window.anisoformSite.start(): what a reload gives,
+ * without loading the code again). The page is loaded anyway with
+ * `navigate: true` (tests of the page load itself) and in the tests tagged
+ * '@speed', which measure the app as a user's fresh page runs it (its
+ * JavaScript not yet optimised by earlier tests).
+ * A test that patches the page's globals restores them: the next test's app
+ * may start in the same page.
+ */
+export async function openApp(page, { navigate = test.info().tags.includes('@speed') } = {}) {
   const pageErrors = [];
   page.on('pageerror', (error) => pageErrors.push(error.message));
-  await page.goto('/');
+  if (takeStoppedSite(page) && !navigate) {
+    await page.evaluate(() => {
+      window.scrollTo(0, 0);
+      return window.anisoformSite.start();
+    });
+  } else {
+    await page.goto('/');
+  }
   await page.evaluate(() => window.anisoform.ready);
   return pageErrors;
 }

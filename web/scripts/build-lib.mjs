@@ -82,9 +82,9 @@ await build({
 // 3. Declarations, README and package.json.
 await copyFile(`${web}lib/index.d.ts`, `${outDir}/index.d.ts`);
 await copyFile(`${web}lib/README.md`, `${outDir}/README.md`);
-// The api's declarations, without the standalone site's window.anisoform.
+// The api's declarations, without the standalone site's globals (window.anisoform, window.anisoformSite).
 const apiTypes = await readFile(`${web}src/api/anisoform.d.ts`, 'utf8');
-const withoutGlobal = apiTypes.replace(/\ndeclare global \{\n {2}interface Window \{\n {4}anisoform: Anisoform;\n {2}\}\n\}\n/, '\n');
+const withoutGlobal = apiTypes.replace(/\ndeclare global \{\n {2}interface Window \{\n {4}anisoform: Anisoform;\n[^]*?\n {2}\}\n\}\n/, '\n');
 if (withoutGlobal === apiTypes) throw new Error('build-lib: anisoform.d.ts no longer declares window.anisoform as expected');
 // Its request and result types are the module's (the one contract), shipped beside it.
 const moduleTypes = "'../wasm/anisoform-wasm'";

@@ -184,5 +184,12 @@ export interface Anisoform {
 declare global {
   interface Window {
     anisoform: Anisoform;
+    /**
+     * The standalone site's modeller: stop() ends it as leaving the page
+     * does (window.anisoform goes with it); start() ends it and starts a new
+     * one as a reload does, without loading the code again, and resolves
+     * when the new one is ready.
+     */
+    anisoformSite: { start(): Promise<void>; stop(): void };
   }
 }

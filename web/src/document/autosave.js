@@ -52,7 +52,9 @@ export class Autosave {
   save({ document, meshName, meshBytes }) {
     if (!this.enabled) return Promise.resolve();
     const record = { document, meshName, meshBytes, savedAt: Date.now() };
-    const saving = this.#chain.then(() => transact('readwrite', (store) => store.put(record, KEY)));
+    // A save waiting in the chain is dropped if autosave ends before its turn
+    // (a disposed modeller writes nothing after a new one has started).
+    const saving = this.#chain.then(() => this.enabled && transact('readwrite', (store) => store.put(record, KEY)));
     this.#chain = saving.catch(() => {});
     return saving.catch((error) => {
       throw storageError('save', error);

@@ -91,6 +91,11 @@ export class DocumentPersistence {
     this.#autosave.enabled = true;
   }
 
+  /** From now on nothing is autosaved, not even saves already asked for (createModeller's dispose). */
+  disableAutosave() {
+    this.#autosave.enabled = false;
+  }
+
   /** Restores the autosaved work, if any; resolves true when a saved mesh was loaded. */
   async restoreAutosave() {
     const record = await this.#autosave.load().catch((error) => {

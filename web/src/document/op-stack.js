@@ -270,6 +270,11 @@ export class OpStack {
     this.#persistence.enableAutosave();
   }
 
+  /** From now on nothing is autosaved, not even saves already asked for (createModeller's dispose). */
+  disableAutosave() {
+    this.#persistence.disableAutosave();
+  }
+
   /** Restores the autosaved work, if any; resolves true when a saved mesh was loaded. */
   restoreAutosave() {
     return this.#persistence.restoreAutosave();

@@ -134,7 +134,10 @@ export function createModeller(container, options = {}) {
   meshSource?.catch(() => {}); // reported through `ready`
   const ready = (async () => {
     const [, source] = await Promise.all([starting, meshSource]);
-    if (autosave) editor.ops.enableAutosave();
+    if (autosave && !lifetime.disposed) {
+      editor.ops.enableAutosave();
+      lifetime.defer(() => editor.ops.disableAutosave());
+    }
     if (autosave && editDocument === undefined && (await editor.ops.restoreAutosave())) {
       await drawn();
       return;
