@@ -116,20 +116,28 @@ export const test = guarded.extend({
 // Pages left on the site with its modeller stopped (stopSite), until taken.
 const stoppedSites = new WeakSet();
 
-/** Stops the site's modeller if `page` shows the site; true if it did. */
+/**
+ * Stops the site's modeller if `page` shows the site; true if it did. A
+ * dispose that throws fails the test; a page that cannot run the stop (it
+ * is navigating, or hangs for 5 s) is left to about:blank instead.
+ */
 async function stopSite(page) {
   if (page.url() !== `${origin}/`) return false;
+  const stopping = page.evaluate(() => {
+    if (!window.anisoformSite) return { stopped: false };
+    try {
+      window.anisoformSite.stop();
+      return { stopped: true };
+    } catch (error) {
+      return { stopped: false, error: [error, ...(error?.errors ?? [])].map(String).join('; ') };
+    }
+  }).catch(() => ({ stopped: false }));
   let timer;
   const timeout = new Promise((resolve) => {
-    timer = setTimeout(() => resolve(false), 5_000);
+    timer = setTimeout(() => resolve({ stopped: false }), 5_000);
   });
-  // A dispose that fails is the test's failure: the error propagates.
-  const stopping = page.evaluate(() => {
-    if (!window.anisoformSite) return false;
-    window.anisoformSite.stop();
-    return true;
-  });
-  const stopped = await Promise.race([stopping, timeout]).finally(() => clearTimeout(timer));
+  const { stopped, error } = await Promise.race([stopping, timeout]).finally(() => clearTimeout(timer));
+  if (error) throw new Error(`The site's modeller did not stop cleanly: ${error}`);
   if (stopped) stoppedSites.add(page);
   return stopped;
 }
