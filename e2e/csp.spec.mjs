@@ -11,9 +11,11 @@ import { origin } from './server.mjs';
 
 const TORSO = 'open/human_woman_torso_front_patch.obj';
 
+// Up to 5 s: the browser posts its reports when it gets to them, later with
+// the other worker's browser busy on the same two cores.
 async function takeUntil(page, csp, done) {
   const seen = { events: [], reports: [], offOrigin: [], unprotected: [] };
-  for (let attempt = 0; attempt < 40 && !done(seen); attempt++) {
+  for (let attempt = 0; attempt < 100 && !done(seen); attempt++) {
     await page.waitForTimeout(50);
     const taken = await csp.take();
     for (const key of Object.keys(seen)) seen[key].push(...taken[key]);
