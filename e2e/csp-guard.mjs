@@ -35,8 +35,7 @@ function problemsIn(left) {
 
 async function takeRecord(record) {
   await Promise.all(record.pending);
-  const reports = await serverReports('GET');
-  await serverReports('DELETE');
+  const reports = await serverReports('DELETE');
   const { events, offOrigin, unprotected } = record;
   Object.assign(record, emptyRecord());
   return { events, reports, offOrigin, unprotected };

@@ -4,7 +4,7 @@
 // Run: npm run build --prefix web && npx --prefix web playwright test -c e2e/playwright.config.mjs
 import { defineConfig } from '../web/node_modules/@playwright/test/index.mjs';
 import { rendererArgs } from './renderer.mjs';
-import { origin, port } from './server.mjs';
+import { WORKER_SLOTS, origin, slotPorts } from './server.mjs';
 
 // The tests whose figures or bounds depend on how fast the solver runs are
 // tagged '@speed' (test(title, { tag: '@speed' }, ...)).
@@ -28,7 +28,7 @@ export default defineConfig({
   testMatch: '*.spec.mjs',
   // At most two browsers at a time, one per core (the projects below say
   // how many each runs).
-  workers: 2,
+  workers: WORKER_SLOTS,
   fullyParallel: false,
   timeout: 60_000,
   expect: { timeout: 15_000 },
@@ -85,12 +85,14 @@ export default defineConfig({
   // The built site from the server `scripts/run.sh` uses, with the same
   // Content-Security-Policy header: support.mjs fails a test on any violation
   // (page events and the server's report endpoint, which also hears the
-  // worker) and on any request leaving this origin.
-  webServer: {
-    command: `node ../scripts/serve-static.mjs dist --port ${port}`,
+  // worker) and on any request leaving this origin. One server per worker
+  // slot, each worker's tests on their own (server.mjs says why); in each
+  // worker, `origin` and the baseURL are its slot's.
+  webServer: slotPorts.map((slotPort) => ({
+    command: `node ../scripts/serve-static.mjs dist --port ${slotPort}`,
     cwd: '../web',
-    url: `${origin}/`,
+    url: `http://127.0.0.1:${slotPort}/`,
     reuseExistingServer: !process.env.CI,
     timeout: 30_000,
-  },
+  })),
 });

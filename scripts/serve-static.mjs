@@ -8,8 +8,8 @@
 // Violations: the policy names a report endpoint on this server, so
 // violations inside the solver's Web Worker — which never reach a page's
 // `securitypolicyviolation` listener — are seen too. Each report is printed on
-// stderr and kept; GET /__csp-reports returns them as JSON and DELETE clears
-// them (the end-to-end tests read them after every test).
+// stderr and kept; GET /__csp-reports returns them as JSON and DELETE returns
+// and clears them (the end-to-end tests take them after every test).
 import { createReadStream, statSync } from 'node:fs';
 import { createServer } from 'node:http';
 import path from 'node:path';
@@ -69,9 +69,11 @@ export function serveStatic({ root, port, host = '127.0.0.1', log = (line) => pr
       return;
     }
     if (url.pathname === CSP_REPORTS_PATH) {
-      if (request.method === 'DELETE') reports.length = 0;
+      // DELETE takes them: the reports it clears are the ones it returns, so
+      // none posted meanwhile is lost between a read and a clear.
+      const taken = request.method === 'DELETE' ? reports.splice(0) : reports;
       response.writeHead(200, { 'Content-Type': 'application/json', 'Cache-Control': 'no-store' });
-      response.end(JSON.stringify(request.method === 'DELETE' ? [] : reports));
+      response.end(JSON.stringify(taken));
       return;
     }
     if (request.method !== 'GET' && request.method !== 'HEAD') {
