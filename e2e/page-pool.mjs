@@ -8,8 +8,8 @@
 //   modeller stopped (openApp then starts a new one in place: support.mjs),
 //   with its origin's storage
 //   (the autosave's IndexedDB, any web storage, caches) and cookies cleared,
-//   its permissions reset and the last test's garbage collected, so every
-//   test opens the app afresh;
+//   its permissions reset (and, before an '@speed' test, the last test's
+//   garbage collected: blankSlate), so every test opens the app afresh;
 // - after it, the listeners and routes the test added are removed;
 // - the viewport goes back to the test's configured one;
 // - a test that changed what no reset undoes (init scripts, exposed

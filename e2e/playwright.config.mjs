@@ -4,7 +4,7 @@
 // Run: npm run build --prefix web && npx --prefix web playwright test -c e2e/playwright.config.mjs
 import { defineConfig } from '../web/node_modules/@playwright/test/index.mjs';
 import { rendererArgs } from './renderer.mjs';
-import { WORKER_SLOTS, origin, slotPorts } from './server.mjs';
+import { WORKER_SLOTS, origin, slotOrigins, slotPorts } from './server.mjs';
 
 // The tests whose figures or bounds depend on how fast the solver runs are
 // tagged '@speed' (test(title, { tag: '@speed' }, ...)).
@@ -68,7 +68,7 @@ export default defineConfig({
       // Two at a time. One browser, its page and the page's solver worker
       // leave a core idle much of a test (waits for frames, the worker, the
       // server); two keep both busy: 166 -> 142 s for these 117 tests.
-      workers: 2,
+      workers: WORKER_SLOTS,
       use: { launchOptions: launchOptions(['--js-flags=--liftoff-only', '--disable-gpu-compositing']) },
     },
     {
@@ -88,10 +88,10 @@ export default defineConfig({
   // worker) and on any request leaving this origin. One server per worker
   // slot, each worker's tests on their own (server.mjs says why); in each
   // worker, `origin` and the baseURL are its slot's.
-  webServer: slotPorts.map((slotPort) => ({
+  webServer: slotPorts.map((slotPort, slot) => ({
     command: `node ../scripts/serve-static.mjs dist --port ${slotPort}`,
     cwd: '../web',
-    url: `http://127.0.0.1:${slotPort}/`,
+    url: `${slotOrigins[slot]}/`,
     reuseExistingServer: !process.env.CI,
     timeout: 30_000,
   })),

@@ -12,5 +12,5 @@
 export const WORKER_SLOTS = 2;
 export const basePort = Number(process.env.ANISO_E2E_PORT ?? 4173);
 export const slotPorts = Array.from({ length: WORKER_SLOTS }, (_, slot) => basePort + slot);
-export const port = slotPorts[Number(process.env.TEST_PARALLEL_INDEX ?? 0)] ?? basePort;
-export const origin = `http://127.0.0.1:${port}`;
+export const slotOrigins = slotPorts.map((slotPort) => `http://127.0.0.1:${slotPort}`);
+export const origin = slotOrigins[Number(process.env.TEST_PARALLEL_INDEX ?? 0)] ?? slotOrigins[0];
