@@ -230,3 +230,116 @@ test('workerUrl and wasmUrl say where the solver is loaded from', async ({ page 
   expect(outcome.missingWorker.error).toMatch(/solver stopped/);
   expect(pageErrors).toEqual([]);
 });
+
+test('a solver pool hands a disposed modeller\'s idle worker to the next one, which solves as a new one does', async ({ page }) => {
+  const pageErrors = await openExample(page);
+  for (const button of await page.getByRole('button', { name: 'Dispose' }).all()) await button.click();
+  expect((await census(page)).workers).toBe(0);
+
+  const outcome = await page.evaluate(async () => {
+    const { createModeller, createSolverPool } = window.anisoformExample;
+    const workers = () => window.__census().workers;
+    const hosts = [];
+    const open = async (options) => {
+      const host = Object.assign(document.createElement('div'), { style: 'height: 200px' });
+      document.body.append(host);
+      hosts.push(host);
+      const modeller = createModeller(host, { ui: 'none', mesh: '../spool.off', ...options });
+      await modeller.api.ready;
+      // The worker answers requests in order: once this selection is made,
+      // the load's background factorization is over and the worker idle
+      // (a worker disposed in the middle of one is ended, as in a solve).
+      await modeller.api.select({ all: true });
+      return modeller;
+    };
+    const stretch = async (modeller) => {
+      await modeller.api.select({ box: { min: [-1, 0.2, -1], max: [1, 1, 1] } }, { falloff: 0.1 });
+      const { iterations } = await modeller.api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.3, 1] } });
+      return { iterations, positions: Array.from(modeller.api.positions()) };
+    };
+    const solvers = createSolverPool();
+
+    // The first modeller starts its own worker; disposed, the worker is kept.
+    const first = await open({ solvers });
+    const rest = Array.from(first.api.positions());
+    const firstEdit = await stretch(first);
+    first.dispose();
+    const afterFirst = { kept: solvers.size, workers: workers(), held: first.held };
+
+    // The second takes it: no new worker, a new session (the mesh as loaded), the same results.
+    const second = await open({ solvers });
+    const takenBy = { kept: solvers.size, workers: workers(), rest: Array.from(second.api.positions()).every((value, i) => value === rest[i]) };
+    const secondEdit = await stretch(second);
+
+    // A worker with a request in flight is ended, not kept: here a solve of
+    // many iterations, disposed once it reports progress.
+    const solving = new Promise((resolve) => {
+      const off = second.api.on('progress', () => {
+        off();
+        resolve();
+      });
+    });
+    const running = second.api.deform({ method: 'anarap', direction: { type: 'global', vector: [1, 0, 0] }, transform: { scale: [1.5, 1] }, maxIterations: 1e6, tolerance: 0 });
+    await solving;
+    second.dispose();
+    const busy = { kept: solvers.size, workers: workers(), running: await running.then(() => 'resolved', (error) => error.message) };
+
+    // Another worker or WASM location is another kind of worker: not handed over.
+    const third = await open({ solvers });
+    third.dispose();
+    const worker = performance.getEntriesByType('resource').map((entry) => entry.name).find((name) => /solver-worker[^/]*\.js$/.test(name));
+    const moved = await open({ solvers, workerUrl: `${worker}?copy` });
+    const otherKind = { kept: solvers.size, workers: workers() };
+    moved.dispose();
+
+    // keep: 1 keeps the last one given back; dispose() ends the idle ones and any given back later.
+    const full = { kept: solvers.size, workers: workers() };
+    solvers.dispose();
+    const disposed = { kept: solvers.size, workers: workers() };
+    const late = await open({ solvers });
+    late.dispose();
+    const afterLate = { kept: solvers.size, workers: workers() };
+
+    // An idle worker is ended after idleSeconds.
+    const brief = createSolverPool({ idleSeconds: 0.2 });
+    (await open({ solvers: brief })).dispose();
+    const briefKept = brief.size;
+    await new Promise((resolve) => setTimeout(resolve, 600));
+    const briefAfter = { kept: brief.size, workers: workers() };
+
+    const refusals = [
+      () => createSolverPool({ keep: -1 }),
+      () => createSolverPool({ idleSeconds: 'long' }),
+      () => createSolverPool({ size: 2 }),
+      () => createModeller(hosts[0], { solvers: {} }),
+    ].map((attempt) => {
+      try {
+        attempt();
+        return 'accepted';
+      } catch (error) {
+        return `${error.code}: ${error.message}`;
+      }
+    });
+    for (const host of hosts) host.remove();
+    return { firstEdit, afterFirst, takenBy, secondEdit, busy, otherKind, full, disposed, afterLate, briefKept, briefAfter, refusals };
+  });
+
+  expect(outcome.afterFirst).toEqual({ kept: 1, workers: 1, held: 0 });
+  expect(outcome.takenBy).toEqual({ kept: 0, workers: 1, rest: true });
+  expect(outcome.firstEdit.iterations).toBeGreaterThan(0);
+  expect(outcome.secondEdit).toEqual(outcome.firstEdit);
+  expect(outcome.busy).toEqual({ kept: 0, workers: 0, running: 'Stretch (AnARAP) failed: this modeller was disposed' });
+  expect(outcome.otherKind).toEqual({ kept: 1, workers: 2 });
+  expect(outcome.full).toEqual({ kept: 1, workers: 1 });
+  expect(outcome.disposed).toEqual({ kept: 0, workers: 0 });
+  expect(outcome.afterLate).toEqual({ kept: 0, workers: 0 });
+  expect(outcome.briefKept).toBe(1);
+  expect(outcome.briefAfter).toEqual({ kept: 0, workers: 0 });
+  expect(outcome.refusals).toEqual([
+    'bad-parameter: createSolverPool: keep must be a whole number of workers, 0 or more, got -1',
+    'bad-parameter: createSolverPool: idleSeconds must be a finite number of seconds, 0 or more, got "long"',
+    "bad-parameter: createSolverPool: unknown option 'size' (options: keep, idleSeconds)",
+    'bad-parameter: createModeller: solvers must be a pool made by createSolverPool()',
+  ]);
+  expect(pageErrors).toEqual([]);
+});

@@ -3,6 +3,7 @@
 // declaration that stops describing the API as the specs use it fails to
 // compile. Each call mirrors one the e2e specs make on window.anisoform.
 import type { Anisoform, DeformOp, FlattenOptions, Region } from '../../web/src/api/anisoform';
+import { createModeller, createSolverPool } from '../../web/dist-lib/index';
 
 export async function usage(api: Anisoform): Promise<number> {
   await api.ready;
@@ -20,4 +21,18 @@ export async function usage(api: Anisoform): Promise<number> {
   await api.exportPattern('svg', { mmPerUnit: 10 });
   api.on('error', ({ code, message }) => console.log(code, message));
   return count + metrics.compressionErrorMax + uv.length;
+}
+
+// A configurator switching products: the second modeller takes the first one's warm worker.
+export async function switchProduct(host: HTMLElement, next: string): Promise<number> {
+  const solvers = createSolverPool({ keep: 1, idleSeconds: 30 });
+  const first = createModeller(host, { ui: 'none', mesh: 'spool.off', solvers });
+  await first.api.ready;
+  first.dispose();
+  const second = createModeller(host, { ui: 'none', mesh: next, solvers });
+  await second.api.ready;
+  const kept: number = solvers.size;
+  second.dispose();
+  solvers.dispose();
+  return kept + second.held;
 }

@@ -1,4 +1,4 @@
-// The anisoform package: createModeller and <anisoform-modeller>.
+// The anisoform package: createModeller, createSolverPool and <anisoform-modeller>.
 // The api object's types (the same as window.anisoform on the standalone
 // site) are in api.d.ts beside this file.
 import type { Anisoform } from './api.js';
@@ -29,14 +29,43 @@ export interface ModellerOptions {
   workerUrl?: string | URL;
   /** The WASM's URL; default: anisoform.wasm beside the worker. */
   wasmUrl?: string | URL;
+  /**
+   * A pool of warm solver workers (createSolverPool): the modeller takes an idle one (same
+   * workerUrl and wasmUrl) instead of starting its own, and dispose() gives its worker back
+   * when no request is in flight.
+   */
+  solvers?: SolverPool;
 }
+
+export interface SolverPoolOptions {
+  /** How many idle workers to keep (default 1; 0 keeps none). */
+  keep?: number;
+  /** How long an idle worker is kept before it is ended, in seconds (default 60). */
+  idleSeconds?: number;
+}
+
+/**
+ * Solver workers kept between modellers. Starting a worker (its scripts, the WASM compiled, its
+ * code not yet optimised) is most of a modeller's start; a page that disposes a modeller and
+ * makes another can hand the worker on. A kept worker's WASM session is freed; its memory is kept
+ * (WASM memory never shrinks) until it is taken, times out or the pool is disposed.
+ */
+export interface SolverPool {
+  /** The number of idle workers kept. */
+  readonly size: number;
+  /** Ends the idle workers; workers given back later are ended at once. */
+  dispose(): void;
+}
+
+/** Throws an Error with code 'bad-parameter' for an unknown option or a bad value. */
+export function createSolverPool(options?: SolverPoolOptions): SolverPool;
 
 export interface Modeller {
   /** The modeller's api: load, select, deform, undo, export, events... */
   readonly api: Anisoform;
   /** Like api.load, and also takes a URL; failures are also 'error' events. */
   load(source: MeshSource, name?: string): Promise<{ vertices: number; triangles: number }>;
-  /** Cancels the pending frame, stops the ResizeObservers, the worker (and its WASM session) and removes every listener and element it added. */
+  /** Cancels the pending frame, stops the ResizeObservers, the worker (and its WASM session; an idle worker goes back to the `solvers` pool) and removes every listener and element it added. */
   dispose(): void;
   /** Listeners and clean-up steps the modeller still holds (0 after dispose). */
   readonly held: number;

@@ -2,6 +2,7 @@
 // worker's Session.flatten) and its export as SVG or DXF. The pattern is kept
 // until the mesh, its positions or the flattened selection change.
 import { Request } from '../worker/protocol.js';
+import { badParameter } from '../shared/errors.js';
 
 export class PatternState {
   /** The last flattening (FlattenPayload plus its options), or null. */
@@ -96,8 +97,4 @@ export function flattenWarning(metrics) {
       + 'the heat map shows where).');
   }
   return sentences.length > 0 ? `Flatten: ${sentences.join(' ')}` : null;
-}
-
-function badParameter(message) {
-  return Object.assign(new Error(message), { code: 'bad-parameter' });
 }

@@ -3,9 +3,7 @@
 // Everything else is the core's (core/include/anisoform/op.h): it checks the
 // op, naming the field, and fills in the defaults that depend on the mesh
 // (the direction, the twist origin, ARAP's handles and pins from the selection).
-function badParameter(message) {
-  return Object.assign(new Error(message), { code: 'bad-parameter' });
-}
+import { badParameter } from '../shared/errors.js';
 
 /**
  * @param {object} op                   the public op

@@ -11,6 +11,7 @@ import { DragReadout } from '../interaction/drag-readout.js';
 import { installKeyboardShortcuts } from '../interaction/keyboard-shortcuts.js';
 import { Picker } from '../interaction/picker.js';
 import { PointerGestures } from '../interaction/pointer-gestures.js';
+import { badParameter } from '../shared/errors.js';
 import { Settings } from '../shared/settings.js';
 import { createTools } from '../tools/tool-registry.js';
 import { AxisGizmo } from '../viewer/axis-gizmo.js';
@@ -19,13 +20,14 @@ import { DirectionDisplay } from '../viewer/direction-display.js';
 import { MeshView } from '../viewer/mesh-view.js';
 import { Viewer } from '../viewer/viewer.js';
 import { SolverClient } from '../worker/solver-client.js';
+import { SolverPool } from '../worker/solver-pool.js';
 import { Request } from '../worker/protocol.js';
 import { installFullUi } from './full-ui.js';
 import { Lifetime } from './lifetime.js';
 import { resolveMeshSource } from './mesh-source.js';
 import { UI_MODES, buildLayout } from './modeller-layout.js';
 
-const OPTIONS = ['ui', 'mesh', 'meshName', 'document', 'keyboard', 'autosave', 'workerUrl', 'wasmUrl'];
+const OPTIONS = ['ui', 'mesh', 'meshName', 'document', 'keyboard', 'autosave', 'workerUrl', 'wasmUrl', 'solvers'];
 
 /**
  * @param {HTMLElement} container
@@ -41,12 +43,14 @@ const OPTIONS = ['ui', 'mesh', 'meshName', 'document', 'keyboard', 'autosave', '
  *   keyboard: 'focus' (default: shortcuts while focus is inside the modeller) or 'page'
  *   workerUrl, wasmUrl: where the solver worker and its WASM are, when a
  *       bundler or server moved them from beside this module
+ *   solvers: a pool (createSolverPool) to take a warm solver worker from,
+ *       and to give it back to at dispose() (worker/solver-pool.js)
  */
 export function createModeller(container, options = {}) {
-  const { ui = 'full', mesh, meshName, document: editDocument, keyboard = 'focus', autosave = false, workerUrl, wasmUrl } = checkOptions(container, options);
+  const { ui = 'full', mesh, meshName, document: editDocument, keyboard = 'focus', autosave = false, workerUrl, wasmUrl, solvers } = checkOptions(container, options);
 
   const lifetime = new Lifetime();
-  const client = new SolverClient({ workerUrl, wasmUrl });
+  const client = new SolverClient({ workerUrl, wasmUrl, pool: solvers });
   lifetime.defer(() => client.dispose());
   const editor = new Editor(client);
   // Milestones for the page's timing (app.spec): the first modeller's count.
@@ -211,6 +215,9 @@ function checkOptions(container, options) {
   if (options.autosave !== undefined && typeof options.autosave !== 'boolean') {
     throw badParameter(`createModeller: autosave must be true or false, got ${JSON.stringify(options.autosave)}`);
   }
+  if (options.solvers !== undefined && !(options.solvers instanceof SolverPool)) {
+    throw badParameter('createModeller: solvers must be a pool made by createSolverPool()');
+  }
   if (options.keyboard !== undefined && !['focus', 'page'].includes(options.keyboard)) {
     throw badParameter(`createModeller: keyboard must be 'focus' or 'page', got '${options.keyboard}'`);
   }
@@ -219,8 +226,4 @@ function checkOptions(container, options) {
 
 function openWithoutMesh() {
   return badParameter('createModeller: the document option needs its base mesh in the mesh option');
-}
-
-function badParameter(message) {
-  return Object.assign(new Error(message), { code: 'bad-parameter' });
 }

@@ -45,6 +45,12 @@ export class SessionHost {
     };
   }
 
+  /** Frees the WASM session (its mesh, factorizations and history). */
+  dispose() {
+    this.session.delete();
+    this.session = null;
+  }
+
   /** @returns {{result: object, transfer: Transferable[]}}, or a promise of it */
   handle(kind, payload) {
     const handler = this.handlers[kind];

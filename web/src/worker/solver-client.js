@@ -32,6 +32,8 @@ export class SolverClient extends EventEmitter {
   #queuedPreview = null;
   #wasmUrl;
   #workerUrl;
+  /** The SolverPool the worker comes from and goes back to, or null. */
+  #pool;
   #disposed = false;
   /** While a restart puts the state back: its promise; else null. */
   #seeding = null;
@@ -43,18 +45,27 @@ export class SolverClient extends EventEmitter {
    * beside this module (a bundler that moves files, a CDN copy of the WASM;
    * the worker must be same-origin). The default `new URL(..., import.meta.url)`
    * stays literal so bundlers find and emit both files.
+   * pool: a SolverPool (solver-pool.js) to take an idle worker from and to
+   * give the worker back to at dispose().
    */
-  constructor({ workerUrl, wasmUrl } = {}) {
+  constructor({ workerUrl, wasmUrl, pool = null } = {}) {
     super();
     this.#wasmUrl = wasmUrl === undefined ? undefined : String(wasmUrl);
     this.#workerUrl = workerUrl;
-    this.#worker = this.#spawn();
+    this.#pool = pool;
+    this.#worker = this.#spawn(pool?.take(this.#poolKey()) ?? null);
   }
 
-  #spawn() {
-    const worker = this.#workerUrl === undefined
+  /** Workers started from the same worker and WASM URLs are interchangeable. */
+  #poolKey() {
+    return JSON.stringify([this.#workerUrl === undefined ? null : String(this.#workerUrl), this.#wasmUrl ?? null]);
+  }
+
+  /** Listens to `kept` (an idle worker from the pool: its init starts a new session), else to a new worker. */
+  #spawn(kept = null) {
+    const worker = kept ?? (this.#workerUrl === undefined
       ? new Worker(new URL('./solver-worker.js', import.meta.url), { type: 'module' })
-      : new Worker(this.#workerUrl, { type: 'module' });
+      : new Worker(this.#workerUrl, { type: 'module' }));
     worker.onmessage = (event) => this.#receive(event.data);
     worker.onerror = (event) => {
       const failure = new SolverError({
@@ -148,12 +159,16 @@ export class SolverClient extends EventEmitter {
 
   /**
    * Ends the worker, and with it the WASM session and its memory; requests
-   * still waiting reject.
+   * still waiting reject. With a pool, an idle worker (no request in flight
+   * or held) goes back to it instead; its next init frees the session.
    */
   dispose() {
     if (this.#disposed) return;
     this.#disposed = true;
-    this.#worker.terminate();
+    this.#worker.onmessage = null;
+    this.#worker.onerror = null;
+    if (this.#pool && !this.busy) this.#pool.give(this.#worker, this.#poolKey());
+    else this.#worker.terminate();
     for (const { reject } of this.#held) reject(disposedError());
     this.#held = [];
     this.#queuedPreview?.resolve(null);

@@ -6,16 +6,24 @@ import { PROGRESS, Request } from './protocol.js';
 import { SessionHost } from './session-host.js';
 
 let host = null;
+/** The WASM module, instantiated once: a worker kept in a SolverPool serves modeller after modeller. */
+let wasm = null;
 
 function reportProgress(stage, message, fraction) {
   self.postMessage({ kind: PROGRESS, stage, message, fraction });
 }
 
+// Each init starts a new session: the first loads the WASM, a later one (a
+// worker handed to another modeller by a SolverPool) frees the last
+// modeller's session and reuses the module.
 async function initialize({ wasmUrl }) {
   reportProgress('init', 'Loading the solver');
+  host?.dispose();
+  host = null;
   // wasmUrl: the embedder's override (SolverClient); by default the loader
-  // finds the WASM beside itself.
-  const wasm = await createAnisoformWasm(
+  // finds the WASM beside itself. A pool hands a worker only to a modeller
+  // with the same URLs.
+  wasm ??= await createAnisoformWasm(
     wasmUrl === undefined ? {} : { locateFile: (path) => (path.endsWith('.wasm') ? wasmUrl : path) },
   );
   host = new SessionHost(wasm, reportProgress);
