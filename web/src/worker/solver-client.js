@@ -34,6 +34,12 @@ export class SolverClient extends EventEmitter {
   #workerUrl;
   /** The SolverPool the worker comes from and goes back to, or null. */
   #pool;
+  /**
+   * True once the worker failed in a way the core did not report (an
+   * 'internal' error: a trap, a script error): its state is not known to be
+   * sound, so it is not handed to another modeller.
+   */
+  #tainted = false;
   #disposed = false;
   /** While a restart puts the state back: its promise; else null. */
   #seeding = null;
@@ -68,6 +74,7 @@ export class SolverClient extends EventEmitter {
       : new Worker(this.#workerUrl, { type: 'module' }));
     worker.onmessage = (event) => this.#receive(event.data);
     worker.onerror = (event) => {
+      this.#tainted = true;
       const failure = new SolverError({
         code: 'internal',
         message: `The solver stopped: ${event.message || 'the worker could not start'}`,
@@ -104,6 +111,7 @@ export class SolverClient extends EventEmitter {
     this.#queuedPreview?.resolve(null);
     this.#queuedPreview = null;
     this.#worker = this.#spawn();
+    this.#tainted = false;
     this.emit('progress', { stage: 'restart', message: 'Restarting the solver' });
     const post = (kind, payload = {}, transfer = []) => this.#post(this.#nextId++, kind, payload, transfer);
     const seeding = post(Request.init).then(() => seed(post));
@@ -134,8 +142,12 @@ export class SolverClient extends EventEmitter {
     const pending = this.#pending.get(message.id);
     if (!pending) return;
     this.#pending.delete(message.id);
-    if (message.ok) pending.resolve(message.result);
-    else pending.reject(new SolverError(message.error));
+    if (message.ok) {
+      pending.resolve(message.result);
+      return;
+    }
+    if (message.error.code === 'internal') this.#tainted = true;
+    pending.reject(new SolverError(message.error));
   }
 
   request(kind, payload = {}, transfer = []) {
@@ -159,15 +171,16 @@ export class SolverClient extends EventEmitter {
 
   /**
    * Ends the worker, and with it the WASM session and its memory; requests
-   * still waiting reject. With a pool, an idle worker (no request in flight
-   * or held) goes back to it instead; its next init frees the session.
+   * still waiting reject. With a pool, an idle, sound worker (no request in
+   * flight or held, no internal error) goes back to it instead; its next
+   * init frees the session.
    */
   dispose() {
     if (this.#disposed) return;
     this.#disposed = true;
     this.#worker.onmessage = null;
     this.#worker.onerror = null;
-    if (this.#pool && !this.busy) this.#pool.give(this.#worker, this.#poolKey());
+    if (this.#pool && !this.busy && !this.#tainted) this.#pool.give(this.#worker, this.#poolKey());
     else this.#worker.terminate();
     for (const { reject } of this.#held) reject(disposedError());
     this.#held = [];
