@@ -4,11 +4,13 @@
 // frame);
 // tests and embedders use nothing else. Declarations: anisoform.d.ts beside
 // this file.
+import { badParameter } from '../shared/errors.js';
+
 const EVENTS = ['change', 'error', 'progress', 'positions', 'document'];
 
 export function createAnisoformApi({ editor, viewer, picker, ready }) {
   const document = () => {
-    if (!editor.document) throw Object.assign(new Error('no mesh is loaded yet: await anisoform.ready'), { code: 'bad-parameter' });
+    if (!editor.document) throw badParameter('no mesh is loaded yet: await anisoform.ready');
     return editor.document;
   };
 
@@ -79,10 +81,10 @@ export function createAnisoformApi({ editor, viewer, picker, ready }) {
 
     on(event, callback) {
       if (!EVENTS.includes(event)) {
-        throw Object.assign(new Error(`unknown event '${event}': use ${EVENTS.join(', ')}`), { code: 'bad-parameter' });
+        throw badParameter(`unknown event '${event}': use ${EVENTS.join(', ')}`);
       }
       if (typeof callback !== 'function') {
-        throw Object.assign(new Error('on() needs a callback function'), { code: 'bad-parameter' });
+        throw badParameter('on() needs a callback function');
       }
       return editor.on(event, callback);
     },

@@ -4,8 +4,8 @@
 // mesh bytes (autosave.js), and a reload restores that work.
 import { EditDocument } from './edit-document.js';
 import { Autosave } from './autosave.js';
+import { badParameter } from '../shared/errors.js';
 
-const badParameter = (message) => Object.assign(new Error(message), { code: 'bad-parameter' });
 
 export class DocumentPersistence {
   #editor;

@@ -2,6 +2,7 @@
 // base mesh, named regions and the ordered ops, plus the ops undone (the redo
 // list). Plain data; the core checks and replays it (op-runner.js sends it).
 // toJSON() is what api.document() returns and what autosave stores.
+import { badParameter } from '../shared/errors.js';
 export const DOCUMENT_FORMAT = 'anisoform-document';
 export const DOCUMENT_VERSION = 1;
 
@@ -49,7 +50,7 @@ export class EditDocument {
 
   indexOf(opId) {
     const index = this.ops.findIndex((op) => op.id === opId);
-    if (index < 0) throw Object.assign(new Error(`the document has no op '${opId}'`), { code: 'bad-parameter' });
+    if (index < 0) throw badParameter(`the document has no op '${opId}'`);
     return index;
   }
 

@@ -13,8 +13,8 @@ import { EditDocument, regionSteps } from './edit-document.js';
 import { OpRunner } from './op-runner.js';
 import { LivePreview } from './live-preview.js';
 import { DocumentPersistence } from './document-persistence.js';
+import { badParameter } from '../shared/errors.js';
 
-const badParameter = (message) => Object.assign(new Error(message), { code: 'bad-parameter' });
 
 export class OpStack {
   #editor;

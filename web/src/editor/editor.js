@@ -45,6 +45,7 @@ import { PatternState } from './pattern-state.js';
 import { describeProblems } from './problem-summary.js';
 import { SelectionState } from './selection-state.js';
 import { toSolverOp } from './solver-op.js';
+import { badParameter } from '../shared/errors.js';
 
 /** How long the solver must be idle after a commit before it factorizes the new shape. */
 const PREPARE_AFTER_COMMIT_MS = 400;
@@ -249,7 +250,7 @@ export class Editor extends EventEmitter {
     try {
       document = this.requireDocument();
       label ??= describeEdit(op);
-      if (this.gestureActive) throw Object.assign(new Error('an interactive edit is in progress: finish the drag first'), { code: 'bad-parameter' });
+      if (this.gestureActive) throw badParameter('an interactive edit is in progress: finish the drag first');
       solverOp = toSolverOp(op, document, this.view);
     } catch (error) {
       throw this.report(error, `${label ?? 'The edit'} was not applied`);
@@ -335,7 +336,7 @@ export class Editor extends EventEmitter {
     try {
       const document = this.requireDocument();
       // The worker holds the live preview during a drag, not the committed mesh.
-      if (this.gestureActive) throw Object.assign(new Error('an interactive edit is in progress: finish the drag first'), { code: 'bad-parameter' });
+      if (this.gestureActive) throw badParameter('an interactive edit is in progress: finish the drag first');
       return await exportMeshFile(this.#client, document, format);
     } catch (error) {
       throw this.report(error, `Export as ${format} failed`);
@@ -345,7 +346,7 @@ export class Editor extends EventEmitter {
   // ---- helpers -------------------------------------------------------------
 
   requireDocument() {
-    if (!this.document) throw Object.assign(new Error('no mesh is loaded yet'), { code: 'bad-parameter' });
+    if (!this.document) throw badParameter('no mesh is loaded yet');
     return this.document;
   }
 

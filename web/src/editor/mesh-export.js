@@ -4,13 +4,12 @@
 import { exportGlb } from '../io/export-mesh.js';
 import { CORE_EXPORT_FORMATS, EXPORT_FORMATS } from '../io/mesh-formats.js';
 import { Request } from '../worker/protocol.js';
+import { badParameter } from '../shared/errors.js';
 
 /** @returns {Promise<ArrayBuffer>} */
 export async function exportMeshFile(client, document, format) {
   if (!EXPORT_FORMATS.includes(format)) {
-    throw Object.assign(new Error(`export format must be one of ${EXPORT_FORMATS.join(', ')}, got '${format}'`), {
-      code: 'bad-parameter',
-    });
+    throw badParameter(`export format must be one of ${EXPORT_FORMATS.join(', ')}, got '${format}'`);
   }
   if (!CORE_EXPORT_FORMATS.includes(format)) {
     const baseName = document.name.replace(/\.[^.]+$/, '') || 'anisoform';

@@ -6,6 +6,7 @@ import { importGltf } from '../io/import-gltf.js';
 import { readerFor } from '../io/mesh-formats.js';
 import { readFileBytes } from '../io/read-file.js';
 import { Request } from '../worker/protocol.js';
+import { badParameter } from '../shared/errors.js';
 
 /**
  * @param {import('../worker/solver-client.js').SolverClient} client
@@ -41,7 +42,7 @@ export async function readMesh(client, source, name, emitProgress) {
 export function fileNameOf(source, name) {
   if (typeof name === 'string' && name) return name;
   name = source?.name ?? '';
-  if (!name) throw Object.assign(new Error('load() needs a file name with its extension, e.g. "part.stl"'), { code: 'bad-parameter' });
+  if (!name) throw badParameter('load() needs a file name with its extension, e.g. "part.stl"');
   return name;
 }
 
@@ -49,7 +50,7 @@ export function fileNameOf(source, name) {
 function copyOf(source) {
   if (source instanceof ArrayBuffer) return source.slice(0);
   if (ArrayBuffer.isView(source)) return source.buffer.slice(source.byteOffset, source.byteOffset + source.byteLength);
-  throw Object.assign(new Error('load() takes a File, Blob or ArrayBuffer'), { code: 'bad-parameter' });
+  throw badParameter('load() takes a File, Blob or ArrayBuffer');
 }
 
 // Shows the read at 0 % at once; the worker (or the page, for a GLB) moves it.

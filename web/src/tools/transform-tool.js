@@ -19,6 +19,7 @@ import { describeEdit } from '../editor/edit-wording.js';
 import { dragAmountText } from '../interaction/drag-readout.js';
 import { extentAlong, normalized, worldDragVector } from '../interaction/screen-drag.js';
 import { directionFromSettings } from './direction-source.js';
+import { badParameter } from '../shared/errors.js';
 
 // Below this many pixels a press is a click, not a drag.
 const DRAG_THRESHOLD_PX = 3;
@@ -102,9 +103,7 @@ export class TransformTool {
   async apply() {
     const values = this.settings.values;
     if (values.solver.method === 'arap') {
-      throw Object.assign(new Error('ARAP with handles has no amount to apply: drag the selection on the mesh, or choose another method'), {
-        code: 'bad-parameter',
-      });
+      throw badParameter('ARAP with handles has no amount to apply: drag the selection on the mesh, or choose another method');
     }
     const op = {
       method: values.solver.method,
