@@ -136,7 +136,7 @@ test('dispose stops the worker, the frames, the observers and every listener', a
   expect(pageErrors).toEqual([]);
 });
 
-test('<anisoform-modeller>: src loads, events come out as DOM events, .api works, removal disposes', async ({ page }) => {
+test('<anisoform-modeller>: src loads, events come out as DOM events, .api works, a new ui keeps the worker, removal disposes, .solvers shares workers', async ({ page }) => {
   const pageErrors = await openExample(page);
   const workersBefore = (await census(page)).workers;
 
@@ -186,6 +186,30 @@ test('<anisoform-modeller>: src loads, events come out as DOM events, .api works
   });
   expect(edited).toEqual(['selection', 'positions', 'document']); // a committed edit is a new op in the document
 
+  // A new ui rebuilds the modeller (loading src again) on the same solver
+  // worker, once it is idle.
+  const rebuilt = await page.evaluate(async () => {
+    const loaded = new Promise((resolve) => {
+      window.element.addEventListener('change', resolve, { once: true });
+    });
+    window.element.setAttribute('src', '../spot_triangulated.obj');
+    await loaded;
+    const created = window.__census().workersCreated;
+    await window.element.api.select({ all: true }); // after the load's background factorization
+    const changed = new Promise((resolve) => {
+      window.element.addEventListener('change', (event) => resolve(event.detail), { once: true });
+    });
+    window.element.setAttribute('ui', 'full');
+    await window.element.api.ready;
+    return {
+      newWorkers: window.__census().workersCreated - created,
+      panel: window.element.querySelectorAll('.side-panel').length,
+      vertices: window.element.api.info().vertices,
+      change: await changed,
+    };
+  });
+  expect(rebuilt).toEqual({ newWorkers: 0, panel: 1, vertices: 2930, change: { reason: 'load' } });
+
   // Removed from the page: disposed.
   const afterRemoval = await page.evaluate(() => {
     window.element.remove();
@@ -193,6 +217,41 @@ test('<anisoform-modeller>: src loads, events come out as DOM events, .api works
   });
   expect(afterRemoval).toEqual({ api: null, children: 0 });
   expect((await census(page)).workers).toBe(workersBefore);
+
+  // With .solvers, elements share a pool: a removed element's worker goes
+  // to the next element instead of ending. Anything else is refused.
+  const shared = await page.evaluate(async () => {
+    const solvers = window.anisoformExample.createSolverPool();
+    const make = async () => {
+      const element = document.createElement('anisoform-modeller');
+      element.setAttribute('ui', 'none');
+      element.setAttribute('src', '../spool.off');
+      element.style.height = '200px';
+      element.solvers = solvers;
+      document.body.append(element);
+      await element.api.ready;
+      await element.api.select({ all: true }); // the worker idle
+      return element;
+    };
+    const created = window.__census().workersCreated;
+    (await make()).remove();
+    const kept = { kept: solvers.size, workers: window.__census().workers };
+    const second = await make();
+    const taken = { kept: solvers.size, newWorkers: window.__census().workersCreated - created, vertices: second.api.info().vertices };
+    second.remove();
+    solvers.dispose();
+    let refusal = 'accepted';
+    try {
+      second.solvers = { keep: 1 };
+    } catch (error) {
+      refusal = `${error.code}: ${error.message}`;
+    }
+    return { kept, taken, workersAfter: window.__census().workers, refusal };
+  });
+  expect(shared.kept).toEqual({ kept: 1, workers: workersBefore + 1 });
+  expect(shared.taken).toEqual({ kept: 0, newWorkers: 1, vertices: 649 });
+  expect(shared.workersAfter).toBe(workersBefore);
+  expect(shared.refusal).toBe('bad-parameter: anisoform-modeller: solvers must be a pool made by createSolverPool(), or null');
   expect(pageErrors).toEqual([]);
 });
 

@@ -1,7 +1,9 @@
 // An init script for pages that create and dispose modellers: it counts, from
 // outside the package, what a modeller could leave behind. window.__census()
-// returns {workers, observers, listeners, detachedListeners, frames}:
+// returns {workers, workersCreated, observers, listeners, detachedListeners, frames}:
 //   workers    Workers created and not terminated
+//   workersCreated  Workers created so far (a worker handed from one
+//              modeller to the next is not created again)
 //   observers  ResizeObservers observing something and not disconnected
 //   listeners  DOM listeners added and not removed, on the window, the
 //              document or an element still in the document
@@ -11,11 +13,13 @@
 //              redrawing adds to it)
 export function installResourceCensus() {
   const workers = new Set();
+  let workersCreated = 0;
   const NativeWorker = window.Worker;
   window.Worker = class CountedWorker extends NativeWorker {
     constructor(...args) {
       super(...args);
       workers.add(this);
+      workersCreated += 1;
     }
 
     terminate() {
@@ -84,6 +88,6 @@ export function installResourceCensus() {
       if (reachable) attached += entries.length;
       else detached += entries.length;
     }
-    return { workers: workers.size, observers: observers.size, listeners: attached, detachedListeners: detached, frames };
+    return { workers: workers.size, workersCreated, observers: observers.size, listeners: attached, detachedListeners: detached, frames };
   };
 }

@@ -81,6 +81,12 @@ export function createModeller(container: HTMLElement, options?: ModellerOptions
  */
 export class AnisoformModellerElement extends HTMLElement {
   readonly api: Anisoform | null;
+  /**
+   * A pool (createSolverPool) to take the solver worker from and give it back to on disconnect,
+   * shared with other elements and modellers; used from the next connection or `ui` change.
+   * Without one, a `ui` change still rebuilds on the same worker, and disconnecting ends it.
+   */
+  solvers: SolverPool | null;
 }
 
 /** Registers the element under `name` (default 'anisoform-modeller') if not yet registered. */

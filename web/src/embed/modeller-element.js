@@ -4,7 +4,13 @@
 // events come out as DOM CustomEvents ('change', 'error', 'progress', with the
 // api's payload as `detail`); `.api` is the modeller's api while connected.
 // Disconnecting disposes the modeller; connecting again builds a new one.
+// The solver worker: a new ui rebuilds the modeller on the same worker (the
+// element's own pool, ended on disconnect); `.solvers`, a pool from
+// createSolverPool, shares workers with other elements and modellers: the
+// worker then goes back to it on disconnect.
 import { createModeller } from './create-modeller.js';
+import { badParameter } from '../shared/errors.js';
+import { SolverPool } from '../worker/solver-pool.js';
 
 const RELAYED_EVENTS = ['change', 'error', 'progress'];
 
@@ -12,6 +18,22 @@ export class AnisoformModellerElement extends HTMLElement {
   static observedAttributes = ['src', 'ui'];
   #modeller = null;
   #offs = [];
+  /** The embedder's pool (the `solvers` property), or null. */
+  #sharedSolvers = null;
+  /** While connected without a shared pool: the pool a rebuild takes the worker from. */
+  #ownSolvers = null;
+
+  /** A pool (createSolverPool) to take the solver worker from and give it back to; used from the next connection or ui change. */
+  get solvers() {
+    return this.#sharedSolvers;
+  }
+
+  set solvers(pool) {
+    if (pool != null && !(pool instanceof SolverPool)) {
+      throw badParameter('anisoform-modeller: solvers must be a pool made by createSolverPool(), or null');
+    }
+    this.#sharedSolvers = pool ?? null;
+  }
 
   /** The modeller's api (window.anisoform's interface), or null while disconnected. */
   get api() {
@@ -25,6 +47,8 @@ export class AnisoformModellerElement extends HTMLElement {
 
   disconnectedCallback() {
     this.#teardown();
+    this.#ownSolvers?.dispose();
+    this.#ownSolvers = null;
   }
 
   attributeChangedCallback(name, previous, value) {
@@ -39,9 +63,16 @@ export class AnisoformModellerElement extends HTMLElement {
 
   #build() {
     const src = this.getAttribute('src');
+    if (this.#sharedSolvers) {
+      this.#ownSolvers?.dispose();
+      this.#ownSolvers = null;
+    } else {
+      this.#ownSolvers ??= new SolverPool();
+    }
     this.#modeller = createModeller(this, {
       ui: this.getAttribute('ui') ?? 'full',
       ...(src ? { mesh: src } : {}),
+      solvers: this.#sharedSolvers ?? this.#ownSolvers,
     });
     const { api } = this.#modeller;
     this.#offs = RELAYED_EVENTS.map((type) => api.on(type, (detail) => this.dispatchEvent(new CustomEvent(type, { detail }))));
