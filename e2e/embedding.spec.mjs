@@ -359,12 +359,17 @@ test('a solver pool hands a disposed modeller\'s idle worker to the next one, wh
     late.dispose();
     const afterLate = { kept: solvers.size, workers: workers() };
 
-    // An idle worker is ended after idleSeconds.
+    // An idle worker is ended after idleSeconds (a very long wait is long,
+    // not a timer that fires at once).
     const brief = createSolverPool({ idleSeconds: 0.2 });
+    const long = createSolverPool({ idleSeconds: 1e9 });
+    (await open({ solvers: long })).dispose();
     (await open({ solvers: brief })).dispose();
     const briefKept = brief.size;
     await new Promise((resolve) => setTimeout(resolve, 600));
-    const briefAfter = { kept: brief.size, workers: workers() };
+    const briefAfter = { kept: brief.size, longKept: long.size, workers: workers() };
+    long.dispose();
+    const workersAtEnd = workers();
 
     const refusals = [
       () => createSolverPool({ keep: -1 }),
@@ -380,7 +385,7 @@ test('a solver pool hands a disposed modeller\'s idle worker to the next one, wh
       }
     });
     for (const host of hosts) host.remove();
-    return { firstEdit, afterFirst, takenBy, secondEdit, busy, otherKind, full, disposed, afterLate, briefKept, briefAfter, refusals };
+    return { firstEdit, afterFirst, takenBy, secondEdit, busy, otherKind, full, disposed, afterLate, briefKept, briefAfter, workersAtEnd, refusals };
   });
 
   expect(outcome.afterFirst).toEqual({ kept: 1, workers: 1, held: 0 });
@@ -393,7 +398,8 @@ test('a solver pool hands a disposed modeller\'s idle worker to the next one, wh
   expect(outcome.disposed).toEqual({ kept: 0, workers: 0 });
   expect(outcome.afterLate).toEqual({ kept: 0, workers: 0 });
   expect(outcome.briefKept).toBe(1);
-  expect(outcome.briefAfter).toEqual({ kept: 0, workers: 0 });
+  expect(outcome.briefAfter).toEqual({ kept: 0, longKept: 1, workers: 1 });
+  expect(outcome.workersAtEnd).toBe(0);
   expect(outcome.refusals).toEqual([
     'bad-parameter: createSolverPool: keep must be a whole number of workers, 0 or more, got -1',
     'bad-parameter: createSolverPool: idleSeconds must be a finite number of seconds, 0 or more, got "long"',

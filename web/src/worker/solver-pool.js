@@ -37,7 +37,8 @@ export class SolverPool {
       throw badParameter(`createSolverPool: idleSeconds must be a finite number of seconds, 0 or more, got ${JSON.stringify(idleSeconds)}`);
     }
     this.#keep = keep;
-    this.#idleMs = idleSeconds * 1000;
+    // setTimeout fires at once past 2^31 - 1 ms: a longer wait (24.8 days) is that long.
+    this.#idleMs = Math.min(idleSeconds * 1000, 2 ** 31 - 1);
   }
 
   /**
