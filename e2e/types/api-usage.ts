@@ -1,7 +1,8 @@
 // Compiled by `npm run check:types --prefix web` (web/tsconfig.json), never
 // run: an embedder's calls written against the declarations, so that a
 // declaration that stops describing the API as the specs use it fails to
-// compile. Each call mirrors one the e2e specs make on window.anisoform.
+// compile. Each call mirrors one the e2e specs make on window.anisoform, or
+// (switchProduct) on the package's createModeller and createSolverPool.
 import type { Anisoform, DeformOp, FlattenOptions, Region } from '../../web/src/api/anisoform';
 import { createModeller, createSolverPool } from '../../web/dist-lib/index';
 
