@@ -13,6 +13,8 @@
 #include "anisoform/limits.h"
 #include "anisoform/mesh_check.h"
 #include "anisoform/mesh_io.h"
+#include "anisoform/op.h"
+#include "anisoform/selection.h"
 #include "anisoform/session.h"
 #include "cli_runner.h"
 #include "test_support.h"
@@ -155,4 +157,54 @@ TEST_CASE("limits: a session's vertex limit refuses a bigger mesh by name and ke
   CHECK_THROWS_AS(session.set_vertex_limit(-1, ""), aniso::Error);
   session.set_vertex_limit(0, "");
   CHECK(session.adopt_mesh(spot, {}).report.vertices == spot.num_vertices());
+}
+
+TEST_CASE("limits: over half the vertex limit a session keeps one factorized pose, and undo gives the same positions",
+          "[limits]") {
+  // The browser's limit allows one factorized pose; two do not fit from
+  // half of it on (Session::install_rest). Below that half the previous pose
+  // keeps its factorization for undo; above it undo factorizes it again.
+  const aniso::Mesh face = aniso::test::load("open/nefertiti_face.off");
+  const int n = face.num_vertices();
+  const aniso::DeformOp first = aniso::deform_op_from_json(nlohmann::json::parse(
+      R"({"method":"anarap","direction":{"type":"global","vector":[0,1,0]},"transform":{"scale":[1.3,1]},)"
+      R"("warmStart":false,"maxIterations":20})"));
+  const aniso::DeformOp second = aniso::deform_op_from_json(nlohmann::json::parse(
+      R"({"method":"anarap","direction":{"type":"global","vector":[1,0,0]},"transform":{"scale":[0.8,1]},)"
+      R"("warmStart":false,"maxIterations":20})"));
+  struct Run {
+    std::vector<aniso::Positions> steps;
+    int undo_factorizations = 0;
+  };
+  const auto run = [&](int vertex_limit) {
+    aniso::Session session;
+    session.set_vertex_limit(vertex_limit, "for this test");
+    session.adopt_mesh(face, {});
+    session.select(aniso::parse_region("all"), 0.0, aniso::SelectionMode::Replace);
+    // Positions are rows of x, y, z: the layout set_positions takes.
+    const std::vector<double> rest(session.positions().data(), session.positions().data() + 3 * n);
+    Run out;
+    session.deform(first);
+    out.steps.push_back(session.positions());
+    session.commit();
+    session.deform(second);
+    out.steps.push_back(session.positions());
+    session.set_positions(rest);  // undo: back to the first rest pose
+    const int before = session.factorizations();
+    session.deform(second);
+    out.undo_factorizations = session.factorizations() - before;
+    out.steps.push_back(session.positions());
+    return out;
+  };
+  const Run kept = run(0);            // no limit: the previous pose stays factorized
+  const Run roomy = run(2 * n);       // two poses fit
+  const Run one_pose = run(2 * n - 1);
+  CHECK(kept.undo_factorizations == 0);
+  CHECK(roomy.undo_factorizations == 0);
+  CHECK(one_pose.undo_factorizations == 1);
+  for (std::size_t s = 0; s < kept.steps.size(); ++s) {
+    INFO("step " << s);
+    CHECK(roomy.steps[s] == kept.steps[s]);
+    CHECK(one_pose.steps[s] == kept.steps[s]);
+  }
 }

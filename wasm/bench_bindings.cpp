@@ -1,8 +1,10 @@
 // The benchmark build's extra bindings, linked only into anisoform-bench.mjs
 // (wasm/CMakeLists.txt), never into the shipped module: the benchmarks'
 // procedural cylinder and the Laplacian factor/solve floor every solver is
-// measured against (bench/wasm-bench.mjs).
+// measured against (bench/wasm-bench.mjs), and memory held aside for the
+// tests of a nearly full heap.
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -93,12 +95,36 @@ class LaplacianFloor {
   bool factored_ = false;
 };
 
+// ---- A nearly full heap ------------------------------------------------------
+
+// What holdMemory() took, kept until releaseHeldMemory(): the tests of what a
+// session does when memory runs out, on meshes that fill a test's heap
+// quickly instead of 2 GB slowly.
+std::vector<std::unique_ptr<char[]>>& held_blocks() {
+  static std::vector<std::unique_ptr<char[]>> blocks;
+  return blocks;
+}
+
+val hold_memory(double bytes) {
+  return guarded([&] {
+    if (!(bytes >= 1 && bytes <= 2147483648.0)) {
+      fail(ErrorCode::BadParameter, "holdMemory: bytes must be from 1 to 2^31");
+    }
+    // Not value-initialized: the pages need not be written to count as taken.
+    held_blocks().emplace_back(new char[static_cast<std::size_t>(bytes)]);
+  });
+}
+
+void release_held_memory() { held_blocks().clear(); }
+
 }  // namespace
 }  // namespace aniso::wasm
 
 EMSCRIPTEN_BINDINGS(anisoform_bench) {
   using namespace aniso::wasm;
   emscripten::function("cappedCylinder", &capped_cylinder_js);
+  emscripten::function("holdMemory", &hold_memory);
+  emscripten::function("releaseHeldMemory", &release_held_memory);
   emscripten::class_<LaplacianFloor>("LaplacianFloor")
       .constructor<>()
       .function("factor", &LaplacianFloor::factor)

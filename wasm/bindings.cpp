@@ -256,6 +256,11 @@ val set_progress(Session& s, val report) {
 // vertex). The budget is 4 KB per vertex, a margin over both: the factor's
 // fill-in depends on the mesh, not on its size alone. (800k vertices ran a
 // minute into the first commit and then failed at the 2 GB ceiling.)
+// The budget is for one factorized pose: above half the limit the session
+// keeps no second one for undo, and any call that runs out of memory frees
+// the kept ones and runs again (session.h). Before that, a 420k-vertex
+// cylinder's second commit failed; now 470k-520k take commits, undo and a
+// flattening.
 constexpr double kEditBytesPerVertex = 4096.0;
 
 Session* new_browser_session() {

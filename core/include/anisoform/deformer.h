@@ -45,6 +45,14 @@ class Deformer {
   const Mesh& rest() const { return rest_; }
   int factorizations() const { return factorizations_; }
 
+  // Frees what deform() keeps only to be quicker next time: the
+  // factorizations and the solvers' workspace, the bulk of a factorized
+  // Deformer's memory (the warm start goes with it; the unit-size copy and
+  // its Laplacian stay). The next deform() builds what it needs again.
+  // Returns whether anything was held. A Session calls it when memory runs
+  // out (session.h).
+  bool release_memory() noexcept;
+
  private:
   struct Workspace;
   void prepare();  // unit_, order_, rank_, cotan_weights_, laplacian_ (once)

@@ -9,6 +9,14 @@
 // factorizations are redone lazily on the next edit. Every method either
 // succeeds or throws an aniso::Error and leaves the session as it was.
 //
+// Memory: the session keeps the previous rest pose's Deformer too, so that
+// undo and re-parameterising the last op need no new factorization. On a
+// large mesh two factorized poses may not fit (in the browser's 2 GB, from
+// about 400k vertices): an edit, a load or a flattening that runs out of
+// memory frees the kept factorizations and runs once more, slower but
+// within the limit one pose needs. Only if that fails too does it throw
+// std::bad_alloc, with the session as it was.
+//
 // Positions, triangles and weights are also kept as float32 / uint32 copies,
 // laid out as the GPU wants them, so that a host can hand out views of them
 // without a copy (the WASM module's typed_memory_view).
@@ -20,6 +28,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -192,6 +201,18 @@ class Session {
   void require_mesh() const;
   void report(ProgressStage stage, double fraction) const;
   std::shared_ptr<Deformer> new_deformer(Mesh mesh);
+  // Runs `operation`; should it run out of memory (std::bad_alloc), frees
+  // what is kept only for speed (release_kept_memory) and runs it once more.
+  // The operations it wraps change nothing until their work is done, so a
+  // failed first run leaves nothing half done to the second.
+  void retrying_out_of_memory(const std::function<void()>& operation);
+  // Frees the factorizations kept for speed: the previous rest pose's (for
+  // undo), the rest pose's own (the next edit makes them again) and, in a
+  // fork, its origin's. The edit state (mesh, positions, selection, the last
+  // pattern) is untouched. Returns whether anything was freed.
+  bool release_kept_memory() noexcept;
+  DeformOpResult deform_once(const DeformOp& edit);
+  SessionFlattenResult flatten_once(const SessionFlatten& request);
   // Reports of `deformer` go through this session's progress.
   void report_through_this(Deformer& deformer);
   void replace_rest(Positions V);
@@ -213,6 +234,9 @@ class Session {
   // factorizations: going back to exactly that pose (undo, re-parameterising
   // the last op of an edit document) swaps it in instead of refactoring.
   std::shared_ptr<Deformer> previous_;
+  // A fork's origin's Deformers (fork()), which it may free under memory
+  // pressure too: not owned, so a fork never keeps them alive.
+  std::vector<std::weak_ptr<Deformer>> origin_deformers_;
   std::unique_ptr<TargetContext> targets_;  // for direction_field(), built lazily per rest pose
   std::shared_ptr<const VertexAdjacency> adjacency_;  // for select(), built lazily per mesh (not per pose)
   std::unique_ptr<SessionFlattenState> flatten_;  // always set; dropped per positions change

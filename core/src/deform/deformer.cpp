@@ -271,6 +271,13 @@ void Deformer::prepare() {
 
 Deformer::~Deformer() = default;
 
+bool Deformer::release_memory() noexcept {
+  const bool held = !solvers_.empty() || workspace_ != nullptr;
+  solvers_.clear();
+  workspace_.reset();
+  return held;
+}
+
 const LaplacianSolver& Deformer::solver_for(std::vector<int> pins, double* precompute_ms) {
   std::sort(pins.begin(), pins.end());
   pins.erase(std::unique(pins.begin(), pins.end()), pins.end());

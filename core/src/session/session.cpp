@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <new>
 #include <utility>
 
 #include "anisoform/document.h"
@@ -168,6 +169,9 @@ const SessionMeshInfo& Session::adopt_mesh(Mesh mesh, std::vector<std::string> n
     fail(ErrorCode::BadMesh, "cannot edit this mesh: " + info.report.blocking_summary());
   }
   report(ProgressStage::Load, 0.35);
+  // The mesh is accepted: the old one's factorizations go now rather than at
+  // the end, so that they and the new mesh's need not fit side by side.
+  release_kept_memory();
   std::shared_ptr<Deformer> deformer = new_deformer(std::move(mesh));
   // Everything the new mesh needs is allocated before the session changes, so
   // that running out of memory (std::bad_alloc) leaves it as it was, too.
@@ -249,6 +253,15 @@ void Session::install_rest(std::shared_ptr<Deformer> deformer, Positions V) {
   if (previous_ && previous_ != deformer) retired_factorizations_ += previous_->factorizations();
   previous_ = std::move(deformer_);
   deformer_ = std::move(deformer);
+  // The vertex limit allows one factorized pose (set_vertex_limit): above
+  // half of it two would not fit, so the previous pose keeps its rest mesh
+  // only, and undo factorizes it again. Freed now, before the new pose is
+  // factorized, so that it takes the same memory back: freed only once an
+  // allocation had failed (retrying_out_of_memory), the blocks were too
+  // scattered, and a 470k-vertex cylinder's second commit failed even so.
+  if (previous_ && vertex_limit_ > 0 && 2 * static_cast<long>(deformer_->rest().num_vertices()) > vertex_limit_) {
+    previous_->release_memory();
+  }
   set_current(std::move(current));
 }
 
@@ -257,6 +270,9 @@ std::unique_ptr<Session> Session::fork() {
   auto fork = std::make_unique<Session>();
   fork->deformer_ = deformer_;
   fork->previous_ = previous_;
+  fork->origin_deformers_ = origin_deformers_;
+  fork->origin_deformers_.push_back(deformer_);
+  if (previous_) fork->origin_deformers_.push_back(previous_);
   if (!adjacency_) adjacency_ = std::make_shared<VertexAdjacency>(vertex_adjacency(rest().F, rest().num_vertices()));
   fork->adjacency_ = adjacency_;
   fork->vertex_limit_ = vertex_limit_;
@@ -321,7 +337,37 @@ int Session::set_selection(const std::vector<float>& weights) {
   return count_selected(weights_);
 }
 
+void Session::retrying_out_of_memory(const std::function<void()>& operation) {
+  try {
+    operation();
+    return;
+  } catch (const std::bad_alloc&) {
+    if (!release_kept_memory()) throw;
+  }
+  operation();
+}
+
+bool Session::release_kept_memory() noexcept {
+  bool released = false;
+  if (previous_) released = previous_->release_memory() || released;
+  if (deformer_) released = deformer_->release_memory() || released;
+  for (const std::weak_ptr<Deformer>& kept : origin_deformers_) {
+    if (const std::shared_ptr<Deformer> deformer = kept.lock()) released = deformer->release_memory() || released;
+  }
+  if (targets_) {
+    targets_.reset();
+    released = true;
+  }
+  return released;
+}
+
 DeformOpResult Session::deform(const DeformOp& edit) {
+  DeformOpResult summary;
+  retrying_out_of_memory([&] { summary = deform_once(edit); });
+  return summary;
+}
+
+DeformOpResult Session::deform_once(const DeformOp& edit) {
   require_mesh();
   const auto start = std::chrono::steady_clock::now();
   DeformResult result = deformer_->deform(resolve_edit(edit, deformer_->rest().V, info_.report.bbox, weights_));

@@ -90,6 +90,12 @@ SessionFlattenResult reindex(const FlattenPatch& patch, const TriangleCharts& ch
 }  // namespace
 
 SessionFlattenResult Session::flatten(const SessionFlatten& given) {
+  SessionFlattenResult result;
+  retrying_out_of_memory([&] { result = flatten_once(given); });
+  return result;
+}
+
+SessionFlattenResult Session::flatten_once(const SessionFlatten& given) {
   require_mesh();
   const SessionFlatten request = resolve_flatten(given, current_);
   if (!(request.max_iterations >= 1)) {
