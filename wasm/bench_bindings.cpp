@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/SparseCholesky>
@@ -111,7 +112,8 @@ val hold_memory(double bytes) {
       fail(ErrorCode::BadParameter, "holdMemory: bytes must be from 1 to 2^31");
     }
     // Not value-initialized: the pages need not be written to count as taken.
-    held_blocks().emplace_back(new char[static_cast<std::size_t>(bytes)]);
+    std::unique_ptr<char[]> block(new char[static_cast<std::size_t>(bytes)]);
+    held_blocks().push_back(std::move(block));
   });
 }
 

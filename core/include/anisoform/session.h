@@ -12,10 +12,12 @@
 // Memory: the session keeps the previous rest pose's Deformer too, so that
 // undo and re-parameterising the last op need no new factorization. On a
 // large mesh two factorized poses may not fit (in the browser's 2 GB, from
-// about 400k vertices): an edit, a load or a flattening that runs out of
-// memory frees the kept factorizations and runs once more, slower but
-// within the limit one pose needs. Only if that fails too does it throw
-// std::bad_alloc, with the session as it was.
+// about 400k vertices): above half the vertex limit a commit keeps only the
+// previous pose's mesh, a load frees the old mesh's factorizations before
+// it builds anything, and an edit or a flattening that runs out of memory
+// frees the kept factorizations and runs once more, slower but within what
+// one pose needs. Only if that fails too does it throw std::bad_alloc, with
+// the session as it was.
 //
 // Positions, triangles and weights are also kept as float32 / uint32 copies,
 // laid out as the GPU wants them, so that a host can hand out views of them
