@@ -469,7 +469,8 @@ export interface Session {
   vertexLimit(): number;
   /**
    * Progress of the long calls: `report(stage, fraction)` is called inside loadMesh/setMesh
-   * ('load'), each factorization ('factorize': 0 then 1), deform's iterations ('solve': iterations
+   * ('load'), each factorization ('factorize': 0, 0.35 once ordered and analysed, then by
+   * twentieths of the numeric work, 1), deform's iterations ('solve': iterations
    * over the cap, then 1 when done) and flatten's ('flatten'). null stops it. It must not throw.
    */
   setProgress(report: ((stage: 'load' | 'factorize' | 'solve' | 'flatten', fraction: number) => void) | null): void;

@@ -7,7 +7,7 @@ namespace aniso {
 
 enum class ProgressStage {
   Load,       // reading, checking and preparing a new mesh
-  Factorize,  // the Laplacian's factorization for a set of pinned vertices
+  Factorize,  // the Laplacian's factorization for a set of pinned vertices (by work done)
   Solve,      // a deform's iterations
   Flatten,    // a flattening's iterations
 };

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numeric>
 #include <optional>
@@ -285,7 +286,10 @@ const LaplacianSolver& Deformer::solver_for(std::vector<int> pins, double* preco
   if (it != solvers_.end()) return *it->second;
   const auto start = Clock::now();
   if (progress_) progress_(ProgressStage::Factorize, 0.0);
-  auto solver = std::make_unique<LaplacianSolver>(laplacian_, pins);
+  const std::function<void(double)> factorized = [this](double fraction) {
+    if (progress_) progress_(ProgressStage::Factorize, fraction);
+  };
+  auto solver = std::make_unique<LaplacianSolver>(laplacian_, pins, factorized);
   if (progress_) progress_(ProgressStage::Factorize, 1.0);
   ++factorizations_;
   *precompute_ms += ms_since(start);

@@ -67,7 +67,8 @@ void require_pin_per_component(const Eigen::SparseMatrix<double>& L, const std::
 
 }  // namespace
 
-LaplacianSolver::LaplacianSolver(const Eigen::SparseMatrix<double>& L, std::vector<int> pinned)
+LaplacianSolver::LaplacianSolver(const Eigen::SparseMatrix<double>& L, std::vector<int> pinned,
+                                 const std::function<void(double)>& progress)
     : impl_(std::make_unique<Impl>()), pinned_(std::move(pinned)), n_(static_cast<int>(L.rows())) {
   std::sort(pinned_.begin(), pinned_.end());
   pinned_.erase(std::unique(pinned_.begin(), pinned_.end()), pinned_.end());
@@ -88,10 +89,10 @@ LaplacianSolver::LaplacianSolver(const Eigen::SparseMatrix<double>& L, std::vect
     }
   }
   require_pin_per_component(L, im.pinned_index);
-  factor(L);
+  factor(L, progress);
 }
 
-void LaplacianSolver::factor(const Eigen::SparseMatrix<double>& L) {
+void LaplacianSolver::factor(const Eigen::SparseMatrix<double>& L, const std::function<void(double)>& progress) {
   Impl& im = *impl_;
   const int nf = static_cast<int>(im.free_vertices.size());
   const int nc = static_cast<int>(pinned_.size());
@@ -116,7 +117,7 @@ void LaplacianSolver::factor(const Eigen::SparseMatrix<double>& L) {
   L_fc.setFromTriplets(fc.begin(), fc.end());
   if (nf == 0) return;
   const double pivot_floor = 1e-13 * Lff.diagonal().cwiseAbs().maxCoeff();
-  SupernodalLdlt ldlt = supernodal_ldlt(Lff, pivot_floor);
+  SupernodalLdlt ldlt = supernodal_ldlt(Lff, pivot_floor, progress);
   // The factor is of P L_ff P^T: free index i sits at position ldlt.perm[i].
   std::vector<int> perm(nf);
   for (int i = 0; i < nf; ++i) perm[ldlt.perm[i]] = i;

@@ -4,6 +4,7 @@
 // pin set refactors; `factorizations()` counts them so tests can check that.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -18,7 +19,10 @@ class LaplacianSolver {
   // L: #V by #V symmetric positive semidefinite; pinned: vertex indices held
   // fixed (each free component must contain at least one, else the solve is
   // singular: Error(Numerical) names a vertex of the unpinned component).
-  LaplacianSolver(const Eigen::SparseMatrix<double>& L, std::vector<int> pinned);
+  // `progress` (if set) hears how far the factorization has got (FactorProgress,
+  // geometry/supernodal_ldlt.h).
+  LaplacianSolver(const Eigen::SparseMatrix<double>& L, std::vector<int> pinned,
+                  const std::function<void(double)>& progress = {});
   ~LaplacianSolver();
   LaplacianSolver(const LaplacianSolver&) = delete;
   LaplacianSolver& operator=(const LaplacianSolver&) = delete;
@@ -37,7 +41,7 @@ class LaplacianSolver {
   struct Impl;
 
  private:
-  void factor(const Eigen::SparseMatrix<double>& L);
+  void factor(const Eigen::SparseMatrix<double>& L, const std::function<void(double)>& progress);
 
   std::unique_ptr<Impl> impl_;
   std::vector<int> pinned_;

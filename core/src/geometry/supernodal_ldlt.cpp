@@ -229,7 +229,7 @@ namespace {
 // (above pivot_floor, or for `any_sign` above it in magnitude), or -1.
 template <typename Scalar>
 int factor_panels(const SupernodalStructure& s, const Eigen::SparseMatrix<Scalar>& C, double pivot_floor,
-                  bool any_sign, Scalar* panels, Eigen::VectorXd& d) {
+                  bool any_sign, Scalar* panels, Eigen::VectorXd& d, const FactorProgress& progress = {}) {
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   using PanelOf = Eigen::Map<Matrix, 0, Eigen::OuterStride<>>;
   const int n = static_cast<int>(C.cols());
@@ -241,6 +241,9 @@ int factor_panels(const SupernodalStructure& s, const Eigen::SparseMatrix<Scalar
   std::vector<int> local(n, -1);  // row -> its position in the current supernode
   std::vector<int> place;
   Scratch<Scalar> update_memory, scaled_memory, weighted_memory, column_memory;
+  // Progress by the work done (factor_work), reported at each twentieth.
+  const double total_work = progress ? factor_work(s) : 0.0;
+  double work_done = 0.0, next_report = 0.05;
   for (int J = 0; J < supernodes; ++J) {
     const int c0 = s.first_column[J], w = s.first_column[J + 1] - c0;
     const int m = s.row_offsets[J + 1] - s.row_offsets[J];
@@ -328,6 +331,14 @@ int factor_panels(const SupernodalStructure& s, const Eigen::SparseMatrix<Scalar
       next[J] = head[target];
       head[target] = J;
     }
+    if (progress) {
+      for (int c = c0; c < c0 + w; ++c) work_done += static_cast<double>(s.count[c]) * s.count[c];
+      if (total_work > 0.0 && work_done >= next_report * total_work && J + 1 < supernodes) {
+        const double share = std::floor(20.0 * work_done / total_work) / 20.0;
+        progress(kAnalysedShare + (1.0 - kAnalysedShare) * share);
+        next_report = share + 0.05;
+      }
+    }
   }
   return -1;
 }
@@ -336,11 +347,12 @@ int factor_panels(const SupernodalStructure& s, const Eigen::SparseMatrix<Scalar
 // `panels` (scratch of the structure's size), then the solves' layout, in
 // `result`'s memory.
 void factor_lower(const SupernodalStructure& s, const Permutation& P, const Eigen::SparseMatrix<double>& C,
-                  double pivot_floor, std::vector<double>& panels, SupernodalLdlt& result) {
+                  double pivot_floor, std::vector<double>& panels, SupernodalLdlt& result,
+                  const FactorProgress& progress = {}) {
   const int n = static_cast<int>(C.cols());
   result.perm.assign(P.indices().data(), P.indices().data() + n);
   panels.resize(s.panel_offsets.back());
-  result.bad_pivot = factor_panels(s, C, pivot_floor, false, panels.data(), result.d);
+  result.bad_pivot = factor_panels(s, C, pivot_floor, false, panels.data(), result.d, progress);
   if (result.bad_pivot >= 0) return;
   result.L.assign(n, s.first_column, s.row_offsets, s.rows, s.panel_offsets, panels.data());
 }
@@ -366,12 +378,15 @@ void SupernodalAnalysis::factor(const Eigen::SparseMatrix<double>& A, double piv
   factor_lower(sym.s, sym.P, sym.C, pivot_floor, sym.panels, result);
 }
 
-SupernodalLdlt supernodal_ldlt(const Eigen::SparseMatrix<double>& A, double pivot_floor) {
+SupernodalLdlt supernodal_ldlt(const Eigen::SparseMatrix<double>& A, double pivot_floor,
+                               const FactorProgress& progress) {
   Permutation P;
   const SupernodalStructure s = order_and_analyse(A, P);
+  const Eigen::SparseMatrix<double> C = permuted_upper(A, P).adjoint();
+  if (progress) progress(kAnalysedShare);
   std::vector<double> panels;
   SupernodalLdlt result;
-  factor_lower(s, P, permuted_upper(A, P).adjoint(), pivot_floor, panels, result);
+  factor_lower(s, P, C, pivot_floor, panels, result, progress);
   return result;
 }
 
