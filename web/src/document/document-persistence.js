@@ -6,7 +6,6 @@ import { EditDocument } from './edit-document.js';
 import { Autosave } from './autosave.js';
 import { badParameter } from '../shared/errors.js';
 
-
 export class DocumentPersistence {
   #editor;
   #runner;

@@ -3,6 +3,7 @@
 // list). Plain data; the core checks and replays it (op-runner.js sends it).
 // toJSON() is what api.document() returns and what autosave stores.
 import { badParameter } from '../shared/errors.js';
+
 export const DOCUMENT_FORMAT = 'anisoform-document';
 export const DOCUMENT_VERSION = 1;
 

@@ -15,7 +15,6 @@ import { LivePreview } from './live-preview.js';
 import { DocumentPersistence } from './document-persistence.js';
 import { badParameter } from '../shared/errors.js';
 
-
 export class OpStack {
   #editor;
   #client;
