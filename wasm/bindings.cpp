@@ -146,6 +146,10 @@ val cancel(Session& s) {
   return guarded([&] { s.cancel(); });
 }
 
+val prepare_step(Session& s) {
+  return guarded([&] { return s.prepare_step(); });
+}
+
 val set_positions(Session& s, const val& positions) {
   return guarded([&] { s.set_positions(double_vector(positions)); });
 }
@@ -295,6 +299,7 @@ EMSCRIPTEN_BINDINGS(anisoform) {
       .function("deform", &deform)
       .function("commit", &commit)
       .function("cancel", &cancel)
+      .function("prepareStep", &prepare_step)
       .function("setPositions", &set_positions)
       .function("directionField", &direction_field)
       .function("distortion", &distortion)

@@ -435,6 +435,14 @@ export interface Session {
   commit(): void;
   /** The current positions go back to the rest pose. */
   cancel(): void;
+  /**
+   * The rest pose's set-up for its next edit (the factorization first), one part per call: a host with
+   * one thread calls it in the background after a load, a commit or a restore, and answers other
+   * calls between the parts. Changes no edit state and no
+   * result. Reports the stage 'factorize' with the share done (setProgress) and returns it: 1
+   * when nothing is left (a call is then free).
+   */
+  prepareStep(): number;
   /** Restores positions (undo/redo); they also become the rest pose. */
   setPositions(positions: Float32Array | Float64Array | number[]): void;
   /** Unit tangent direction per vertex (#V*3, a copy), as the AnARAP solver frames it: for glyphs. */

@@ -168,6 +168,8 @@ export async function instantiateAnisoform(factory, options = {}) {
 
     cancel() { this.#call('cancel'); }
 
+    prepareStep() { return this.#call('prepareStep'); }
+
     setPositions(positions) {
       this.#call('setPositions', numbers(positions, Float64Array, 'setPositions: positions'));
     }

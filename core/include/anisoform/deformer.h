@@ -39,6 +39,17 @@ class Deformer {
 
   DeformResult deform(const DeformRequest& request);
 
+  // The set-up a first AnARAP edit of this rest pose does before its first
+  // iteration, one part per call, so that a host with one thread (the
+  // browser's solver worker) answers other calls between the parts: the
+  // unit-size copy with its weights and Laplacian; the workspace; the
+  // factorization for no user pins (its ordering and analysis, then its
+  // numeric part); the AnARAP iterations' structures. Each part is what
+  // deform() would otherwise build itself, so results do not change.
+  // Reports ProgressStage::Factorize with the share of the whole set-up
+  // done, and returns it: 1 when nothing is left (a call is then free).
+  double prepare_step();
+
   // Factorizations and a deform's iterations report here (none by default).
   void set_progress(ProgressFn progress) { progress_ = std::move(progress); }
 
@@ -56,7 +67,11 @@ class Deformer {
  private:
   struct Workspace;
   void prepare();  // unit_, order_, rank_, cotan_weights_, laplacian_ (once)
-  const LaplacianSolver& solver_for(std::vector<int> pins, double* precompute_ms);
+  // The factorization for `pins`, made once; its progress is reported as
+  // the Factorize stage's [from, to].
+  const LaplacianSolver& solver_for(std::vector<int> pins, double* precompute_ms, double from = 0.0,
+                                    double to = 1.0);
+  std::vector<int> unpinned_gauge_pins() const;  // the pins of an edit with no user pins
   DeformResult deform_unit(const DeformRequest& request);  // on unit_, in its units
 
   Mesh rest_;
@@ -76,6 +91,10 @@ class Deformer {
   Eigen::SparseMatrix<double> laplacian_;
   bool prepared_ = false;
   std::map<std::vector<int>, std::unique_ptr<LaplacianSolver>> solvers_;
+  // A factorization prepare_step() has ordered and analysed but not yet
+  // finished: solver_for() finishes it if its pins are asked for first.
+  std::vector<int> planned_pins_;
+  std::unique_ptr<LaplacianSolver> planned_;
   int factorizations_ = 0;
   std::unique_ptr<Workspace> workspace_;
   ProgressFn progress_;

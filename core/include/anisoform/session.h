@@ -165,6 +165,13 @@ class Session {
   // Restores positions (undo/redo; 3 numbers per vertex); they also become
   // the rest pose, with a new Deformer.
   void set_positions(const std::vector<double>& positions);
+  // The rest pose's set-up for its next edit (the factorization first), one
+  // part per call (Deformer::prepare_step): what a host with one thread runs
+  // in the background after a load or a commit, answering other calls (a
+  // select, an edit) between the parts; the first part also builds what
+  // select() needs. Changes no edit state, nor any result. Returns the share
+  // of the set-up done: 1 when nothing is left.
+  double prepare_step();
 
   // Unit tangent direction per vertex (#V by 3) of a direction source, after
   // projection and filling exactly as the AnARAP solver frames it: what glyphs
@@ -201,6 +208,7 @@ class Session {
 
  private:
   void require_mesh() const;
+  const VertexAdjacency& adjacency();
   void report(ProgressStage stage, double fraction) const;
   std::shared_ptr<Deformer> new_deformer(Mesh mesh);
   // Runs `operation`; should it run out of memory (std::bad_alloc), frees

@@ -31,6 +31,12 @@ struct LaplacianSolver::Impl {
   // The factor L D L^T of P L_ff P^T: L by supernodes and 1 / D.
   SupernodalFactor factor;
   Eigen::VectorXd inv_d;
+  // Until factorize(): the ordered and analysed free block, the free-pinned
+  // block and the pivot floor.
+  std::unique_ptr<SupernodalPlan> plan;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> L_fc;
+  double pivot_floor = 0.0;
+  bool factorized = false;
 };
 
 namespace {
@@ -69,6 +75,12 @@ void require_pin_per_component(const Eigen::SparseMatrix<double>& L, const std::
 
 LaplacianSolver::LaplacianSolver(const Eigen::SparseMatrix<double>& L, std::vector<int> pinned,
                                  const std::function<void(double)>& progress)
+    : LaplacianSolver(L, std::move(pinned), Deferred{}) {
+  if (progress) progress(kAnalysedShare);
+  factorize(progress);
+}
+
+LaplacianSolver::LaplacianSolver(const Eigen::SparseMatrix<double>& L, std::vector<int> pinned, Deferred)
     : impl_(std::make_unique<Impl>()), pinned_(std::move(pinned)), n_(static_cast<int>(L.rows())) {
   std::sort(pinned_.begin(), pinned_.end());
   pinned_.erase(std::unique(pinned_.begin(), pinned_.end()), pinned_.end());
@@ -89,10 +101,10 @@ LaplacianSolver::LaplacianSolver(const Eigen::SparseMatrix<double>& L, std::vect
     }
   }
   require_pin_per_component(L, im.pinned_index);
-  factor(L, progress);
+  plan(L);
 }
 
-void LaplacianSolver::factor(const Eigen::SparseMatrix<double>& L, const std::function<void(double)>& progress) {
+void LaplacianSolver::plan(const Eigen::SparseMatrix<double>& L) {
   Impl& im = *impl_;
   const int nf = static_cast<int>(im.free_vertices.size());
   const int nc = static_cast<int>(pinned_.size());
@@ -113,11 +125,24 @@ void LaplacianSolver::factor(const Eigen::SparseMatrix<double>& L, const std::fu
   }
   Eigen::SparseMatrix<double> Lff(nf, nf);
   Lff.setFromTriplets(ff.begin(), ff.end());
-  Eigen::SparseMatrix<double, Eigen::RowMajor> L_fc(nf, nc);
-  L_fc.setFromTriplets(fc.begin(), fc.end());
+  im.L_fc.resize(nf, nc);
+  im.L_fc.setFromTriplets(fc.begin(), fc.end());
   if (nf == 0) return;
-  const double pivot_floor = 1e-13 * Lff.diagonal().cwiseAbs().maxCoeff();
-  SupernodalLdlt ldlt = supernodal_ldlt(Lff, pivot_floor, progress);
+  im.pivot_floor = 1e-13 * Lff.diagonal().cwiseAbs().maxCoeff();
+  im.plan = std::make_unique<SupernodalPlan>(Lff);
+}
+
+bool LaplacianSolver::factorized() const { return impl_->factorized; }
+
+void LaplacianSolver::factorize(const std::function<void(double)>& progress) {
+  Impl& im = *impl_;
+  if (im.factorized) return;
+  const int nf = static_cast<int>(im.free_vertices.size());
+  if (nf == 0) {
+    im.factorized = true;
+    return;
+  }
+  SupernodalLdlt ldlt = im.plan->factor(im.pivot_floor, progress);
   // The factor is of P L_ff P^T: free index i sits at position ldlt.perm[i].
   std::vector<int> perm(nf);
   for (int i = 0; i < nf; ++i) perm[ldlt.perm[i]] = i;
@@ -133,7 +158,7 @@ void LaplacianSolver::factor(const Eigen::SparseMatrix<double>& L, const std::fu
   im.band_values.clear();
   for (int pos = 0; pos < nf; ++pos) {
     im.vertex_at[pos] = im.free_vertices[perm[pos]];
-    Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(L_fc, perm[pos]);
+    Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(im.L_fc, perm[pos]);
     if (!it) continue;
     for (; it; ++it) {  // ascending pinned index: the order the sum is taken in
       im.band_vertices.push_back(pinned_[static_cast<std::size_t>(it.col())]);
@@ -144,6 +169,9 @@ void LaplacianSolver::factor(const Eigen::SparseMatrix<double>& L, const std::fu
   }
   im.inv_d = ldlt.d.cwiseInverse();
   im.factor = std::move(ldlt.L);
+  im.plan.reset();
+  im.L_fc = {};
+  im.factorized = true;
 }
 
 LaplacianSolver::~LaplacianSolver() = default;

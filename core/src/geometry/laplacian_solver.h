@@ -23,6 +23,14 @@ class LaplacianSolver {
   // geometry/supernodal_ldlt.h).
   LaplacianSolver(const Eigen::SparseMatrix<double>& L, std::vector<int> pinned,
                   const std::function<void(double)>& progress = {});
+  // The same in two calls, for a caller that answers other work between
+  // them (Deformer::prepare_step): this constructor checks the pins and
+  // orders and analyses L's free block (FactorProgress's kAnalysedShare of
+  // the work); factorize() does the rest. Solve only once it has.
+  struct Deferred {};
+  LaplacianSolver(const Eigen::SparseMatrix<double>& L, std::vector<int> pinned, Deferred);
+  void factorize(const std::function<void(double)>& progress = {});
+  bool factorized() const;
   ~LaplacianSolver();
   LaplacianSolver(const LaplacianSolver&) = delete;
   LaplacianSolver& operator=(const LaplacianSolver&) = delete;
@@ -41,7 +49,7 @@ class LaplacianSolver {
   struct Impl;
 
  private:
-  void factor(const Eigen::SparseMatrix<double>& L, const std::function<void(double)>& progress);
+  void plan(const Eigen::SparseMatrix<double>& L);
 
   std::unique_ptr<Impl> impl_;
   std::vector<int> pinned_;

@@ -378,16 +378,31 @@ void SupernodalAnalysis::factor(const Eigen::SparseMatrix<double>& A, double piv
   factor_lower(sym.s, sym.P, sym.C, pivot_floor, sym.panels, result);
 }
 
-SupernodalLdlt supernodal_ldlt(const Eigen::SparseMatrix<double>& A, double pivot_floor,
-                               const FactorProgress& progress) {
+struct SupernodalPlan::Parts {
   Permutation P;
-  const SupernodalStructure s = order_and_analyse(A, P);
-  const Eigen::SparseMatrix<double> C = permuted_upper(A, P).adjoint();
-  if (progress) progress(kAnalysedShare);
+  SupernodalStructure s;
+  Eigen::SparseMatrix<double> C;  // P A P^T's lower triangle by columns
+};
+
+SupernodalPlan::SupernodalPlan(const Eigen::SparseMatrix<double>& A) : parts_(std::make_unique<Parts>()) {
+  parts_->s = order_and_analyse(A, parts_->P);
+  parts_->C = permuted_upper(A, parts_->P).adjoint();
+}
+
+SupernodalPlan::~SupernodalPlan() = default;
+
+SupernodalLdlt SupernodalPlan::factor(double pivot_floor, const FactorProgress& progress) const {
   std::vector<double> panels;
   SupernodalLdlt result;
-  factor_lower(s, P, C, pivot_floor, panels, result, progress);
+  factor_lower(parts_->s, parts_->P, parts_->C, pivot_floor, panels, result, progress);
   return result;
+}
+
+SupernodalLdlt supernodal_ldlt(const Eigen::SparseMatrix<double>& A, double pivot_floor,
+                               const FactorProgress& progress) {
+  const SupernodalPlan plan(A);
+  if (progress) progress(kAnalysedShare);
+  return plan.factor(pivot_floor, progress);
 }
 
 template <typename Scalar>

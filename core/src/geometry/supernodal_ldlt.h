@@ -75,6 +75,25 @@ inline constexpr double kAnalysedShare = 0.35;
 SupernodalLdlt supernodal_ldlt(const Eigen::SparseMatrix<double>& A, double pivot_floor,
                                const FactorProgress& progress = {});
 
+// The same in two calls, for a caller that answers other work between them
+// (the app's background preparation, Deformer::prepare_step): the
+// constructor orders (AMD) and analyses A and keeps it permuted, the share
+// kAnalysedShare of the work; factor() does the rest, once.
+class SupernodalPlan {
+ public:
+  explicit SupernodalPlan(const Eigen::SparseMatrix<double>& A);  // A's lower triangle, as supernodal_ldlt
+  ~SupernodalPlan();
+  SupernodalPlan(const SupernodalPlan&) = delete;
+  SupernodalPlan& operator=(const SupernodalPlan&) = delete;
+
+  // Reports kAnalysedShare's successors to `progress`, as supernodal_ldlt.
+  SupernodalLdlt factor(double pivot_floor, const FactorProgress& progress = {}) const;
+
+ private:
+  struct Parts;
+  std::unique_ptr<Parts> parts_;
+};
+
 // Solves A X = B in place (X: B in, the solution out) for a Hermitian A (its
 // lower triangle), real or complex, by L D L^H with pivots of either sign:
 // the direction fields' systems. Returns -1, or the first column (in the

@@ -273,7 +273,7 @@ std::unique_ptr<Session> Session::fork() {
   fork->origin_deformers_ = origin_deformers_;
   fork->origin_deformers_.push_back(deformer_);
   if (previous_) fork->origin_deformers_.push_back(previous_);
-  if (!adjacency_) adjacency_ = std::make_shared<VertexAdjacency>(vertex_adjacency(rest().F, rest().num_vertices()));
+  adjacency();
   fork->adjacency_ = adjacency_;
   fork->vertex_limit_ = vertex_limit_;
   fork->vertex_limit_why_ = vertex_limit_why_;
@@ -300,13 +300,17 @@ void Session::adopt_rest_of(Session& fork) {
   install_rest(fork.deformer_, fork.deformer_->rest().V);
 }
 
+// Built once per mesh, not on every select (the page asks for each one).
+const VertexAdjacency& Session::adjacency() {
+  const Mesh& rest = deformer_->rest();
+  if (!adjacency_) adjacency_ = std::make_shared<VertexAdjacency>(vertex_adjacency(rest.F, rest.num_vertices()));
+  return *adjacency_;
+}
+
 int Session::select(const Region& region, double falloff, SelectionMode mode) {
   require_mesh();
-  const Mesh& rest = deformer_->rest();
-  // The adjacency is built once per mesh, not on every select (the page asks for each one).
-  if (!adjacency_) adjacency_ = std::make_shared<VertexAdjacency>(vertex_adjacency(rest.F, rest.num_vertices()));
   // Regions are evaluated on the rest pose, which is what is on screen between edits.
-  const Eigen::VectorXd picked = selection_weights(rest, *adjacency_, region, falloff);
+  const Eigen::VectorXd picked = selection_weights(deformer_->rest(), adjacency(), region, falloff);
   Eigen::VectorXd weights = weights_;
   switch (mode) {
     case SelectionMode::Replace: weights = picked; break;
@@ -391,6 +395,16 @@ DeformOpResult Session::deform_once(const DeformOp& edit) {
 void Session::commit() {
   require_mesh();
   replace_rest(current_);
+}
+
+double Session::prepare_step() {
+  require_mesh();
+  double share = 0.0;
+  retrying_out_of_memory([&] {
+    adjacency();  // the first select's, with the first part
+    share = deformer_->prepare_step();
+  });
+  return share;
 }
 
 void Session::cancel() {

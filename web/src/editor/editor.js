@@ -61,6 +61,8 @@ export class Editor extends EventEmitter {
   #client;
   #busy = 0;
   #prepareTimer = 0;
+  #preparation = 0; // counts prepareSolver() calls: the latest one goes on
+  #prepared = Promise.resolve();
   #meshBound = [];
   #report = reporter((event, payload) => this.emit(event, payload));
   #gestures;
@@ -175,6 +177,9 @@ export class Editor extends EventEmitter {
     this.document = new MeshDocument({ name, positions, triangles, info, display: { normals, bvh } });
     this.history.clear();
     this.ops.adoptMesh(payload, name);
+    // Before the mesh is announced: what its listeners ask of the worker
+    // after the preparation (whenPrepared) waits for this one.
+    this.prepareSolver();
     this.emit('mesh', this.document);
     const notice = describeProblems(info);
     if (notice) this.emit('notice', { ...notice, source: 'load' });
@@ -183,22 +188,21 @@ export class Editor extends EventEmitter {
     // own once it runs long (else the bar kept the load's last words, e.g.
     // "Building the picking structure", for the first part of it).
     this.emit('progress', { stage: 'done', message: '' });
-    this.prepareSolver();
   }
 
   /**
    * After a committed edit: prepareSolver once the solver has been idle for
-   * PREPARE_AFTER_COMMIT_MS. Not at once: the worker cannot interrupt a
-   * factorization, and a slider on the op just made (which needs the op's
-   * input, whose factorization is kept) would wait behind it.
+   * PREPARE_AFTER_COMMIT_MS. Not at once: a slider on the op just made
+   * (which needs the op's input, whose factorization is kept) would wait
+   * behind each part.
    */
   prepareSolverSoon() {
     clearTimeout(this.#prepareTimer);
     const document = this.document;
     const attempt = () => {
       if (this.document !== document || this.#client.disposed) return;
-      // Not under a drag or a slider's live state either: prepare would reset
-      // the selection and the warm start those hold in the worker.
+      // Not under a drag or a slider's live state either: its parts would
+      // hold up their previews, which build what they need themselves.
       const inUse = this.busy || this.#client.busy || this.gestureActive || this.ops.live;
       if (inUse) this.#prepareTimer = setTimeout(attempt, PREPARE_AFTER_COMMIT_MS);
       else this.prepareSolver();
@@ -208,20 +212,39 @@ export class Editor extends EventEmitter {
 
   /**
    * Factorizes the worker's rest pose in the background (a new mesh, a
-   * committed edit): the page stays usable, and the next edit queues behind
-   * this in the worker instead of paying for it mid-drag.
+   * committed edit), a part at a time: the page stays usable, a select or an
+   * edit asked for meanwhile runs after the part in progress (the worker
+   * cannot interrupt one), and an edit then finishes the set-up itself
+   * instead of paying for all of it mid-drag. A newer preparation (the
+   * next commit's) ends this one.
    */
   prepareSolver() {
     const document = this.document;
-    this.selectionState.forget(); // prepare leaves an empty selection in the session
-    this.#client
-      .request(Request.prepare)
-      .then(() => {
-        if (this.document === document) this.emit('progress', { stage: 'done', message: 'Ready' });
-      })
-      .catch((error) => {
-        if (this.document === document) this.report(error, 'The solver could not prepare this mesh');
+    const preparation = ++this.#preparation;
+    const current = () => this.document === document && this.#preparation === preparation;
+    const step = () =>
+      this.#client.request(Request.prepareStep).then(({ share }) => {
+        if (!current()) return;
+        if (share < 1) return step();
+        this.emit('progress', { stage: 'done', message: 'Ready' });
       });
+    this.#prepared = step().catch((error) => {
+      // 'cancelled': a cancel restarted the worker, and prepares again once it is back.
+      // A disposed modeller has no one to tell.
+      if (current() && error.code !== 'cancelled' && !this.#client.disposed) {
+        this.report(error, 'The solver could not prepare this mesh');
+      }
+    });
+  }
+
+  /**
+   * Resolves when the latest preparation has ended (done, failed or
+   * overtaken): for work the worker should do after it, not before the
+   * user's first select (the moving mesh's simplification, 1 s at 400k
+   * triangles).
+   */
+  whenPrepared() {
+    return this.#prepared;
   }
 
   // ---- selection (selection-state.js) --------------------------------------

@@ -31,7 +31,7 @@ export class SelectionState {
     this.#beforeChange = beforeChange;
   }
 
-  /** The worker's selection is unknown (a new mesh; prepare leaves it empty). */
+  /** The worker's selection is unknown (a new mesh, a restarted worker). */
   forget() {
     this.#sent = null;
   }

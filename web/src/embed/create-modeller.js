@@ -60,8 +60,11 @@ export function createModeller(container, options = {}) {
   lifetime.defer(() => layout.root.remove());
   const settings = new Settings();
   const viewer = new Viewer(layout.viewport, lifetime);
-  // The light drawing of a moving mesh on a CPU rasteriser is made in the worker.
-  const meshView = new MeshView(viewer, { simplify: (triangles) => client.request(Request.simplify, { triangles }) });
+  // The light drawing of a moving mesh on a CPU rasteriser is made in the
+  // worker, once it has prepared the mesh: a select right after a load waited
+  // for the simplification too (1.4 s for the 200k koala against 0.5 s).
+  const simplify = (triangles) => editor.whenPrepared().then(() => client.request(Request.simplify, { triangles }));
+  const meshView = new MeshView(viewer, { simplify });
   lifetime.defer(() => meshView.proxy.dispose());
   new AxisGizmo(viewer, lifetime);
   const picker = new Picker(viewer, meshView);

@@ -22,8 +22,13 @@ export const Request = Object.freeze({
    * restart's seed, with display false: no normals or bvh, the page shows that mesh already).
    */
   setMesh: 'setMesh',
-  /** {} -> {ms}: factorize ahead of the first edit, so the first drag is live. */
-  prepare: 'prepare',
+  /**
+   * {} -> {share}: one part of the rest pose's set-up for its next edit (Session.prepareStep: the
+   * factorization first), so that the first drag is live; share is how much is done, 1 when all.
+   * The page asks for the next part once this one is back, so what it asks meanwhile (a select)
+   * runs between the parts, not after the whole set-up.
+   */
+  prepareStep: 'prepareStep',
   /**
    * {triangles: number} -> {vertices: Uint32Array, triangles: Uint32Array}:
    * the rest mesh simplified to about that many triangles, over a subset of

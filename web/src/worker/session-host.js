@@ -27,7 +27,7 @@ export class SessionHost {
     this.handlers = {
       [Request.loadFile]: (payload) => this.loadFile(payload),
       [Request.setMesh]: (payload) => this.setMesh(payload),
-      [Request.prepare]: () => this.prepare(),
+      [Request.prepareStep]: () => this.prepareStep(),
       [Request.simplify]: (payload) => this.simplify(payload),
       [Request.select]: (payload) => this.select(payload),
       [Request.setSelection]: (payload) => this.setSelection(payload),
@@ -58,11 +58,16 @@ export class SessionHost {
     // Progress is shown for the calls a user waits for, not for the live
     // previews of a drag (a deform) or of a slider on an earlier op (a replay).
     const livePreview = (kind === Request.deform && payload.op?.preview) || (kind === Request.replay && payload.preview);
-    this.#progress = { started: performance.now(), posted: -Infinity, stage: null, shown: !livePreview };
+    // The parts of one preparation count as one call: a long one shows its
+    // progress from its first part on.
+    const started = (kind === Request.prepareStep && this.#preparingSince) || performance.now();
+    this.#progress = { started, posted: -Infinity, stage: null, shown: !livePreview };
     return handler(payload);
   }
 
   #progress = null;
+  /** When the unfinished preparation's first part started, or null. */
+  #preparingSince = null;
 
   // Progress (stage, fraction) of the core, or of reading a file, as the
   // page's: only once a call has run for PROGRESS_AFTER_MS (a quick one shows
@@ -138,26 +143,11 @@ export class SessionHost {
     return { result, transfer };
   }
 
-  // Factorizes the Laplacian now (a one-iteration identity edit of the whole
-  // mesh, then cancel), so the first drag does not pay for it. The page's
-  // selection is sent again before the next edit or select.
-  prepare() {
-    this.reportProgress('factorize', 'Preparing the solver');
-    const started = performance.now();
-    const vertexCount = this.session.info().vertices;
-    this.session.setSelection(new Float32Array(vertexCount).fill(1));
-    this.session.deform({
-      method: 'anarap',
-      direction: { type: 'global', vector: [1, 0, 0] },
-      transform: { scale: [1, 1] },
-      maxIterations: 1,
-      preview: true,
-    });
-    this.session.cancel();
-    // Clears the selection through select(), which also builds the mesh's
-    // adjacency now rather than in the first select with a falloff.
-    this.session.select({ vertices: [] });
-    return { result: { ms: performance.now() - started }, transfer: [] };
+  prepareStep() {
+    if (!this.#preparingSince) this.reportProgress('factorize', 'Preparing the solver');
+    const share = this.session.prepareStep();
+    this.#preparingSince = share < 1 ? this.#progress.started : null;
+    return { result: { share }, transfer: [] };
   }
 
   async simplify({ triangles }) {

@@ -164,7 +164,7 @@ export class SolverClient extends EventEmitter {
     // The WASM location travels with init, the one request that loads it.
     if (kind === Request.init && this.#wasmUrl !== undefined) payload = { ...payload, wasmUrl: this.#wasmUrl };
     return new Promise((resolve, reject) => {
-      this.#pending.set(id, { resolve, reject });
+      this.#pending.set(id, { resolve, reject, background: kind === Request.prepareStep });
       this.#worker.postMessage({ id, kind, ...payload }, transfer);
     });
   }
@@ -190,9 +190,15 @@ export class SolverClient extends EventEmitter {
     this.#pending.clear();
   }
 
-  /** True while a request is waiting for the worker. */
+  /**
+   * True while a request is waiting for the worker. A part of the background
+   * preparation (Request.prepareStep) does not count: it is short, and a
+   * worker handed to another modeller finishes it before that one's init,
+   * which frees its session.
+   */
   get busy() {
-    return this.#pending.size > 0 || this.#held.length > 0;
+    for (const { background } of this.#pending.values()) if (!background) return true;
+    return this.#held.length > 0;
   }
 
   get disposed() {

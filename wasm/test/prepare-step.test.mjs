@@ -1,0 +1,91 @@
+// The background preparation through the module (Session.prepareStep), as
+// the solver worker runs it after a load or a commit: a part per call, so a
+// select asked for meanwhile runs between two parts. The edit after it
+// factorizes nothing more and gives the same positions, bit for bit, as an
+// edit on a session that was never prepared.
+import assert from 'node:assert/strict';
+import { before, test } from 'node:test';
+
+import { loadAnisoform, sessionWith } from '../node-support.mjs';
+
+let wasm;
+before(async () => {
+  ({ wasm } = await loadAnisoform());
+});
+
+const FILE = 'closed/cat-low-resolution.obj';
+const LEGS = (lowY, height) => ({ box: { min: [-1e9, -1e9, -1e9], max: [1e9, lowY + 0.3 * height, 1e9] } });
+const STRETCH = { method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: 1.4 }, maxIterations: 6 };
+
+function verticalRange(session) {
+  const ys = session.positions().filter((_, i) => i % 3 === 1);
+  const low = Math.min(...ys);
+  return { low, height: Math.max(...ys) - low };
+}
+
+function legStretch(session) {
+  const { low, height } = verticalRange(session);
+  session.select(LEGS(low, height));
+  const result = session.deform(STRETCH);
+  return { result, positions: session.positionsExact().slice() };
+}
+
+test('prepareStep: parts rising to 1 with a select between them; the edit after is the cold one, bit for bit', () => {
+  const cold = sessionWith(wasm, FILE);
+  const prepared = sessionWith(wasm, FILE);
+  try {
+    const expected = legStretch(cold);
+    assert.equal(cold.factorizations(), 1);
+
+    const reported = [];
+    prepared.setProgress((stage, share) => reported.push([stage, share]));
+    const shares = [prepared.prepareStep(), prepared.prepareStep()];
+    // A select between two parts answers at once and is kept.
+    const { low, height } = verticalRange(prepared);
+    const count = prepared.select(LEGS(low, height));
+    assert.ok(count > 100, `${count} selected`);
+    const selection = prepared.selection().slice();
+    while (shares.at(-1) < 1 && shares.length < 10) shares.push(prepared.prepareStep());
+    assert.equal(shares.length, 5, `shares ${shares}`);
+    for (let k = 1; k < shares.length; k++) assert.ok(shares[k] > shares[k - 1], `shares ${shares}`);
+    assert.equal(shares.at(-1), 1);
+    assert.ok(reported.every(([stage]) => stage === 'factorize'), JSON.stringify(reported));
+    assert.equal(prepared.factorizations(), 1);
+    assert.deepEqual(prepared.selection(), selection);
+    assert.equal(prepared.prepareStep(), 1, 'nothing left');
+
+    const result = prepared.deform(STRETCH);
+    assert.equal(result.factorizations, 1, 'the edit factorizes nothing more');
+    assert.equal(result.iterations, expected.result.iterations);
+    assert.deepEqual(prepared.positionsExact(), expected.positions);
+  } finally {
+    cold.delete();
+    prepared.delete();
+  }
+});
+
+test('prepareStep after a commit prepares the new rest pose; an edit between the parts finishes them', () => {
+  const session = sessionWith(wasm, FILE);
+  try {
+    legStretch(session);
+    session.commit();
+    const before = session.factorizations();
+    for (let part = 0; part < 3; part++) assert.ok(session.prepareStep() < 1);
+    assert.equal(session.factorizations(), before, 'ordered and analysed, not yet factorized');
+    const result = session.deform(STRETCH);
+    assert.equal(result.factorizations, before + 1);
+    assert.equal(session.prepareStep(), 1, 'the edit built the rest');
+    assert.equal(session.factorizations(), before + 1);
+  } finally {
+    session.delete();
+  }
+});
+
+test('prepareStep before a mesh is loaded says so', () => {
+  const session = new wasm.Session();
+  try {
+    assert.throws(() => session.prepareStep(), { code: 'bad-parameter', message: /no mesh is loaded/ });
+  } finally {
+    session.delete();
+  }
+});
