@@ -123,7 +123,10 @@ export class OpStack {
 
   // Undo, redo and reset run while nothing else does (editor.undo() refuses
   // while busy): a cached state is shown at once, as the history promises;
-  // otherwise it is replayed.
+  // otherwise it is replayed. Either way the shape is the worker's new rest
+  // pose, prepared in the background as after a commit (free when the
+  // worker kept its factorization: the pose just left, below half the
+  // vertex limit).
   #step(change, context) {
     if (!change()) return;
     this.#live.leave();
@@ -134,11 +137,13 @@ export class OpStack {
         .catch((error) => this.#editor.report(error, 'The solver could not restore the positions'));
       this.#runner.show(n, cached);
       this.#persistence.changed();
+      this.#editor.prepareSolverSoon();
       return;
     }
     this.#run(async () => {
       await this.#runner.restore(n);
       this.#persistence.changed();
+      this.#editor.prepareSolverSoon();
     }).catch((error) => this.#editor.report(error, context));
   }
 

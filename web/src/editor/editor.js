@@ -49,6 +49,8 @@ import { badParameter } from '../shared/errors.js';
 
 /** How long the solver must be idle after a commit before it factorizes the new shape. */
 const PREPARE_AFTER_COMMIT_MS = 400;
+/** How often a preparation paused for the user's work (#solverInUse) looks again. */
+const PREPARE_RETRY_MS = 100;
 
 export class Editor extends EventEmitter {
   /** @type {MeshDocument|null} */
@@ -201,39 +203,50 @@ export class Editor extends EventEmitter {
     const document = this.document;
     const attempt = () => {
       if (this.document !== document || this.#client.disposed) return;
-      // Not under a drag or a slider's live state either: its parts would
-      // hold up their previews, which build what they need themselves.
-      const inUse = this.busy || this.#client.busy || this.gestureActive || this.ops.live;
-      if (inUse) this.#prepareTimer = setTimeout(attempt, PREPARE_AFTER_COMMIT_MS);
+      if (this.#solverInUse()) this.#prepareTimer = setTimeout(attempt, PREPARE_AFTER_COMMIT_MS);
       else this.prepareSolver();
     };
     this.#prepareTimer = setTimeout(attempt, PREPARE_AFTER_COMMIT_MS);
   }
 
   /**
+   * Whether the user's work has the solver now: a commit, replay or
+   * flattening (busy), a request waiting for the worker, a drag, a slider's
+   * live state. The background preparation waits meanwhile: its parts would
+   * come between the requests of one commit (each part up to 0.8 s at 200k
+   * vertices) and hold up a drag's previews, which build what they need
+   * themselves.
+   */
+  #solverInUse() {
+    return this.busy || this.#client.busy || this.gestureActive || this.ops.live;
+  }
+
+  /**
    * Factorizes the worker's rest pose in the background (a new mesh, a
    * committed edit), a part at a time: the page stays usable, a select or an
    * edit asked for meanwhile runs after the part in progress (the worker
-   * cannot interrupt one), and an edit then finishes the set-up itself
+   * cannot interrupt one), the next part waits while the user's work has
+   * the solver (#solverInUse), and an edit finishes the set-up itself
    * instead of paying for all of it mid-drag. A newer preparation (the
    * next commit's) ends this one.
    */
   prepareSolver() {
     const document = this.document;
     const preparation = ++this.#preparation;
-    const current = () => this.document === document && this.#preparation === preparation;
-    const step = () =>
-      this.#client.request(Request.prepareStep).then(({ share }) => {
-        if (!current()) return;
+    const current = () => this.document === document && this.#preparation === preparation && !this.#client.disposed;
+    const step = () => {
+      if (!current()) return undefined;
+      if (this.#solverInUse()) return new Promise((resolve) => setTimeout(resolve, PREPARE_RETRY_MS)).then(step);
+      return this.#client.request(Request.prepareStep).then(({ share }) => {
         if (share < 1) return step();
-        this.emit('progress', { stage: 'done', message: 'Ready' });
+        if (current()) this.emit('progress', { stage: 'done', message: 'Ready' });
+        return undefined;
       });
-    this.#prepared = step().catch((error) => {
-      // 'cancelled': a cancel restarted the worker, and prepares again once it is back.
-      // A disposed modeller has no one to tell.
-      if (current() && error.code !== 'cancelled' && !this.#client.disposed) {
-        this.report(error, 'The solver could not prepare this mesh');
-      }
+    };
+    this.#prepared = Promise.resolve().then(step).catch((error) => {
+      // 'cancelled': a cancel restarted the worker, and prepares again once it
+      // is back. (A disposed modeller is not current: no one to tell.)
+      if (current() && error.code !== 'cancelled') this.report(error, 'The solver could not prepare this mesh');
     });
   }
 

@@ -61,10 +61,13 @@ export function createModeller(container, options = {}) {
   const settings = new Settings();
   const viewer = new Viewer(layout.viewport, lifetime);
   // The light drawing of a moving mesh on a CPU rasteriser is made in the
-  // worker, once it has prepared the mesh: a select right after a load waited
-  // for the simplification too (1.4 s for the 200k koala against 0.5 s).
-  const simplify = (triangles) => editor.whenPrepared().then(() => client.request(Request.simplify, { triangles }));
-  const meshView = new MeshView(viewer, { simplify });
+  // worker, once it has prepared the mesh or the mesh first moves: a select
+  // right after a load waited for the simplification too (the 200k koala:
+  // 1.4 s against 0.5 s).
+  const meshView = new MeshView(viewer, {
+    simplify: (triangles) => client.request(Request.simplify, { triangles }),
+    startAfter: () => editor.whenPrepared(),
+  });
   lifetime.defer(() => meshView.proxy.dispose());
   new AxisGizmo(viewer, lifetime);
   const picker = new Picker(viewer, meshView);

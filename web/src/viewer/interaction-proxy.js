@@ -41,17 +41,23 @@ export class InteractionProxy {
   #moving = false;
   #settleTimer = 0;
   #generation = 0;
+  #startAfter;
+  #startNow = null; // starts the waiting simplification at once
 
   /**
    * simplify(triangles): a promise of the loaded mesh simplified to about
    * that many triangles, {vertices, triangles} (display-proxy.js; null: no
    * proxy). beforeFull(): called before the full mesh is drawn again (its
    * normals may be stale: frames drawn by the proxy skip them).
+   * startAfter(): a promise of when to ask for the simplification (the
+   * solver's preparation of the new mesh: a select right after a load would
+   * otherwise wait for it in the worker), unless the mesh moves first.
    */
-  constructor(viewer, material, { simplify = null, beforeFull = () => {}, enabled = rendersInSoftware() } = {}) {
+  constructor(viewer, material, { simplify = null, beforeFull = () => {}, enabled = rendersInSoftware(), startAfter = () => Promise.resolve() } = {}) {
     this.#viewer = viewer;
     this.#material = material;
     this.#simplify = simplify;
+    this.#startAfter = startAfter;
     this.#beforeFull = beforeFull;
     this.enabled = enabled && simplify !== null;
     this.#syncDataset();
@@ -67,8 +73,13 @@ export class InteractionProxy {
     this.#full = { mesh, wireframe };
     if (!this.enabled || geometry.index.count / 3 < MIN_TRIANGLES_FOR_PROXY) return Promise.resolve();
     const generation = ++this.#generation;
-    return this.#simplify(PROXY_TRIANGLES).then(({ vertices, triangles }) => {
+    const started = new Promise((resolve) => {
+      this.#startNow = resolve;
+      this.#startAfter().then(resolve, resolve);
+    });
+    return started.then(() => (generation === this.#generation ? this.#simplify(PROXY_TRIANGLES) : null)).then((simplified) => {
       if (generation !== this.#generation) return; // another mesh came since
+      const { vertices, triangles } = simplified;
       const proxyGeometry = new BufferGeometry();
       for (const [name, size] of GATHERED) {
         proxyGeometry.setAttribute(name, new BufferAttribute(new Float32Array(vertices.length * size), size).setUsage(DynamicDrawUsage));
@@ -92,6 +103,7 @@ export class InteractionProxy {
   /** Something moved (a live preview's shape, the camera): the light drawing until it settles. */
   moved() {
     if (!this.#full || !this.enabled) return;
+    this.#startNow?.();
     this.#moving = true;
     clearTimeout(this.#settleTimer);
     this.#settleTimer = setTimeout(() => this.settle(), SETTLE_MS);

@@ -24,8 +24,8 @@ export class MeshView {
   #upload;
   #resolveShown = null;
 
-  /** simplify: InteractionProxy's (the solver worker's simplification of the loaded mesh). */
-  constructor(viewer, { simplify = null } = {}) {
+  /** simplify, startAfter: InteractionProxy's (the solver worker's simplification of the loaded mesh, and when). */
+  constructor(viewer, { simplify = null, startAfter } = {}) {
     this.viewer = viewer;
     this.material = createSurfaceMaterial();
     this.material.flatShading = false;
@@ -37,7 +37,7 @@ export class MeshView {
     this.wireframeMaterial.visible = false;
     this.wireframe = null;
     this.#upload = new StagedUpload(viewer, this.material);
-    this.proxy = new InteractionProxy(viewer, this.material, { simplify, beforeFull: () => this.#refreshNormals() });
+    this.proxy = new InteractionProxy(viewer, this.material, { simplify, startAfter, beforeFull: () => this.#refreshNormals() });
     // An orbit on a CPU rasteriser draws the light mesh too (interaction-proxy.js).
     let orbiting = false;
     viewer.controls.addEventListener('start', () => {
