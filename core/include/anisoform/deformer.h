@@ -24,7 +24,8 @@
 
 namespace aniso {
 
-class LaplacianSolver;  // geometry/laplacian_solver.h (internal)
+class LaplacianSolver;           // geometry/laplacian_solver.h (internal)
+struct LaplacianPatterns;        // the same
 
 class Deformer {
  public:
@@ -34,7 +35,9 @@ class Deformer {
   // and building them (a fifth of a second at 200k vertices in WASM) held
   // up the commit's result; now the next edit, or the app's background
   // preparation after the commit, builds them.
-  explicit Deformer(Mesh rest);
+  // `patterns`: the orderings of this mesh's Laplacian kept from its other
+  // poses (a Session's), reused by this one's factorizations and added to.
+  explicit Deformer(Mesh rest, std::shared_ptr<LaplacianPatterns> patterns = nullptr);
   ~Deformer();
 
   DeformResult deform(const DeformRequest& request);
@@ -72,6 +75,8 @@ class Deformer {
   const LaplacianSolver& solver_for(std::vector<int> pins, double* precompute_ms, double from = 0.0,
                                     double to = 1.0);
   std::vector<int> unpinned_gauge_pins() const;  // the pins of an edit with no user pins
+  // A LaplacianSolver for `pins`, ordered and analysed (reusing patterns_), not yet factorized.
+  std::unique_ptr<LaplacianSolver> planned_solver(const std::vector<int>& pins);
   DeformResult deform_unit(const DeformRequest& request);  // on unit_, in its units
 
   Mesh rest_;
@@ -95,6 +100,7 @@ class Deformer {
   // finished: solver_for() finishes it if its pins are asked for first.
   std::vector<int> planned_pins_;
   std::unique_ptr<LaplacianSolver> planned_;
+  std::shared_ptr<LaplacianPatterns> patterns_;
   int factorizations_ = 0;
   std::unique_ptr<Workspace> workspace_;
   ProgressFn progress_;

@@ -210,7 +210,7 @@ class Session {
   void require_mesh() const;
   const VertexAdjacency& adjacency();
   void report(ProgressStage stage, double fraction) const;
-  std::shared_ptr<Deformer> new_deformer(Mesh mesh);
+  std::shared_ptr<Deformer> new_deformer(Mesh mesh, std::shared_ptr<LaplacianPatterns> patterns);
   // Runs `operation`; should it run out of memory (std::bad_alloc), frees
   // what is kept only for speed (release_kept_memory) and runs it once more.
   // The operations it wraps change nothing until their work is done, so a
@@ -218,8 +218,9 @@ class Session {
   void retrying_out_of_memory(const std::function<void()>& operation);
   // Frees the factorizations kept for speed: the previous rest pose's (for
   // undo), the rest pose's own (the next edit makes them again) and, in a
-  // fork, its origin's. The edit state (mesh, positions, selection, the last
-  // pattern) is untouched. Returns whether anything was freed.
+  // fork, its origin's; and the kept orderings. The edit state (mesh,
+  // positions, selection, the last pattern) is untouched. Returns whether
+  // anything was freed.
   bool release_kept_memory() noexcept;
   DeformOpResult deform_once(const DeformOp& edit);
   SessionFlattenResult flatten_once(const SessionFlatten& request);
@@ -240,6 +241,9 @@ class Session {
   void set_weights(Eigen::VectorXd weights);
 
   std::shared_ptr<Deformer> deformer_;  // owns the rest pose (shared with forks)
+  // The orderings of the mesh's Laplacian, shared by the Deformers of all its
+  // poses (and with forks): a pose's factorization reuses them.
+  std::shared_ptr<LaplacianPatterns> patterns_;
   // The Deformer of the rest pose before the last change, with its
   // factorizations: going back to exactly that pose (undo, re-parameterising
   // the last op of an edit document) swaps it in instead of refactoring.

@@ -19,6 +19,7 @@
 #include "deform/element_targets.h"
 #include "anisoform/error.h"
 #include "deform/gauge.h"
+#include "geometry/laplacian_solver.h"
 #include "geometry/supernodal_ldlt.h"
 #include "anisoform/mesh_check.h"
 #include "mesh/topology.h"
@@ -234,7 +235,8 @@ double unit_scale(double diagonal) {
 
 }  // namespace
 
-Deformer::Deformer(Mesh rest) : rest_(std::move(rest)) {
+Deformer::Deformer(Mesh rest, std::shared_ptr<LaplacianPatterns> patterns)
+    : rest_(std::move(rest)), patterns_(std::move(patterns)) {
   require_solvable(rest_);  // also bounds the coordinates (limits.h), so the diagonal is finite
   diagonal_ = bounding_box(rest_.V).diagonal();
   scale_ = unit_scale(diagonal_);
@@ -297,12 +299,23 @@ const LaplacianSolver& Deformer::solver_for(std::vector<int> pins, double* preco
     solver = std::move(planned_);
   } else {
     factorized(0.0);
-    solver = std::make_unique<LaplacianSolver>(laplacian_, pins, factorized);
+    solver = planned_solver(pins);
+    factorized(kAnalysedShare);
+    solver->factorize(factorized);
   }
   factorized(1.0);
   ++factorizations_;
   *precompute_ms += ms_since(start);
   return *solvers_.emplace(std::move(pins), std::move(solver)).first->second;
+}
+
+std::unique_ptr<LaplacianSolver> Deformer::planned_solver(const std::vector<int>& pins) {
+  std::shared_ptr<SupernodalPlan>* kept = nullptr;
+  if (patterns_) kept = &patterns_->by_pins[pins];
+  auto solver = std::make_unique<LaplacianSolver>(laplacian_, pins, LaplacianSolver::Deferred{},
+                                                  kept && *kept ? kept->get() : nullptr);
+  if (kept && solver->plan()) *kept = solver->plan();
+  return solver;
 }
 
 std::vector<int> Deformer::unpinned_gauge_pins() const {
@@ -334,7 +347,7 @@ double Deformer::prepare_step() {
   if (solvers_.find(pins) == solvers_.end()) {
     if (!planned_ || planned_pins_ != pins) {
       planned_.reset();  // before the next one is built, not beside it
-      planned_ = std::make_unique<LaplacianSolver>(laplacian_, pins, LaplacianSolver::Deferred{});
+      planned_ = planned_solver(pins);
       planned_pins_ = std::move(pins);
       return report(kPlanned);
     }

@@ -33,7 +33,7 @@ struct LaplacianSolver::Impl {
   Eigen::VectorXd inv_d;
   // Until factorize(): the ordered and analysed free block, the free-pinned
   // block and the pivot floor.
-  std::unique_ptr<SupernodalPlan> plan;
+  std::shared_ptr<SupernodalPlan> plan;  // values freed once factorized
   Eigen::SparseMatrix<double, Eigen::RowMajor> L_fc;
   double pivot_floor = 0.0;
   bool factorized = false;
@@ -80,7 +80,8 @@ LaplacianSolver::LaplacianSolver(const Eigen::SparseMatrix<double>& L, std::vect
   factorize(progress);
 }
 
-LaplacianSolver::LaplacianSolver(const Eigen::SparseMatrix<double>& L, std::vector<int> pinned, Deferred)
+LaplacianSolver::LaplacianSolver(const Eigen::SparseMatrix<double>& L, std::vector<int> pinned, Deferred,
+                                 const SupernodalPlan* earlier)
     : impl_(std::make_unique<Impl>()), pinned_(std::move(pinned)), n_(static_cast<int>(L.rows())) {
   std::sort(pinned_.begin(), pinned_.end());
   pinned_.erase(std::unique(pinned_.begin(), pinned_.end()), pinned_.end());
@@ -101,10 +102,10 @@ LaplacianSolver::LaplacianSolver(const Eigen::SparseMatrix<double>& L, std::vect
     }
   }
   require_pin_per_component(L, im.pinned_index);
-  plan(L);
+  plan(L, earlier);
 }
 
-void LaplacianSolver::plan(const Eigen::SparseMatrix<double>& L) {
+void LaplacianSolver::plan(const Eigen::SparseMatrix<double>& L, const SupernodalPlan* earlier) {
   Impl& im = *impl_;
   const int nf = static_cast<int>(im.free_vertices.size());
   const int nc = static_cast<int>(pinned_.size());
@@ -129,10 +130,12 @@ void LaplacianSolver::plan(const Eigen::SparseMatrix<double>& L) {
   im.L_fc.setFromTriplets(fc.begin(), fc.end());
   if (nf == 0) return;
   im.pivot_floor = 1e-13 * Lff.diagonal().cwiseAbs().maxCoeff();
-  im.plan = std::make_unique<SupernodalPlan>(Lff);
+  im.plan = earlier ? std::make_shared<SupernodalPlan>(*earlier, Lff) : std::make_shared<SupernodalPlan>(Lff);
 }
 
 bool LaplacianSolver::factorized() const { return impl_->factorized; }
+
+const std::shared_ptr<SupernodalPlan>& LaplacianSolver::plan() const { return impl_->plan; }
 
 void LaplacianSolver::factorize(const std::function<void(double)>& progress) {
   Impl& im = *impl_;
@@ -169,7 +172,7 @@ void LaplacianSolver::factorize(const std::function<void(double)>& progress) {
   }
   im.inv_d = ldlt.d.cwiseInverse();
   im.factor = std::move(ldlt.L);
-  im.plan.reset();
+  im.plan->release_values();
   im.L_fc = {};
   im.factorized = true;
 }

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -13,6 +14,17 @@
 #include "anisoform/mesh.h"
 
 namespace aniso {
+
+class SupernodalPlan;  // geometry/supernodal_ldlt.h
+
+// The orderings and analyses of one mesh's Laplacian, by pin set, kept for
+// its later poses: a new pose's Laplacian has the same pattern, so its
+// factorization reuses them (SupernodalPlan) and skips a third of the work,
+// with the same factor bit for bit. A Session shares one among the Deformers
+// of its mesh's poses.
+struct LaplacianPatterns {
+  std::map<std::vector<int>, std::shared_ptr<SupernodalPlan>> by_pins;
+};
 
 class LaplacianSolver {
  public:
@@ -27,10 +39,15 @@ class LaplacianSolver {
   // them (Deformer::prepare_step): this constructor checks the pins and
   // orders and analyses L's free block (FactorProgress's kAnalysedShare of
   // the work); factorize() does the rest. Solve only once it has.
+  // `earlier`: a plan of the same L's pattern to reuse (LaplacianPatterns), or null.
   struct Deferred {};
-  LaplacianSolver(const Eigen::SparseMatrix<double>& L, std::vector<int> pinned, Deferred);
+  LaplacianSolver(const Eigen::SparseMatrix<double>& L, std::vector<int> pinned, Deferred,
+                  const SupernodalPlan* earlier = nullptr);
   void factorize(const std::function<void(double)>& progress = {});
   bool factorized() const;
+  // The ordering and analysis of the free block (its values are freed once
+  // factorized), for a LaplacianPatterns.
+  const std::shared_ptr<SupernodalPlan>& plan() const;
   ~LaplacianSolver();
   LaplacianSolver(const LaplacianSolver&) = delete;
   LaplacianSolver& operator=(const LaplacianSolver&) = delete;
@@ -49,7 +66,7 @@ class LaplacianSolver {
   struct Impl;
 
  private:
-  void plan(const Eigen::SparseMatrix<double>& L);
+  void plan(const Eigen::SparseMatrix<double>& L, const SupernodalPlan* earlier);
 
   std::unique_ptr<Impl> impl_;
   std::vector<int> pinned_;

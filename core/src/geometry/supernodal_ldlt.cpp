@@ -378,15 +378,53 @@ void SupernodalAnalysis::factor(const Eigen::SparseMatrix<double>& A, double piv
   factor_lower(sym.s, sym.P, sym.C, pivot_floor, sym.panels, result);
 }
 
-struct SupernodalPlan::Parts {
+struct SupernodalPlan::Pattern {
   Permutation P;
   SupernodalStructure s;
-  Eigen::SparseMatrix<double> C;  // P A P^T's lower triangle by columns
+  // A's compressed pattern, to tell whether a matrix has it.
+  Eigen::Index rows = 0;
+  std::vector<int> outer, inner;
+  // C's pattern, each value the number of the entry of A it comes from
+  // (exact: doubles hold integers to 2^53); made at the first reuse.
+  Eigen::SparseMatrix<double> numbered;
+
+  bool fits(const Eigen::SparseMatrix<double>& A) const {
+    return !outer.empty() && A.isCompressed() && A.rows() == rows && A.cols() == rows &&
+           static_cast<std::size_t>(A.nonZeros()) == inner.size() &&
+           std::equal(outer.begin(), outer.end(), A.outerIndexPtr()) &&
+           std::equal(inner.begin(), inner.end(), A.innerIndexPtr());
+  }
 };
 
-SupernodalPlan::SupernodalPlan(const Eigen::SparseMatrix<double>& A) : parts_(std::make_unique<Parts>()) {
-  parts_->s = order_and_analyse(A, parts_->P);
-  parts_->C = permuted_upper(A, parts_->P).adjoint();
+SupernodalPlan::SupernodalPlan(const Eigen::SparseMatrix<double>& A) { plan_afresh(A); }
+
+SupernodalPlan::SupernodalPlan(const SupernodalPlan& earlier, const Eigen::SparseMatrix<double>& A) {
+  Pattern& pattern = *earlier.pattern_;
+  if (!pattern.fits(A)) {
+    plan_afresh(A);
+    return;
+  }
+  if (pattern.numbered.nonZeros() == 0) {
+    Eigen::SparseMatrix<double> numbered = A;
+    for (Eigen::Index k = 0; k < numbered.nonZeros(); ++k) numbered.valuePtr()[k] = static_cast<double>(k);
+    pattern.numbered = permuted_upper(numbered, pattern.P).adjoint();
+  }
+  C_ = pattern.numbered;
+  const double* values = A.valuePtr();
+  double* gathered = C_.valuePtr();
+  for (Eigen::Index k = 0; k < C_.nonZeros(); ++k) gathered[k] = values[static_cast<Eigen::Index>(gathered[k])];
+  pattern_ = earlier.pattern_;
+  reused_ = true;
+}
+
+void SupernodalPlan::plan_afresh(const Eigen::SparseMatrix<double>& A) {
+  pattern_ = std::make_shared<Pattern>();
+  pattern_->s = order_and_analyse(A, pattern_->P);
+  C_ = permuted_upper(A, pattern_->P).adjoint();
+  if (!A.isCompressed()) return;  // never fits: no reuse
+  pattern_->rows = A.rows();
+  pattern_->outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.cols() + 1);
+  pattern_->inner.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
 }
 
 SupernodalPlan::~SupernodalPlan() = default;
@@ -394,9 +432,11 @@ SupernodalPlan::~SupernodalPlan() = default;
 SupernodalLdlt SupernodalPlan::factor(double pivot_floor, const FactorProgress& progress) const {
   std::vector<double> panels;
   SupernodalLdlt result;
-  factor_lower(parts_->s, parts_->P, parts_->C, pivot_floor, panels, result, progress);
+  factor_lower(pattern_->s, pattern_->P, C_, pivot_floor, panels, result, progress);
   return result;
 }
+
+void SupernodalPlan::release_values() { C_ = Eigen::SparseMatrix<double>(); }
 
 SupernodalLdlt supernodal_ldlt(const Eigen::SparseMatrix<double>& A, double pivot_floor,
                                const FactorProgress& progress) {

@@ -78,20 +78,34 @@ SupernodalLdlt supernodal_ldlt(const Eigen::SparseMatrix<double>& A, double pivo
 // The same in two calls, for a caller that answers other work between them
 // (the app's background preparation, Deformer::prepare_step): the
 // constructor orders (AMD) and analyses A and keeps it permuted, the share
-// kAnalysedShare of the work; factor() does the rest, once.
+// kAnalysedShare of the work; factor() does the rest.
 class SupernodalPlan {
  public:
   explicit SupernodalPlan(const Eigen::SparseMatrix<double>& A);  // A's lower triangle, as supernodal_ldlt
+  // A plan of A reusing the ordering and analysis of `earlier`'s matrix when
+  // A has its pattern (the same mesh's Laplacian at another pose): only A's
+  // values are gathered into the permuted order, and the factor is the same,
+  // bit for bit, as a plan of its own would give (the same AMD ordering of
+  // the same pattern). A matrix of another pattern is planned afresh.
+  SupernodalPlan(const SupernodalPlan& earlier, const Eigen::SparseMatrix<double>& A);
   ~SupernodalPlan();
   SupernodalPlan(const SupernodalPlan&) = delete;
   SupernodalPlan& operator=(const SupernodalPlan&) = delete;
 
   // Reports kAnalysedShare's successors to `progress`, as supernodal_ldlt.
   SupernodalLdlt factor(double pivot_floor, const FactorProgress& progress = {}) const;
+  // Frees the matrix's values once it is factored; the ordering and the
+  // analysis stay, for later plans of the same pattern.
+  void release_values();
+  // Whether this plan reused an earlier one's ordering and analysis.
+  bool reused() const { return reused_; }
 
  private:
-  struct Parts;
-  std::unique_ptr<Parts> parts_;
+  struct Pattern;
+  void plan_afresh(const Eigen::SparseMatrix<double>& A);
+  std::shared_ptr<Pattern> pattern_;  // shared with the plans that reuse it
+  Eigen::SparseMatrix<double> C_;     // P A P^T's lower triangle by columns
+  bool reused_ = false;
 };
 
 // Solves A X = B in place (X: B in, the solution out) for a Hermitian A (its

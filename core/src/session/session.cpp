@@ -12,6 +12,7 @@
 #include "anisoform/error.h"
 #include "anisoform/op.h"
 #include "geometry/frames.h"
+#include "geometry/laplacian_solver.h"
 #include "mesh/topology.h"
 #include "session/session_flatten_state.h"
 
@@ -172,7 +173,8 @@ const SessionMeshInfo& Session::adopt_mesh(Mesh mesh, std::vector<std::string> n
   // The mesh is accepted: the old one's factorizations go now rather than at
   // the end, so that they and the new mesh's need not fit side by side.
   release_kept_memory();
-  std::shared_ptr<Deformer> deformer = new_deformer(std::move(mesh));
+  auto patterns = std::make_shared<LaplacianPatterns>();
+  std::shared_ptr<Deformer> deformer = new_deformer(std::move(mesh), patterns);
   // Everything the new mesh needs is allocated before the session changes, so
   // that running out of memory (std::bad_alloc) leaves it as it was, too.
   Positions loaded = deformer->rest().V;
@@ -192,6 +194,7 @@ const SessionMeshInfo& Session::adopt_mesh(Mesh mesh, std::vector<std::string> n
   if (previous_) retired_factorizations_ += previous_->factorizations();
   previous_.reset();
   deformer_ = std::move(deformer);
+  patterns_ = std::move(patterns);
   info_ = std::move(info);
   loaded_ = std::move(loaded);
   triangles_u32_ = std::move(triangles_u32);
@@ -208,8 +211,8 @@ void Session::report(ProgressStage stage, double fraction) const {
   if (progress_) progress_(stage, fraction);
 }
 
-std::shared_ptr<Deformer> Session::new_deformer(Mesh mesh) {
-  auto deformer = std::make_shared<Deformer>(std::move(mesh));
+std::shared_ptr<Deformer> Session::new_deformer(Mesh mesh, std::shared_ptr<LaplacianPatterns> patterns) {
+  auto deformer = std::make_shared<Deformer>(std::move(mesh), std::move(patterns));
   report_through_this(*deformer);
   return deformer;
 }
@@ -242,7 +245,7 @@ void Session::replace_rest(Positions V) {
   const bool back_to_previous = previous_ && previous_->rest().V.rows() == V.rows() &&
                                 std::memcmp(previous_->rest().V.data(), V.data(), sizeof(double) * static_cast<std::size_t>(V.size())) == 0;
   // Built before V is moved into install_rest (argument order is unspecified).
-  std::shared_ptr<Deformer> deformer = back_to_previous ? previous_ : new_deformer(Mesh{V, deformer_->rest().F});
+  std::shared_ptr<Deformer> deformer = back_to_previous ? previous_ : new_deformer(Mesh{V, deformer_->rest().F}, patterns_);
   install_rest(std::move(deformer), std::move(V));
 }
 
@@ -269,6 +272,7 @@ std::unique_ptr<Session> Session::fork() {
   require_mesh();
   auto fork = std::make_unique<Session>();
   fork->deformer_ = deformer_;
+  fork->patterns_ = patterns_;
   fork->previous_ = previous_;
   fork->origin_deformers_ = origin_deformers_;
   fork->origin_deformers_.push_back(deformer_);
@@ -360,6 +364,10 @@ bool Session::release_kept_memory() noexcept {
   }
   if (targets_) {
     targets_.reset();
+    released = true;
+  }
+  if (patterns_ && !patterns_->by_pins.empty()) {
+    patterns_->by_pins.clear();
     released = true;
   }
   return released;
