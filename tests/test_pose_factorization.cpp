@@ -146,9 +146,11 @@ TEST_CASE("factor reuse: a second pose's Laplacian solves bit for bit as planned
   const std::vector<int> pins = {0, 17};
 
   LaplacianSolver first(L1, pins, LaplacianSolver::Deferred{});
+  const std::shared_ptr<SupernodalPlan> kept = first.plan();  // as a LaplacianPatterns keeps it
   first.factorize();
+  CHECK(first.plan() == nullptr);
   LaplacianSolver fresh(L2, pins, LaplacianSolver::Deferred{});
-  LaplacianSolver reusing(L2, pins, LaplacianSolver::Deferred{}, first.plan().get());
+  LaplacianSolver reusing(L2, pins, LaplacianSolver::Deferred{}, kept.get());
   CHECK_FALSE(fresh.plan()->reused());
   CHECK(reusing.plan()->reused());
   fresh.factorize();

@@ -33,7 +33,7 @@ struct LaplacianSolver::Impl {
   Eigen::VectorXd inv_d;
   // Until factorize(): the ordered and analysed free block, the free-pinned
   // block and the pivot floor.
-  std::shared_ptr<SupernodalPlan> plan;  // values freed once factorized
+  std::shared_ptr<SupernodalPlan> plan;
   Eigen::SparseMatrix<double, Eigen::RowMajor> L_fc;
   double pivot_floor = 0.0;
   bool factorized = false;
@@ -133,8 +133,6 @@ void LaplacianSolver::plan(const Eigen::SparseMatrix<double>& L, const Supernoda
   im.plan = earlier ? std::make_shared<SupernodalPlan>(*earlier, Lff) : std::make_shared<SupernodalPlan>(Lff);
 }
 
-bool LaplacianSolver::factorized() const { return impl_->factorized; }
-
 const std::shared_ptr<SupernodalPlan>& LaplacianSolver::plan() const { return impl_->plan; }
 
 void LaplacianSolver::factorize(const std::function<void(double)>& progress) {
@@ -172,7 +170,9 @@ void LaplacianSolver::factorize(const std::function<void(double)>& progress) {
   }
   im.inv_d = ldlt.d.cwiseInverse();
   im.factor = std::move(ldlt.L);
+  // The plan goes (a LaplacianPatterns may keep its ordering, without the values).
   im.plan->release_values();
+  im.plan.reset();
   im.L_fc = {};
   im.factorized = true;
 }

@@ -44,9 +44,8 @@ class LaplacianSolver {
   LaplacianSolver(const Eigen::SparseMatrix<double>& L, std::vector<int> pinned, Deferred,
                   const SupernodalPlan* earlier = nullptr);
   void factorize(const std::function<void(double)>& progress = {});
-  bool factorized() const;
-  // The ordering and analysis of the free block (its values are freed once
-  // factorized), for a LaplacianPatterns.
+  // Until factorize(): the ordering and analysis of the free block, for a
+  // LaplacianPatterns to keep (factorize() frees its values; null after).
   const std::shared_ptr<SupernodalPlan>& plan() const;
   ~LaplacianSolver();
   LaplacianSolver(const LaplacianSolver&) = delete;

@@ -193,8 +193,8 @@ export class Editor extends EventEmitter {
   }
 
   /**
-   * After a committed edit: prepareSolver once the solver has been idle for
-   * PREPARE_AFTER_COMMIT_MS. Not at once: a slider on the op just made
+   * After a committed edit, an undo or a redo: prepareSolver once the solver
+   * has been idle for PREPARE_AFTER_COMMIT_MS. Not at once: a slider on the op just made
    * (which needs the op's input, whose factorization is kept) would wait
    * behind each part.
    */

@@ -143,6 +143,8 @@ export class SessionHost {
     return { result, transfer };
   }
 
+  // One part of the background preparation (Request.prepareStep); its first
+  // part announces it, however short.
   prepareStep() {
     if (!this.#preparingSince) this.reportProgress('factorize', 'Preparing the solver');
     const share = this.session.prepareStep();
