@@ -48,7 +48,7 @@ DeformRequest leg_stretch(const Mesh& mesh) {
 
 }  // namespace
 
-TEST_CASE("prepare_step: five parts with rising shares to 1, then the edit factorizes nothing and is unchanged",
+TEST_CASE("prepare_step: eight parts with rising shares to 1, then the edit factorizes nothing and is unchanged",
           "[prepare]") {
   const Mesh cat = test::load("closed/cat-low-resolution.obj");
   const DeformRequest request = leg_stretch(cat);
@@ -64,7 +64,9 @@ TEST_CASE("prepare_step: five parts with rising shares to 1, then the edit facto
   });
   std::vector<double> shares;
   while (shares.size() < 10 && (shares.empty() || shares.back() < 1.0)) shares.push_back(prepared.prepare_step());
-  REQUIRE(shares.size() == 5);
+  // The copy and Laplacian, the workspace, the ordering, four parts of the
+  // numeric factorization, the AnARAP structures.
+  REQUIRE(shares.size() == 8);
   for (std::size_t k = 1; k < shares.size(); ++k) CHECK(shares[k] > shares[k - 1]);
   CHECK(shares.back() == 1.0);
   CHECK(prepared.factorizations() == 1);
@@ -90,8 +92,9 @@ TEST_CASE("prepare_step: an edit between the parts finishes the ordered factoriz
   const Positions expected = Deformer(cat).deform(request).V;
 
   Deformer deformer(cat);
-  // The copy and Laplacian, the workspace, the ordering and analysis.
-  for (int part = 0; part < 3; ++part) CHECK(deformer.prepare_step() < 1.0);
+  // The copy and Laplacian, the workspace, the ordering and analysis, a
+  // quarter of the numeric factorization.
+  for (int part = 0; part < 4; ++part) CHECK(deformer.prepare_step() < 1.0);
   CHECK(deformer.factorizations() == 0);
   CHECK(deformer.deform(request).V == expected);
   CHECK(deformer.factorizations() == 1);
@@ -124,7 +127,7 @@ TEST_CASE("Session::prepare_step changes no edit state; the edit after it factor
 
   int parts = 0;
   while (session.prepare_step() < 1.0) ++parts;
-  CHECK(parts == 4);
+  CHECK(parts == 7);
   CHECK(session.selection() == selection);
   CHECK(session.positions() == positions);
   CHECK(session.factorizations() == 1);
@@ -162,6 +165,24 @@ TEST_CASE("factor reuse: a second pose's Laplacian solves bit for bit as planned
   reusing.solve(b, x_reusing);
   CHECK(x_reusing == x_fresh);
   CHECK((x_fresh - stretched.V).norm() > 0.0);  // the solve did something
+}
+
+TEST_CASE("factorization in parts: any number of parts gives the same factor bit for bit", "[prepare]") {
+  const Mesh cat = test::load("closed/cat-low-resolution.obj");
+  const Eigen::SparseMatrix<double> L = laplacian_of(cat);
+  const std::vector<int> pins = {0};
+  LaplacianSolver whole(L, pins);
+  LaplacianSolver in_parts(L, pins, LaplacianSolver::Deferred{});
+  int parts = 1;
+  while (!in_parts.factorize_until(parts / 10.0)) ++parts;
+  CHECK(parts >= 5);  // a tenth of the work at a time, at least a supernode a part
+  CHECK(in_parts.factorize_until(0.0));  // done: nothing more
+
+  const Positions b = cat.V;
+  Positions x_whole = cat.V, x_parts = cat.V;
+  whole.solve(b, x_whole);
+  in_parts.solve(b, x_parts);
+  CHECK(x_parts == x_whole);
 }
 
 TEST_CASE("factor reuse: a matrix of another pattern is planned afresh", "[factor-reuse]") {

@@ -12,6 +12,7 @@
 // vertex is affected the centroid is kept. With user pins, nothing is moved.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -47,7 +48,7 @@ class Deformer {
   // browser's solver worker) answers other calls between the parts: the
   // unit-size copy with its weights and Laplacian; the workspace; the
   // factorization for no user pins (its ordering and analysis, then its
-  // numeric part); the AnARAP iterations' structures. Each part is what
+  // numeric part in four); the AnARAP iterations' structures. Each part is what
   // deform() would otherwise build itself, so results do not change.
   // Reports ProgressStage::Factorize with the share of the whole set-up
   // done, and returns it: 1 when nothing is left (a call is then free).
@@ -74,6 +75,8 @@ class Deformer {
   // the Factorize stage's [from, to].
   const LaplacianSolver& solver_for(std::vector<int> pins, double* precompute_ms, double from = 0.0,
                                     double to = 1.0);
+  // Reports a factorization's own progress as the Factorize stage's [from, to].
+  std::function<void(double)> factorize_progress(double from, double to) const;
   std::vector<int> unpinned_gauge_pins() const;  // the pins of an edit with no user pins
   // A LaplacianSolver for `pins`, ordered and analysed (reusing patterns_), not yet factorized.
   std::unique_ptr<LaplacianSolver> planned_solver(const std::vector<int>& pins);
@@ -100,6 +103,7 @@ class Deformer {
   // finished: solver_for() finishes it if its pins are asked for first.
   std::vector<int> planned_pins_;
   std::unique_ptr<LaplacianSolver> planned_;
+  int planned_parts_ = 0;  // of its numeric factorization, done by prepare_step()
   std::shared_ptr<LaplacianPatterns> patterns_;
   int factorizations_ = 0;
   std::unique_ptr<Workspace> workspace_;

@@ -289,12 +289,10 @@ const LaplacianSolver& Deformer::solver_for(std::vector<int> pins, double* preco
   auto it = solvers_.find(pins);
   if (it != solvers_.end()) return *it->second;
   const auto start = Clock::now();
-  const std::function<void(double)> factorized = [this, from, to](double fraction) {
-    if (progress_) progress_(ProgressStage::Factorize, from + (to - from) * fraction);
-  };
+  const std::function<void(double)> factorized = factorize_progress(from, to);
   std::unique_ptr<LaplacianSolver> solver;
   if (planned_ && planned_pins_ == pins) {  // prepare_step() has ordered and analysed it
-    factorized(kAnalysedShare);
+    if (planned_parts_ == 0) factorized(kAnalysedShare);  // else its parts have said more
     planned_->factorize(factorized);
     solver = std::move(planned_);
   } else {
@@ -307,6 +305,12 @@ const LaplacianSolver& Deformer::solver_for(std::vector<int> pins, double* preco
   ++factorizations_;
   *precompute_ms += ms_since(start);
   return *solvers_.emplace(std::move(pins), std::move(solver)).first->second;
+}
+
+std::function<void(double)> Deformer::factorize_progress(double from, double to) const {
+  return [this, from, to](double fraction) {
+    if (progress_) progress_(ProgressStage::Factorize, from + (to - from) * fraction);
+  };
 }
 
 std::unique_ptr<LaplacianSolver> Deformer::planned_solver(const std::vector<int>& pins) {
@@ -327,8 +331,10 @@ std::vector<int> Deformer::unpinned_gauge_pins() const {
 
 double Deformer::prepare_step() {
   // The parts' shares of the whole set-up: the 200k-vertex koala's in Node
-  // (WASM), 380-520, 45-75, 320-580, 470-680 and 75-90 ms.
+  // (WASM), 380-520, 45-75, 320-580, 470-680 (the numeric factorization,
+  // done in kNumericParts parts) and 75-90 ms.
   constexpr double kCopyAndLaplacian = 0.3, kWorkspace = 0.35, kFactorized = 0.95;
+  constexpr int kNumericParts = 4;
   // The factorization's own progress runs from kWorkspace to kFactorized.
   constexpr double kPlanned = kWorkspace + (kFactorized - kWorkspace) * kAnalysedShare;
   const auto report = [this](double share) {
@@ -349,9 +355,16 @@ double Deformer::prepare_step() {
       planned_.reset();  // before the next one is built, not beside it
       planned_ = planned_solver(pins);
       planned_pins_ = std::move(pins);
+      planned_parts_ = 0;
       return report(kPlanned);
     }
-    double precompute_ms = 0.0;
+    const double until = static_cast<double>(++planned_parts_) / kNumericParts;
+    if (!planned_->factorize_until(until, factorize_progress(kWorkspace, kFactorized))) {
+      // Not reported: the factorization's own reports (by twentieths of the
+      // work) have said as much, or a little more.
+      return kPlanned + (kFactorized - kPlanned) * until;
+    }
+    double precompute_ms = 0.0;  // solver_for() counts and keeps the finished one
     solver_for(std::move(pins), &precompute_ms, kWorkspace, kFactorized);
     return report(kFactorized);
   }

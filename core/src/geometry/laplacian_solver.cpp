@@ -135,15 +135,18 @@ void LaplacianSolver::plan(const Eigen::SparseMatrix<double>& L, const Supernoda
 
 const std::shared_ptr<SupernodalPlan>& LaplacianSolver::plan() const { return impl_->plan; }
 
-void LaplacianSolver::factorize(const std::function<void(double)>& progress) {
+void LaplacianSolver::factorize(const std::function<void(double)>& progress) { factorize_until(1.0, progress); }
+
+bool LaplacianSolver::factorize_until(double until, const std::function<void(double)>& progress) {
   Impl& im = *impl_;
-  if (im.factorized) return;
+  if (im.factorized) return true;
   const int nf = static_cast<int>(im.free_vertices.size());
   if (nf == 0) {
     im.factorized = true;
-    return;
+    return true;
   }
-  SupernodalLdlt ldlt = im.plan->factor(im.pivot_floor, progress);
+  if (!im.plan->factor_until(im.pivot_floor, until, progress)) return false;
+  SupernodalLdlt ldlt = im.plan->take_factor();
   // The factor is of P L_ff P^T: free index i sits at position ldlt.perm[i].
   std::vector<int> perm(nf);
   for (int i = 0; i < nf; ++i) perm[ldlt.perm[i]] = i;
@@ -175,6 +178,7 @@ void LaplacianSolver::factorize(const std::function<void(double)>& progress) {
   im.plan.reset();
   im.L_fc = {};
   im.factorized = true;
+  return true;
 }
 
 LaplacianSolver::~LaplacianSolver() = default;

@@ -44,6 +44,10 @@ class LaplacianSolver {
   LaplacianSolver(const Eigen::SparseMatrix<double>& L, std::vector<int> pinned, Deferred,
                   const SupernodalPlan* earlier = nullptr);
   void factorize(const std::function<void(double)>& progress = {});
+  // factorize() in parts: up to the share `until` of the numeric work (at
+  // least a supernode); returns whether it is done. The same factor, bit
+  // for bit, in any number of parts.
+  bool factorize_until(double until, const std::function<void(double)>& progress = {});
   // Until factorize(): the ordering and analysis of the free block, for a
   // LaplacianPatterns to keep (factorize() frees its values; null after).
   const std::shared_ptr<SupernodalPlan>& plan() const;

@@ -219,6 +219,18 @@ SupernodalAnalysis::~SupernodalAnalysis() = default;
 
 bool SupernodalAnalysis::nested_dissection() const { return symbolic_->nested_dissection; }
 
+// factor_panels' return when a factorization in parts has more to do.
+constexpr int kUnfinished = -2;
+
+// A factorization in parts: factor_panels' loop between calls (outside the
+// anonymous namespace: SupernodalPlan::Partial holds one).
+struct PanelLoop {
+  // Left-looking: the supernodes K whose rows reach supernode J wait in J's
+  // list; next_row[K] is K's first row position not used yet.
+  std::vector<int> head, next, next_row;
+  int next_supernode = 0;
+  double work_done = 0.0, next_report = 0.05;
+};
 
 namespace {
 
@@ -226,25 +238,42 @@ namespace {
 // C = P A P^T's lower triangle by columns, into panels (each supernode's
 // m-by-w block of L, column-major, its rows as SupernodalStructure::rows) and
 // the real pivots d. Returns the first column whose pivot fails the test
-// (above pivot_floor, or for `any_sign` above it in magnitude), or -1.
+// (above pivot_floor, or for `any_sign` above it in magnitude), or -1; or,
+// given `parts` (a factorization in parts), kUnfinished once the supernodes
+// done reach the share `until` of the work (at least one a call), to go on
+// from there at the next call.
 template <typename Scalar>
 int factor_panels(const SupernodalStructure& s, const Eigen::SparseMatrix<Scalar>& C, double pivot_floor,
-                  bool any_sign, Scalar* panels, Eigen::VectorXd& d, const FactorProgress& progress = {}) {
+                  bool any_sign, Scalar* panels, Eigen::VectorXd& d, const FactorProgress& progress = {},
+                  PanelLoop* parts = nullptr, double until = 1.0) {
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   using PanelOf = Eigen::Map<Matrix, 0, Eigen::OuterStride<>>;
   const int n = static_cast<int>(C.cols());
   const int supernodes = static_cast<int>(s.first_column.size()) - 1;
-  d.setZero(n);
-  // Left-looking: the supernodes K whose rows reach supernode J wait in J's
-  // list; next_row[K] is K's first row position not used yet.
-  std::vector<int> head(supernodes, -1), next(supernodes, -1), next_row(supernodes, 0);
+  PanelLoop whole;
+  PanelLoop& loop = parts ? *parts : whole;
+  if (loop.next_supernode == 0) {
+    d.setZero(n);
+    loop.head.assign(supernodes, -1);
+    loop.next.assign(supernodes, -1);
+    loop.next_row.assign(supernodes, 0);
+  }
+  std::vector<int>& head = loop.head;
+  std::vector<int>& next = loop.next;
+  std::vector<int>& next_row = loop.next_row;
   std::vector<int> local(n, -1);  // row -> its position in the current supernode
   std::vector<int> place;
   Scratch<Scalar> update_memory, scaled_memory, weighted_memory, column_memory;
   // Progress by the work done (factor_work), reported at each twentieth.
-  const double total_work = progress ? factor_work(s) : 0.0;
-  double work_done = 0.0, next_report = 0.05;
-  for (int J = 0; J < supernodes; ++J) {
+  const double total_work = progress || parts ? factor_work(s) : 0.0;
+  double& work_done = loop.work_done;
+  double& next_report = loop.next_report;
+  const int first = loop.next_supernode;
+  for (int J = first; J < supernodes; ++J) {
+    if (parts && J > first && work_done >= until * total_work) {
+      loop.next_supernode = J;
+      return kUnfinished;
+    }
     const int c0 = s.first_column[J], w = s.first_column[J + 1] - c0;
     const int m = s.row_offsets[J + 1] - s.row_offsets[J];
     const int* rows = s.rows.data() + s.row_offsets[J];
@@ -331,30 +360,36 @@ int factor_panels(const SupernodalStructure& s, const Eigen::SparseMatrix<Scalar
       next[J] = head[target];
       head[target] = J;
     }
-    if (progress) {
+    if (progress || parts) {
       for (int c = c0; c < c0 + w; ++c) work_done += static_cast<double>(s.count[c]) * s.count[c];
-      if (total_work > 0.0 && work_done >= next_report * total_work && J + 1 < supernodes) {
+      if (progress && total_work > 0.0 && work_done >= next_report * total_work && J + 1 < supernodes) {
         const double share = std::floor(20.0 * work_done / total_work) / 20.0;
         progress(kAnalysedShare + (1.0 - kAnalysedShare) * share);
         next_report = share + 0.05;
       }
     }
   }
+  loop.next_supernode = supernodes;
   return -1;
 }
 
 // P A P^T = L D L^T from C = P A P^T's lower triangle by columns, into
 // `panels` (scratch of the structure's size), then the solves' layout, in
-// `result`'s memory.
-void factor_lower(const SupernodalStructure& s, const Permutation& P, const Eigen::SparseMatrix<double>& C,
+// `result`'s memory. Given `parts`, only up to the share `until` of the
+// work (factor_panels): returns whether it is finished.
+bool factor_lower(const SupernodalStructure& s, const Permutation& P, const Eigen::SparseMatrix<double>& C,
                   double pivot_floor, std::vector<double>& panels, SupernodalLdlt& result,
-                  const FactorProgress& progress = {}) {
+                  const FactorProgress& progress = {}, PanelLoop* parts = nullptr, double until = 1.0) {
   const int n = static_cast<int>(C.cols());
-  result.perm.assign(P.indices().data(), P.indices().data() + n);
-  panels.resize(s.panel_offsets.back());
-  result.bad_pivot = factor_panels(s, C, pivot_floor, false, panels.data(), result.d, progress);
-  if (result.bad_pivot >= 0) return;
-  result.L.assign(n, s.first_column, s.row_offsets, s.rows, s.panel_offsets, panels.data());
+  if (!parts || parts->next_supernode == 0) {
+    result.perm.assign(P.indices().data(), P.indices().data() + n);
+    panels.resize(s.panel_offsets.back());
+  }
+  const int status = factor_panels(s, C, pivot_floor, false, panels.data(), result.d, progress, parts, until);
+  if (status == kUnfinished) return false;
+  result.bad_pivot = status;
+  if (status < 0) result.L.assign(n, s.first_column, s.row_offsets, s.rows, s.panel_offsets, panels.data());
+  return true;
 }
 
 }  // namespace
@@ -427,7 +462,26 @@ void SupernodalPlan::plan_afresh(const Eigen::SparseMatrix<double>& A) {
   pattern_->inner.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
 }
 
+// A factorization in parts (factor_until): its panels and loop between calls.
+struct SupernodalPlan::Partial {
+  std::vector<double> panels;
+  PanelLoop loop;
+  SupernodalLdlt result;
+};
+
 SupernodalPlan::~SupernodalPlan() = default;
+
+bool SupernodalPlan::factor_until(double pivot_floor, double until, const FactorProgress& progress) {
+  if (!partial_) partial_ = std::make_unique<Partial>();
+  return factor_lower(pattern_->s, pattern_->P, C_, pivot_floor, partial_->panels, partial_->result, progress,
+                      &partial_->loop, until);
+}
+
+SupernodalLdlt SupernodalPlan::take_factor() {
+  SupernodalLdlt result = std::move(partial_->result);
+  partial_.reset();
+  return result;
+}
 
 SupernodalLdlt SupernodalPlan::factor(double pivot_floor, const FactorProgress& progress) const {
   std::vector<double> panels;
@@ -436,7 +490,10 @@ SupernodalLdlt SupernodalPlan::factor(double pivot_floor, const FactorProgress& 
   return result;
 }
 
-void SupernodalPlan::release_values() { C_ = Eigen::SparseMatrix<double>(); }
+void SupernodalPlan::release_values() {
+  C_ = Eigen::SparseMatrix<double>();
+  partial_.reset();
+}
 
 SupernodalLdlt supernodal_ldlt(const Eigen::SparseMatrix<double>& A, double pivot_floor,
                                const FactorProgress& progress) {

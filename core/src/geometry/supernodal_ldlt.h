@@ -94,6 +94,12 @@ class SupernodalPlan {
 
   // Reports kAnalysedShare's successors to `progress`, as supernodal_ldlt.
   SupernodalLdlt factor(double pivot_floor, const FactorProgress& progress = {}) const;
+  // factor() in parts, for a caller that answers other work between them:
+  // each call factors the supernodes up to the share `until` of the numeric
+  // work (at least one) and returns whether all are (or a pivot failed);
+  // then take_factor() gives factor()'s result, the same bit for bit.
+  bool factor_until(double pivot_floor, double until, const FactorProgress& progress = {});
+  SupernodalLdlt take_factor();
   // Frees the matrix's values once it is factored; the ordering and the
   // analysis stay, for later plans of the same pattern.
   void release_values();
@@ -102,9 +108,11 @@ class SupernodalPlan {
 
  private:
   struct Pattern;
+  struct Partial;
   void plan_afresh(const Eigen::SparseMatrix<double>& A);
   std::shared_ptr<Pattern> pattern_;  // shared with the plans that reuse it
   Eigen::SparseMatrix<double> C_;     // P A P^T's lower triangle by columns
+  std::unique_ptr<Partial> partial_;  // a factorization in parts, between calls
   bool reused_ = false;
 };
 
