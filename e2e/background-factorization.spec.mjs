@@ -1,15 +1,17 @@
 // After a committed edit, the solver factorizes the new shape in the
 // background (announced as progress, ending in 'Ready'), so that the next
 // edit does not pay for it in its first preview; the page is not busy
-// meanwhile, and the next edit queues behind it and applies as usual.
+// meanwhile, and the next edit runs after the part in progress (the
+// preparation goes a part at a time) and applies as usual.
 import { expect, meshPath, openApp, test, uploadFile, verticalRange } from './support.mjs';
 
 test('a commit starts the next factorization in the background, and the next edit still applies', { tag: '@speed' }, async ({ page }) => {
   test.setTimeout(120_000);
   const pageErrors = await openApp(page);
   // The load's own preparation (factorizing the new mesh) ends with 'done'
-  // after the load's change; listening from before the upload, so that a
-  // quick one is not missed (waiting for it afterwards cost the full
+  // and 'Ready' after the load's change (the load's own 'done' has no
+  // message); listening from before the upload, so that a quick one is not
+  // missed (waiting for it afterwards cost the full
   // fallback of 20 s whenever it had ended already).
   await page.evaluate(() => {
     window.__loadPrepared = new Promise((resolve) => {
@@ -17,8 +19,8 @@ test('a commit starts the next factorization in the background, and the next edi
       const offChange = window.anisoform.on('change', ({ reason }) => {
         if (reason === 'load') loaded = true;
       });
-      const offProgress = window.anisoform.on('progress', ({ stage }) => {
-        if (!loaded || stage !== 'done') return;
+      const offProgress = window.anisoform.on('progress', ({ stage, message }) => {
+        if (!loaded || stage !== 'done' || message !== 'Ready') return;
         offChange();
         offProgress();
         resolve();
@@ -36,9 +38,9 @@ test('a commit starts the next factorization in the background, and the next edi
     await api.select({ box: { min: [-1e9, lowY + 0.7 * height, -1e9], max: [1e9, 1e9, 1e9] } }, { falloff: 0.05 * height });
     const first = await api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.3, 1] } });
     const afterFirst = progress.length;
-    // The background factorization announces itself and ends in 'done'.
+    // The background factorization announces itself and ends in 'Ready'.
     await new Promise((resolve, reject) => {
-      const check = () => progress.slice(afterFirst).some(({ stage }) => stage === 'done');
+      const check = () => progress.slice(afterFirst).some(({ stage, message }) => stage === 'done' && message === 'Ready');
       if (check()) return resolve();
       const off = api.on('progress', () => check() && (off(), resolve()));
       setTimeout(() => reject(new Error(`no 'done' after the commit: ${JSON.stringify(progress)}`)), 60_000);
