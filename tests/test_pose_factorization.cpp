@@ -185,6 +185,29 @@ TEST_CASE("factorization in parts: any number of parts gives the same factor bit
   CHECK(x_parts == x_whole);
 }
 
+TEST_CASE("factorization in parts: supernodes that add no work are still factored", "[prepare]") {
+  // Columns with nothing below the diagonal add nothing to the work measure
+  // (sum of c^2): the free vertices of components left with one each, the
+  // root of a tree with several children. Here all of them: a diagonal
+  // matrix, whose work is 0 from the start. Reaching all the work is not
+  // reaching the end: factoring up to the whole once stopped after the
+  // first column.
+  constexpr int n = 5;
+  Eigen::SparseMatrix<double> diagonal(n, n);
+  for (int i = 0; i < n; ++i) diagonal.insert(i, i) = 1.0 + i;
+  diagonal.makeCompressed();
+  for (const double first_part : {0.5, 1.0}) {
+    SupernodalPlan plan(diagonal);
+    if (first_part < 1.0) plan.factor_until(0.0, first_part);
+    REQUIRE(plan.factor_until(0.0, 1.0));
+    const SupernodalLdlt got = plan.take_factor();
+    CHECK(got.bad_pivot == -1);
+    REQUIRE(got.perm.size() == static_cast<std::size_t>(n));
+    REQUIRE(got.d.size() == n);
+    for (int i = 0; i < n; ++i) CHECK(got.d[got.perm[i]] == 1.0 + i);  // the pivots are the diagonal
+  }
+}
+
 TEST_CASE("factor reuse: a matrix of another pattern is planned afresh", "[factor-reuse]") {
   const Mesh cat = test::load("closed/cat-low-resolution.obj");
   const Mesh spot = test::load("closed/spot_triangulated.obj");
@@ -192,10 +215,11 @@ TEST_CASE("factor reuse: a matrix of another pattern is planned afresh", "[facto
   const Eigen::SparseMatrix<double> L = laplacian_of(spot);
   Eigen::SparseMatrix<double> lower = L.triangularView<Eigen::Lower>();
   lower.coeffRef(0, 0) += 1.0;  // definite: nothing pinned
-  const SupernodalPlan other(cat_plan, lower);
+  SupernodalPlan other(cat_plan, lower);
   CHECK_FALSE(other.reused());
   const SupernodalLdlt expected = supernodal_ldlt(lower, 0.0);
-  const SupernodalLdlt got = other.factor(0.0);
+  REQUIRE(other.factor_until(0.0, 1.0));
+  const SupernodalLdlt got = other.take_factor();
   CHECK(got.bad_pivot == -1);
   CHECK(got.perm == expected.perm);
   CHECK(got.d == expected.d);

@@ -270,7 +270,8 @@ int factor_panels(const SupernodalStructure& s, const Eigen::SparseMatrix<Scalar
   double& next_report = loop.next_report;
   const int first = loop.next_supernode;
   for (int J = first; J < supernodes; ++J) {
-    if (parts && J > first && work_done >= until * total_work) {
+    // (Not at `until` 1: the last supernodes may add no work, and would be left undone.)
+    if (parts && until < 1.0 && J > first && work_done >= until * total_work) {
       loop.next_supernode = J;
       return kUnfinished;
     }
@@ -483,13 +484,6 @@ SupernodalLdlt SupernodalPlan::take_factor() {
   return result;
 }
 
-SupernodalLdlt SupernodalPlan::factor(double pivot_floor, const FactorProgress& progress) const {
-  std::vector<double> panels;
-  SupernodalLdlt result;
-  factor_lower(pattern_->s, pattern_->P, C_, pivot_floor, panels, result, progress);
-  return result;
-}
-
 void SupernodalPlan::release_values() {
   C_ = Eigen::SparseMatrix<double>();
   partial_.reset();
@@ -497,9 +491,10 @@ void SupernodalPlan::release_values() {
 
 SupernodalLdlt supernodal_ldlt(const Eigen::SparseMatrix<double>& A, double pivot_floor,
                                const FactorProgress& progress) {
-  const SupernodalPlan plan(A);
+  SupernodalPlan plan(A);
   if (progress) progress(kAnalysedShare);
-  return plan.factor(pivot_floor, progress);
+  plan.factor_until(pivot_floor, 1.0, progress);
+  return plan.take_factor();
 }
 
 template <typename Scalar>

@@ -78,7 +78,7 @@ SupernodalLdlt supernodal_ldlt(const Eigen::SparseMatrix<double>& A, double pivo
 // The same in two calls, for a caller that answers other work between them
 // (the app's background preparation, Deformer::prepare_step): the
 // constructor orders (AMD) and analyses A and keeps it permuted, the share
-// kAnalysedShare of the work; factor() does the rest.
+// kAnalysedShare of the work; factor_until() does the rest, in parts.
 class SupernodalPlan {
  public:
   explicit SupernodalPlan(const Eigen::SparseMatrix<double>& A);  // A's lower triangle, as supernodal_ldlt
@@ -92,12 +92,12 @@ class SupernodalPlan {
   SupernodalPlan(const SupernodalPlan&) = delete;
   SupernodalPlan& operator=(const SupernodalPlan&) = delete;
 
+  // The numeric factorization in parts, for a caller that answers other
+  // work between them: each call factors the supernodes up to the share
+  // `until` of the numeric work (at least one; all at `until` 1) and returns
+  // whether all are (or a pivot failed); then take_factor() gives
+  // supernodal_ldlt's result, the same bit for bit in any number of parts.
   // Reports kAnalysedShare's successors to `progress`, as supernodal_ldlt.
-  SupernodalLdlt factor(double pivot_floor, const FactorProgress& progress = {}) const;
-  // factor() in parts, for a caller that answers other work between them:
-  // each call factors the supernodes up to the share `until` of the numeric
-  // work (at least one) and returns whether all are (or a pivot failed);
-  // then take_factor() gives factor()'s result, the same bit for bit.
   bool factor_until(double pivot_floor, double until, const FactorProgress& progress = {});
   SupernodalLdlt take_factor();
   // Frees the matrix's values once it is factored; the ordering and the
