@@ -18,8 +18,11 @@ done
 # emcmake's default emulator passes a flag Node 20 rejects (TOOLCHAIN.md §1).
 # Unity batches: one per core (CMakeLists.txt, ANISO_UNITY_BATCHES); 0 for
 # batches of 8 sources, quicker to rebuild after a change.
+ROOT="$repo_root"
+source "${repo_root}/scripts/compiler-cache.sh"
 emcmake cmake -S "$repo_root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release \
-  -DCMAKE_CROSSCOMPILING_EMULATOR=/usr/bin/node -DANISO_UNITY_BATCHES="${ANISO_UNITY_BATCHES:-2}"
+  -DCMAKE_CROSSCOMPILING_EMULATOR=/usr/bin/node -DANISO_UNITY_BATCHES="${ANISO_UNITY_BATCHES:-2}" \
+  "${ANISO_COMPILER_LAUNCHER[@]}"
 cmake --build "$build_dir" -j2
 
 for file in anisoform.mjs anisoform.wasm anisoform-wasm.mjs; do

@@ -15,6 +15,7 @@ APT_PACKAGES=(
   chromium                                       # Playwright drives Debian's browser; no browser download
   libegl1 libegl-mesa0 libgl1-mesa-dri          # Mesa's llvmpipe: the e2e browser's WebGL (e2e/renderer.mjs)
   python3 gzip
+  ccache                                         # compiler cache for rebuilds and fresh clones (compiler-cache.sh)
 )
 if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
   APT_PACKAGES+=(nodejs npm)

@@ -35,10 +35,15 @@ stage() { printf '\n=== %s (%ss)\n' "$1" "$SECONDS"; }
 stage "set-up"
 bash scripts/setup.sh
 
+# Both builds compile through ccache where it is installed
+# (scripts/compiler-cache.sh).
+source scripts/compiler-cache.sh
+
 stage "native build (clang, ASan + UBSan, libFuzzer targets)"
 CC=clang CXX=clang++ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug \
   -DCMAKE_CXX_FLAGS_DEBUG="-O2 -gline-tables-only -mllvm -fast-isel" -DANISO_SANITIZE=ON -DANISO_FUZZ=ON \
-  -DANISO_BENCH=OFF -DANISO_UNITY_BATCHES="$JOBS" -DANISO_SHARED_DIR="$ANISO_SHARED_DIR" >/dev/null
+  -DANISO_BENCH=OFF -DANISO_UNITY_BATCHES="$JOBS" -DANISO_SHARED_DIR="$ANISO_SHARED_DIR" \
+  "${ANISO_COMPILER_LAUNCHER[@]}" >/dev/null
 cmake --build build-asan -j"$JOBS"
 
 stage "native tests (ctest)"

@@ -43,7 +43,7 @@ class TempFiles {
 std::string temp_path(const std::string& name) {
   static TempFiles files;
   static std::atomic<int> counter{0};
-  const std::string path = std::string(ANISO_TEST_TMP) + "/cli_" + std::to_string(getpid()) +
+  const std::string path = std::string(aniso::test::kScratchDir) + "/cli_" + std::to_string(getpid()) +
                            "_" + std::to_string(counter++) + "_" + name;
   files.add(path);
   return path;
@@ -94,7 +94,7 @@ CliRun run_program(std::vector<std::string> command, int timeout_seconds) {
 }  // namespace
 
 CliRun run_cli(const std::vector<std::string>& args, int timeout_seconds) {
-  std::vector<std::string> command{ANISO_CLI_PATH};
+  std::vector<std::string> command{aniso::test::kCliPath};
   command.insert(command.end(), args.begin(), args.end());
   return run_program(std::move(command), timeout_seconds);
 }
@@ -102,7 +102,7 @@ CliRun run_cli(const std::vector<std::string>& args, int timeout_seconds) {
 CliRun run_cli_after_shell(const std::string& setup, const std::vector<std::string>& args,
                            int timeout_seconds) {
   // The arguments reach the CLI as "$@": no quoting of paths in the script.
-  std::vector<std::string> command{"/bin/sh", "-c", setup + "; exec \"$0\" \"$@\"", ANISO_CLI_PATH};
+  std::vector<std::string> command{"/bin/sh", "-c", setup + "; exec \"$0\" \"$@\"", aniso::test::kCliPath};
   command.insert(command.end(), args.begin(), args.end());
   return run_program(std::move(command), timeout_seconds);
 }

@@ -12,7 +12,7 @@
 
 namespace {
 
-const std::string kGallerySource = ANISO_SOURCE_DIR;
+const std::string kGallerySource = aniso::test::kSourceDir;
 
 // The figure numbers in the TEST_CASE names ("fig. 5: ...") of one test file.
 std::set<std::string> gallery_figures_tested(const std::string& file) {

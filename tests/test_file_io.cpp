@@ -22,7 +22,7 @@ namespace {
 class ScratchDirectory {
  public:
   explicit ScratchDirectory(const std::string& name)
-      : path_(std::string(ANISO_TEST_TMP) + "/file_io_" + std::to_string(::getpid()) + "_" + name) {
+      : path_(std::string(aniso::test::kScratchDir) + "/file_io_" + std::to_string(::getpid()) + "_" + name) {
     fs::remove_all(path_);
     fs::create_directories(path_);
   }

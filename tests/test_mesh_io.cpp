@@ -305,7 +305,7 @@ TEST_CASE("mesh_io: writers round-trip every format", "[io]") {
     }
   }
   SECTION("through a file, format from the extension") {
-    const std::string path = std::string(ANISO_TEST_TMP) + "/round_trip_spot.ply";
+    const std::string path = std::string(aniso::test::kScratchDir) + "/round_trip_spot.ply";
     aniso::write_mesh(path, mesh);
     const Mesh back = aniso::read_mesh(path).mesh;
     CHECK(back.V == mesh.V);

@@ -95,8 +95,8 @@ TEST_CASE("selection: parse_region errors name the problem", "[selection]") {
              Catch::Contains("line 2: weight: '0x1p-1' is a hexadecimal number"));
   CHECK_THAT(bad_parameter_message([] { aniso::parse_region("sphere:0,0,0,0x1p0"); }),
              Catch::Contains("sphere number 4: '0x1p0' is a hexadecimal number"));
-  CHECK_THAT(bad_parameter_message([] { aniso::parse_region(std::string("file:") + ANISO_TEST_TMP); }),
-             Catch::Contains(std::string(ANISO_TEST_TMP) + " is a directory, not a regular file"));
+  CHECK_THAT(bad_parameter_message([] { aniso::parse_region(std::string("file:") + aniso::test::kScratchDir); }),
+             Catch::Contains(std::string(aniso::test::kScratchDir) + " is a directory, not a regular file"));
   const std::string empty = write_temp_text("selection_empty.txt", "# nothing\n\n");
   CHECK_THAT(bad_parameter_message([&] { aniso::parse_region("file:" + empty); }),
              Catch::Contains("lists no vertices"));

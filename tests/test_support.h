@@ -9,6 +9,7 @@
 
 #include "anisoform/error.h"
 #include "anisoform/mesh.h"
+#include "build_paths.h"
 #include "cli_runner.h"
 
 namespace aniso::test {
@@ -16,7 +17,7 @@ namespace aniso::test {
 constexpr double kPi = 3.14159265358979323846;
 
 inline std::string mesh_path(const std::string& relative) {
-  return std::string(ANISO_MESHES_DIR) + "/" + relative;
+  return std::string(aniso::test::kMeshesDir) + "/" + relative;
 }
 
 // Reads a mesh from ../shared/meshes; fails the test on error.
