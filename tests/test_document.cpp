@@ -180,7 +180,7 @@ TEST_CASE("document: replay is deterministic and runs every enabled op", "[docum
     load_spool(live);
     int factorized = 0;  // through the progress reports: a replay's scratch work reports there too
     live.set_progress([&factorized](ProgressStage stage, double fraction) {
-      if (stage == ProgressStage::Factorize && fraction == 0.0) ++factorized;
+      if (stage == ProgressStage::Factorize && fraction == kSetupFactorizedShare) ++factorized;  // one's end
     });
     for (std::size_t i = 0; i < parsed.ops.size(); ++i) {
       select_op_region(live, parsed, parsed.ops[i]);

@@ -477,8 +477,10 @@ export interface Session {
   vertexLimit(): number;
   /**
    * Progress of the long calls: `report(stage, fraction)` is called inside loadMesh/setMesh
-   * ('load'), each factorization ('factorize': 0, 0.35 once ordered and analysed, then by
-   * twentieths of the numeric work, 1), deform's iterations ('solve': iterations
+   * ('load'), an edit's set-up of the rest pose ('factorize', on prepareStep's scale: 0.3 after
+   * the unit copy and its Laplacian, 0.35 after the workspace, the factorization from 0.35 to
+   * 0.95 (0.56 once ordered and analysed, then by twentieths of the numeric work), 1 after the
+   * iterations' structures; the parts already done report nothing), deform's iterations ('solve': iterations
    * over the cap, then 1 when done) and flatten's ('flatten'). null stops it. It must not throw.
    */
   setProgress(report: ((stage: 'load' | 'factorize' | 'solve' | 'flatten', fraction: number) => void) | null): void;

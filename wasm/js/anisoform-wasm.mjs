@@ -195,8 +195,8 @@ export async function instantiateAnisoform(factory, options = {}) {
     // ceiling over the memory an edit needs per vertex); a bigger one is refused.
     vertexLimit() { return this.#call('vertexLimit'); }
 
-    // report(stage, fraction) during loadMesh/setMesh ('load'), a
-    // factorization ('factorize'), deform's iterations ('solve') and
+    // report(stage, fraction) during loadMesh/setMesh ('load'), an edit's
+    // set-up ('factorize', on prepareStep's scale), deform's iterations ('solve') and
     // flatten's ('flatten'); null stops it. It runs inside the call.
     setProgress(report) {
       if (report !== null && typeof report !== 'function') throw badParameter('setProgress: report must be a function or null');

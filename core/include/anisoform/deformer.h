@@ -71,12 +71,13 @@ class Deformer {
  private:
   struct Workspace;
   void prepare();  // unit_, order_, rank_, cotan_weights_, laplacian_ (once)
-  // The factorization for `pins`, made once; its progress is reported as
-  // the Factorize stage's [from, to].
-  const LaplacianSolver& solver_for(std::vector<int> pins, double* precompute_ms, double from = 0.0,
-                                    double to = 1.0);
-  // Reports a factorization's own progress as the Factorize stage's [from, to].
-  std::function<void(double)> factorize_progress(double from, double to) const;
+  // The factorization for `pins`, made once; its progress is reported on
+  // the set-up's scale (progress.h).
+  const LaplacianSolver& solver_for(std::vector<int> pins, double* precompute_ms);
+  // Reports a factorization's own progress as the Factorize stage's share
+  // from kSetupWorkspaceShare to kSetupFactorizedShare.
+  std::function<void(double)> factorize_progress() const;
+  void report_setup(double share) const;  // the Factorize stage at `share`
   std::vector<int> unpinned_gauge_pins() const;  // the pins of an edit with no user pins
   // A LaplacianSolver for `pins`, ordered and analysed (reusing patterns_), not yet factorized.
   std::unique_ptr<LaplacianSolver> planned_solver(const std::vector<int>& pins);

@@ -283,13 +283,13 @@ bool Deformer::release_memory() noexcept {
   return held;
 }
 
-const LaplacianSolver& Deformer::solver_for(std::vector<int> pins, double* precompute_ms, double from, double to) {
+const LaplacianSolver& Deformer::solver_for(std::vector<int> pins, double* precompute_ms) {
   std::sort(pins.begin(), pins.end());
   pins.erase(std::unique(pins.begin(), pins.end()), pins.end());
   auto it = solvers_.find(pins);
   if (it != solvers_.end()) return *it->second;
   const auto start = Clock::now();
-  const std::function<void(double)> factorized = factorize_progress(from, to);
+  const std::function<void(double)> factorized = factorize_progress();
   std::unique_ptr<LaplacianSolver> solver;
   if (planned_ && planned_pins_ == pins) {  // prepare_step() has ordered and analysed it
     if (planned_parts_ == 0) factorized(kAnalysedShare);  // else its parts have said more
@@ -307,9 +307,14 @@ const LaplacianSolver& Deformer::solver_for(std::vector<int> pins, double* preco
   return *solvers_.emplace(std::move(pins), std::move(solver)).first->second;
 }
 
-std::function<void(double)> Deformer::factorize_progress(double from, double to) const {
-  return [this, from, to](double fraction) {
-    if (progress_) progress_(ProgressStage::Factorize, from + (to - from) * fraction);
+void Deformer::report_setup(double share) const {
+  if (progress_) progress_(ProgressStage::Factorize, share);
+}
+
+std::function<void(double)> Deformer::factorize_progress() const {
+  return [this](double fraction) {
+    // Exactly kSetupFactorizedShare when done (tests count factorizations by it).
+    report_setup(kSetupWorkspaceShare * (1.0 - fraction) + kSetupFactorizedShare * fraction);
   };
 }
 
@@ -330,20 +335,20 @@ std::vector<int> Deformer::unpinned_gauge_pins() const {
 }
 
 double Deformer::prepare_step() {
-  // The parts' shares of the whole set-up: the 200k-vertex koala's in Node
-  // (WASM), 380-520, 45-75, 320-580, 470-680 (the numeric factorization,
-  // done in kNumericParts parts) and 75-90 ms.
-  constexpr double kCopyAndLaplacian = 0.3, kWorkspace = 0.35, kFactorized = 0.95;
+  // The parts' shares of the whole set-up (progress.h): the 200k-vertex
+  // koala's in Node (WASM), 380-520, 45-75, 320-580, 470-680 (the numeric
+  // factorization, done in kNumericParts parts) and 75-90 ms.
+  constexpr double kWorkspace = kSetupWorkspaceShare, kFactorized = kSetupFactorizedShare;
   constexpr int kNumericParts = 4;
   // The factorization's own progress runs from kWorkspace to kFactorized.
   constexpr double kPlanned = kWorkspace + (kFactorized - kWorkspace) * kAnalysedShare;
   const auto report = [this](double share) {
-    if (progress_) progress_(ProgressStage::Factorize, share);
+    report_setup(share);
     return share;
   };
   if (!prepared_) {
     prepare();
-    return report(kCopyAndLaplacian);
+    return report(kSetupLaplacianShare);
   }
   if (!workspace_) {
     workspace_ = std::make_unique<Workspace>(unit_, rest_);
@@ -359,13 +364,13 @@ double Deformer::prepare_step() {
       return report(kPlanned);
     }
     const double until = static_cast<double>(++planned_parts_) / kNumericParts;
-    if (!planned_->factorize_until(until, factorize_progress(kWorkspace, kFactorized))) {
+    if (!planned_->factorize_until(until, factorize_progress())) {
       // Not reported: the factorization's own reports (by twentieths of the
       // work) have said as much, or a little more.
       return kPlanned + (kFactorized - kPlanned) * until;
     }
     double precompute_ms = 0.0;  // solver_for() counts and keeps the finished one
-    solver_for(std::move(pins), &precompute_ms, kWorkspace, kFactorized);
+    solver_for(std::move(pins), &precompute_ms);
     return report(kFactorized);
   }
   auto& iterations = workspace_->arap[ArapElements::Spokes];
@@ -380,6 +385,7 @@ DeformResult Deformer::deform(const DeformRequest& request) {
   const auto start = Clock::now();
   const bool was_prepared = prepared_;
   prepare();
+  if (!was_prepared) report_setup(kSetupLaplacianShare);
   const double prepare_ms = was_prepared ? 0.0 : ms_since(start);
   const int n = rest_.num_vertices();
   validate_request(request, n);
@@ -440,6 +446,7 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
     const auto t0 = Clock::now();
     workspace_ = std::make_unique<Workspace>(unit_, rest_);
     precompute_ms += ms_since(t0);
+    report_setup(kSetupWorkspaceShare);
   }
   Workspace& ws = *workspace_;
 
@@ -488,6 +495,7 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
       const auto t0 = Clock::now();
       iterations = std::make_unique<AnArapSolver>(unit_, cotan_weights_, laplacian_, request.elements);
       precompute_ms += ms_since(t0);
+      report_setup(1.0);
     }
     bool rotational = false;
     if (isotropic) {
