@@ -166,53 +166,79 @@ Frames build_frames(const Positions& normals, const Positions& directions, const
 
 void triangle_adjacency(const Triangles& F, int num_vertices, std::vector<int>& offsets,
                         std::vector<int>& neighbors) {
-  // Every side between two distinct vertices, grouped by its edge: O(m log m)
-  // whatever the topology. (A scan of each vertex's faces would be quadratic
-  // in a vertex's valence, and a face repeated k times has valence k.)
-  struct Side {
-    int lo, hi, face;
-  };
+  // Every side between two distinct vertices, grouped by its edge: the sides
+  // are bucketed by their lower vertex (a counting sort), and each bucket,
+  // a few sides on a mesh, is sorted by its upper vertex and face. O(m log m)
+  // whatever the topology, a vertex of k sides costing O(k log k). (A scan
+  // of each vertex's faces would be quadratic in a vertex's valence, and a
+  // face repeated k times has valence k.) One sort of all the sides and one
+  // of all the links took 0.16 s of the 200k-vertex koala's first edit.
   const int m = static_cast<int>(F.rows());
-  std::vector<Side> sides;
-  sides.reserve(static_cast<std::size_t>(m) * 3);
-  for (int t = 0; t < m; ++t) {
-    for (int k = 0; k < 3; ++k) {
-      const int a = F(t, k), b = F(t, (k + 1) % 3);
-      if (a == b || a < 0 || b < 0 || a >= num_vertices || b >= num_vertices) continue;
-      sides.push_back({std::min(a, b), std::max(a, b), t});
+  const auto for_each_side = [&F, m, num_vertices](auto&& visit) {
+    for (int t = 0; t < m; ++t) {
+      for (int k = 0; k < 3; ++k) {
+        const int a = F(t, k), b = F(t, (k + 1) % 3);
+        if (a == b || a < 0 || b < 0 || a >= num_vertices || b >= num_vertices) continue;
+        visit(std::min(a, b), std::max(a, b), t);
+      }
     }
+  };
+  struct Side {
+    int hi, face;
+  };
+  std::vector<int> bucket(static_cast<std::size_t>(num_vertices) + 1, 0);
+  for_each_side([&bucket](int lo, int, int) { ++bucket[lo + 1]; });
+  for (int v = 0; v < num_vertices; ++v) bucket[v + 1] += bucket[v];
+  std::vector<Side> sides(static_cast<std::size_t>(bucket[num_vertices]));
+  {
+    std::vector<int> next(bucket.begin(), bucket.end() - 1);
+    for_each_side([&sides, &next](int lo, int hi, int t) { sides[next[lo]++] = {hi, t}; });
   }
-  std::sort(sides.begin(), sides.end(), [](const Side& x, const Side& y) {
-    return x.lo != y.lo ? x.lo < y.lo : x.hi != y.hi ? x.hi < y.hi : x.face < y.face;
-  });
   // Links (face, neighbour). An edge of two faces links them; an edge of k > 2
   // faces (non-manifold, or one face repeated) links each to the next around
   // a ring in index order: connected like the k-clique, but O(k) links.
-  std::vector<std::pair<int, int>> links;
-  links.reserve(sides.size() * 2);
-  for (std::size_t begin = 0; begin < sides.size();) {
-    std::size_t end = begin + 1;
-    while (end < sides.size() && sides[end].lo == sides[begin].lo && sides[end].hi == sides[begin].hi) ++end;
-    const std::size_t k = end - begin;
-    for (std::size_t i = 0; k >= 2 && i < (k == 2 ? 1 : k); ++i) {
-      const int s = sides[begin + i].face;
-      const int t = sides[begin + (i + 1) % k].face;
-      if (s == t) continue;  // a face with a repeated corner uses its edge twice
-      links.emplace_back(s, t);
-      links.emplace_back(t, s);
+  const auto for_each_link = [&sides, &bucket, num_vertices](auto&& link) {
+    for (int v = 0; v < num_vertices; ++v) {
+      const auto first = sides.begin() + bucket[v], last = sides.begin() + bucket[v + 1];
+      std::sort(first, last, [](const Side& x, const Side& y) {
+        return x.hi != y.hi ? x.hi < y.hi : x.face < y.face;
+      });
+      for (auto begin = first; begin != last;) {
+        auto end = begin + 1;
+        while (end != last && end->hi == begin->hi) ++end;
+        const std::ptrdiff_t k = end - begin;
+        for (std::ptrdiff_t i = 0; k >= 2 && i < (k == 2 ? 1 : k); ++i) {
+          const int s = begin[i].face;
+          const int t = begin[(i + 1) % k].face;
+          if (s == t) continue;  // a face with a repeated corner uses its edge twice
+          link(s, t);
+          link(t, s);
+        }
+        begin = end;
+      }
     }
-    begin = end;
-  }
-  std::sort(links.begin(), links.end());
-  links.erase(std::unique(links.begin(), links.end()), links.end());
+  };
+  // Counted, then placed by face (the buckets are sorted by the first pass:
+  // the second places the same links in the same order).
   offsets.assign(static_cast<std::size_t>(m) + 1, 0);
-  neighbors.clear();
-  neighbors.reserve(links.size());
-  for (const auto& [face, other] : links) {
-    ++offsets[face + 1];
-    neighbors.push_back(other);
-  }
+  for_each_link([&offsets](int face, int) { ++offsets[face + 1]; });
   for (int t = 0; t < m; ++t) offsets[t + 1] += offsets[t];
+  neighbors.resize(static_cast<std::size_t>(offsets[m]));
+  {
+    std::vector<int> next(offsets.begin(), offsets.end() - 1);
+    for_each_link([&neighbors, &next](int face, int other) { neighbors[next[face]++] = other; });
+  }
+  // Each face's neighbours in increasing order, each once.
+  int kept = 0;
+  for (int t = 0; t < m; ++t) {
+    const auto first = neighbors.begin() + offsets[t], last = neighbors.begin() + offsets[t + 1];
+    std::sort(first, last);
+    const auto unique_end = std::unique(first, last);
+    offsets[t] = kept;
+    kept = static_cast<int>(std::copy(first, unique_end, neighbors.begin() + kept) - neighbors.begin());
+  }
+  offsets[m] = kept;
+  neighbors.resize(static_cast<std::size_t>(kept));
 }
 
 }  // namespace aniso
