@@ -10,6 +10,6 @@ namespace aniso::test {
 extern const char kMeshesDir[];  // ../shared/meshes
 extern const char kSourceDir[];  // the repository's root
 extern const char kCliPath[];    // the anisoform executable of this build
-extern const char kScratchDir[]; // files the tests write
+extern const char kScratchDir[];  // files the tests write
 
 }  // namespace aniso::test
