@@ -311,11 +311,17 @@ void Deformer::report_setup(double share) const {
   if (progress_) progress_(ProgressStage::Factorize, share);
 }
 
+// A factorization's own progress (FactorProgress's fraction) as a share of
+// the set-up (progress.h): exactly kSetupFactorizedShare when done (tests
+// count factorizations by it).
+namespace {
+double factorization_share(double fraction) {
+  return kSetupWorkspaceShare * (1.0 - fraction) + kSetupFactorizedShare * fraction;
+}
+}  // namespace
+
 std::function<void(double)> Deformer::factorize_progress() const {
-  return [this](double fraction) {
-    // Exactly kSetupFactorizedShare when done (tests count factorizations by it).
-    report_setup(kSetupWorkspaceShare * (1.0 - fraction) + kSetupFactorizedShare * fraction);
-  };
+  return [this](double fraction) { report_setup(factorization_share(fraction)); };
 }
 
 std::unique_ptr<LaplacianSolver> Deformer::planned_solver(const std::vector<int>& pins) {
@@ -338,10 +344,7 @@ double Deformer::prepare_step() {
   // The parts' shares of the whole set-up (progress.h): the 200k-vertex
   // koala's in Node (WASM), 380-520, 45-75, 320-580, 470-680 (the numeric
   // factorization, done in kNumericParts parts) and 75-90 ms.
-  constexpr double kWorkspace = kSetupWorkspaceShare, kFactorized = kSetupFactorizedShare;
   constexpr int kNumericParts = 4;
-  // The factorization's own progress runs from kWorkspace to kFactorized.
-  constexpr double kPlanned = kWorkspace + (kFactorized - kWorkspace) * kAnalysedShare;
   const auto report = [this](double share) {
     report_setup(share);
     return share;
@@ -352,7 +355,7 @@ double Deformer::prepare_step() {
   }
   if (!workspace_) {
     workspace_ = std::make_unique<Workspace>(unit_, rest_);
-    return report(kWorkspace);
+    return report(kSetupWorkspaceShare);
   }
   std::vector<int> pins = unpinned_gauge_pins();
   if (solvers_.find(pins) == solvers_.end()) {
@@ -361,17 +364,17 @@ double Deformer::prepare_step() {
       planned_ = planned_solver(pins);
       planned_pins_ = std::move(pins);
       planned_parts_ = 0;
-      return report(kPlanned);
+      return report(factorization_share(kAnalysedShare));
     }
     const double until = static_cast<double>(++planned_parts_) / kNumericParts;
     if (!planned_->factorize_until(until, factorize_progress())) {
       // Not reported: the factorization's own reports (by twentieths of the
       // work) have said as much, or a little more.
-      return kPlanned + (kFactorized - kPlanned) * until;
+      return factorization_share(kAnalysedShare + (1.0 - kAnalysedShare) * until);
     }
     double precompute_ms = 0.0;  // solver_for() counts and keeps the finished one
     solver_for(std::move(pins), &precompute_ms);
-    return report(kFactorized);
+    return report(kSetupFactorizedShare);
   }
   auto& iterations = workspace_->arap[ArapElements::Spokes];
   if (!iterations) {
