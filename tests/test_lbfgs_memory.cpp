@@ -1,7 +1,7 @@
 // LbfgsMemory (base/lbfgs_memory.h), the L-BFGS memory of AnARAP/ARAP and
-// the flattening: its fused direction passes give the textbook two-loop
-// recursion's direction (Nocedal & Wright, Algorithm 7.4) as pairs come and
-// the oldest go, it obeys the secant equation H y = s for the newest pair,
+// the flattening: its direction, from the products of the pairs it keeps,
+// is the textbook two-loop recursion's (Nocedal & Wright, Algorithm 7.4) as
+// pairs come and the oldest go, it obeys the secant equation H y = s for the newest pair,
 // and a pair without positive curvature is not kept. The pairs come from spot's
 // cotangent Laplacian L with H0 = scale L^-1, as in the solvers.
 #include <cmath>
@@ -148,4 +148,28 @@ TEST_CASE("L-BFGS memory: a pair without positive curvature is not kept", "[lbfg
   memory.direction(gradient, direction, scratch, [&](const Positions& q, Positions& r) { problem.apply_h0(q, r); });
   problem.apply_inverse(gradient, expected);
   CHECK(relative_difference(direction, Positions(-kScale * expected)) < 1e-14);
+}
+
+TEST_CASE("L-BFGS memory: pairs pushed with no direction between them give the textbook direction", "[lbfgs]") {
+  // The products of each pair with the earlier ones are taken with the next
+  // direction; a second pair before it must take them at once.
+  const SpotSystem problem;
+  const Positions zero = Positions::Zero(problem.n(), 3);
+  const Positions gradient = problem.change(problem.mesh.V);
+  LbfgsMemory<Positions> memory(kCapacity);
+  std::deque<Positions> s, y;
+  for (int k = 0; k < kCapacity + 2; ++k) {
+    const Positions step = problem.step(k);
+    const Positions change = problem.change(step);
+    memory.push_step(zero, step, zero, change, zero, zero);
+    s.push_back(step);
+    y.push_back(change);
+    if (static_cast<int>(s.size()) > kCapacity) {
+      s.pop_front();
+      y.pop_front();
+    }
+  }
+  Positions direction, scratch;
+  memory.direction(gradient, direction, scratch, [&](const Positions& q, Positions& r) { problem.apply_h0(q, r); });
+  CHECK(relative_difference(direction, textbook_direction(problem, s, y, gradient)) < 1e-10);
 }

@@ -1,12 +1,17 @@
 // Passes over long vectors of doubles (an iterate's coordinates, flat) for
 // the L-BFGS iterations: dot products with several partial sums in vector
-// registers (base/simd_pair.h), and an update fused with the next dot
-// product. Why: a plain loop adds into one sum, one addition waiting for the
-// last (Eigen's reduction is such a loop in WASM, which has no Eigen SIMD
-// path), and a two-loop recursion of 5 pairs reads the 200k-vertex iterate
-// 20 times an iteration; fused, 12.
-// Summation order: four partial sums of pairs (elements i mod 8), added
-// pairwise at the end, then the tail; fixed on every platform.
+// registers (base/simd_pair.h), several dot products or a linear combination
+// of several vectors in one pass, and the pair of a step in one pass. Why: a
+// plain loop adds into one sum, one addition waiting for the last (Eigen's
+// reduction is such a loop in WASM, which has no Eigen SIMD path), and a
+// two-loop recursion of 5 pairs, one update at a time, reads and writes the
+// iterate's direction 20 times an iteration besides the pairs themselves;
+// with the products of the pairs kept (base/lbfgs_memory.h), 4 passes read
+// each pair twice and the direction 6 times: the direction of 5 pairs took
+// 0.43 ms either way natively at 50k vertices, 5.2 -> 3.5 ms at 200k; in
+// WASM (Node) 1.05 -> 0.53 and 6.4 -> 4.6 ms.
+// Summation order: fixed on every platform (the comment of each kernel says
+// which).
 #pragma once
 
 #include <cstddef>
@@ -39,37 +44,106 @@ inline double dot(const double* a, const double* b, std::size_t n) {
   return sum;
 }
 
-// x += alpha y over n doubles, and returns z . x (the updated x); with z
-// null, only the update (and 0).
-inline double axpy_dot(double* x, double alpha, const double* y, const double* z, std::size_t n) {
-  const Pair a = {alpha, alpha};
+namespace vector_kernels_detail {
+
+// The products of up to 4 vectors with up to 2 targets in one pass, a pair
+// of elements at a time (one partial sum of pairs per product), written to
+// out[t * stride + j]. The unrolling pragmas keep the sums in registers
+// under GCC (without them its direction took 0.85 against 0.43 ms at 50k
+// vertices; clang unrolls these loops by itself).
+template <int G, int T>
+void dots_group(const double* const* vectors, const double* const* targets, double* out, int stride,
+                std::size_t n) {
+  Pair sum[T][G] = {};
   std::size_t i = 0;
-  if (z == nullptr) {
-    for (; i + 2 <= n; i += 2) store_pair(x + i, load_pair(x + i) + a * load_pair(y + i));
-    for (; i < n; ++i) x[i] += alpha * y[i];
-    return 0.0;
+  for (; i + 2 <= n; i += 2) {
+    Pair target[T];
+#pragma GCC unroll 2
+    for (int t = 0; t < T; ++t) target[t] = load_pair(targets[t] + i);
+#pragma GCC unroll 4
+    for (int j = 0; j < G; ++j) {
+      const Pair v = load_pair(vectors[j] + i);
+#pragma GCC unroll 2
+      for (int t = 0; t < T; ++t) sum[t][j] += v * target[t];
+    }
   }
-  Pair s0 = {0, 0}, s1 = s0, s2 = s0, s3 = s0;
-  for (; i + 8 <= n; i += 8) {
-    const Pair x0 = load_pair(x + i) + a * load_pair(y + i);
-    const Pair x1 = load_pair(x + i + 2) + a * load_pair(y + i + 2);
-    const Pair x2 = load_pair(x + i + 4) + a * load_pair(y + i + 4);
-    const Pair x3 = load_pair(x + i + 6) + a * load_pair(y + i + 6);
-    store_pair(x + i, x0);
-    store_pair(x + i + 2, x1);
-    store_pair(x + i + 4, x2);
-    store_pair(x + i + 6, x3);
-    s0 += load_pair(z + i) * x0;
-    s1 += load_pair(z + i + 2) * x1;
-    s2 += load_pair(z + i + 4) * x2;
-    s3 += load_pair(z + i + 6) * x3;
+  for (int t = 0; t < T; ++t) {
+    for (int j = 0; j < G; ++j) {
+      double total = sum[t][j][0] + sum[t][j][1];
+      for (std::size_t k = i; k < n; ++k) total += vectors[j][k] * targets[t][k];
+      out[t * stride + j] = total;
+    }
   }
-  double sum = vector_kernels_detail::total(s0, s1, s2, s3);
+}
+
+template <int T>
+void dots_groups(const double* const* vectors, int m, const double* const* targets, double* out, std::size_t n) {
+  for (int j = 0; j < m; j += 4) {
+    switch (m - j < 4 ? m - j : 4) {
+      case 1: dots_group<1, T>(vectors + j, targets, out + j, m, n); break;
+      case 2: dots_group<2, T>(vectors + j, targets, out + j, m, n); break;
+      case 3: dots_group<3, T>(vectors + j, targets, out + j, m, n); break;
+      default: dots_group<4, T>(vectors + j, targets, out + j, m, n); break;
+    }
+  }
+}
+
+// out += the combination of up to 4 vectors, a pair of elements at a time,
+// added in the order of j (first = true: out = base_coefficient base first).
+template <int G>
+void combine_group(double* out, double base_coefficient, const double* base, const double* const* vectors,
+                   const double* coefficients, bool first, std::size_t n) {
+  Pair a[G];
+  for (int j = 0; j < G; ++j) a[j] = Pair{coefficients[j], coefficients[j]};
+  const Pair c = {base_coefficient, base_coefficient};
+  std::size_t i = 0;
+  for (; i + 2 <= n; i += 2) {
+    Pair x = first ? c * load_pair(base + i) : load_pair(out + i);
+#pragma GCC unroll 4
+    for (int j = 0; j < G; ++j) x += a[j] * load_pair(vectors[j] + i);
+    store_pair(out + i, x);
+  }
   for (; i < n; ++i) {
-    x[i] += alpha * y[i];
-    sum += z[i] * x[i];
+    double x = first ? base_coefficient * base[i] : out[i];
+    for (int j = 0; j < G; ++j) x += coefficients[j] * vectors[j][i];
+    out[i] = x;
   }
-  return sum;
+}
+
+}  // namespace vector_kernels_detail
+
+// out[t * m + j] = vectors[j] . targets[t] for j < m, t < num_targets (1 or
+// 2), reading each vector once: groups of up to 4 vectors, each product one
+// partial sum of pairs (elements i mod 2), its lanes added at the end, then
+// the tail.
+inline void dots_with(const double* const* vectors, int m, const double* const* targets, int num_targets,
+                      double* out, std::size_t n) {
+  if (num_targets == 2) {
+    vector_kernels_detail::dots_groups<2>(vectors, m, targets, out, n);
+  } else {
+    vector_kernels_detail::dots_groups<1>(vectors, m, targets, out, n);
+  }
+}
+
+// out = base_coefficient base + sum over j < m of coefficients[j] vectors[j],
+// added in the order of j element by element (in passes of up to 4 vectors).
+// out may be base.
+inline void combine(double* out, double base_coefficient, const double* base, const double* const* vectors,
+                    const double* coefficients, int m, std::size_t n) {
+  using namespace vector_kernels_detail;
+  if (m == 0) {
+    combine_group<0>(out, base_coefficient, base, vectors, coefficients, true, n);
+    return;
+  }
+  for (int j = 0; j < m; j += 4) {
+    const bool first = j == 0;
+    switch (m - j < 4 ? m - j : 4) {
+      case 1: combine_group<1>(out, base_coefficient, base, vectors + j, coefficients + j, first, n); break;
+      case 2: combine_group<2>(out, base_coefficient, base, vectors + j, coefficients + j, first, n); break;
+      case 3: combine_group<3>(out, base_coefficient, base, vectors + j, coefficients + j, first, n); break;
+      default: combine_group<4>(out, base_coefficient, base, vectors + j, coefficients + j, first, n); break;
+    }
+  }
 }
 
 // The pair of an L-BFGS step in one pass: s = x1 - x0 and y = g1 - g0 (each
