@@ -190,9 +190,9 @@ TEST_CASE("anarap: without the final energy, the last step is the plain one; the
 
 TEST_CASE("anarap: a live preview's scale targets are the direct ones, for every amount, selection and direction",
           "[solver][anarap]") {
-  // A preview takes scale-only targets from steps kept across calls
+  // A preview takes scale-only targets without a map per side
   // (AnArapSolver::set_scale_targets). Each preview must match the same
-  // request solved with the targets computed directly, whatever ran before.
+  // request solved with the maps, whatever ran before.
   const Mesh mesh = test::load("closed/spot_triangulated.obj");
   const double size = diagonal(mesh.V);
   Eigen::VectorXd upper(mesh.num_vertices()), lower(mesh.num_vertices());
@@ -219,6 +219,15 @@ TEST_CASE("anarap: a live preview's scale targets are the direct ones, for every
   field.constraints = {{top, Eigen::Vector3d::UnitX()}, {front, Eigen::Vector3d::UnitX()}};
   DirectionSource turned = field;
   turned.constraints[1].direction = Eigen::Vector3d::UnitY();
+  // A horizontal screen drag (identity camera: along x), and a diagonal one.
+  const auto drag = [](const Eigen::Vector2d& to_px) {
+    DirectionSource source;
+    source.kind = DirectionSource::Kind::Screen;
+    source.screen.viewport = Eigen::Vector4d(0, 0, 800, 600);
+    source.screen.from_px = Eigen::Vector2d(400, 300);
+    source.screen.to_px = to_px;
+    return source;
+  };
   for (const ArapElements elements : {ArapElements::Spokes, ArapElements::SpokesAndRims}) {
     Deformer live(mesh);
     struct Step { Eigen::VectorXd weights; DirectionSource direction; double su, sv; };
@@ -230,6 +239,8 @@ TEST_CASE("anarap: a live preview's scale targets are the direct ones, for every
         {upper, field, 1.3, 1.0},   // a field
         {upper, turned, 1.3, 1.0},  // the field changed, nothing else
         {upper, turned, 1.5, 0.9},
+        {upper, drag(Eigen::Vector2d(500, 300)), 1.3, 1.0},  // stretch drags
+        {upper, drag(Eigen::Vector2d(480, 220)), 1.5, 0.9},
         {upper, global(Eigen::Vector3d(1, 1, 0)), 1.4, 1.0}};  // back to a global direction
     for (std::size_t k = 0; k < steps.size(); ++k) {
       DeformRequest request = test::stretch_request(Method::AnArap, Eigen::Vector3d::UnitY(), steps[k].su, steps[k].sv);

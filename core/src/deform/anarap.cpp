@@ -372,38 +372,43 @@ void AnArapSolver::set_identity_targets() {
   update_target_energy();
 }
 
-void AnArapSolver::set_scale_steps(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight) {
-  // Directly, not through set_targets with unit steps: no 3x3 map or polar
-  // part per side (a slider's first value cost 5x a later one that way).
+template <typename Visit>
+void AnArapSolver::visit_scale_steps(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight,
+                                     Visit&& visit) const {
+  // Directly, not through a 3x3 map per side as set_targets takes them: no
+  // map or polar part per side (a slider's first value cost 5x a later one
+  // through set_targets with unit steps).
   const auto side_step = [&](int s, const Eigen::Vector3d& e, Eigen::Vector3d& along, Eigen::Vector3d& across) {
     const Eigen::Vector3d a = u.row(s / 3).transpose(), b = v.row(s / 3).transpose();
     along = (side_weight[s] * a.dot(e)) * a;
     across = (side_weight[s] * b.dot(e)) * b;
   };
   Eigen::Vector3d along, across;
-  if (elements_ == ArapElements::Spokes) {
-    // A spoke's map is the mean of its sides' (set_targets): each side adds
-    // its share (a spoke on no side keeps its edge: steps 0).
-    scale_step_[0].setZero(spoke_edge_.rows(), 3);
-    scale_step_[1].setZero(spoke_edge_.rows(), 3);
-    for (int s = 0; s < 3 * rest_.num_triangles(); ++s) {
-      if (side_weight[s] == 0.0) continue;
-      for (int k = side_spoke_offsets_[s]; k < side_spoke_offsets_[s + 1]; ++k) {
-        const int q = side_spokes_[k];
-        side_step(s, spoke_share_[q] * spoke_edge_.row(q).transpose(), along, across);
-        scale_step_[0].row(q) += along.transpose();
-        scale_step_[1].row(q) += across.transpose();
-      }
-    }
-    return;
-  }
-  scale_step_[0].resize(side_edge_.rows(), 3);
-  scale_step_[1].resize(side_edge_.rows(), 3);
   for (int s = 0; s < 3 * rest_.num_triangles(); ++s) {
-    side_step(s, side_edge_.row(s).transpose(), along, across);
-    scale_step_[0].row(s) = along.transpose();
-    scale_step_[1].row(s) = across.transpose();
+    if (side_weight[s] == 0.0) continue;
+    if (elements_ == ArapElements::SpokesAndRims) {
+      side_step(s, side_edge_.row(s).transpose(), along, across);
+      visit(s, along, across);
+      continue;
+    }
+    // A spoke's map is the mean of its sides' (set_targets): each side adds
+    // its share.
+    for (int k = side_spoke_offsets_[s]; k < side_spoke_offsets_[s + 1]; ++k) {
+      const int q = side_spokes_[k];
+      side_step(s, spoke_share_[q] * spoke_edge_.row(q).transpose(), along, across);
+      visit(q, along, across);
+    }
   }
+}
+
+void AnArapSolver::set_scale_steps(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight) {
+  const Eigen::Index rows = elements_ == ArapElements::Spokes ? spoke_edge_.rows() : side_edge_.rows();
+  scale_step_[0].setZero(rows, 3);
+  scale_step_[1].setZero(rows, 3);
+  visit_scale_steps(u, v, side_weight, [this](int row, const Eigen::Vector3d& along, const Eigen::Vector3d& across) {
+    scale_step_[0].row(row) += along.transpose();
+    scale_step_[1].row(row) += across.transpose();
+  });
 }
 
 void AnArapSolver::set_scale_targets(double su, double sv) {
@@ -411,6 +416,22 @@ void AnArapSolver::set_scale_targets(double su, double sv) {
   Positions& target = spokes ? spoke_target_ : side_target_;
   const Positions& edge = spokes ? spoke_edge_ : side_edge_;
   target = edge + (su - 1.0) * scale_step_[0] + (sv - 1.0) * scale_step_[1];
+  scale_targets_set();
+}
+
+void AnArapSolver::set_scale_targets(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight,
+                                     double su, double sv) {
+  const bool spokes = elements_ == ArapElements::Spokes;
+  Positions& target = spokes ? spoke_target_ : side_target_;
+  target = spokes ? spoke_edge_ : side_edge_;
+  visit_scale_steps(u, v, side_weight,
+                    [&target, su, sv](int row, const Eigen::Vector3d& along, const Eigen::Vector3d& across) {
+                      target.row(row) += ((su - 1.0) * along + (sv - 1.0) * across).transpose();
+                    });
+  scale_targets_set();
+}
+
+void AnArapSolver::scale_targets_set() {
   // Symmetric positive definite maps are their own polar parts: the polar
   // targets are not used (with_polar is false) until set_targets sets them.
   polar_differs_ = false;

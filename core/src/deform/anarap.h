@@ -72,10 +72,15 @@ class AnArapSolver {
   // normal's sn moves no edge lying in the surface, validate_request refuses
   // it), so per spoke (or side) t = e + (su - 1) U + (sv - 1) V.
   // set_scale_steps keeps U and V, from each triangle's u and v (#F by 3) and
-  // each side's weight (3 #F, side_weights); set_scale_targets then sets the
-  // targets of any su, sv from the two: one pass over the spokes.
+  // each side's weight (3 #F, side_weights); set_scale_targets(su, sv) then
+  // sets the targets of any su, sv from the two: one pass over the spokes.
+  // For frames used for one value only, set_scale_targets(u, v, weight, su,
+  // sv) sets the same targets without keeping U and V: a copy of the rest
+  // edges and a pass over the sides of positive weight.
   void set_scale_steps(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight);
   void set_scale_targets(double su, double sv);
+  void set_scale_targets(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight, double su,
+                         double sv);
   // alpha > 0: coupled rotations (see above); 0: the paper's scheme.
   void set_rotation_coupling(double alpha) { coupling_ = alpha; }
   void reset_rotations();
@@ -121,6 +126,13 @@ class AnArapSolver {
   void covariance_spokes_rims(const Positions& V, bool with_polar, Eigen::VectorXd& edge_energy);
   // The coupled local step's sweep; returns E_s after it.
   double coupled_rotations();
+  // Calls visit(row, along, across) for each side of positive weight and
+  // each target row it adds to (its spokes, or itself with rims): the side's
+  // steps w (u.e) u and w (v.e) v for its share e of the row's rest edge.
+  template <typename Visit>
+  void visit_scale_steps(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight,
+                         Visit&& visit) const;
+  void scale_targets_set();  // after either set_scale_targets
 
   const Mesh& rest_;
   const CotanWeights& weights_;
