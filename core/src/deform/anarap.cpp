@@ -298,6 +298,13 @@ AnArapSolver::AnArapSolver(const Mesh& rest, const CotanWeights& weights,
       spoke_coupling_[q] = 0.5 * (coupling_size(i) + coupling_size(neighbors_[q]));
     }
   }
+  // The local step's scratch, sized here: the solver is built in the
+  // background (Deformer::prepare_step), and the first local step, a live
+  // preview's first value, then writes into memory already touched.
+  target_covariance_.resize(n_);
+  polar_covariance_.resize(n_);
+  edge_energy_.setZero(n_);
+  laplacian_v_.setZero(n_, 3);
 }
 
 void AnArapSolver::set_targets(const SideTargets& T) {

@@ -343,7 +343,10 @@ std::vector<int> Deformer::unpinned_gauge_pins() const {
 double Deformer::prepare_step() {
   // The parts' shares of the whole set-up (progress.h): the 200k-vertex
   // koala's in Node (WASM), 380-520, 45-75, 320-580, 470-680 (the numeric
-  // factorization, done in kNumericParts parts) and 75-90 ms.
+  // factorization, done in kNumericParts parts) and 230 ms (the AnARAP
+  // structures and the triangle adjacency: 155 ms without the adjacency and
+  // the local step's scratch, which the first edit then built: 391-541
+  // against 421-737 ms for a first stretch preview after the preparation).
   constexpr int kNumericParts = 4;
   const auto report = [this](double share) {
     report_setup(share);
@@ -379,6 +382,9 @@ double Deformer::prepare_step() {
   auto& iterations = workspace_->arap[ArapElements::Spokes];
   if (!iterations) {
     iterations = std::make_unique<AnArapSolver>(unit_, cotan_weights_, laplacian_, ArapElements::Spokes);
+    // And the triangles' adjacency, which the first edit's frames need
+    // wherever a direction lies along a normal (on a closed mesh, somewhere).
+    workspace_->targets.triangle_adjacency();
     return report(1.0);
   }
   return 1.0;
