@@ -528,11 +528,11 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
       // every value: the targets directly, without steps (200k koala in
       // WASM, 117 -> 63 ms a value against the maps; from steps built for
       // one value, one more pass).
-      if (request.preview && request.transform.scales_only() && frames.su.size() == 0 &&
-          request.direction.kind == DirectionSource::Kind::Screen) {
+      const bool scale_preview = request.preview && request.transform.scales_only() && frames.su.size() == 0;
+      if (scale_preview && request.direction.kind == DirectionSource::Kind::Screen) {
         iterations->set_scale_targets(frames.frames.u, frames.frames.v, side_weights(unit_, w), request.transform.su,
                                       request.transform.sv);
-      } else if (request.preview && request.transform.scales_only() && frames.su.size() == 0) {
+      } else if (scale_preview) {
         const bool valid = ws.scale_steps && ws.scale_steps->elements == request.elements &&
                            ws.scale_steps->frames_built == ws.frames_built &&
                            ws.scale_steps->weights.size() == w.size() && ws.scale_steps->weights == w;
