@@ -120,11 +120,16 @@ class LbfgsMemory {
   void keep(double sy) {
     if (newest_products_pending_) {
       // Two pairs in a row without a direction between them: the last one's
-      // products now, while the indices still hold.
+      // products now, while the indices still hold (the same kernel as the
+      // direction's pass, so the same products either way).
       const int m = static_cast<int>(steps_.size());
+      std::vector<const double*>& s = step_data_;
+      s.resize(m - 1);
+      for (int j = 0; j + 1 < m; ++j) s[j] = steps_[j].data();
+      const double* newest = changes_.back().data();
       std::vector<double>& column = step_products_.back();
       column.resize(m - 1);
-      for (int j = 0; j + 1 < m; ++j) column[j] = dot(steps_[j], changes_[m - 1]);
+      dots_with(s.data(), m - 1, &newest, 1, column.data(), static_cast<std::size_t>(changes_.back().size()));
     }
     Matrix step = std::move(spare_step_), change = std::move(spare_change_);
     if (static_cast<int>(steps_.size()) == capacity_) {
@@ -141,10 +146,6 @@ class LbfgsMemory {
     curvatures_.push_back(1.0 / sy);
     step_products_.emplace_back();
     newest_products_pending_ = true;
-  }
-
-  static double dot(const Matrix& a, const Matrix& b) {
-    return aniso::dot(a.data(), b.data(), static_cast<std::size_t>(a.size()));
   }
 
   int capacity_;

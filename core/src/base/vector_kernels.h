@@ -1,8 +1,8 @@
 // Passes over long vectors of doubles (an iterate's coordinates, flat) for
-// the L-BFGS iterations: dot products with several partial sums in vector
-// registers (base/simd_pair.h), several dot products or a linear combination
-// of several vectors in one pass, and the pair of a step in one pass. Why: a
-// plain loop adds into one sum, one addition waiting for the last (Eigen's
+// the L-BFGS iterations: several dot products in one pass, each summed in a
+// vector register (base/simd_pair.h), a linear combination of several
+// vectors in one pass, and the pair of a step in one pass. Why: a plain dot
+// product adds into one sum, one addition waiting for the last (Eigen's
 // reduction is such a loop in WASM, which has no Eigen SIMD path), and a
 // two-loop recursion of 5 pairs, one update at a time, reads and writes the
 // iterate's direction 20 times an iteration besides the pairs themselves;
@@ -19,30 +19,6 @@
 #include "base/simd_pair.h"
 
 namespace aniso {
-
-namespace vector_kernels_detail {
-
-inline double total(Pair a, Pair b, Pair c, Pair d) {
-  const Pair sum = (a + b) + (c + d);
-  return sum[0] + sum[1];
-}
-
-}  // namespace vector_kernels_detail
-
-// a . b over n doubles.
-inline double dot(const double* a, const double* b, std::size_t n) {
-  Pair s0 = {0, 0}, s1 = s0, s2 = s0, s3 = s0;
-  std::size_t i = 0;
-  for (; i + 8 <= n; i += 8) {
-    s0 += load_pair(a + i) * load_pair(b + i);
-    s1 += load_pair(a + i + 2) * load_pair(b + i + 2);
-    s2 += load_pair(a + i + 4) * load_pair(b + i + 4);
-    s3 += load_pair(a + i + 6) * load_pair(b + i + 6);
-  }
-  double sum = vector_kernels_detail::total(s0, s1, s2, s3);
-  for (; i < n; ++i) sum += a[i] * b[i];
-  return sum;
-}
 
 namespace vector_kernels_detail {
 
