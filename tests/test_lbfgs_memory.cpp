@@ -64,10 +64,9 @@ struct SpotSystem {
     solver->solve(q, r);
   }
 
-  // H0 = kScale L^-1, as direction() takes it.
-  void apply_h0(const Positions& q, Positions& r) const {
-    apply_inverse(q, r);
-    r *= kScale;
+  // M of H0 = kScale M, as direction() takes it: L^-1.
+  auto inverse() const {
+    return [this](const Positions& q, Positions& r) { apply_inverse(q, r); };
   }
 };
 
@@ -106,7 +105,7 @@ TEST_CASE("L-BFGS memory: the direction is the two-loop recursion's, pairs kept 
   LbfgsMemory<Positions> memory(kCapacity);
   std::deque<Positions> s, y;
   Positions direction, scratch;
-  memory.direction(gradient, direction, scratch, [&](const Positions& q, Positions& r) { problem.apply_h0(q, r); });
+  memory.direction(gradient, direction, scratch, problem.inverse(), kScale);
   CHECK(relative_difference(direction, textbook_direction(problem, s, y, gradient)) < 1e-14);
   // Two more pairs than kept: the oldest go.
   for (int k = 0; k < kCapacity + 2; ++k) {
@@ -122,10 +121,10 @@ TEST_CASE("L-BFGS memory: the direction is the two-loop recursion's, pairs kept 
       y.pop_front();
     }
     INFO(s.size() << " pairs after " << k + 1 << " pushed");
-    memory.direction(gradient, direction, scratch, [&](const Positions& q, Positions& r) { problem.apply_h0(q, r); });
+    memory.direction(gradient, direction, scratch, problem.inverse(), kScale);
     CHECK(relative_difference(direction, textbook_direction(problem, s, y, gradient)) < 1e-10);
     // The secant equation of the newest pair: H y = s.
-    memory.direction(change, direction, scratch, [&](const Positions& q, Positions& r) { problem.apply_h0(q, r); });
+    memory.direction(change, direction, scratch, problem.inverse(), kScale);
     CHECK(relative_difference(direction, -step) < 1e-10);
     gradient = change + 0.5 * gradient;
   }
@@ -145,7 +144,7 @@ TEST_CASE("L-BFGS memory: a pair without positive curvature is not kept", "[lbfg
   // After clear(), the direction is the scaled preconditioned gradient again.
   const Positions gradient = problem.change(problem.mesh.V);
   Positions direction, scratch, expected;
-  memory.direction(gradient, direction, scratch, [&](const Positions& q, Positions& r) { problem.apply_h0(q, r); });
+  memory.direction(gradient, direction, scratch, problem.inverse(), kScale);
   problem.apply_inverse(gradient, expected);
   CHECK(relative_difference(direction, Positions(-kScale * expected)) < 1e-14);
 }
@@ -170,6 +169,6 @@ TEST_CASE("L-BFGS memory: pairs pushed with no direction between them give the t
     }
   }
   Positions direction, scratch;
-  memory.direction(gradient, direction, scratch, [&](const Positions& q, Positions& r) { problem.apply_h0(q, r); });
+  memory.direction(gradient, direction, scratch, problem.inverse(), kScale);
   CHECK(relative_difference(direction, textbook_direction(problem, s, y, gradient)) < 1e-10);
 }

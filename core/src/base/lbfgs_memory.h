@@ -55,17 +55,28 @@ class LbfgsMemory {
                   "x0 and x1 must store their entries in the same order");
     spare_step_.resize(x1.rows(), x1.cols());
     spare_change_.resize(x1.rows(), x1.cols());
-    const StepProducts p = step_pair(x1.data(), x0.data(), g1.data(), g0.data(), b1.data(), b0.data(),
-                                     spare_step_.data(), spare_change_.data(), static_cast<std::size_t>(x1.size()));
-    if (!(p.sy > 1e-14 * std::sqrt(p.ss * p.yy))) return 0.0;
-    keep(p.sy);
-    return (p.sy + p.s_db) / p.sy;
+    return keep_if_curved(step_pair(x1.data(), x0.data(), g1.data(), g0.data(), b1.data(), b0.data(),
+                                    spare_step_.data(), spare_change_.data(), static_cast<std::size_t>(x1.size())));
   }
 
-  // direction = -H gradient. `apply_h0(q, r)` sets r = H0 q (r arrives as
-  // the caller's scratch matrix of q's shape).
+  // The same for a step s the caller holds, whose gradient change y the
+  // caller writes with the products in a pass of its own (AnARAP takes the
+  // new gradient in it): fill(y) writes y (s's shape) and returns s and y's
+  // StepProducts. s's storage is taken (swapped with the memory's spare).
+  template <class Fill>
+  double push_step(Matrix& s, Fill&& fill) {
+    spare_change_.resize(s.rows(), s.cols());
+    const StepProducts p = fill(spare_change_);
+    spare_step_.swap(s);
+    return keep_if_curved(p);
+  }
+
+  // direction = -H gradient, with H0 = h0_scale M: `apply_h0(q, r)` sets
+  // r = M q (r arrives as the caller's scratch matrix of q's shape). The
+  // scale enters the recursion's scalars, not a pass over r.
   template <class ApplyH0>
-  void direction(const Matrix& gradient, Matrix& direction, Matrix& scratch, ApplyH0&& apply_h0) {
+  void direction(const Matrix& gradient, Matrix& direction, Matrix& scratch, ApplyH0&& apply_h0,
+                 double h0_scale = 1.0) {
     const int m = static_cast<int>(steps_.size());
     const auto n = static_cast<std::size_t>(gradient.size());
     direction.resize(gradient.rows(), gradient.cols());
@@ -99,7 +110,7 @@ class LbfgsMemory {
     negated_.resize(m);
     for (int k = 0; k < m; ++k) negated_[k] = -a[k];
     combine(direction.data(), -1.0, gradient.data(), y.data(), negated_.data(), m, n);
-    // r0 = H0 q.
+    // r0 = H0 q = h0_scale M q.
     apply_h0(direction, scratch);
     // Second loop: r_{k+1} = r_k + (a_k - rho_k y_k . r_k) s_k, with
     // y_k . r_k = y_k . r0 + sum_{j < k} c_j s_j . y_k.
@@ -107,14 +118,20 @@ class LbfgsMemory {
     dots_with(y.data(), m, &r0, 1, products.data(), n);
     std::vector<double>& c = negated_;
     for (int k = 0; k < m; ++k) {
-      double along = products[k];
+      double along = h0_scale * products[k];
       for (int j = 0; j < k; ++j) along += c[j] * step_products_[k][j];
       c[k] = a[k] - curvatures_[k] * along;
     }
-    combine(direction.data(), 1.0, scratch.data(), s.data(), c.data(), m, n);
+    combine(direction.data(), h0_scale, scratch.data(), s.data(), c.data(), m, n);
   }
 
  private:
+  double keep_if_curved(const StepProducts& p) {
+    if (!(p.sy > 1e-14 * std::sqrt(p.ss * p.yy))) return 0.0;
+    keep(p.sy);
+    return (p.sy + p.s_db) / p.sy;
+  }
+
   // Keeps the spare pair as the newest; the oldest pair's storage becomes
   // the spare when the memory is full (no allocation once it is).
   void keep(double sy) {

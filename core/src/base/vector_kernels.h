@@ -22,7 +22,7 @@ namespace aniso {
 
 namespace vector_kernels_detail {
 
-// The products of up to 4 vectors with up to 2 targets in one pass, a pair
+// The products of up to 5 vectors with up to 2 targets in one pass, a pair
 // of elements at a time (one partial sum of pairs per product), written to
 // out[t * stride + j]. The unrolling pragmas keep the sums in registers
 // under GCC (without them its direction took 0.85 against 0.43 ms at 50k
@@ -36,7 +36,7 @@ void dots_group(const double* const* vectors, const double* const* targets, doub
     Pair target[T];
 #pragma GCC unroll 2
     for (int t = 0; t < T; ++t) target[t] = load_pair(targets[t] + i);
-#pragma GCC unroll 4
+#pragma GCC unroll 5
     for (int j = 0; j < G; ++j) {
       const Pair v = load_pair(vectors[j] + i);
 #pragma GCC unroll 2
@@ -52,19 +52,25 @@ void dots_group(const double* const* vectors, const double* const* targets, doub
   }
 }
 
+// Vectors read in one pass: up to the L-BFGS memories' 5 pairs, so that the
+// pairs' passes read the gradient, or H0's result, and write the direction
+// once (in groups of 4, a memory of 5 took a second pass for the fifth).
+constexpr int kGroup = 5;
+
 template <int T>
 void dots_groups(const double* const* vectors, int m, const double* const* targets, double* out, std::size_t n) {
-  for (int j = 0; j < m; j += 4) {
-    switch (m - j < 4 ? m - j : 4) {
+  for (int j = 0; j < m; j += kGroup) {
+    switch (m - j < kGroup ? m - j : kGroup) {
       case 1: dots_group<1, T>(vectors + j, targets, out + j, m, n); break;
       case 2: dots_group<2, T>(vectors + j, targets, out + j, m, n); break;
       case 3: dots_group<3, T>(vectors + j, targets, out + j, m, n); break;
-      default: dots_group<4, T>(vectors + j, targets, out + j, m, n); break;
+      case 4: dots_group<4, T>(vectors + j, targets, out + j, m, n); break;
+      default: dots_group<kGroup, T>(vectors + j, targets, out + j, m, n); break;
     }
   }
 }
 
-// out += the combination of up to 4 vectors, a pair of elements at a time,
+// out += the combination of up to 5 vectors, a pair of elements at a time,
 // added in the order of j (first = true: out = base_coefficient base first).
 template <int G>
 void combine_group(double* out, double base_coefficient, const double* base, const double* const* vectors,
@@ -75,7 +81,7 @@ void combine_group(double* out, double base_coefficient, const double* base, con
   std::size_t i = 0;
   for (; i + 2 <= n; i += 2) {
     Pair x = first ? c * load_pair(base + i) : load_pair(out + i);
-#pragma GCC unroll 4
+#pragma GCC unroll 5
     for (int j = 0; j < G; ++j) x += a[j] * load_pair(vectors[j] + i);
     store_pair(out + i, x);
   }
@@ -89,7 +95,7 @@ void combine_group(double* out, double base_coefficient, const double* base, con
 }  // namespace vector_kernels_detail
 
 // out[t * m + j] = vectors[j] . targets[t] for j < m, t < num_targets (1 or
-// 2), reading each vector once: groups of up to 4 vectors, each product one
+// 2), reading each vector once: groups of up to 5 vectors, each product one
 // partial sum of pairs (elements i mod 2), its lanes added at the end, then
 // the tail.
 inline void dots_with(const double* const* vectors, int m, const double* const* targets, int num_targets,
@@ -102,7 +108,7 @@ inline void dots_with(const double* const* vectors, int m, const double* const* 
 }
 
 // out = base_coefficient base + sum over j < m of coefficients[j] vectors[j],
-// added in the order of j element by element (in passes of up to 4 vectors).
+// added in the order of j element by element (in passes of up to 5 vectors).
 // out may be base.
 inline void combine(double* out, double base_coefficient, const double* base, const double* const* vectors,
                     const double* coefficients, int m, std::size_t n) {
@@ -111,13 +117,14 @@ inline void combine(double* out, double base_coefficient, const double* base, co
     combine_group<0>(out, base_coefficient, base, vectors, coefficients, true, n);
     return;
   }
-  for (int j = 0; j < m; j += 4) {
+  for (int j = 0; j < m; j += kGroup) {
     const bool first = j == 0;
-    switch (m - j < 4 ? m - j : 4) {
+    switch (m - j < kGroup ? m - j : kGroup) {
       case 1: combine_group<1>(out, base_coefficient, base, vectors + j, coefficients + j, first, n); break;
       case 2: combine_group<2>(out, base_coefficient, base, vectors + j, coefficients + j, first, n); break;
       case 3: combine_group<3>(out, base_coefficient, base, vectors + j, coefficients + j, first, n); break;
-      default: combine_group<4>(out, base_coefficient, base, vectors + j, coefficients + j, first, n); break;
+      case 4: combine_group<4>(out, base_coefficient, base, vectors + j, coefficients + j, first, n); break;
+      default: combine_group<kGroup>(out, base_coefficient, base, vectors + j, coefficients + j, first, n); break;
     }
   }
 }

@@ -516,7 +516,11 @@ void AnArapSolver::covariance_spokes_rims(const Positions& V, bool with_polar, E
   }
 }
 
-double AnArapSolver::local_step(const Positions& V) {
+double AnArapSolver::local_step(const Positions& V) { return local_step(V, rotation_); }
+
+double AnArapSolver::local_step(const Positions& V, const std::vector<Eigen::Quaterniond>& start) {
+  // Each fit starts from start[i], copied into rotation_ as the fit reaches it.
+  const bool elsewhere = &start != &rotation_;
   Eigen::VectorXd& edge_energy = edge_energy_;
   target_covariance_.resize(n_);
   polar_covariance_.resize(n_);
@@ -533,11 +537,16 @@ double AnArapSolver::local_step(const Positions& V) {
   }
   double energy = 0.0;
   if (coupling_ > 0.0) {
+    if (elsewhere) rotation_ = start;
     energy += coupled_rotations();
   } else {
     const std::vector<Eigen::Matrix3d>& fitted = with_polar ? polar_covariance_ : target_covariance_;
     int i = 0;
     for (; i + 1 < n_; i += 2) {
+      if (elsewhere) {
+        rotation_[i] = start[i];
+        rotation_[i + 1] = start[i + 1];
+      }
       const Eigen::Matrix3d* const S[2] = {&fitted[i], &fitted[i + 1]};
       Eigen::Quaterniond* const q[2] = {&rotation_[i], &rotation_[i + 1]};
       Eigen::Matrix3d* const out[2] = {&rotation_matrices_[i], &rotation_matrices_[i + 1]};
@@ -547,7 +556,10 @@ double AnArapSolver::local_step(const Positions& V) {
         if (!done[lane]) *out[lane] = fit_rotation(*S[lane], *q[lane]);
       }
     }
-    for (; i < n_; ++i) rotation_matrices_[i] = fit_rotation(fitted[i], rotation_[i]);
+    for (; i < n_; ++i) {
+      if (elsewhere) rotation_[i] = start[i];
+      rotation_matrices_[i] = fit_rotation(fitted[i], rotation_[i]);
+    }
   }
   // Negative cotangent weights (obtuse triangles) can make this sum slightly
   // negative near the optimum: it is reported as it is.

@@ -112,6 +112,9 @@ class AnArapSolver {
   // `energy` (the relative-change test; small_steps counts the small
   // changes in a row).
   bool converged(double previous, double energy, double tolerance, bool accelerated, int& small_steps) const;
+  // local_step(V) with each cell's fit starting from start[i] instead of
+  // the current rotation (which it overwrites).
+  double local_step(const Positions& V, const std::vector<Eigen::Quaterniond>& start);
   // run() with Acceleration::Lbfgs (anarap_lbfgs.cpp says how and why).
   int run_lbfgs(const LaplacianSolver& solver, Positions& V, int max_iterations, double tolerance,
                 std::vector<double>& history, bool final_energy, const std::function<void(int)>& on_iteration);

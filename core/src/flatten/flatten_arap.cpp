@@ -248,10 +248,9 @@ struct ArapFlattening::Impl {
     Eigen::MatrixXd gradient = energy_gradient(uv, rhs);
     LbfgsMemory<Eigen::MatrixXd> memory(kFlattenMemory);
     double scale = 1.0;
-    const auto apply_h0 = [&](const Eigen::MatrixXd& v, Eigen::MatrixXd& r) {
+    const auto apply_h0 = [&](const Eigen::MatrixXd& v, Eigen::MatrixXd& r) {  // L^-1 v
       r = Eigen::MatrixXd::Zero(n, 2);
       solver->solve(v, r);
-      r *= scale;
     };
     int quiet_steps = 0, stagnant_steps = 0;
     Eigen::MatrixXd direction, trial(n, 2);
@@ -261,7 +260,7 @@ struct ArapFlattening::Impl {
         break;
       }
       // direction = -H gradient (zero on the pins).
-      memory.direction(gradient, direction, trial, apply_h0);
+      memory.direction(gradient, direction, trial, apply_h0, scale);
       const Rotations kept_rotation = rotation;
       bool shortened = false;
       trial = uv + direction;
