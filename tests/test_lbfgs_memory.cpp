@@ -172,3 +172,36 @@ TEST_CASE("L-BFGS memory: pairs pushed with no direction between them give the t
   memory.direction(gradient, direction, scratch, problem.inverse(), kScale);
   CHECK(relative_difference(direction, textbook_direction(problem, s, y, gradient)) < 1e-10);
 }
+
+TEST_CASE("L-BFGS memory: a step pushed as the caller's matrix, its change written by the caller, is the same pair",
+          "[lbfgs]") {
+  // AnARAP's pairs: s is the direction taken, y and the products come from
+  // its own pass (fill); they must give the textbook direction too.
+  const SpotSystem problem;
+  const Positions zero = Positions::Zero(problem.n(), 3);
+  const Positions gradient = problem.change(problem.mesh.V);
+  LbfgsMemory<Positions> memory(kCapacity);
+  std::deque<Positions> s, y;
+  Positions direction, scratch;
+  for (int k = 0; k < kCapacity + 1; ++k) {
+    Positions step = problem.step(k);
+    const Positions change = problem.change(step);
+    s.push_back(step);
+    y.push_back(change);
+    if (static_cast<int>(s.size()) > kCapacity) {
+      s.pop_front();
+      y.pop_front();
+    }
+    const double ratio = memory.push_step(step, [&](Positions& written) {
+      written = change;
+      StepProducts p;
+      p.sy = dot(s.back(), change);
+      p.ss = dot(s.back(), s.back());
+      p.yy = dot(change, change);
+      return p;
+    });
+    CHECK(ratio == Approx(1.0));
+    memory.direction(gradient, direction, scratch, problem.inverse(), kScale);
+    CHECK(relative_difference(direction, textbook_direction(problem, s, y, gradient)) < 1e-10);
+  }
+}
