@@ -543,9 +543,10 @@ double AnArapSolver::local_step(const Positions& V, const std::vector<Eigen::Qua
   } else {
     covariance_spokes_rims(V, with_polar, edge_energy);
   }
-  // Each cell's energy is added in index order, right after its rotation's
-  // fit where the fits come one cell at a time (its S and R still in cache:
-  // a pass of its own read them again, 29 MB a local step at 200k vertices).
+  // Each cell's energy is added in index order: right after its rotation's
+  // fit (its S and R still in cache: a pass of its own read them again,
+  // 29 MB a local step at 200k vertices), or after the coupled sweep, whose
+  // fits read their neighbours' later rotations.
   // Negative cotangent weights (obtuse triangles) can make this sum slightly
   // negative near the optimum: it is reported as it is.
   double energy = 0.0;
