@@ -41,6 +41,23 @@ test('the amount shows beside the pointer during a drag and is the amount commit
     expect(shown).not.toBe(0);
   }
 
+  // Near the view's right and top edges the readout goes to the pointer's
+  // other side: all of it stays in the view.
+  const view = await page.getByTestId('viewport').boundingBox();
+  await page.getByTestId('tool-stretch').click();
+  const nearCorner = await armChange(page, 'positions');
+  await page.mouse.move(x, y);
+  await page.mouse.down();
+  await page.mouse.move(view.x + view.width - 10, view.y + 10, { steps: 8 });
+  await expect(readout).toBeVisible();
+  const corner = await readout.boundingBox();
+  expect(corner.x).toBeGreaterThanOrEqual(view.x);
+  expect(corner.x + corner.width).toBeLessThanOrEqual(view.x + view.width);
+  expect(corner.y).toBeGreaterThanOrEqual(view.y);
+  expect(Math.hypot(corner.x + corner.width / 2 - (view.x + view.width - 10), corner.y + corner.height / 2 - (view.y + 10))).toBeLessThan(100);
+  await page.mouse.up();
+  await nearCorner();
+
   // Esc during a drag: the readout goes with the edit.
   const ops = await page.evaluate(() => window.anisoform.document().ops.length);
   await page.mouse.move(x, y);

@@ -21,14 +21,38 @@ export function worldDragVector(viewer, from, to, anchor) {
   return toWorld.sub(fromWorld).toArray();
 }
 
-/** Extent (max - min) of the selected vertices (all if none) along a unit vector. */
-export function extentAlong(document, unit) {
+// Per document, the selected vertices' positions (all of them when none is
+// selected), packed, with the arrays they came from: a drag asks for the
+// extent along a new direction at every pointer move, over the same
+// committed positions and selection (arrays that are replaced, never
+// written: mesh-document.js).
+const packedOf = new WeakMap();
+
+function selectedPoints(document) {
   const { positions, selection, selectionCount } = document;
-  let min = Infinity;
-  let max = -Infinity;
+  const packed = packedOf.get(document);
+  if (packed?.positions === positions && packed.selection === selection && packed.count === selectionCount) {
+    return packed.points;
+  }
+  const points = new positions.constructor(positions.length);
+  let n = 0;
   for (let i = 0; i < positions.length / 3; i++) {
     if (selectionCount > 0 && selection[i] <= 0) continue;
-    const value = positions[3 * i] * unit[0] + positions[3 * i + 1] * unit[1] + positions[3 * i + 2] * unit[2];
+    points[n++] = positions[3 * i];
+    points[n++] = positions[3 * i + 1];
+    points[n++] = positions[3 * i + 2];
+  }
+  packedOf.set(document, { positions, selection, count: selectionCount, points: points.subarray(0, n) });
+  return points.subarray(0, n);
+}
+
+/** Extent (max - min) of the selected vertices (all if none) along a unit vector. */
+export function extentAlong(document, unit) {
+  const points = selectedPoints(document);
+  let min = Infinity;
+  let max = -Infinity;
+  for (let i = 0; i < points.length; i += 3) {
+    const value = points[i] * unit[0] + points[i + 1] * unit[1] + points[i + 2] * unit[2];
     if (value < min) min = value;
     if (value > max) max = value;
   }

@@ -23,6 +23,9 @@ export class Viewer extends EventEmitter {
   #boundsSource = () => null;
   /** Target and distance the last fit left, to tell whether the user zoomed or panned since. */
   #lastFit = null;
+  /** The view's size in CSS pixels, as of the last resize (read without laying the page out). */
+  width = 1;
+  height = 1;
 
   /**
    * @param {HTMLElement} container  receives the canvas
@@ -87,6 +90,8 @@ export class Viewer extends EventEmitter {
   #resize() {
     const width = Math.max(1, this.container.clientWidth);
     const height = Math.max(1, this.container.clientHeight);
+    this.width = width;
+    this.height = height;
     this.renderer.setSize(width, height, false);
     this.canvas.style.width = '100%';
     this.canvas.style.height = '100%';
