@@ -91,10 +91,9 @@ struct ArapFlattenSettings {
   int unfold_iterations = 50;  // from a folded start: iterations allowed to
                                // unfold it before giving up (the Flattener then
                                // starts again from a fold-free map)
-  // Called after every iteration with (iteration, energy); returning false
-  // stops early (the map so far is kept). The energy is NaN for the
-  // local/global iterations a refinement follows: they are only its start,
-  // and their energy is not the refinement's.
+  // ArapFlattening::solve calls it after every iteration with (iteration,
+  // energy); returning false stops early (the map so far is kept). The
+  // Flattener sets its own: it reports through FlattenOptions::progress.
   std::function<bool(int, double)> progress;
 };
 
@@ -176,6 +175,10 @@ struct FlattenOptions {
   double su = 1.0;  // wanted stretch along (unless constraints carry amounts)
   double sv = 1.0;  // wanted stretch across
   ArapFlattenSettings solver;
+  // Called after every iteration, local/global and refinement's, with the
+  // share of the flattening done, in [0, 1) until it ends (by stages:
+  // flatten.cpp); returning false stops early (the map so far is kept).
+  std::function<bool(double)> progress;
 };
 
 struct FlattenResult {

@@ -37,6 +37,7 @@
 // scale by millimetres per unit (pattern_export.h).
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -45,6 +46,7 @@
 
 #include "anisoform/flatten.h"
 #include "anisoform/mesh.h"
+#include "base/convergence_progress.h"
 #include "mesh/topology.h"
 
 namespace aniso {
@@ -185,6 +187,11 @@ double fold_free_step_fraction(const Triangles& F, const TriangleCharts& charts,
 
 // ---- the stretch refinement (flatten_refine.cpp) -------------------------------
 
+// The refinement's progress: after each step, its stage (refine_stage_outlook's
+// order), the iterations so far (counted from iterations_before) and the
+// stage's energy; false stops it (the map so far is kept).
+using RefineProgress = std::function<bool(int stage, int iteration, double energy)>;
+
 struct StretchRefineReport {
   int start = -1;          // which of the starts it ran from; -1: none is fold-free (uv unchanged)
   int iterations = 0;      // all stages'
@@ -203,12 +210,18 @@ struct StretchRefineReport {
 // with the absolute values smoothed more (stages, flatten_refine.cpp):
 // monotone within each stage, and no triangle folds. `pinned`: one vertex per
 // component, held (the energy does not see where a piece lies). Runs at most
-// settings.max_iterations - iterations_before iterations; progress is called
-// with the iteration counted from iterations_before.
+// settings.max_iterations - iterations_before iterations (settings.progress
+// is not called: `progress` is, after every step).
 StretchRefineReport refine_stretch(const FlattenPatch& patch, const TriangleCharts& charts,
                                    const FlattenTargets& targets, const std::vector<int>& pinned,
                                    const ArapFlattenSettings& settings, int iterations_before,
-                                   const std::vector<Eigen::MatrixX2d>& starts, Eigen::MatrixX2d& uv);
+                                   const std::vector<Eigen::MatrixX2d>& starts, Eigen::MatrixX2d& uv,
+                                   const RefineProgress& progress = {});
+
+// The refinement's stages in the order refine_stretch runs them, as a
+// progress bar sees them: each one's share of the refinement's time
+// (measured) and the relative energy change at which it ends about.
+std::vector<StagedProgress::Stage> refine_stage_outlook(double tolerance);
 
 // ---- measuring --------------------------------------------------------------
 

@@ -11,7 +11,6 @@
 #include "anisoform/op.h"
 #include "anisoform/pattern_export.h"
 #include "anisoform/session.h"
-#include "base/convergence_progress.h"
 #include "session/session_flatten_state.h"
 
 namespace aniso {
@@ -118,10 +117,9 @@ SessionFlattenResult Session::flatten_once(const SessionFlatten& given) {
   Flattener& flattener = built ? *built : *state.flattener;
 
   FlattenOptions options = flatten_options(request);
-  ConvergenceProgress flatten_progress(options.solver.max_iterations, options.solver.tolerance);
   if (progress_) {
-    options.solver.progress = [this, &flatten_progress](int iteration, double energy) {
-      report(ProgressStage::Flatten, flatten_progress.update(iteration, energy));
+    options.progress = [this](double fraction) {
+      report(ProgressStage::Flatten, fraction);
       return true;
     };
   }
