@@ -19,10 +19,13 @@ enum class ProgressStage {
 // the unit-size copy and its Laplacian end at kSetupLaplacianShare, the
 // workspace at kSetupWorkspaceShare, the factorization (by its work, from
 // kSetupWorkspaceShare) at kSetupFactorizedShare, the iterations'
-// structures at 1. Shares of the 200k-vertex koala's set-up in WASM.
+// structures at 1 (in the background preparation at kSetupStructuresShare,
+// and its warm-up of a preview's work at 1). Shares of the 200k-vertex
+// koala's set-up in WASM.
 inline constexpr double kSetupLaplacianShare = 0.3;
 inline constexpr double kSetupWorkspaceShare = 0.35;
 inline constexpr double kSetupFactorizedShare = 0.95;
+inline constexpr double kSetupStructuresShare = 0.97;
 
 // "load", "factorize", "solve", "flatten".
 const char* progress_stage_name(ProgressStage stage);

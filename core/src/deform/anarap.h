@@ -84,6 +84,14 @@ class AnArapSolver {
   // alpha > 0: coupled rotations (see above); 0: the paper's scheme.
   void set_rotation_coupling(double alpha) { coupling_ = alpha; }
   void reset_rotations();
+  // A live preview's work once, its results thrown away: scale targets of
+  // amount 1 from `frames` (#F by 3 u and v) on every side (the rest edges
+  // again, bit for bit), the scale steps, and a local step, right-hand side
+  // and solve at the rest pose (the rotations reset after). Run in the
+  // background preparation, so that a drag's first preview finds its memory
+  // touched and, in WASM, its code compiled by the optimizing tier
+  // (Deformer::prepare_step).
+  void warm_up(const LaplacianSolver& solver, const Positions& u, const Positions& v);
 
   // Fits the rotations to `V` and returns the energy E(V, R) with the new R.
   double local_step(const Positions& V);

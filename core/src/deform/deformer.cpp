@@ -194,6 +194,7 @@ struct Deformer::Workspace {
   std::optional<DirectionSource> frames_source;
   SideFrames frames;
   int frames_built = 0;  // how many times `frames` was built: names this one
+  bool warmed_up = false;  // prepare_step's last part has run
   // What the AnARAP solver's scale steps (set_scale_targets) were built
   // from: valid while the frames and the weights are these.
   struct ScaleSteps {
@@ -346,7 +347,9 @@ double Deformer::prepare_step() {
   // factorization, done in kNumericParts parts) and 230 ms (the AnARAP
   // structures and the triangle adjacency: 155 ms without the adjacency and
   // the local step's scratch, which the first edit then built: 391-541
-  // against 421-737 ms for a first stretch preview after the preparation).
+  // against 421-737 ms for a first stretch preview after the preparation),
+  // then the warm-up (the 200k cylinder's: 460 ms, which its first preview
+  // no longer spends).
   constexpr int kNumericParts = 4;
   const auto report = [this](double share) {
     report_setup(share);
@@ -385,6 +388,24 @@ double Deformer::prepare_step() {
     // And the triangles' adjacency, which the first edit's frames need
     // wherever a direction lies along a normal (on a closed mesh, somewhere).
     workspace_->targets.triangle_adjacency();
+    return report(kSetupStructuresShare);
+  }
+  if (!workspace_->warmed_up) {
+    // What else only a drag's first preview did once: the inversion count's
+    // adjacency, and a preview's work (frames, scale targets, an iteration)
+    // for its memory and (WASM) compiled code. After the preparation, the
+    // 50k cylinder's first stretch preview took 134-199 ms in Node against
+    // 15-20 for the next ones (now 38-57), the 200k's 568 against 70-90
+    // (memset of memory touched for the first time 186 ms, the adjacency
+    // 64, the frames 104; now 126-153); in the page, a 50k tube's first
+    // shape came 176-280 ms after the drag's first move (now 104-126).
+    workspace_->inversions.build_adjacency(rest_);
+    DirectionSource along_x;
+    along_x.kind = DirectionSource::Kind::Global;
+    along_x.vector = Eigen::Vector3d::UnitX();
+    const SideFrames frames = side_frames(workspace_->targets, along_x);
+    iterations->warm_up(*solvers_.at(pins), frames.frames.u, frames.frames.v);
+    workspace_->warmed_up = true;
     return report(1.0);
   }
   return 1.0;
@@ -458,6 +479,8 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
     report_setup(kSetupWorkspaceShare);
   }
   Workspace& ws = *workspace_;
+  // prepare_step's warm-up would now reset the rotations a warm start goes on from.
+  ws.warmed_up = true;
 
   if (request.method == Method::Linear) {
     // Each vertex moves by its own local map about the selection's centroid,

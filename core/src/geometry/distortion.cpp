@@ -85,6 +85,10 @@ int count_inverted(const Mesh& rest, const Positions& deformed) {
   return InversionCounter(rest).count(rest, deformed);
 }
 
+void InversionCounter::build_adjacency(const Mesh& rest) const {
+  if (!adjacency_) adjacency_ = std::make_shared<const VertexAdjacency>(vertex_adjacency(rest.F, rest.num_vertices()));
+}
+
 int InversionCounter::count(const Mesh& rest, const Positions& deformed) const {
   require_same_vertex_count(rest, deformed, "inverted count");
   const Positions& rest_normals = rest_normals_;
@@ -96,7 +100,7 @@ int InversionCounter::count(const Mesh& rest, const Positions& deformed) const {
     if (has_area_[t] && rest_normals.row(t).dot(normals.row(t)) < 0.0) candidates.push_back(t);
   }
   if (candidates.empty()) return 0;
-  if (!adjacency_) adjacency_ = std::make_shared<const VertexAdjacency>(vertex_adjacency(rest.F, rest.num_vertices()));
+  build_adjacency(rest);
   const VertexAdjacency& adjacency = *adjacency_;
   std::vector<Eigen::Matrix3d> rotation(static_cast<std::size_t>(rest.num_vertices()));
   std::vector<char> fitted(rotation.size(), 0);
