@@ -120,3 +120,48 @@ test('a flattening that runs out of memory frees the edit factorizations and suc
   assert.equal(squeezed.energy, reference.energy);
   assert.equal(squeezed.refactorized, 1);
 });
+
+// The preparation's last part, a preview's work thrown away (the warm-up,
+// Deformer::prepare_step), only saves the first preview time: without the
+// memory for it, it is skipped. It must neither fail the preparation nor
+// have the session free the factorization just made (and make it again,
+// part by part, to fail again).
+test('the preparation without memory for its warm-up ends, and keeps its factorization', () => {
+  const session = sessionWith(wasm, MESH);
+  try {
+    const shares = [];
+    for (let part = 0; part < 8; part++) shares.push(session.prepareStep());
+    assert.ok(shares.at(-1) < 1, `shares ${shares}`);
+    assert.equal(session.factorizations(), 1);
+    // The heap filled to within a block of 256 KB (the warm-up of this
+    // mesh takes several MB).
+    for (let block = 2 ** 30; block >= 256 * 1024;) {
+      try {
+        wasm.holdMemory(block);
+      } catch (error) {
+        assert.equal(error.code, 'out-of-memory');
+        block /= 2;
+      }
+    }
+    assert.equal(session.prepareStep(), 1);
+    wasm.releaseHeldMemory();
+    assert.equal(session.factorizations(), 1);
+    assert.equal(session.prepareStep(), 1, 'nothing left');
+    // The edit after it factorizes nothing and is the unprepared one.
+    const cold = sessionWith(wasm, MESH);
+    try {
+      const edit = (target) => {
+        assert.ok(target.select(upperPart(target, 0.5)) > 1000);
+        target.deform({ ...stretch([0, 1, 0], 1.3), warmStart: true, maxIterations: 1, preview: true });
+        return target.positionsExact().slice();
+      };
+      assert.deepEqual(edit(session), edit(cold));
+      assert.equal(session.factorizations(), 1);
+    } finally {
+      cold.delete();
+    }
+  } finally {
+    session.delete();
+    wasm.releaseHeldMemory();
+  }
+});

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <new>
 #include <numeric>
 #include <optional>
 #include <sstream>
@@ -399,12 +400,19 @@ double Deformer::prepare_step() {
     // (memset of memory touched for the first time 186 ms, the adjacency
     // 64, the frames 104; now 126-153); in the page, a 50k tube's first
     // shape came 176-280 ms after the drag's first move (now 104-126).
-    workspace_->inversions.build_adjacency(rest_);
-    DirectionSource along_x;
-    along_x.kind = DirectionSource::Kind::Global;
-    along_x.vector = Eigen::Vector3d::UnitX();
-    const SideFrames frames = side_frames(workspace_->targets, along_x);
-    iterations->warm_up(*solvers_.at(pins), frames.frames.u, frames.frames.v);
+    // Only time is at stake: without the memory for it (a mesh near the
+    // vertex limit), it is left to the first preview, and no memory is
+    // released for it (Session's retry would release this factorization).
+    try {
+      workspace_->inversions.build_adjacency(rest_);
+      DirectionSource along_x;
+      along_x.kind = DirectionSource::Kind::Global;
+      along_x.vector = Eigen::Vector3d::UnitX();
+      const SideFrames frames = side_frames(workspace_->targets, along_x);
+      iterations->warm_up(*solvers_.at(pins), frames.frames.u, frames.frames.v);
+    } catch (const std::bad_alloc&) {
+      iterations->reset_rotations();
+    }
     workspace_->warmed_up = true;
     return report(1.0);
   }
