@@ -4,7 +4,9 @@
 
 #include <catch2/catch.hpp>
 
+#include "deform/anarap.h"
 #include "deform/andefgrad.h"
+#include "deform/element_targets.h"
 #include "geometry/laplacian_solver.h"
 #include "solver_test_support.h"
 #include "test_support.h"
@@ -259,6 +261,45 @@ TEST_CASE("anarap: a live preview's scale targets are the direct ones, for every
       // The edit does move the mesh: the comparison is not of two rest poses.
       CHECK((direct.V - mesh.V).rowwise().norm().maxCoeff() > 1e-2 * size);
     }
+  }
+}
+
+TEST_CASE("anarap: coupled rotations never read the polar targets: the same iterates without them", "[solver][anarap]") {
+  // set_targets(T, false) skips the polar decompositions (a quarter of a
+  // shear's live preview): with coupled rotations, as the deformer asks for
+  // it, every iterate must be the same, bit for bit, and the shear must move
+  // the mesh (a twist's targets differ per side, a shear's per triangle).
+  const Mesh mesh = test::load("closed/spot_triangulated.obj");
+  const CotanWeights weights = cotangent_weights(mesh);
+  const Eigen::SparseMatrix<double> L = cotangent_laplacian(mesh, weights);
+  const LaplacianSolver solver(L, {0});
+  TargetContext context(mesh);
+  DirectionSource along_y;
+  along_y.vector = Eigen::Vector3d::UnitY();
+  const SideFrames frames = side_frames(context, along_y);
+  const double middle = 0.5 * (mesh.V.col(1).minCoeff() + mesh.V.col(1).maxCoeff());
+  Eigen::VectorXd upper(mesh.num_vertices());
+  for (int i = 0; i < mesh.num_vertices(); ++i) upper[i] = mesh.V(i, 1) > middle ? 1.0 : 0.0;
+  TransformSpec shear;
+  shear.shear = 0.6;
+  TransformSpec twist;
+  twist.twist = true;
+  twist.twist_degrees_per_unit = 40.0 / diagonal(mesh.V);
+  for (const TransformSpec& spec : {shear, twist}) {
+    REQUIRE(spec.has_rotational_part());
+    Positions V[2];
+    std::vector<double> history[2];
+    for (int polar = 0; polar < 2; ++polar) {
+      AnArapSolver iterations(mesh, weights, L, ArapElements::Spokes);
+      iterations.set_targets(SideTargets(mesh, frames, spec, upper), polar == 1);
+      iterations.set_rotation_coupling(1.0);
+      V[polar] = mesh.V;
+      iterations.run(solver, V[polar], 8, -1.0, history[polar], true, Acceleration::Anderson);
+    }
+    INFO("twist " << spec.twist);
+    CHECK(V[0] == V[1]);
+    CHECK(history[0] == history[1]);
+    CHECK((V[0] - mesh.V).rowwise().norm().maxCoeff() > 1e-2 * diagonal(mesh.V));
   }
 }
 

@@ -307,7 +307,7 @@ AnArapSolver::AnArapSolver(const Mesh& rest, const CotanWeights& weights,
   laplacian_v_.setZero(n_, 3);
 }
 
-void AnArapSolver::set_targets(const SideTargets& T) {
+void AnArapSolver::set_targets(const SideTargets& T, bool polar_targets) {
   // The polar parts, once per side; P of a mean is taken as the mean of the
   // P's (equal where the sides' maps are, which is everywhere but at creases).
   // Consecutive sides often carry the very same map (the identity all over
@@ -319,6 +319,7 @@ void AnArapSolver::set_targets(const SideTargets& T) {
   Eigen::Matrix3d last_T, last_P;
   bool have_last = false;
   const auto polar_of = [&](const Eigen::Matrix3d& Ts) -> const Eigen::Matrix3d& {
+    if (!polar_targets) return Ts;  // polar_differs_ stays false: never read
     if (have_last && std::memcmp(Ts.data(), last_T.data(), sizeof(double) * 9) == 0) return last_P;
     last_P = polar_positive_part(Ts);
     last_T = Ts;

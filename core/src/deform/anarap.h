@@ -62,8 +62,10 @@ class AnArapSolver {
 
   // Per-side targets (SideTargets in element_targets.h: triangle t's three
   // maps, for its sides 3t, 3t + 1, 3t + 2). Keeps the current rotations
-  // (warm start).
-  void set_targets(const SideTargets& T);
+  // (warm start). Without `polar_targets` their polar parts are not made
+  // (for coupled rotations, which never read them: the decompositions were
+  // a quarter of a shear's live preview at 200k vertices in WASM).
+  void set_targets(const SideTargets& T, bool polar_targets = true);
   // Every side's map the identity (ARAP): the targets are the rest edges.
   void set_identity_targets();
   // Scale-only targets (TransformSpec::scales_only, the same amounts on every

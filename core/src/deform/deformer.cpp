@@ -573,7 +573,9 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
         }
         iterations->set_scale_targets(request.transform.su, request.transform.sv);
       } else {
-        iterations->set_targets(SideTargets(unit_, frames, request.transform, w));
+        // Coupled rotations are fitted to the whole targets: no polar parts.
+        const bool coupled = rotational && request.rotations == RotationScheme::Coupled;
+        iterations->set_targets(SideTargets(unit_, frames, request.transform, w), !coupled);
       }
     }
     std::string key = std::string(method_name(request.method)) + ":" +
