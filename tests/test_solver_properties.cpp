@@ -190,11 +190,12 @@ TEST_CASE("anarap: without the final energy, the last step is the plain one; the
   }
 }
 
-TEST_CASE("anarap: a live preview's scale targets are the direct ones, for every amount, selection and direction",
+TEST_CASE("anarap: a live preview's scale and shear targets are the direct ones, for every amount, selection and "
+          "direction",
           "[solver][anarap]") {
-  // A preview takes scale-only targets without a map per side
-  // (AnArapSolver::set_scale_targets). Each preview must match the same
-  // request solved with the maps, whatever ran before.
+  // A preview takes scale-only and shear-only targets without a map per side
+  // (AnArapSolver::set_scale_targets, set_shear_targets). Each preview must
+  // match the same request solved with the maps, whatever ran before.
   const Mesh mesh = test::load("closed/spot_triangulated.obj");
   const double size = diagonal(mesh.V);
   Eigen::VectorXd upper(mesh.num_vertices()), lower(mesh.num_vertices());
@@ -232,7 +233,7 @@ TEST_CASE("anarap: a live preview's scale targets are the direct ones, for every
   };
   for (const ArapElements elements : {ArapElements::Spokes, ArapElements::SpokesAndRims}) {
     Deformer live(mesh);
-    struct Step { Eigen::VectorXd weights; DirectionSource direction; double su, sv; };
+    struct Step { Eigen::VectorXd weights; DirectionSource direction; double su, sv, shear = 0.0; };
     const std::vector<Step> steps = {
         {upper, global(Eigen::Vector3d::UnitY()), 1.3, 1.0}, {upper, global(Eigen::Vector3d::UnitY()), 1.6, 0.9},
         {lower, global(Eigen::Vector3d::UnitY()), 1.6, 0.9},  // a new selection
@@ -243,10 +244,17 @@ TEST_CASE("anarap: a live preview's scale targets are the direct ones, for every
         {upper, turned, 1.5, 0.9},
         {upper, drag(Eigen::Vector2d(500, 300)), 1.3, 1.0},  // stretch drags
         {upper, drag(Eigen::Vector2d(480, 220)), 1.5, 0.9},
-        {upper, global(Eigen::Vector3d(1, 1, 0)), 1.4, 1.0}};  // back to a global direction
+        {upper, global(Eigen::Vector3d(1, 1, 0)), 1.4, 1.0},  // back to a global direction
+        {upper, global(Eigen::Vector3d::UnitY()), 1.0, 1.0, 0.4},  // shears, from their steps
+        {upper, global(Eigen::Vector3d::UnitY()), 1.0, 1.0, -0.3},
+        {lower, global(Eigen::Vector3d(1, 1, 0)), 1.0, 1.0, 0.5},
+        {upper, drag(Eigen::Vector2d(480, 220)), 1.0, 1.0, 0.4},  // a shear drag
+        {upper, global(Eigen::Vector3d(1, 1, 0)), 1.3, 1.0},      // a scale after the shears
+        {upper, global(Eigen::Vector3d(1, 1, 0)), 1.0, 1.0, 0.3}};
     for (std::size_t k = 0; k < steps.size(); ++k) {
       DeformRequest request = test::stretch_request(Method::AnArap, Eigen::Vector3d::UnitY(), steps[k].su, steps[k].sv);
       request.direction = steps[k].direction;
+      request.transform.shear = steps[k].shear;
       request.selection = steps[k].weights;
       request.elements = elements;
       request.warm_start = false;

@@ -46,6 +46,8 @@ struct TransformSpec {
   // Only the scales su, sv, sn: the element maps are then
   // I + w ((su - 1) cu cu^T + (sv - 1) cv cv^T + (sn - 1) n n^T), affine in them.
   bool scales_only() const { return !has_rotational_part(); }
+  // Only a shear, no scale: the element maps are then I + w h cu cv^T, linear in h.
+  bool shears_only() const;
   bool is_identity() const;
 };
 

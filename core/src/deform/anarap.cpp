@@ -388,42 +388,69 @@ void AnArapSolver::set_identity_targets() {
   update_target_energy();
 }
 
+namespace {
+
+// A side's steps (AnArapSolver::set_scale_steps, set_shear_steps) for its
+// share e of a target row's rest edge, its weight w and its triangle's
+// frame u, v: w (u.e) u and w (v.e) v for the scales, w (v.e) u for a shear.
+struct SideShare {
+  double w;
+  const Eigen::Vector3d& e;
+  Eigen::Vector3d u, v;
+  Eigen::Vector3d along() const { return (w * u.dot(e)) * u; }
+  Eigen::Vector3d across() const { return (w * v.dot(e)) * v; }
+  // v turned to `orientation` (oriented_frame, element_targets.cpp).
+  Eigen::Vector3d sheared(const Eigen::Vector3d& orientation) const {
+    const Eigen::Vector3d oriented = v.dot(orientation) < 0.0 ? Eigen::Vector3d(-v) : v;
+    return (w * oriented.dot(e)) * u;
+  }
+};
+
+}  // namespace
+
 template <typename Visit>
-void AnArapSolver::visit_scale_steps(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight,
+void AnArapSolver::visit_side_shares(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight,
                                      Visit&& visit) const {
   // Directly, not through a 3x3 map per side as set_targets takes them: no
   // map or polar part per side (a slider's first value cost 5x a later one
   // through set_targets with unit steps).
-  const auto side_step = [&](int s, const Eigen::Vector3d& e, Eigen::Vector3d& along, Eigen::Vector3d& across) {
-    const Eigen::Vector3d a = u.row(s / 3).transpose(), b = v.row(s / 3).transpose();
-    along = (side_weight[s] * a.dot(e)) * a;
-    across = (side_weight[s] * b.dot(e)) * b;
-  };
-  Eigen::Vector3d along, across;
   for (int s = 0; s < 3 * rest_.num_triangles(); ++s) {
     if (side_weight[s] == 0.0) continue;
+    const Eigen::Vector3d a = u.row(s / 3).transpose(), b = v.row(s / 3).transpose();
     if (elements_ == ArapElements::SpokesAndRims) {
-      side_step(s, side_edge_.row(s).transpose(), along, across);
-      visit(s, along, across);
+      const Eigen::Vector3d e = side_edge_.row(s).transpose();
+      visit(s, SideShare{side_weight[s], e, a, b});
       continue;
     }
     // A spoke's map is the mean of its sides' (set_targets): each side adds
     // its share.
     for (int k = side_spoke_offsets_[s]; k < side_spoke_offsets_[s + 1]; ++k) {
       const int q = side_spokes_[k];
-      side_step(s, spoke_share_[q] * spoke_edge_.row(q).transpose(), along, across);
-      visit(q, along, across);
+      const Eigen::Vector3d e = spoke_share_[q] * spoke_edge_.row(q).transpose();
+      visit(q, SideShare{side_weight[s], e, a, b});
     }
   }
 }
 
-void AnArapSolver::set_scale_steps(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight) {
+Positions& AnArapSolver::zeroed_step(Positions& step) const {
   const Eigen::Index rows = elements_ == ArapElements::Spokes ? spoke_edge_.rows() : side_edge_.rows();
-  scale_step_[0].setZero(rows, 3);
-  scale_step_[1].setZero(rows, 3);
-  visit_scale_steps(u, v, side_weight, [this](int row, const Eigen::Vector3d& along, const Eigen::Vector3d& across) {
-    scale_step_[0].row(row) += along.transpose();
-    scale_step_[1].row(row) += across.transpose();
+  step.setZero(rows, 3);
+  return step;
+}
+
+Positions& AnArapSolver::rest_targets() {
+  const bool spokes = elements_ == ArapElements::Spokes;
+  Positions& target = spokes ? spoke_target_ : side_target_;
+  target = spokes ? spoke_edge_ : side_edge_;
+  return target;
+}
+
+void AnArapSolver::set_scale_steps(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight) {
+  Positions& along = zeroed_step(scale_step_[0]);
+  Positions& across = zeroed_step(scale_step_[1]);
+  visit_side_shares(u, v, side_weight, [&](int row, const SideShare& side) {
+    along.row(row) += side.along().transpose();
+    across.row(row) += side.across().transpose();
   });
 }
 
@@ -437,19 +464,42 @@ void AnArapSolver::set_scale_targets(double su, double sv) {
 
 void AnArapSolver::set_scale_targets(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight,
                                      double su, double sv) {
+  Positions& target = rest_targets();
+  visit_side_shares(u, v, side_weight, [&target, su, sv](int row, const SideShare& side) {
+    target.row(row) += ((su - 1.0) * side.along() + (sv - 1.0) * side.across()).transpose();
+  });
+  scale_targets_set();
+}
+
+void AnArapSolver::set_shear_steps(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight,
+                                   const Eigen::Vector3d& orientation) {
+  Positions& sheared = zeroed_step(shear_step_);
+  visit_side_shares(u, v, side_weight, [&](int row, const SideShare& side) {
+    sheared.row(row) += side.sheared(orientation).transpose();
+  });
+}
+
+void AnArapSolver::set_shear_targets(double h) {
   const bool spokes = elements_ == ArapElements::Spokes;
   Positions& target = spokes ? spoke_target_ : side_target_;
-  target = spokes ? spoke_edge_ : side_edge_;
-  visit_scale_steps(u, v, side_weight,
-                    [&target, su, sv](int row, const Eigen::Vector3d& along, const Eigen::Vector3d& across) {
-                      target.row(row) += ((su - 1.0) * along + (sv - 1.0) * across).transpose();
-                    });
+  target = (spokes ? spoke_edge_ : side_edge_) + h * shear_step_;
+  scale_targets_set();
+}
+
+void AnArapSolver::set_shear_targets(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight,
+                                     const Eigen::Vector3d& orientation, double h) {
+  Positions& target = rest_targets();
+  visit_side_shares(u, v, side_weight, [&](int row, const SideShare& side) {
+    target.row(row) += (h * side.sheared(orientation)).transpose();
+  });
   scale_targets_set();
 }
 
 void AnArapSolver::scale_targets_set() {
-  // Symmetric positive definite maps are their own polar parts: the polar
-  // targets are not used (with_polar is false) until set_targets sets them.
+  // Symmetric positive definite maps are their own polar parts, and a
+  // shear's are read only by the paper's scheme, which takes set_targets:
+  // the polar targets are not used (with_polar is false) until set_targets
+  // sets them.
   polar_differs_ = false;
   update_target_energy();
 }

@@ -83,6 +83,17 @@ class AnArapSolver {
   void set_scale_targets(double su, double sv);
   void set_scale_targets(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight, double su,
                          double sv);
+  // Shear-only targets (TransformSpec::shears_only) are linear in the shear
+  // h: a side maps e to e + w h u (v.e), v turned to `orientation`
+  // (shear_orientation, element_targets.h), so t = e + h S per spoke (or
+  // side). As the scale steps: set_shear_steps keeps S, set_shear_targets(h)
+  // sets the targets from it, the other set_shear_targets directly. Only
+  // for coupled rotations: the polar targets are not made.
+  void set_shear_steps(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight,
+                       const Eigen::Vector3d& orientation);
+  void set_shear_targets(double h);
+  void set_shear_targets(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight,
+                         const Eigen::Vector3d& orientation, double h);
   // alpha > 0: coupled rotations (see above); 0: the paper's scheme.
   void set_rotation_coupling(double alpha) { coupling_ = alpha; }
   void reset_rotations();
@@ -139,13 +150,17 @@ class AnArapSolver {
   void covariance_spokes_rims(const Positions& V, bool with_polar, Eigen::VectorXd& edge_energy);
   // The coupled local step's sweep; returns E_s after it.
   double coupled_rotations();
-  // Calls visit(row, along, across) for each side of positive weight and
-  // each target row it adds to (its spokes, or itself with rims): the side's
-  // steps w (u.e) u and w (v.e) v for its share e of the row's rest edge.
+  // Calls visit(row, side) for each side of positive weight and each target
+  // row it adds to (its spokes, or itself with rims): `side` gives the
+  // side's steps (w (u.e) u, w (v.e) v, w (v.e) u) for its share e of the
+  // row's rest edge.
   template <typename Visit>
-  void visit_scale_steps(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight,
+  void visit_side_shares(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight,
                          Visit&& visit) const;
-  void scale_targets_set();  // after either set_scale_targets
+  // `step` zeroed in the layout of the targets; the targets set to the rest edges.
+  Positions& zeroed_step(Positions& step) const;
+  Positions& rest_targets();
+  void scale_targets_set();  // after any set_scale_targets or set_shear_targets
 
   const Mesh& rest_;
   const CotanWeights& weights_;
@@ -166,6 +181,7 @@ class AnArapSolver {
   // k, from corner k+1 to k+2) and its targets T e and P e.
   Positions side_edge_, side_target_, side_polar_;
   Positions scale_step_[2];  // set_scale_steps: U, V in the layout of the targets
+  Positions shear_step_;     // set_shear_steps: S, likewise
   // sum w |t|^2 per cell: depends on the targets only, computed once per target set.
   Eigen::VectorXd target_energy_;
   // Spokes: sum_j w_ij t_ij per cell, with target_energy_ (global_rhs's R_i part).

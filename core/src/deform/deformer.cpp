@@ -196,14 +196,15 @@ struct Deformer::Workspace {
   SideFrames frames;
   int frames_built = 0;  // how many times `frames` was built: names this one
   bool warmed_up = false;  // prepare_step's last part has run
-  // What the AnARAP solver's scale steps (set_scale_targets) were built
-  // from: valid while the frames and the weights are these.
-  struct ScaleSteps {
+  // What the AnARAP solver's scale and shear steps (set_scale_targets,
+  // set_shear_targets) were built from: valid while the frames and the
+  // weights are these.
+  struct AffineSteps {
     ArapElements elements;
     int frames_built;
     Eigen::VectorXd weights;
   };
-  std::optional<ScaleSteps> scale_steps;
+  std::optional<AffineSteps> scale_steps, shear_steps;
 };
 
 namespace {
@@ -559,23 +560,39 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
       // every value: the targets directly, without steps (200k koala in
       // WASM, 117 -> 63 ms a value against the maps; from steps built for
       // one value, one more pass).
-      const bool scale_preview = request.preview && request.transform.scales_only() && frames.su.size() == 0;
-      if (scale_preview && request.direction.kind == DirectionSource::Kind::Screen) {
-        iterations->set_scale_targets(frames.frames.u, frames.frames.v, side_weights(unit_, w), request.transform.su,
-                                      request.transform.sv);
-      } else if (scale_preview) {
-        const bool valid = ws.scale_steps && ws.scale_steps->elements == request.elements &&
-                           ws.scale_steps->frames_built == ws.frames_built &&
-                           ws.scale_steps->weights.size() == w.size() && ws.scale_steps->weights == w;
-        if (!valid) {
+      // A shear's live preview likewise (linear in the shear), for the
+      // coupled rotations that need no polar targets: at 50k vertices in
+      // WASM, set_targets was half of it.
+      const bool coupled = rotational && request.rotations == RotationScheme::Coupled;
+      const bool uniform = frames.su.size() == 0;  // no amounts per vertex
+      const bool scale_preview = request.preview && request.transform.scales_only() && uniform;
+      const bool shear_preview = request.preview && request.transform.shears_only() && uniform && coupled;
+      const bool screen = request.direction.kind == DirectionSource::Kind::Screen;
+      std::optional<Workspace::AffineSteps>& kept = scale_preview ? ws.scale_steps : ws.shear_steps;
+      const bool steps_valid = kept && kept->elements == request.elements && kept->frames_built == ws.frames_built &&
+                               kept->weights.size() == w.size() && kept->weights == w;
+      if ((scale_preview || shear_preview) && !screen && !steps_valid) {
+        if (scale_preview) {
           iterations->set_scale_steps(frames.frames.u, frames.frames.v, side_weights(unit_, w));
-          ws.scale_steps = Workspace::ScaleSteps{request.elements, ws.frames_built, w};
+        } else {
+          iterations->set_shear_steps(frames.frames.u, frames.frames.v, side_weights(unit_, w),
+                                      shear_orientation(unit_, request.transform, w));
         }
-        iterations->set_scale_targets(request.transform.su, request.transform.sv);
+        kept = Workspace::AffineSteps{request.elements, ws.frames_built, w};
+      }
+      const TransformSpec& spec = request.transform;
+      if (scale_preview && screen) {
+        iterations->set_scale_targets(frames.frames.u, frames.frames.v, side_weights(unit_, w), spec.su, spec.sv);
+      } else if (scale_preview) {
+        iterations->set_scale_targets(spec.su, spec.sv);
+      } else if (shear_preview && screen) {
+        iterations->set_shear_targets(frames.frames.u, frames.frames.v, side_weights(unit_, w),
+                                      shear_orientation(unit_, spec, w), spec.shear);
+      } else if (shear_preview) {
+        iterations->set_shear_targets(spec.shear);
       } else {
         // Coupled rotations are fitted to the whole targets: no polar parts.
-        const bool coupled = rotational && request.rotations == RotationScheme::Coupled;
-        iterations->set_targets(SideTargets(unit_, frames, request.transform, w), !coupled);
+        iterations->set_targets(SideTargets(unit_, frames, spec, w), !coupled);
       }
     }
     std::string key = std::string(method_name(request.method)) + ":" +

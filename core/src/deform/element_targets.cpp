@@ -109,20 +109,6 @@ void TargetContext::vertex_directions(const DirectionSource& source, Positions& 
   }
 }
 
-namespace {
-
-Amounts amounts_at(const TransformSpec& spec, const Eigen::VectorXd& su, const Eigen::VectorXd& sv,
-                   int i) {
-  if (su.size() == 0) return {spec.su, spec.sv};
-  return {su[i], sv[i]};
-}
-
-// A shear moves points along cu in proportion to their cv coordinate, and
-// cv = n x cu flips between opposite sides of a part (front and back of a
-// box), which would shear them against each other. We orient cv to point away
-// from the unselected part (from its centroid towards the selection's), so a
-// shear displaces the whole selection one way. Zero when there is nothing to
-// orient by (no shear, or no unselected vertex).
 Eigen::Vector3d shear_orientation(const Mesh& mesh, const TransformSpec& spec, const Eigen::VectorXd& w) {
   if (spec.shear == 0.0) return Eigen::Vector3d::Zero();
   Eigen::Vector3d selected = Eigen::Vector3d::Zero(), unselected = Eigen::Vector3d::Zero();
@@ -139,6 +125,14 @@ Eigen::Vector3d shear_orientation(const Mesh& mesh, const TransformSpec& spec, c
   }
   if (ws == 0.0 || wu == 0) return Eigen::Vector3d::Zero();
   return selected / ws - unselected / wu;
+}
+
+namespace {
+
+Amounts amounts_at(const TransformSpec& spec, const Eigen::VectorXd& su, const Eigen::VectorXd& sv,
+                   int i) {
+  if (su.size() == 0) return {spec.su, spec.sv};
+  return {su[i], sv[i]};
 }
 
 // Element frame columns with cv oriented along `orientation` (see above):

@@ -71,6 +71,14 @@ struct SideFrames {
 };
 SideFrames side_frames(TargetContext& context, const DirectionSource& source);
 
+// A shear moves points along cu in proportion to their cv coordinate, and
+// cv = n x cu flips between opposite sides of a part (front and back of a
+// box), which would shear them against each other. cv is oriented to point
+// away from the unselected part (from its centroid towards the selection's,
+// this vector), so a shear displaces the whole selection one way. Zero when
+// there is nothing to orient by (no shear, or no unselected vertex).
+Eigen::Vector3d shear_orientation(const Mesh& mesh, const TransformSpec& spec, const Eigen::VectorXd& w);
+
 // Per-side targets (3 per triangle, T[3t + k] for the side opposite corner k):
 // the triangle's frame, with the side's own weight (the mean of its two
 // vertices'), midpoint and amounts. AnARAP transforms each rest edge by the

@@ -43,6 +43,12 @@ bool TransformSpec::has_rotational_part() const {
          (twist && twist_degrees_per_unit != 0.0) || shear != 0.0;
 }
 
+bool TransformSpec::shears_only() const {
+  TransformSpec unsheared = *this;
+  unsheared.shear = 0.0;
+  return shear != 0.0 && unsheared.is_identity();
+}
+
 bool TransformSpec::is_identity() const {
   return su == 1.0 && sv == 1.0 && sn == 1.0 && !has_rotational_part();
 }
