@@ -245,12 +245,25 @@ SideTargets::SideTargets(const Mesh& rest, const SideFrames& frames, const Trans
 void SideTargets::operator()(int t, Eigen::Matrix3d T[3]) const {
   Eigen::Vector3d u, v, normal;
   oriented_frame(frames_.frames, t, orientation_, u, v, normal);
+  // Without a twist a side's map depends on its position only through its
+  // weight and amounts, the same on the three sides of most triangles (all
+  // of a selection's inside): made once for them (element_transform was a
+  // quarter of a rotation's live preview at 50k vertices in WASM).
+  const bool by_position = spec_.twist && spec_.twist_degrees_per_unit != 0.0;
+  double last_w = 0.0;
+  Amounts last_amounts{0.0, 0.0};
   for (int k = 0; k < 3; ++k) {
     const int a = rest_.F(t, (k + 1) % 3), b = rest_.F(t, (k + 2) % 3);
     const double w = side_weight(rest_, weights_, t, k);
-    const Eigen::Vector3d midpoint = 0.5 * (rest_.V.row(a) + rest_.V.row(b)).transpose();
     Amounts amounts{spec_.su, spec_.sv};
     if (frames_.su.size() > 0) amounts = {0.5 * (frames_.su[a] + frames_.su[b]), 0.5 * (frames_.sv[a] + frames_.sv[b])};
+    if (k > 0 && !by_position && w == last_w && amounts.su == last_amounts.su && amounts.sv == last_amounts.sv) {
+      T[k] = T[k - 1];
+      continue;
+    }
+    last_w = w;
+    last_amounts = amounts;
+    const Eigen::Vector3d midpoint = 0.5 * (rest_.V.row(a) + rest_.V.row(b)).transpose();
     // Made in place (the prvalue initializes the element): assigned, the
     // result went through a temporary whose 72 bytes were then copied, and
     // in WASM that copy is a call to memcpy, once per side.
