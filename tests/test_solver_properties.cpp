@@ -190,12 +190,13 @@ TEST_CASE("anarap: without the final energy, the last step is the plain one; the
   }
 }
 
-TEST_CASE("anarap: a live preview's scale and shear targets are the direct ones, for every amount, selection and "
-          "direction",
+TEST_CASE("anarap: a live preview's scale, shear and rotation targets are the direct ones, for every amount, "
+          "selection and direction",
           "[solver][anarap]") {
-  // A preview takes scale-only and shear-only targets without a map per side
-  // (AnArapSolver::set_scale_targets, set_shear_targets). Each preview must
-  // match the same request solved with the maps, whatever ran before.
+  // A preview takes scale-only, shear-only and rotation-only targets without
+  // a map per side (AnArapSolver::set_scale_targets, set_shear_targets,
+  // set_rotation_targets). Each preview must match the same request solved
+  // with the maps, whatever ran before.
   const Mesh mesh = test::load("closed/spot_triangulated.obj");
   const double size = diagonal(mesh.V);
   Eigen::VectorXd upper(mesh.num_vertices()), lower(mesh.num_vertices());
@@ -233,7 +234,13 @@ TEST_CASE("anarap: a live preview's scale and shear targets are the direct ones,
   };
   for (const ArapElements elements : {ArapElements::Spokes, ArapElements::SpokesAndRims}) {
     Deformer live(mesh);
-    struct Step { Eigen::VectorXd weights; DirectionSource direction; double su, sv, shear = 0.0; };
+    struct Step {
+      Eigen::VectorXd weights;
+      DirectionSource direction;
+      double su, sv, shear = 0.0;
+      RotateAxis axis = RotateAxis::None;
+      double degrees = 0.0;
+    };
     const std::vector<Step> steps = {
         {upper, global(Eigen::Vector3d::UnitY()), 1.3, 1.0}, {upper, global(Eigen::Vector3d::UnitY()), 1.6, 0.9},
         {lower, global(Eigen::Vector3d::UnitY()), 1.6, 0.9},  // a new selection
@@ -250,11 +257,16 @@ TEST_CASE("anarap: a live preview's scale and shear targets are the direct ones,
         {lower, global(Eigen::Vector3d(1, 1, 0)), 1.0, 1.0, 0.5},
         {upper, drag(Eigen::Vector2d(480, 220)), 1.0, 1.0, 0.4},  // a shear drag
         {upper, global(Eigen::Vector3d(1, 1, 0)), 1.3, 1.0},      // a scale after the shears
-        {upper, global(Eigen::Vector3d(1, 1, 0)), 1.0, 1.0, 0.3}};
+        {upper, global(Eigen::Vector3d(1, 1, 0)), 1.0, 1.0, 0.3},
+        {upper, global(Eigen::Vector3d::UnitY()), 1.0, 1.0, 0.0, RotateAxis::Normal, 30.0},  // rotations
+        {lower, global(Eigen::Vector3d::UnitY()), 1.0, 1.0, 0.0, RotateAxis::U, -20.0},
+        {upper, drag(Eigen::Vector2d(480, 220)), 1.0, 1.0, 0.0, RotateAxis::V, 15.0}};
     for (std::size_t k = 0; k < steps.size(); ++k) {
       DeformRequest request = test::stretch_request(Method::AnArap, Eigen::Vector3d::UnitY(), steps[k].su, steps[k].sv);
       request.direction = steps[k].direction;
       request.transform.shear = steps[k].shear;
+      request.transform.rotate_axis = steps[k].axis;
+      request.transform.rotate_degrees = steps[k].degrees;
       request.selection = steps[k].weights;
       request.elements = elements;
       request.warm_start = false;

@@ -48,6 +48,9 @@ struct TransformSpec {
   bool scales_only() const { return !has_rotational_part(); }
   // Only a shear, no scale: the element maps are then I + w h cu cv^T, linear in h.
   bool shears_only() const;
+  // Only a rotation about cu, cv or n, no scale: the element maps are then
+  // rotations about that axis by w times the angle.
+  bool rotates_only() const;
   bool is_identity() const;
 };
 

@@ -5,5 +5,6 @@
 namespace aniso {
 
 constexpr double kPi = 3.14159265358979323846;
+constexpr double kDegToRad = kPi / 180.0;
 
 }  // namespace aniso

@@ -495,6 +495,21 @@ void AnArapSolver::set_shear_targets(const Positions& u, const Positions& v, con
   scale_targets_set();
 }
 
+void AnArapSolver::set_rotation_targets(const Positions& axis, const Eigen::VectorXd& side_weight, double radians) {
+  Positions& target = rest_targets();
+  double last_w = 0.0, sine = 0.0, versine = 0.0;  // of the last side's angle
+  visit_side_shares(axis, axis, side_weight, [&](int row, const SideShare& side) {
+    if (side.w != last_w) {
+      last_w = side.w;
+      sine = std::sin(side.w * radians);
+      versine = 1.0 - std::cos(side.w * radians);
+    }
+    const Eigen::Vector3d& a = side.u;
+    target.row(row) += (sine * a.cross(side.e) + versine * (a.dot(side.e) * a - side.e)).transpose();
+  });
+  scale_targets_set();
+}
+
 void AnArapSolver::scale_targets_set() {
   // Symmetric positive definite maps are their own polar parts, and a
   // shear's are read only by the paper's scheme, which takes set_targets:

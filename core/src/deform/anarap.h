@@ -94,6 +94,12 @@ class AnArapSolver {
   void set_shear_targets(double h);
   void set_shear_targets(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight,
                          const Eigen::Vector3d& orientation, double h);
+  // Rotation-only targets (TransformSpec::rotates_only): a side of weight w
+  // turns e about its triangle's `axis` row (#F by 3, unit) by w `radians`
+  // (Rodrigues: e + sin (a x e) + (1 - cos) (a (a.e) - e)), directly, the
+  // sine and cosine once per weight. Only for coupled rotations: the polar
+  // targets are not made.
+  void set_rotation_targets(const Positions& axis, const Eigen::VectorXd& side_weight, double radians);
   // alpha > 0: coupled rotations (see above); 0: the paper's scheme.
   void set_rotation_coupling(double alpha) { coupling_ = alpha; }
   void reset_rotations();

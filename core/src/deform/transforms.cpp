@@ -14,8 +14,6 @@
 namespace aniso {
 namespace {
 
-constexpr double kDegToRad = kPi / 180.0;
-
 void require_finite(double value, const char* name) {
   if (!std::isfinite(value)) {
     fail(ErrorCode::BadParameter, std::string(name) + " must be a finite number");
@@ -41,6 +39,12 @@ void require_in_range(double value, double lowest, double highest, const char* n
 bool TransformSpec::has_rotational_part() const {
   return (rotate_axis != RotateAxis::None && rotate_degrees != 0.0) ||
          (twist && twist_degrees_per_unit != 0.0) || shear != 0.0;
+}
+
+bool TransformSpec::rotates_only() const {
+  TransformSpec unturned = *this;
+  unturned.rotate_degrees = 0.0;
+  return rotate_axis != RotateAxis::None && rotate_degrees != 0.0 && unturned.is_identity();
 }
 
 bool TransformSpec::shears_only() const {
