@@ -504,7 +504,7 @@ void AnArapSolver::set_rotation_targets(const Positions& axis, const Eigen::Vect
       sine = std::sin(side.w * radians);
       versine = 1.0 - std::cos(side.w * radians);
     }
-    const Eigen::Vector3d& a = side.u;
+    const Eigen::Vector3d& a = side.u;  // the axis (given as both u and v)
     target.row(row) += (sine * a.cross(side.e) + versine * (a.dot(side.e) * a - side.e)).transpose();
   });
   scale_targets_set();
@@ -512,9 +512,9 @@ void AnArapSolver::set_rotation_targets(const Positions& axis, const Eigen::Vect
 
 void AnArapSolver::scale_targets_set() {
   // Symmetric positive definite maps are their own polar parts, and a
-  // shear's are read only by the paper's scheme, which takes set_targets:
-  // the polar targets are not used (with_polar is false) until set_targets
-  // sets them.
+  // shear's or a rotation's are read only by the paper's scheme, which takes
+  // set_targets: the polar targets are not used (with_polar is false) until
+  // set_targets sets them.
   polar_differs_ = false;
   update_target_energy();
 }

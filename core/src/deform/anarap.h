@@ -166,7 +166,7 @@ class AnArapSolver {
   // `step` zeroed in the layout of the targets; the targets set to the rest edges.
   Positions& zeroed_step(Positions& step) const;
   Positions& rest_targets();
-  void scale_targets_set();  // after any set_scale_targets or set_shear_targets
+  void scale_targets_set();  // after any set_scale_targets, set_shear_targets, set_rotation_targets
 
   const Mesh& rest_;
   const CotanWeights& weights_;

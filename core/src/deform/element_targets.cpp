@@ -135,7 +135,7 @@ Amounts amounts_at(const TransformSpec& spec, const Eigen::VectorXd& su, const E
   return {su[i], sv[i]};
 }
 
-// Element frame columns with cv oriented along `orientation` (see above):
+// Element frame columns with cv oriented along `orientation` (shear_orientation):
 // flipping cv and n together keeps the frame right-handed.
 void oriented_frame(const Frames& frames, int e, const Eigen::Vector3d& orientation, Eigen::Vector3d& u,
                     Eigen::Vector3d& v, Eigen::Vector3d& n) {
