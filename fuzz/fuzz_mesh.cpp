@@ -24,6 +24,10 @@ constexpr int kMaxSolvedVertices = 600;
 
 void deform_a_little(const aniso::Mesh& mesh) {
   aniso::Deformer deformer(mesh);
+  // The background preparation, its warm-up of a preview included (nine
+  // parts; the bound only guards against a part that never ends).
+  for (int part = 0; part < 20 && deformer.prepare_step() < 1.0; ++part) {
+  }
   aniso::DeformRequest request;
   request.method = aniso::Method::AnDefGrad;
   request.direction.vector = Eigen::Vector3d(0.3, 1.0, 0.2).normalized();
@@ -32,6 +36,21 @@ void deform_a_little(const aniso::Mesh& mesh) {
   deformer.deform(request);
   request.method = aniso::Method::AnArap;
   request.max_iterations = 2;
+  deformer.deform(request);
+  // Live previews of a shear and a rotation (targets without a map per
+  // side), on a soft selection with unselected vertices (the shear's
+  // orientation).
+  request.selection.resize(mesh.num_vertices());
+  for (int i = 0; i < mesh.num_vertices(); ++i) request.selection[i] = 0.5 * (i % 3);
+  request.preview = true;
+  request.warm_start = true;
+  request.max_iterations = 1;
+  request.transform = aniso::TransformSpec{};
+  request.transform.shear = 0.4;
+  deformer.deform(request);
+  request.transform = aniso::TransformSpec{};
+  request.transform.rotate_axis = aniso::RotateAxis::Normal;
+  request.transform.rotate_degrees = 30.0;
   deformer.deform(request);
 }
 
