@@ -240,6 +240,7 @@ TEST_CASE("anarap: a live preview's scale, shear and rotation targets are the di
       double su, sv, shear = 0.0;
       RotateAxis axis = RotateAxis::None;
       double degrees = 0.0;
+      double twist_per_size = 0.0;  // degrees of twist per unit, times the size
     };
     const std::vector<Step> steps = {
         {upper, global(Eigen::Vector3d::UnitY()), 1.3, 1.0}, {upper, global(Eigen::Vector3d::UnitY()), 1.6, 0.9},
@@ -260,13 +261,19 @@ TEST_CASE("anarap: a live preview's scale, shear and rotation targets are the di
         {upper, global(Eigen::Vector3d(1, 1, 0)), 1.0, 1.0, 0.3},
         {upper, global(Eigen::Vector3d::UnitY()), 1.0, 1.0, 0.0, RotateAxis::Normal, 30.0},  // rotations
         {lower, global(Eigen::Vector3d::UnitY()), 1.0, 1.0, 0.0, RotateAxis::U, -20.0},
-        {upper, drag(Eigen::Vector2d(480, 220)), 1.0, 1.0, 0.0, RotateAxis::V, 15.0}};
+        {upper, drag(Eigen::Vector2d(480, 220)), 1.0, 1.0, 0.0, RotateAxis::V, 15.0},
+        {upper, global(Eigen::Vector3d::UnitY()), 1.0, 1.0, 0.0, RotateAxis::None, 0.0, 90.0},  // twists
+        {lower, drag(Eigen::Vector2d(500, 300)), 1.0, 1.0, 0.0, RotateAxis::None, 0.0, -60.0}};
     for (std::size_t k = 0; k < steps.size(); ++k) {
       DeformRequest request = test::stretch_request(Method::AnArap, Eigen::Vector3d::UnitY(), steps[k].su, steps[k].sv);
       request.direction = steps[k].direction;
       request.transform.shear = steps[k].shear;
       request.transform.rotate_axis = steps[k].axis;
       request.transform.rotate_degrees = steps[k].degrees;
+      request.transform.twist = steps[k].twist_per_size != 0.0;
+      request.transform.twist_axis = Eigen::Vector3d(0.2, 1.0, 0.1).normalized();
+      request.transform.twist_origin = mesh.V.colwise().mean().transpose();
+      request.transform.twist_degrees_per_unit = steps[k].twist_per_size / size;
       request.selection = steps[k].weights;
       request.elements = elements;
       request.warm_start = false;

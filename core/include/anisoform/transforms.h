@@ -51,6 +51,8 @@ struct TransformSpec {
   // Only a rotation about cu, cv or n, no scale: the element maps are then
   // rotations about that axis by w times the angle.
   bool rotates_only() const;
+  // Only a twist, no scale: the element maps are then the twist's Jacobian.
+  bool twists_only() const;
   bool is_identity() const;
 };
 

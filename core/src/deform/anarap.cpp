@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "anisoform/transforms.h"
+#include "base/math_constants.h"
 #include "base/simd_pair.h"
 #include "deform/anderson.h"
 
@@ -394,6 +395,7 @@ namespace {
 // share e of a target row's rest edge, its weight w and its triangle's
 // frame u, v: w (u.e) u and w (v.e) v for the scales, w (v.e) u for a shear.
 struct SideShare {
+  int side;  // 3t + k
   double w;
   const Eigen::Vector3d& e;
   Eigen::Vector3d u, v;
@@ -419,7 +421,7 @@ void AnArapSolver::visit_side_shares(const Positions& u, const Positions& v, con
     const Eigen::Vector3d a = u.row(s / 3).transpose(), b = v.row(s / 3).transpose();
     if (elements_ == ArapElements::SpokesAndRims) {
       const Eigen::Vector3d e = side_edge_.row(s).transpose();
-      visit(s, SideShare{side_weight[s], e, a, b});
+      visit(s, SideShare{s, side_weight[s], e, a, b});
       continue;
     }
     // A spoke's map is the mean of its sides' (set_targets): each side adds
@@ -427,7 +429,7 @@ void AnArapSolver::visit_side_shares(const Positions& u, const Positions& v, con
     for (int k = side_spoke_offsets_[s]; k < side_spoke_offsets_[s + 1]; ++k) {
       const int q = side_spokes_[k];
       const Eigen::Vector3d e = spoke_share_[q] * spoke_edge_.row(q).transpose();
-      visit(q, SideShare{side_weight[s], e, a, b});
+      visit(q, SideShare{s, side_weight[s], e, a, b});
     }
   }
 }
@@ -506,6 +508,35 @@ void AnArapSolver::set_rotation_targets(const Positions& axis, const Eigen::Vect
     }
     const Eigen::Vector3d& a = side.u;  // the axis (given as both u and v)
     target.row(row) += (sine * a.cross(side.e) + versine * (a.dot(side.e) * a - side.e)).transpose();
+  });
+  scale_targets_set();
+}
+
+void AnArapSolver::set_twist_targets(const Positions& frames_u, const Eigen::VectorXd& side_weight,
+                                     const TransformSpec& spec) {
+  // twist_jacobian (transforms.cpp): T = Rot(rate (r.a), a) (I + rate (a x r) a^T), r the side's
+  // midpoint from the origin, rate = w times the twist's radians per unit.
+  const Eigen::Vector3d a = spec.twist_axis.normalized();
+  const double radians_per_unit = spec.twist_degrees_per_unit * kDegToRad;
+  Positions& target = rest_targets();
+  int last_side = -1;
+  double rate = 0.0, sine = 0.0, versine = 0.0;
+  Eigen::Vector3d a_cross_r = Eigen::Vector3d::Zero();
+  visit_side_shares(frames_u, frames_u, side_weight, [&](int row, const SideShare& side) {
+    if (side.side != last_side) {  // a side's spokes come one after the other
+      last_side = side.side;
+      const int t = side.side / 3, k = side.side % 3;
+      const Eigen::Vector3d midpoint =
+          0.5 * (rest_.V.row(rest_.F(t, (k + 1) % 3)) + rest_.V.row(rest_.F(t, (k + 2) % 3))).transpose();
+      const Eigen::Vector3d r = midpoint - spec.twist_origin;
+      rate = side.w * radians_per_unit;
+      sine = std::sin(rate * r.dot(a));
+      versine = 1.0 - std::cos(rate * r.dot(a));
+      a_cross_r = a.cross(r);
+    }
+    const Eigen::Vector3d sheared = side.e + (rate * a.dot(side.e)) * a_cross_r;
+    target.row(row) += (sine * a.cross(sheared) + versine * (a.dot(sheared) * a - sheared) +
+                        (sheared - side.e)).transpose();
   });
   scale_targets_set();
 }

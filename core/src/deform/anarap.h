@@ -100,6 +100,11 @@ class AnArapSolver {
   // sine and cosine once per weight. Only for coupled rotations: the polar
   // targets are not made.
   void set_rotation_targets(const Positions& axis, const Eigen::VectorXd& side_weight, double radians);
+  // Twist-only targets (TransformSpec::twists_only): each side's edge mapped
+  // by the twist's Jacobian at its midpoint (twist_jacobian, transforms.h),
+  // directly. `frames_u` (#F by 3) only sizes the visit. Only for coupled
+  // rotations: the polar targets are not made.
+  void set_twist_targets(const Positions& frames_u, const Eigen::VectorXd& side_weight, const TransformSpec& spec);
   // alpha > 0: coupled rotations (see above); 0: the paper's scheme.
   void set_rotation_coupling(double alpha) { coupling_ = alpha; }
   void reset_rotations();
@@ -166,7 +171,7 @@ class AnArapSolver {
   // `step` zeroed in the layout of the targets; the targets set to the rest edges.
   Positions& zeroed_step(Positions& step) const;
   Positions& rest_targets();
-  void scale_targets_set();  // after any set_scale_targets, set_shear_targets, set_rotation_targets
+  void scale_targets_set();  // after any set_*_targets but set_targets
 
   const Mesh& rest_;
   const CotanWeights& weights_;

@@ -47,6 +47,12 @@ bool TransformSpec::rotates_only() const {
   return rotate_axis != RotateAxis::None && rotate_degrees != 0.0 && unturned.is_identity();
 }
 
+bool TransformSpec::twists_only() const {
+  TransformSpec untwisted = *this;
+  untwisted.twist = false;
+  return twist && twist_degrees_per_unit != 0.0 && untwisted.is_identity();
+}
+
 bool TransformSpec::shears_only() const {
   TransformSpec unsheared = *this;
   unsheared.shear = 0.0;
