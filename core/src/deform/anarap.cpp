@@ -6,7 +6,6 @@
 #include <utility>
 
 #include "anisoform/transforms.h"
-#include "base/math_constants.h"
 #include "base/simd_pair.h"
 #include "deform/anderson.h"
 
@@ -514,29 +513,18 @@ void AnArapSolver::set_rotation_targets(const Positions& axis, const Eigen::Vect
 
 void AnArapSolver::set_twist_targets(const Positions& frames_u, const Eigen::VectorXd& side_weight,
                                      const TransformSpec& spec) {
-  // twist_jacobian (transforms.cpp): T = Rot(rate (r.a), a) (I + rate (a x r) a^T), r the side's
-  // midpoint from the origin, rate = w times the twist's radians per unit.
-  const Eigen::Vector3d a = spec.twist_axis.normalized();
-  const double radians_per_unit = spec.twist_degrees_per_unit * kDegToRad;
   Positions& target = rest_targets();
   int last_side = -1;
-  double rate = 0.0, sine = 0.0, versine = 0.0;
-  Eigen::Vector3d a_cross_r = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d jacobian;  // of the last side
   visit_side_shares(frames_u, frames_u, side_weight, [&](int row, const SideShare& side) {
     if (side.side != last_side) {  // a side's spokes come one after the other
       last_side = side.side;
       const int t = side.side / 3, k = side.side % 3;
       const Eigen::Vector3d midpoint =
           0.5 * (rest_.V.row(rest_.F(t, (k + 1) % 3)) + rest_.V.row(rest_.F(t, (k + 2) % 3))).transpose();
-      const Eigen::Vector3d r = midpoint - spec.twist_origin;
-      rate = side.w * radians_per_unit;
-      sine = std::sin(rate * r.dot(a));
-      versine = 1.0 - std::cos(rate * r.dot(a));
-      a_cross_r = a.cross(r);
+      jacobian = twist_jacobian(spec, side.w, midpoint);
     }
-    const Eigen::Vector3d sheared = side.e + (rate * a.dot(side.e)) * a_cross_r;
-    target.row(row) += (sine * a.cross(sheared) + versine * (a.dot(sheared) * a - sheared) +
-                        (sheared - side.e)).transpose();
+    target.row(row) += (jacobian * side.e - side.e).transpose();
   });
   scale_targets_set();
 }

@@ -101,9 +101,10 @@ class AnArapSolver {
   // targets are not made.
   void set_rotation_targets(const Positions& axis, const Eigen::VectorXd& side_weight, double radians);
   // Twist-only targets (TransformSpec::twists_only): each side's edge mapped
-  // by the twist's Jacobian at its midpoint (twist_jacobian, transforms.h),
-  // directly. `frames_u` (#F by 3) only sizes the visit. Only for coupled
-  // rotations: the polar targets are not made.
+  // by the twist's Jacobian at its midpoint (twist_jacobian, transforms.h,
+  // once per side), without the frame's C I C^T and a map per side kept.
+  // `frames_u` (#F by 3) only sizes the visit. Only for coupled rotations:
+  // the polar targets are not made.
   void set_twist_targets(const Positions& frames_u, const Eigen::VectorXd& side_weight, const TransformSpec& spec);
   // alpha > 0: coupled rotations (see above); 0: the paper's scheme.
   void set_rotation_coupling(double alpha) { coupling_ = alpha; }
