@@ -22,18 +22,16 @@ export function worldDragVector(viewer, from, to, anchor) {
 }
 
 // Per document, the selected vertices' positions (all of them when none is
-// selected), packed, with the arrays they came from: a drag asks for the
-// extent along a new direction at every pointer move, over the same
-// committed positions and selection (arrays that are replaced, never
-// written: mesh-document.js).
+// selected), packed, with the positions and the selection version they came
+// from: a drag asks for the extent along a new direction at every pointer
+// move, over the same committed positions (an array replaced, never written:
+// mesh-document.js) and selection.
 const packedOf = new WeakMap();
 
 function selectedPoints(document) {
-  const { positions, selection, selectionCount } = document;
+  const { positions, selection, selectionCount, selectionVersion } = document;
   const packed = packedOf.get(document);
-  if (packed?.positions === positions && packed.selection === selection && packed.count === selectionCount) {
-    return packed.points;
-  }
+  if (packed?.positions === positions && packed.version === selectionVersion) return packed.points;
   const points = new positions.constructor(positions.length);
   let n = 0;
   for (let i = 0; i < positions.length / 3; i++) {
@@ -42,7 +40,7 @@ function selectedPoints(document) {
     points[n++] = positions[3 * i + 1];
     points[n++] = positions[3 * i + 2];
   }
-  packedOf.set(document, { positions, selection, count: selectionCount, points: points.subarray(0, n) });
+  packedOf.set(document, { positions, version: selectionVersion, points: points.subarray(0, n) });
   return points.subarray(0, n);
 }
 
