@@ -232,7 +232,8 @@ void run_flatten_iterations(const Problem& problem, double tolerance, int runs, 
 }  // namespace
 
 bool is_convergence_row(const std::string& name) {
-  return name == "anisoform-arap" || name == "anisoform-anarap" || name == "anisoform-flatten";
+  return name == "anisoform-arap" || name == "anisoform-anarap" || name == "anisoform-anarap-twist" ||
+         name == "anisoform-flatten";
 }
 
 int run_convergence(const Problem& problem, double tolerance, int runs, int max_iterations,
@@ -244,7 +245,8 @@ int run_convergence(const Problem& problem, double tolerance, int runs, int max_
     aniso::DeformRequest request;
   };
   const std::vector<Row> rows = {{"anisoform-arap", arap_handles_request(problem)},
-                                 {"anisoform-anarap", stretch_request(problem, aniso::Method::AnArap)}};
+                                 {"anisoform-anarap", stretch_request(problem, aniso::Method::AnArap)},
+                                 {"anisoform-anarap-twist", twist_request(problem)}};
   for (const Row& row : rows) {
     if (!wanted(row.impl)) continue;
     aniso::DeformRequest request = row.request;

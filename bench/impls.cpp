@@ -101,6 +101,25 @@ aniso::DeformRequest stretch_request(const Problem& problem, aniso::Method metho
   return request;
 }
 
+aniso::DeformRequest twist_request(const Problem& problem) {
+  aniso::DeformRequest request = stretch_request(problem, aniso::Method::AnArap);
+  request.transform.su = 1.0;
+  request.transform.twist = true;
+  request.transform.twist_axis = problem.direction.normalized();
+  // About the top half's weighted centroid, as the app and the CLI default to.
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  double weight = 0.0;
+  for (int i = 0; i < problem.mesh.num_vertices(); ++i) {
+    centroid += problem.top_half[i] * problem.mesh.V.row(i).transpose();
+    weight += problem.top_half[i];
+  }
+  request.transform.twist_origin = centroid / weight;
+  // Half a turn over the mesh's length along the axis.
+  const Eigen::VectorXd along = problem.mesh.V * request.transform.twist_axis;
+  request.transform.twist_degrees_per_unit = 180.0 / (along.maxCoeff() - along.minCoeff());
+  return request;
+}
+
 aniso::DeformRequest arap_handles_request(const Problem& problem) {
   aniso::DeformRequest request;
   request.method = aniso::Method::Arap;

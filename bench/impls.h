@@ -38,6 +38,8 @@ double median_of(std::vector<double> v);
 // long axis; ARAP moves the top 5 % by `offset` with the bottom 5 % held.
 aniso::DeformRequest stretch_request(const Problem& problem, aniso::Method method);
 aniso::DeformRequest arap_handles_request(const Problem& problem);
+// AnARAP twisting the top half about the long axis (coupled rotations).
+aniso::DeformRequest twist_request(const Problem& problem);
 
 Sample run_eigen_ldlt(const Problem& problem, int solves);
 Sample run_anisoform_arap(const Problem& problem, int iterations);

@@ -42,10 +42,12 @@ const char* kUsage =
     "  --clock KIND    wall (default) or cpu: this thread's CPU time, robust on a\n"
     "                  loaded machine (see bench/README.md for what changes)\n"
     "  --verbose       per-run details on stderr\n"
-    "  --converge TOL  instead: ARAP, AnARAP and the flattening solved to the relative\n"
+    "  --converge TOL  instead: ARAP, AnARAP (a stretch; a twist: coupled rotations) and the\n"
+    "                  flattening solved to the relative\n"
     "                  energy change TOL, plain local/global and accelerated: iterations,\n"
     "                  ms and energy per row (cap --max-iterations, default 5000);\n"
-    "                  --only then takes anisoform-arap, anisoform-anarap, anisoform-flatten\n"
+    "                  --only then takes anisoform-arap, anisoform-anarap,\n"
+    "                  anisoform-anarap-twist, anisoform-flatten\n"
     "Run natively with GLIBC_TUNABLES=glibc.malloc.mmap_max=0:glibc.malloc.trim_threshold=68719476736\n"
     "(without it, the equivalent mallopt() settings are applied at start-up).\n";
 

@@ -91,3 +91,40 @@ TEST_CASE("acceleration: ARAP with handles on spot converges in a third of the i
   request.handle_offset = Eigen::Vector3d(0.0, 0.1, 0.05) * (top - bottom);
   check_both(solve_all(mesh, request), "ARAP handles");
 }
+
+// With a rotational part (a shear, a rotation, a twist) AnARAP's rotations
+// are coupled, fitted by a Gauss-Seidel sweep from the last ones: they, not
+// the positions (L^-1 b(R)), are the iteration's state, and Anderson mixes
+// them (L-BFGS falls back to it, anarap.cpp says why). Mixing the positions
+// instead gained nothing here: spot's shear took 279 iterations against
+// plain's 269.
+TEST_CASE("acceleration: AnARAP's coupled rotations (spot's shear, rotation and twist) converge in a fifth of the "
+          "iterations, no higher energy",
+          "[anarap][acceleration]") {
+  const Mesh mesh = test::load("closed/spot_triangulated.obj");
+  DeformRequest request = test::stretch_request(Method::AnArap, Eigen::Vector3d::UnitX(), 1.0);
+  request.selection = selection_weights(mesh, parse_region("box:-1e9,0.2,-1e9,1e9,1e9,1e9"), 1.0);
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  double selected = 0.0;
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    centroid += request.selection[i] * mesh.V.row(i).transpose();
+    selected += request.selection[i];
+  }
+  centroid /= selected;
+  TransformSpec shear, rotate, twist;
+  shear.shear = 0.3;
+  rotate.rotate_axis = RotateAxis::U;
+  rotate.rotate_degrees = 25.0;
+  twist.twist = true;
+  twist.twist_axis = Eigen::Vector3d::UnitY();
+  twist.twist_origin = centroid;
+  twist.twist_degrees_per_unit = 60.0;
+  for (const auto& [name, transform] : {std::pair<const char*, TransformSpec>{"shear", shear}, {"rotation", rotate},
+                                        {"twist", twist}}) {
+    request.transform = transform;
+    const Compared c = solve_all(mesh, request);
+    INFO(name);
+    CHECK(5 * c.anderson.iterations <= c.plain.iterations);
+    check_both(c, std::string("AnARAP coupled ") + name);
+  }
+}

@@ -765,6 +765,9 @@ int AnArapSolver::run(const LaplacianSolver& solver, Positions& V, int max_itera
   // and WASM replays differed by 5.6e-4 of the diagonal; with Anderson by
   // 5e-13): those iterations are Anderson accelerated.
   if (acceleration == Acceleration::Lbfgs && coupling_ > 0.0) acceleration = Acceleration::Anderson;
+  if (acceleration == Acceleration::Anderson && coupling_ > 0.0) {
+    return run_coupled(solver, V, max_iterations, tolerance, history, final_energy, on_iteration);
+  }
   if (acceleration == Acceleration::Lbfgs) {
     return run_lbfgs(solver, V, max_iterations, tolerance, history, final_energy, on_iteration);
   }
@@ -807,6 +810,69 @@ int AnArapSolver::run(const LaplacianSolver& solver, Positions& V, int max_itera
     if (on_iteration) on_iteration(iterations);
     if (converged(previous, energy, tolerance, accelerate, small_steps)) break;
     previous = energy;
+  }
+  return iterations;
+}
+
+
+int AnArapSolver::run_coupled(const LaplacianSolver& solver, Positions& V, int max_iterations, double tolerance,
+                              std::vector<double>& history, bool final_energy,
+                              const std::function<void(int)>& on_iteration) {
+  // The rotations as one n by 4 block (Eigen's coefficient order x, y, z, w),
+  // the mixer's state.
+  using Quaternions = RotationMixer::StateType;
+  static_assert(sizeof(Eigen::Quaterniond) == 4 * sizeof(double), "rotation_ is read as n by 4 doubles");
+  const auto rotations = [this] { return Eigen::Map<const Quaternions>(rotation_.front().coeffs().data(), n_, 4); };
+  const auto set_rotations = [this](const auto& from) {
+    for (int i = 0; i < n_; ++i) {
+      const Eigen::Vector4d q = from.row(i).transpose();
+      const double norm = q.norm();
+      // A mixed quaternion is normalized; one that mixed to nothing keeps its rotation.
+      if (norm > 1e-8 && std::isfinite(norm)) rotation_[i].coeffs() = q / norm;
+      rotation_matrices_[i] = rotation_[i].toRotationMatrix();
+    }
+  };
+  RotationMixer mixer(kAndersonWindow);
+  Positions b, g;
+  Quaternions x, proposal;
+  std::vector<Eigen::Quaterniond> accepted_rotations;
+  double accepted = local_step(V);
+  bool proposed = false;  // rotation_ holds a mixed proposal, not yet known to lower E
+  int iterations = 0, small_steps = 0;
+  for (int it = 0; it < max_iterations; ++it) {
+    global_rhs(b);
+    g = V;
+    solver.solve(b, g);
+    if (!final_energy && it + 1 == max_iterations) {
+      V = g;
+      history.push_back(accepted);
+      return ++iterations;
+    }
+    x = rotations();
+    double energy = local_step(g);  // G(x): the sweep from x at L^-1 b(x)
+    if (proposed && !(energy < accepted)) {
+      // The safeguard: the plain iteration from the accepted rotations.
+      set_rotations(Eigen::Map<const Quaternions>(accepted_rotations.front().coeffs().data(), n_, 4));
+      mixer.reset();
+      global_rhs(b);
+      g = V;
+      solver.solve(b, g);
+      x = rotations();
+      energy = local_step(g);
+    }
+    V.swap(g);
+    accepted_rotations = rotation_;
+    history.push_back(energy);
+    ++iterations;
+    if (on_iteration) on_iteration(iterations);
+    if (converged(accepted, energy, tolerance, true, small_steps)) break;
+    accepted = energy;
+    // A proposal only where the next iteration checks it: not after the last
+    // one (the rotations stay those V was fitted with, which a warm start
+    // goes on from), nor before a preview's last, which skips the check.
+    const bool checked = it + 1 < max_iterations && (final_energy || it + 2 < max_iterations);
+    proposed = mixer.propose(x, rotations(), proposal) && checked;
+    if (proposed) set_rotations(proposal);
   }
   return iterations;
 }

@@ -151,6 +151,10 @@ class AnArapSolver {
   // run() with Acceleration::Lbfgs (anarap_lbfgs.cpp says how and why).
   int run_lbfgs(const LaplacianSolver& solver, Positions& V, int max_iterations, double tolerance,
                 std::vector<double>& history, bool final_energy, const std::function<void(int)>& on_iteration);
+  // run() with coupled rotations, Anderson accelerated: the rotations are
+  // the iteration's state (the positions are L^-1 b(R)), so they are mixed.
+  int run_coupled(const LaplacianSolver& solver, Positions& V, int max_iterations, double tolerance,
+                  std::vector<double>& history, bool final_energy, const std::function<void(int)>& on_iteration);
   // g = L V - b at the V of the last local step, for the current rotations'
   // b (written to `b`), zero on the solver's pinned rows: E's gradient over
   // the free vertices, up to a constant factor (the global step solves g = 0).

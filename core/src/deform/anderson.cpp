@@ -1,50 +1,90 @@
 #include "deform/anderson.h"
 
+#include <algorithm>
+
 #include <Eigen/Cholesky>
 
 namespace aniso {
 
-bool AndersonMixer::propose(const Positions& x, const Positions& g, Positions& proposal) {
-  const Positions f = g - x;
-  if (dg_.empty()) {
-    dg_.resize(static_cast<std::size_t>(window_));
-    df_.resize(static_cast<std::size_t>(window_));
+namespace {
+// The most differences a mixer keeps (the window): its sums live on the stack.
+constexpr int kMaxWindow = 8;
+}  // namespace
+
+template <typename State>
+AndersonMixerOf<State>::AndersonMixerOf(int window)
+    : window_(std::clamp(window, 1, kMaxWindow)), dg_(window_), df_(window_), gram_(window_, window_) {}
+
+template <typename State>
+bool AndersonMixerOf<State>::propose(const State& x, const State& g, State& proposal) {
+  const Eigen::Index size = g.size();
+  if (!has_last_) {
+    last_g_ = g;
+    last_f_ = g - x;
+    has_last_ = true;
+    proposal = g;
+    return false;
   }
-  bool mixed = false;
-  if (has_last_) {
-    dg_[next_] = g - last_g_;
-    df_[next_] = f - last_f_;
-    next_ = (next_ + 1) % window_;
-    count_ = std::min(count_ + 1, window_);
-    // Normal equations of the small least-squares problem, with a relative
-    // Tikhonov term so that nearly parallel differences stay well posed.
-    const int m = count_;
-    Eigen::MatrixXd A(m, m);
-    Eigen::VectorXd rhs(m);
-    for (int a = 0; a < m; ++a) {
-      const int sa = (next_ - 1 - a + 2 * window_) % window_;
-      rhs[a] = (df_[sa].array() * f.array()).sum();
-      for (int c = 0; c <= a; ++c) {
-        const int sc = (next_ - 1 - c + 2 * window_) % window_;
-        A(a, c) = A(c, a) = (df_[sa].array() * df_[sc].array()).sum();
-      }
+  // One pass over the state: f = g - x, the new differences of f and g into
+  // the next slot, and their products with f and the kept differences (the
+  // slot's old difference, the oldest, is dropped as it is overwritten). It
+  // read the vectors some 60 times when each product was a pass of its own
+  // (a coupled twist of the koala: 12 % of an iteration).
+  const int s = next_;
+  df_[s].resize(g.rows(), g.cols());
+  dg_[s].resize(g.rows(), g.cols());
+  next_ = (next_ + 1) % window_;
+  count_ = std::min(count_ + 1, window_);
+  const int m = count_;
+  const double* kept[kMaxWindow];
+  for (int a = 1; a < m; ++a) kept[a] = df_[slot(a)].data();
+  double with_new[kMaxWindow] = {}, rhs[kMaxWindow] = {};
+  const double *xs = x.data(), *gs = g.data();
+  double *lf = last_f_.data(), *lg = last_g_.data(), *dfs = df_[s].data(), *dgs = dg_[s].data();
+  for (Eigen::Index i = 0; i < size; ++i) {
+    const double f = gs[i] - xs[i], df = f - lf[i];
+    with_new[0] += df * df;
+    rhs[0] += df * f;
+    for (int a = 1; a < m; ++a) {
+      with_new[a] += df * kept[a][i];
+      rhs[a] += kept[a][i] * f;
     }
-    const double scale = A.diagonal().maxCoeff();
-    if (scale > 0.0) {
-      A.diagonal().array() += 1e-10 * scale;
-      const Eigen::VectorXd theta = A.ldlt().solve(rhs);
-      if (theta.allFinite()) {
-        proposal = g;
-        for (int a = 0; a < m; ++a) proposal -= theta[a] * dg_[(next_ - 1 - a + 2 * window_) % window_];
-        mixed = true;
-      }
-    }
+    dgs[i] = gs[i] - lg[i];
+    dfs[i] = df;
+    lf[i] = f;
+    lg[i] = gs[i];
   }
-  last_g_ = g;
-  last_f_ = f;
-  has_last_ = true;
-  if (!mixed) proposal = g;
-  return mixed;
+  for (int a = 0; a < m; ++a) gram_(s, slot(a)) = gram_(slot(a), s) = with_new[a];
+  // Normal equations of the small least-squares problem, with a relative
+  // Tikhonov term so that nearly parallel differences stay well posed.
+  Eigen::MatrixXd A(m, m);
+  for (int a = 0; a < m; ++a) {
+    for (int c = 0; c < m; ++c) A(a, c) = gram_(slot(a), slot(c));
+  }
+  const double scale = A.diagonal().maxCoeff();
+  if (!(scale > 0.0)) {
+    proposal = g;
+    return false;
+  }
+  A.diagonal().array() += 1e-10 * scale;
+  const Eigen::VectorXd theta = A.ldlt().solve(Eigen::Map<const Eigen::VectorXd>(rhs, m));
+  if (!theta.allFinite()) {
+    proposal = g;
+    return false;
+  }
+  proposal.resize(g.rows(), g.cols());
+  const double* mixed[kMaxWindow];
+  for (int a = 0; a < m; ++a) mixed[a] = dg_[slot(a)].data();
+  double* out = proposal.data();
+  for (Eigen::Index i = 0; i < size; ++i) {
+    double value = gs[i];
+    for (int a = 0; a < m; ++a) value -= theta[a] * mixed[a][i];
+    out[i] = value;
+  }
+  return true;
 }
+
+template class AndersonMixerOf<Positions>;
+template class AndersonMixerOf<Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::RowMajor>>;
 
 }  // namespace aniso
