@@ -2,7 +2,7 @@
 //
 // Input: one format byte (low two bits: OBJ, OFF, PLY, STL) and the file's
 // bytes. What parses is checked; what is solvable and small is deformed
-// (AnDefGrad and a few AnARAP iterations) and, if it has a boundary,
+// (AnDefGrad, a few AnARAP iterations and a coupled shear's) and, if it has a boundary,
 // flattened. aniso::Error is the expected way to refuse an input; anything
 // else escaping (std::bad_alloc from an unbounded read, a std::out_of_range,
 // a sanitizer report, a timeout) is a finding.
@@ -51,6 +51,14 @@ void deform_a_little(const aniso::Mesh& mesh) {
   request.transform = aniso::TransformSpec{};
   request.transform.rotate_axis = aniso::RotateAxis::Normal;
   request.transform.rotate_degrees = 30.0;
+  deformer.deform(request);
+  // A committed shear: coupled rotations, Anderson on the rotations (mixed
+  // unit quaternions, renormalized; a rejected proposal's way back).
+  request.preview = false;
+  request.warm_start = false;
+  request.max_iterations = 6;
+  request.transform = aniso::TransformSpec{};
+  request.transform.shear = 0.4;
   deformer.deform(request);
 }
 
