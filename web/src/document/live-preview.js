@@ -3,13 +3,15 @@
 //
 // On the LAST op, the worker's rest pose is put at that op's input and its
 // region selected once; each slider value is then a warm-started
-// one-iteration preview (no commit), at the solver's iteration rate.
+// one-iteration preview (no commit), at the solver's iteration rate, which
+// settles while the slider rests (editor/settling.js).
 // On an earlier op, each value replays the ops from it on, from its cached
 // input, each as a cold live preview (the core's replay option `preview`: a
 // few iterations); only the latest value waits while one replays.
 // The release (setParameter without preview) re-runs the document from the
 // op, as a replay would; anything else the stack runs first leaves the live
 // state (leave), putting the document's last state back in the worker.
+import { settleNext } from '../editor/settling.js';
 import { Request } from '../worker/protocol.js';
 
 export class LivePreview {
@@ -68,13 +70,41 @@ export class LivePreview {
       }, { keepLive: true });
     }
     const live = this.#live;
+    live.lastOp = op;
+    live.changedAt = performance.now();
     await live.ready;
     // A warm-started preview (solver-client.js): the release solves in full.
     const result = await this.#client.preview({ ...op, warmStart: true }, this.#editor.heatMapKind);
     if (!result || this.#live !== live) return null;
+    this.#showLast(result);
+    this.#settleLast(live, op, null, result.stats);
+    return { iterations: result.stats.iterations, ms: result.stats.ms };
+  }
+
+  #showLast(result) {
     this.#editor.emit('positions', { positions: result.positions, live: true, distortion: result.distortion });
     this.#editor.emit('stats', { ...result.stats, live: true });
-    return { iterations: result.stats.iterations, ms: result.stats.ms };
+  }
+
+  // While the slider rests on the last op's value, the value goes on
+  // iterating (settling.js), as a drag's does.
+  #settleLast(live, op, previousEnergy, stats) {
+    const current = () => this.#live === live && live.lastOp === op;
+    settleNext({
+      stats,
+      previousEnergy,
+      changedAt: live.changedAt,
+      current,
+      next: (iterations, energy) => {
+        this.#client.preview({ ...op, warmStart: true }, this.#editor.heatMapKind, iterations).then((result) => {
+          if (!result || !current()) return;
+          this.#showLast(result);
+          this.#settleLast(live, op, energy, result.stats);
+        }, (error) => {
+          if (current()) this.#editor.report(error, 'The live preview failed');
+        });
+      },
+    });
   }
 
   #previewEarlier(opId, index, op) {

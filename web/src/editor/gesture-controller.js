@@ -1,7 +1,9 @@
 // The live edit (a drag): begin, a preview per pointer move (the solver
-// client keeps only the latest one waiting), then commit as one undoable
-// step, or cancel. One at a time, and none while a committed edit is solved.
+// client keeps only the latest one waiting), settling while the pointer
+// rests (settling.js), then commit as one undoable step, or cancel. One at a time, and
+// none while a committed edit is solved.
 import { Request } from '../worker/protocol.js';
+import { settleNext } from './settling.js';
 import { toSolverOp } from './solver-op.js';
 
 export class GestureController {
@@ -36,16 +38,34 @@ export class GestureController {
     const editor = this.#editor;
     const solverOp = toSolverOp(op, editor.document, editor.view);
     gesture.lastOp = solverOp;
+    gesture.movedAt = performance.now();
+    this.#preview(gesture, solverOp, null, undefined);  // the client's one-iteration default
+  }
+
+  /** Shows `solverOp` live, then settles it while it stays the gesture's last. */
+  #preview(gesture, solverOp, previousEnergy, iterations) {
+    const editor = this.#editor;
     this.#client
-      .preview(solverOp, editor.heatMapKind)
+      .preview(solverOp, editor.heatMapKind, iterations)
       .then((result) => {
         if (!result || this.#gesture !== gesture) return;
         editor.emit('positions', { positions: result.positions, live: true, distortion: result.distortion });
         editor.emit('stats', { ...result.stats, live: true });
+        this.#settle(gesture, solverOp, previousEnergy, result.stats);
       })
       .catch((error) => {
         if (this.#gesture === gesture) editor.report(error, 'The live preview failed');
       });
+  }
+
+  #settle(gesture, solverOp, previousEnergy, stats) {
+    settleNext({
+      stats,
+      previousEnergy,
+      changedAt: gesture.movedAt,
+      current: () => this.#gesture === gesture && gesture.lastOp === solverOp,
+      next: (iterations, energy) => this.#preview(gesture, solverOp, energy, iterations),
+    });
   }
 
   /** Ends the live edit and commits its last state (fully solved) as one step. */

@@ -208,12 +208,13 @@ export class SolverClient extends EventEmitter {
   /**
    * Resolves with {positions, stats, distortion?}, or null when a newer
    * preview superseded it. `distortion`: a heat map kind to send back with
-   * the positions (protocol.js, Request.deform).
+   * the positions (protocol.js, Request.deform). `iterations`: warm-started
+   * iterations (the core caps a preview's at kPreviewIterations).
    */
-  preview(op, distortion = null) {
+  preview(op, distortion = null, iterations = LIVE_PREVIEW_ITERATIONS) {
     return new Promise((resolve, reject) => {
       this.#queuedPreview?.resolve(null);
-      this.#queuedPreview = { op, distortion, resolve, reject };
+      this.#queuedPreview = { op, distortion, iterations, resolve, reject };
       this.#sendQueuedPreview();
     });
   }
@@ -226,12 +227,12 @@ export class SolverClient extends EventEmitter {
 
   #sendQueuedPreview() {
     if (this.#previewInFlight || !this.#queuedPreview) return;
-    const { op, distortion, resolve, reject } = this.#queuedPreview;
+    const { op, distortion, iterations, resolve, reject } = this.#queuedPreview;
     this.#queuedPreview = null;
-    // A preview runs LIVE_PREVIEW_ITERATIONS warm-started iterations; the
-    // committed edit on release gets the iteration cap.
+    // A preview runs `iterations` warm-started iterations; the committed
+    // edit on release gets the iteration cap.
     const { maxIterations, ...previewOp } = op;
-    previewOp.maxIterations = LIVE_PREVIEW_ITERATIONS;
+    previewOp.maxIterations = iterations;
     const id = this.#nextId;
     this.request(Request.deform, { op: { ...previewOp, preview: true }, commit: false, distortion }).then(resolve, reject);
     if (!this.#disposed) this.#previewInFlight = id;
