@@ -763,7 +763,8 @@ int AnArapSolver::run(const LaplacianSolver& solver, Positions& V, int max_itera
   // Coupled rotations are fitted by one Gauss-Seidel sweep from the last
   // ones, so there its model is off and its steps erratic (a twist's native
   // and WASM replays differed by 5.6e-4 of the diagonal; with Anderson by
-  // 5e-13): those iterations are Anderson accelerated.
+  // 5e-13): those iterations are Anderson accelerated, on the rotations
+  // (run_coupled).
   if (acceleration == Acceleration::Lbfgs && coupling_ > 0.0) acceleration = Acceleration::Anderson;
   if (acceleration == Acceleration::Anderson && coupling_ > 0.0) {
     return run_coupled(solver, V, max_iterations, tolerance, history, final_energy, on_iteration);
@@ -814,7 +815,6 @@ int AnArapSolver::run(const LaplacianSolver& solver, Positions& V, int max_itera
   return iterations;
 }
 
-
 int AnArapSolver::run_coupled(const LaplacianSolver& solver, Positions& V, int max_iterations, double tolerance,
                               std::vector<double>& history, bool final_energy,
                               const std::function<void(int)>& on_iteration) {
@@ -822,6 +822,7 @@ int AnArapSolver::run_coupled(const LaplacianSolver& solver, Positions& V, int m
   // the mixer's state.
   using Quaternions = RotationMixer::StateType;
   static_assert(sizeof(Eigen::Quaterniond) == 4 * sizeof(double), "rotation_ is read as n by 4 doubles");
+  if (n_ == 0) return 0;
   const auto rotations = [this] { return Eigen::Map<const Quaternions>(rotation_.front().coeffs().data(), n_, 4); };
   const auto set_rotations = [this](const auto& from) {
     for (int i = 0; i < n_; ++i) {
