@@ -39,27 +39,25 @@ void deform_a_little(const aniso::Mesh& mesh) {
   deformer.deform(request);
   // Live previews of a shear and a rotation (targets without a map per
   // side), on a soft selection with unselected vertices (the shear's
-  // orientation).
+  // orientation); then a committed shear: coupled rotations, Anderson on the
+  // rotations (mixed unit quaternions, renormalized; a rejected proposal's
+  // way back).
   request.selection.resize(mesh.num_vertices());
   for (int i = 0; i < mesh.num_vertices(); ++i) request.selection[i] = 0.5 * (i % 3);
-  request.preview = true;
-  request.warm_start = true;
-  request.max_iterations = 1;
-  request.transform = aniso::TransformSpec{};
-  request.transform.shear = 0.4;
-  deformer.deform(request);
-  request.transform = aniso::TransformSpec{};
-  request.transform.rotate_axis = aniso::RotateAxis::Normal;
-  request.transform.rotate_degrees = 30.0;
-  deformer.deform(request);
-  // A committed shear: coupled rotations, Anderson on the rotations (mixed
-  // unit quaternions, renormalized; a rejected proposal's way back).
-  request.preview = false;
-  request.warm_start = false;
-  request.max_iterations = 6;
-  request.transform = aniso::TransformSpec{};
-  request.transform.shear = 0.4;
-  deformer.deform(request);
+  aniso::TransformSpec shear, rotation;
+  shear.shear = 0.4;
+  rotation.rotate_axis = aniso::RotateAxis::Normal;
+  rotation.rotate_degrees = 30.0;
+  const auto solve = [&](const aniso::TransformSpec& transform, bool preview, int iterations) {
+    request.transform = transform;
+    request.preview = preview;
+    request.warm_start = preview;
+    request.max_iterations = iterations;
+    deformer.deform(request);
+  };
+  solve(shear, true, 1);
+  solve(rotation, true, 1);
+  solve(shear, false, 6);
 }
 
 void flatten_a_little(const aniso::Mesh& mesh) {
