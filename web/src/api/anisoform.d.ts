@@ -152,9 +152,10 @@ export interface Anisoform {
   /**
    * Merges `transform` into op `opId`'s and re-solves from that op's input, re-running the later ops.
    * {preview: true}: a live preview only (a slider being dragged), the document unchanged; on the last
-   * op a warm-started solver iteration, on an earlier op a quick replay of the ops from it on (each a
-   * few-iteration preview). Call again without it on release to commit the value. A preview a newer
-   * value superseded resolves with null.
+   * op a warm-started solver iteration (while no new value comes for 120 ms, the value goes on
+   * iterating for up to 3 s, each step a live 'positions' event), on an earlier op a quick replay of
+   * the ops from it on (each a few-iteration preview). Call again without it on release to commit the
+   * value. A preview a newer value superseded resolves with null.
    */
   setParameter(opId: string, patch: { transform: Transform },
     options?: { preview?: boolean }): Promise<unknown>;

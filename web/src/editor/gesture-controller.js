@@ -1,7 +1,7 @@
 // The live edit (a drag): begin, a preview per pointer move (the solver
 // client keeps only the latest one waiting), settling while the pointer
-// rests (settling.js), then commit as one undoable step, or cancel. One at a time, and
-// none while a committed edit is solved.
+// rests (settling.js), then commit as one undoable step, or cancel. One at
+// a time, and none while a committed edit is solved.
 import { Request } from '../worker/protocol.js';
 import { settleNext } from './settling.js';
 import { toSolverOp } from './solver-op.js';
