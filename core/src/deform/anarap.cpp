@@ -852,8 +852,10 @@ int AnArapSolver::run_coupled(const LaplacianSolver& solver, Positions& V, int m
     x = rotations();
     double energy = local_step(g);  // G(x): the sweep from x at L^-1 b(x)
     if (proposed && !(energy < accepted)) {
-      // The safeguard: the plain iteration from the accepted rotations.
-      set_rotations(Eigen::Map<const Quaternions>(accepted_rotations.front().coeffs().data(), n_, 4));
+      // The safeguard: the plain iteration from the accepted rotations, as
+      // they were (not normalized again).
+      rotation_.swap(accepted_rotations);
+      for (int i = 0; i < n_; ++i) rotation_matrices_[i] = rotation_[i].toRotationMatrix();
       mixer.reset();
       global_rhs(b);
       g = V;
