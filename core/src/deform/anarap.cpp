@@ -642,10 +642,9 @@ double AnArapSolver::local_step(const Positions& V, const std::vector<Eigen::Qua
   } else {
     covariance_spokes_rims(V, with_polar, edge_energy);
   }
-  // Each cell's energy is added in index order: right after its rotation's
+  // Each cell's energy is added in index order, right after its rotation's
   // fit (its S and R still in cache: a pass of its own read them again,
-  // 29 MB a local step at 200k vertices), or after the coupled sweep, whose
-  // fits read their neighbours' later rotations.
+  // 29 MB a local step at 200k vertices); the coupled sweep adds its own.
   // Negative cotangent weights (obtuse triangles) can make this sum slightly
   // negative near the optimum: it is reported as it is.
   double energy = 0.0;
@@ -654,8 +653,7 @@ double AnArapSolver::local_step(const Positions& V, const std::vector<Eigen::Qua
   };
   if (coupling_ > 0.0) {
     if (elsewhere) rotation_ = start;
-    energy += coupled_rotations();
-    for (int i = 0; i < n_; ++i) add_cell(i);
+    energy = coupled_rotations();
   } else {
     const std::vector<Eigen::Matrix3d>& fitted = with_polar ? polar_covariance_ : target_covariance_;
     int i = 0;
@@ -689,20 +687,26 @@ double AnArapSolver::coupled_rotations() {
   // matrices, each converted once per sweep and again when it changes).
   std::vector<Eigen::Matrix3d>& R = rotation_matrices_;
   for (int i = 0; i < n_; ++i) R[i] = rotation_[i].toRotationMatrix();
+  // The energy is added as the sweep goes, while the cell's values are in
+  // cache: the cell's own right after its fit, a spoke's coupling at the
+  // later of its ends (both fitted by then), twice, for its two directions
+  // (k_ij = k_ji). Passes of their own after the sweep read every cell and
+  // every spoke again.
+  double energy = 0.0;
   for (int i = 0; i < n_; ++i) {
     Eigen::Matrix3d S = target_covariance_[i];
     for (int q = offsets_[i]; q < offsets_[i + 1]; ++q) {
       S.noalias() += (2.0 * coupling_ * spoke_coupling_[q]) * R[neighbors_[q]];
     }
     R[i] = fit_rotation(S, rotation_[i]);
-  }
-  double energy = 0.0;
-  for (int i = 0; i < n_; ++i) {
+    energy += cell_energy(edge_energy_[i], target_covariance_[i], R[i], target_energy_[i]);
     for (int q = offsets_[i]; q < offsets_[i + 1]; ++q) {
+      const int j = neighbors_[q];
+      if (j >= i) continue;
       // |R_i - R_j|^2 = 6 - 2 tr(R_i^T R_j); tr of a rotation = 4 w^2 - 1 of
       // the quaternion q_i^-1 q_j.
-      const double w = rotation_[i].dot(rotation_[neighbors_[q]]);
-      energy += coupling_ * spoke_coupling_[q] * (6.0 - 2.0 * (4.0 * w * w - 1.0));
+      const double w = rotation_[i].dot(rotation_[j]);
+      energy += 2.0 * coupling_ * spoke_coupling_[q] * (6.0 - 2.0 * (4.0 * w * w - 1.0));
     }
   }
   return energy;

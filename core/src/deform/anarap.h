@@ -164,7 +164,8 @@ class AnArapSolver {
   void update_target_energy();
   void covariance_spokes(const Positions& V, bool with_polar, Eigen::VectorXd& edge_energy);
   void covariance_spokes_rims(const Positions& V, bool with_polar, Eigen::VectorXd& edge_energy);
-  // The coupled local step's sweep; returns E_s after it.
+  // The coupled local step's sweep; returns the energy after it (the cells'
+  // and the coupling's).
   double coupled_rotations();
   // Calls visit(row, side) for each side of positive weight and each target
   // row it adds to (its spokes, or itself with rims): `side` gives the
