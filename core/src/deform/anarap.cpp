@@ -828,20 +828,16 @@ int AnArapSolver::run_coupled(const LaplacianSolver& solver, Positions& V, int m
   static_assert(sizeof(Eigen::Quaterniond) == 4 * sizeof(double), "rotation_ is read as n by 4 doubles");
   if (n_ == 0) return 0;
   const auto rotations = [this] { return Eigen::Map<const Quaternions>(rotation_.front().coeffs().data(), n_, 4); };
-  const auto set_rotations = [this](const auto& from) {
-    for (int i = 0; i < n_; ++i) {
-      const Eigen::Vector4d q = from.row(i).transpose();
-      const double norm = q.norm();
-      // A mixed quaternion is normalized; one that mixed to nothing keeps its rotation.
-      if (norm > 1e-8 && std::isfinite(norm)) rotation_[i].coeffs() = q / norm;
-      rotation_matrices_[i] = rotation_[i].toRotationMatrix();
-    }
-  };
   RotationMixer mixer(kAndersonWindow);
   Positions b, g;
+  // x: the rotations the next sweep starts from (the mixer's x_k). The sweep
+  // output G(x_k) it is mixed with stays in rotation_ until a proposal takes
+  // its place; it is then swapped aside into accepted_rotations, for the
+  // safeguard, rather than copied.
   Quaternions x, proposal;
-  std::vector<Eigen::Quaterniond> accepted_rotations;
+  std::vector<Eigen::Quaterniond> accepted_rotations(n_);
   double accepted = local_step(V);
+  x = rotations();
   bool proposed = false;  // rotation_ holds a mixed proposal, not yet known to lower E
   int iterations = 0, small_steps = 0;
   for (int it = 0; it < max_iterations; ++it) {
@@ -853,7 +849,6 @@ int AnArapSolver::run_coupled(const LaplacianSolver& solver, Positions& V, int m
       history.push_back(accepted);
       return ++iterations;
     }
-    x = rotations();
     double energy = local_step(g);  // G(x): the sweep from x at L^-1 b(x)
     if (proposed && !(energy < accepted)) {
       // The safeguard: the plain iteration from the accepted rotations, as
@@ -868,7 +863,6 @@ int AnArapSolver::run_coupled(const LaplacianSolver& solver, Positions& V, int m
       energy = local_step(g);
     }
     V.swap(g);
-    accepted_rotations = rotation_;
     history.push_back(energy);
     ++iterations;
     if (on_iteration) on_iteration(iterations);
@@ -879,7 +873,25 @@ int AnArapSolver::run_coupled(const LaplacianSolver& solver, Positions& V, int m
     // goes on from), nor before a preview's last, which skips the check.
     const bool checked = it + 1 < max_iterations && (final_energy || it + 2 < max_iterations);
     proposed = mixer.propose(x, rotations(), proposal) && checked;
-    if (proposed) set_rotations(proposal);
+    if (!proposed) {
+      x = rotations();
+      continue;
+    }
+    // The proposal, normalized row by row, becomes the rotations and the
+    // next x in one pass; a quaternion that mixed to nothing keeps its
+    // accepted rotation.
+    accepted_rotations.swap(rotation_);
+    for (int i = 0; i < n_; ++i) {
+      const Eigen::Vector4d q = proposal.row(i).transpose();
+      const double norm = q.norm();
+      if (norm > 1e-8 && std::isfinite(norm)) {
+        rotation_[i].coeffs() = q / norm;
+      } else {
+        rotation_[i] = accepted_rotations[i];
+      }
+      x.row(i) = rotation_[i].coeffs().transpose();
+      rotation_matrices_[i] = rotation_[i].toRotationMatrix();
+    }
   }
   return iterations;
 }
