@@ -15,7 +15,6 @@ const SETTLE_IDLE_MS = 120;
 const SETTLE_MS = 3000;
 const SETTLE_CHANGE = 1e-6;
 const SETTLE_CALL_MS = 30;
-const SETTLE_MAX_ITERATIONS = 4;
 
 /**
  * After a live preview with `stats` ({energy, ms, iterations}), asks for the
@@ -31,7 +30,8 @@ export function settleNext({ stats, previousEnergy, changedAt, current, next }) 
   if (!current() || settled || resting >= SETTLE_MS) return;
   const fit = Math.floor((SETTLE_CALL_MS * Math.max(iterations, 1)) / Math.max(ms, 1e-3));
   const go = () => {
-    if (current()) next(Math.min(Math.max(fit, 1), SETTLE_MAX_ITERATIONS), energy);
+    // The core caps a preview's iterations (kPreviewIterations, session.h).
+    if (current()) next(Math.max(fit, 1), energy);
   };
   if (resting >= SETTLE_IDLE_MS) go();
   else setTimeout(go, SETTLE_IDLE_MS - resting);
