@@ -231,11 +231,13 @@ TEST_CASE("flatten: the stretch refinement lowers the energy at every step and c
       refine_stretch(patch, charts, targets, arap.pinned(), ArapFlattenSettings{}, 0, {start}, uv);
   REQUIRE(report.start == 0);
   CHECK(report.converged);
-  // Newton: one factorization per step (and, per stage of the smoothing,
-  // at most one for the step that finds nothing left to gain);
+  // Newton: at most one factorization per step (and, per stage of the
+  // smoothing, at most one for the step that finds nothing left to gain);
+  // Newton steps after a factorization precondition with it, so there are
+  // fewer here (measured 38 for 41 steps; one per step before);
   // preconditioned L-BFGS took about 240 steps here.
-  CHECK(report.iterations < 80);  // measured 38, 15 of them with rho smoothed more
-  CHECK(report.factorizations >= report.iterations);
+  CHECK(report.iterations < 80);  // measured 41
+  CHECK(report.factorizations < report.iterations);
   CHECK(report.factorizations <= report.iterations + 3);
   CHECK(report.coarse_iterations < report.iterations);
   REQUIRE(report.energy_history.size() > 10);

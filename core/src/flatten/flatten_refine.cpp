@@ -146,6 +146,18 @@ constexpr double kMaxRegularization = 1e4;
 // round-off: spothead 201, the cube 45).
 constexpr int kPcgIterations = 10;
 constexpr double kPcgResidual = 1e-2;
+// A Newton step's conjugate gradients are preconditioned with the factored
+// positive part of one of the kMaxLag iterations before it, when one is
+// there, instead of its own: from one Newton step to the next it changes
+// little, and the factorization is over half of a large patch's refinement
+// (the bunny's: 58 %). Factorizations per refinement: the bunny 249 -> 205,
+// demosthenes 168 -> 123, the koala head 173 -> 139; flattening in WASM:
+// demosthenes 6.3 -> 4.4 s, the koala head 17.9 -> 14.2 s. A step that
+// took more than kLaggedIterations of them has the next iteration factor
+// its own. Majorized steps always do: conjugate gradients on their own
+// system, preconditioned by an earlier one, took over 10 iterations.
+constexpr int kMaxLag = 5;
+constexpr int kLaggedIterations = 6;
 // A full step that lowers the energy is doubled while that lowers it more,
 // up to this many times its length (within the fold guard's bound): where
 // the Hessian curves down, or its positive part overestimates the
@@ -457,7 +469,7 @@ struct StretchTerms {
   // each triangle's positive part of the Hessian plus `regularization` times
   // its chart Laplacian block, added to it; with `exact`, also each active
   // triangle's Hessian in (Ju, Jv) as it is (not made positive), weighted,
-  // plus the same regularization.
+  // plus the same regularization. Both need `gradient`.
   double evaluate(const Triangles& F, const Eigen::MatrixXd& uv, Eigen::MatrixXd* gradient,
                   PatternHessian* hessian, double regularization, bool majorize,
                   std::vector<Matrix4>* exact = nullptr) const {
@@ -470,8 +482,8 @@ struct StretchTerms {
     for (std::size_t index = 0; index < active.size(); ++index) {
       const int t = active[index];
       const auto [p, q] = images(F, uv, t);
-      const double term =
-          triangle_term(rho, p, q, su[t], sv[t], gradient ? &g : nullptr, hessian ? &H : nullptr, majorize);
+      const double term = triangle_term(rho, p, q, su[t], sv[t], gradient ? &g : nullptr,
+                                        hessian || exact ? &H : nullptr, majorize);
       if (!std::isfinite(term)) return std::numeric_limits<double>::infinity();
       sum += weight[t] * term;
       if (!gradient) continue;
@@ -479,9 +491,8 @@ struct StretchTerms {
         gradient->row(F(t, k)) +=
             weight[t] * (alpha(t, k) * g.head<2>() + beta(t, k) * g.tail<2>()).transpose();
       }
-      if (!hessian) continue;
       if (exact) (*exact)[index] = weight[t] * (H + regularization * Matrix4::Identity());
-      hessians_[index] = H;
+      if (hessian) hessians_[index] = H;
     }
     if (!hessian) return sum;
     // The positive parts, two at a time, then the blocks in the triangles'
@@ -521,17 +532,20 @@ struct StretchTerms {
 double dot(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) { return a.cwiseProduct(b).sum(); }
 
 // The Newton direction for the Hessian as it is (H, through `exact`), by
-// conjugate gradients preconditioned with its positive part P (factored in
-// `system`), from 0: the first iterate is the projected Newton step -P^-1 g
-// scaled to H's curvature along it; each further one adds what the clamped
-// negative curvature took away, in the directions P gets least right. Stops
-// at a relative residual (in P's norm) of kPcgResidual, after kPcgIterations,
-// or where H curves down along the search direction (then the iterate so
-// far: conjugate gradients from 0 give descent directions until then). Where
-// H curves down at the first search direction, that direction itself.
+// conjugate gradients preconditioned with the positive part P of this
+// iteration's Hessian or of a recent one's (factored in `system`), from 0:
+// the first iterate is the preconditioned step -P^-1 g scaled to H's
+// curvature along it; each further one adds what P gets wrong (the clamped
+// negative curvature, the steps since P was made), in the directions it
+// gets least right. Stops at a relative residual (in P's norm) of
+// kPcgResidual, after kPcgIterations, or where H curves down along the
+// search direction (then the iterate so far: conjugate gradients from 0
+// give descent directions until then). Where H curves down at the first
+// search direction, that direction itself. `used`: the iterations taken.
 Eigen::MatrixXd truncated_newton_direction(const Triangles& F, const StretchTerms& terms,
                                            const std::vector<Matrix4>& exact, const PatternHessian& system,
-                                           const std::vector<int>& pinned, const Eigen::MatrixXd& gradient) {
+                                           const std::vector<int>& pinned, const Eigen::MatrixXd& gradient,
+                                           int& used) {
   Eigen::MatrixXd residual = -gradient;
   for (const int v : pinned) residual.row(v).setZero();
   Eigen::MatrixXd preconditioned = system.solve(residual);
@@ -539,7 +553,9 @@ Eigen::MatrixXd truncated_newton_direction(const Triangles& F, const StretchTerm
   Eigen::MatrixXd direction = Eigen::MatrixXd::Zero(gradient.rows(), 2);
   const double start = dot(residual, preconditioned);
   double current = start;
+  used = 0;
   for (int k = 0; k < kPcgIterations; ++k) {
+    used = k + 1;
     Eigen::MatrixXd curved = terms.hessian_times(F, exact, search);
     for (const int v : pinned) curved.row(v).setZero();
     const double curvature = dot(search, curved);
@@ -574,6 +590,7 @@ class NewtonStage {
 
   // `index`: the stage's, for progress (refine_stage_outlook's order).
   StageEnd run(int index, double tolerance, std::vector<double>* history, Eigen::MatrixXd& uv) {
+    factored_ = false;  // the last stage's factorization is of another smoothing
     double energy = terms_.energy(F_, uv);
     if (history) history->push_back(energy);
     bool majorize = true;
@@ -581,19 +598,31 @@ class NewtonStage {
     std::vector<double> stage_energies{energy};  // its start, then after each step
     while (report_.iterations < cap_) {
       if (energy <= kExactEnergy) return StageEnd::Converged;
-      system_.clear();
-      terms_.evaluate(F_, uv, &gradient_, &system_, regularization_, majorize, majorize ? nullptr : &exact_);
-      if (!system_.factor()) {
-        if (regularization_ * kRegularizationGrowth > kMaxRegularization) return StageEnd::Stalled;
-        regularization_ *= kRegularizationGrowth;
-        continue;
+      // A majorized step solves with its own factored positive part; a
+      // Newton step may precondition with a recent iteration's (kMaxLag).
+      const bool refactor = majorize || !factored_ || lagged_ >= kMaxLag || slow_;
+      if (refactor) system_.clear();
+      terms_.evaluate(F_, uv, &gradient_, refactor ? &system_ : nullptr, regularization_, majorize,
+                      majorize ? nullptr : &exact_);
+      if (refactor) {
+        factored_ = system_.factor();
+        if (!factored_) {
+          if (regularization_ * kRegularizationGrowth > kMaxRegularization) return StageEnd::Stalled;
+          regularization_ *= kRegularizationGrowth;
+          continue;
+        }
+        ++report_.factorizations;
+        lagged_ = 0;
+      } else {
+        ++lagged_;
       }
-      ++report_.factorizations;
       // Majorized steps minimise the majorizing quadratic made positive; Newton
       // steps go further, towards H's own minimum.
+      int used = 0;
       const Eigen::MatrixXd direction =
           majorize ? Eigen::MatrixXd(system_.solve(-gradient_))
-                   : truncated_newton_direction(F_, terms_, exact_, system_, pinned_, gradient_);
+                   : truncated_newton_direction(F_, terms_, exact_, system_, pinned_, gradient_, used);
+      slow_ = !refactor && used > kLaggedIterations;
       const double slope = dot(gradient_, direction);
       // Newton's predicted decrease, -slope / 2, below the tolerance: the
       // minimum is reached (also when the gradient vanishes to round-off).
@@ -672,6 +701,13 @@ class NewtonStage {
   // Raised when a factorization fails, and kept for the later stages (it is
   // about the patch, not the smoothing).
   double regularization_ = kRegularization;
+  // Whether system_ holds a factorization of this stage, made how many
+  // iterations ago, and whether the last Newton step preconditioned with an
+  // earlier iteration's took more than kLaggedIterations (the next iteration
+  // then factors its own).
+  bool factored_ = false;
+  int lagged_ = 0;
+  bool slow_ = false;
   Eigen::MatrixXd gradient_;
   std::vector<Matrix4> exact_;
 };
