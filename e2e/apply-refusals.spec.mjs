@@ -1,8 +1,9 @@
 // Apply in the tool panel never fails silently: when an edit cannot run (no
 // screen drag yet for the 'Screen drag' direction, no arrows for 'Arrows',
 // 'ARAP with handles', which has no amount), the error banner and the API's
-// 'error' event say why and what to do, and the mesh and history stay.
-import { expect, meshPath, openApp, test, uploadFile } from './support.mjs';
+// 'error' event say why and what to do, and the mesh and history stay. An
+// edit no direction changes (a twist, a rotation about the normal) needs none.
+import { armChange, expect, meshPath, openApp, test, uploadFile } from './support.mjs';
 
 async function recordErrors(page) {
   await page.evaluate(() => {
@@ -38,6 +39,50 @@ test('Apply on a fresh page (screen direction, no drag yet) says to drag first',
   const before = await page.evaluate(() => Array.from(window.anisoform.positions()));
   await applyStretch(page, 2);
   await expectRefusal(page, { before, words: ['Stretch was not applied', 'drag on the mesh', 'direction source'] });
+  expect(pageErrors).toEqual([]);
+});
+
+test('Apply of a twist or a rotation about the normal needs no drag first; about u it does', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  await recordErrors(page);
+  await page.evaluate(() => {
+    const positions = window.anisoform.positions();
+    let low = Infinity, high = -Infinity;
+    for (let i = 1; i < positions.length; i += 3) {
+      low = Math.min(low, positions[i]);
+      high = Math.max(high, positions[i]);
+    }
+    return window.anisoform.select({ box: { min: [-1e9, (low + high) / 2, -1e9], max: [1e9, 1e9, 1e9] } });
+  });
+  const positions = () => page.evaluate(() => Array.from(window.anisoform.positions()));
+  const opCount = () => page.evaluate(() => window.anisoform.document().ops.length);
+  const rest = await positions();
+  await page.getByTestId('tool-twist').click();
+  let committed = await armChange(page, 'positions');
+  await page.getByTestId('apply-twist').click();
+  await committed();
+  expect(await opCount()).toBe(1);
+  const twisted = await positions();
+  expect(twisted).not.toEqual(rest);
+
+  await page.getByTestId('tool-rotate').click();
+  await page.locator('#rotate-axis').selectOption('n');
+  committed = await armChange(page, 'positions');
+  await page.getByTestId('apply-rotate').click();
+  await committed();
+  expect(await opCount()).toBe(2);
+  expect(await positions()).not.toEqual(twisted);
+  expect(await page.evaluate(() => window.__errors)).toEqual([]);
+  await expect(page.getByTestId('error')).toBeHidden();
+
+  // About the direction (u), the rotation does depend on it: refused as a stretch is.
+  const before = await positions();
+  await page.locator('#rotate-axis').selectOption('u');
+  await page.getByTestId('apply-rotate').click();
+  await expect(page.getByTestId('error')).toContainText('Rotate was not applied');
+  await expect(page.getByTestId('error')).toContainText('drag on the mesh');
+  expect(await positions()).toEqual(before);
+  expect(await opCount()).toBe(2);
   expect(pageErrors).toEqual([]);
 });
 

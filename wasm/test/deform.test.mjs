@@ -6,6 +6,7 @@
 import assert from 'node:assert/strict';
 import { before, test } from 'node:test';
 
+import { transformUsesDirection } from '../../web/src/tools/direction-source.js';
 import { boundingBox, loadAnisoform, maxVertexDistance, sessionWith } from '../node-support.mjs';
 
 let wasm;
@@ -191,6 +192,41 @@ test('twist: the default origin is the centroid line at the lowest point; an exp
   }));
 
 // Every result says how many triangles the edit folded over.
+// The app's Apply sends a twist or a rotation about the normal without a
+// direction (web/src/tools/direction-source.js): their results must be the
+// same for every direction, and every other edit's must not be.
+test('the edits the app sends without a direction are exactly those whose result no direction changes', () => {
+  const transforms = [
+    { twist: { axis: [0, 1, 0], degreesPerUnit: 60 } },
+    { rotate: { axis: 'n', degrees: 30 } },
+    { rotate: { axis: 'u', degrees: 30 } },
+    { rotate: { axis: 'v', degrees: 30 } },
+    { scale: [1.4, 1] },
+    { scale: [1, 1.3] },
+    { shear: 0.3 },
+    { twist: { axis: [0, 1, 0], degreesPerUnit: 60 }, scale: [1.2, 1] },
+  ];
+  const solve = (method, transform, direction) => withSession('closed/spot_triangulated.obj', (session) => {
+    const { min, max } = boundingBox(session.positions());
+    session.select({ box: { min: [min[0], 0.5 * (min[1] + max[1]), min[2]], max } });
+    session.deform({ method, transform, ...(direction && { direction }) });
+    return session.positions().slice();
+  });
+  for (const method of ['anarap', 'andefgrad', 'linear']) {
+    for (const transform of transforms) {
+      const alongX = solve(method, transform, { type: 'global', vector: [1, 0, 0] });
+      const others = [solve(method, transform, { type: 'global', vector: [0, 0, 1] }), solve(method, transform, null)];
+      const differences = others.map((positions) => maxVertexDistance(positions, alongX));
+      const label = `${method} ${JSON.stringify(transform)}`;
+      if (transformUsesDirection(transform)) {
+        for (const difference of differences) assert.ok(difference > 1e-3, `${label}: ${difference}`);
+      } else {
+        assert.deepEqual(differences, [0, 0], label);
+      }
+    }
+  }
+});
+
 test('deform results count folded-over triangles', () => withSession('closed/spool.off', (session) => {
   session.select({ all: true });
   const stretched = session.deform({ method: 'andefgrad', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: 1.5 } });

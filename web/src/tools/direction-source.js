@@ -14,6 +14,21 @@ export class DirectionMissingError extends Error {
 
 const NO_ARROWS = 'no arrows are placed: drag on the surface with the Arrows tool first, or choose another direction source';
 
+/**
+ * Whether an edit's result depends on its direction: not for a twist alone
+ * (its maps are the twist's Jacobian) nor for a rotation about the normal
+ * alone, whatever the method (the core builds their element maps without
+ * the direction's frame; wasm/test/deform.test.mjs checks this against the
+ * solver, both ways). Apply sends those without a direction, so that they
+ * need no drag or arrows first.
+ */
+export function transformUsesDirection(transform) {
+  const parts = Object.keys(transform);
+  if (parts.length !== 1) return true;
+  if (parts[0] === 'twist') return false;
+  return !(parts[0] === 'rotate' && transform.rotate.axis === 'n');
+}
+
 export function directionFromSettings(values) {
   const { source, axis, custom, curvature } = values.direction;
   switch (source) {

@@ -18,7 +18,7 @@
 import { describeEdit } from '../editor/edit-wording.js';
 import { dragAmountText } from '../interaction/drag-readout.js';
 import { extentAlong, normalized, worldDragVector } from '../interaction/screen-drag.js';
-import { directionFromSettings } from './direction-source.js';
+import { directionFromSettings, transformUsesDirection } from './direction-source.js';
 import { badParameter } from '../shared/errors.js';
 
 // Below this many pixels a press is a click, not a drag.
@@ -105,10 +105,11 @@ export class TransformTool {
     if (values.solver.method === 'arap') {
       throw badParameter('ARAP with handles has no amount to apply: drag the selection on the mesh, or choose another method');
     }
+    const transform = this.transformFromSettings();
     const op = {
       method: values.solver.method,
-      direction: directionFromSettings(values),
-      transform: this.transformFromSettings(),
+      ...(transformUsesDirection(transform) && { direction: directionFromSettings(values) }),
+      transform,
       maxIterations: values.solver.iterations,
     };
     return this.editor.deform(op, describeEdit(op));
