@@ -3,7 +3,7 @@
 // 'ARAP with handles', which has no amount), the error banner and the API's
 // 'error' event say why and what to do, and the mesh and history stay. An
 // edit no direction changes (a twist, a rotation about the normal) needs none.
-import { armChange, expect, meshPath, openApp, test, uploadFile } from './support.mjs';
+import { armChange, expect, meshPath, openApp, selectUpperHalf, test, uploadFile } from './support.mjs';
 
 async function recordErrors(page) {
   await page.evaluate(() => {
@@ -45,15 +45,7 @@ test('Apply on a fresh page (screen direction, no drag yet) says to drag first',
 test('Apply of a twist or a rotation about the normal needs no drag first; about u it does', async ({ page }) => {
   const pageErrors = await openApp(page);
   await recordErrors(page);
-  await page.evaluate(() => {
-    const positions = window.anisoform.positions();
-    let low = Infinity, high = -Infinity;
-    for (let i = 1; i < positions.length; i += 3) {
-      low = Math.min(low, positions[i]);
-      high = Math.max(high, positions[i]);
-    }
-    return window.anisoform.select({ box: { min: [-1e9, (low + high) / 2, -1e9], max: [1e9, 1e9, 1e9] } });
-  });
+  await selectUpperHalf(page);
   const positions = () => page.evaluate(() => Array.from(window.anisoform.positions()));
   const opCount = () => page.evaluate(() => window.anisoform.document().ops.length);
   const rest = await positions();

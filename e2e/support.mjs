@@ -68,6 +68,19 @@ export async function uploadFile(page, path) {
   return page.evaluate(() => window.__nextLoad);
 }
 
+/** Selects the vertices above the middle of the mesh's height (y), by the API's box region. */
+export async function selectUpperHalf(page) {
+  return page.evaluate(() => {
+    const xyz = window.anisoform.positions();
+    let low = Infinity, high = -Infinity;
+    for (let i = 1; i < xyz.length; i += 3) {
+      low = Math.min(low, xyz[i]);
+      high = Math.max(high, xyz[i]);
+    }
+    return window.anisoform.select({ box: { min: [-1e9, (low + high) / 2, -1e9], max: [1e9, 1e9, 1e9] } });
+  });
+}
+
 /** Resolves in the page when the next committed change of `reason` happens. */
 export async function armChange(page, reason) {
   await page.evaluate((wanted) => {

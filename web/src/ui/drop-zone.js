@@ -1,6 +1,9 @@
 // Drag-and-drop upload anywhere on the modeller (`target`: its root element,
-// or the window for the standalone site): an overlay while a file hovers, the
-// first dropped file is loaded.
+// or the window for the standalone site): an overlay while a file hovers; the
+// dropped files are opened as the Open… picker's are (a mesh, or saved edits
+// with or without their mesh: io/open-files.js).
+import { openFiles } from '../io/open-files.js';
+
 export function installDropZone(target, overlay, { api, reportError, lifetime }) {
   let depth = 0; // dragenter/dragleave fire for every child element
   const hasFiles = (event) => [...(event.dataTransfer?.types ?? [])].includes('Files');
@@ -21,7 +24,7 @@ export function installDropZone(target, overlay, { api, reportError, lifetime })
     event.preventDefault();
     depth = 0;
     overlay.hidden = true;
-    const file = event.dataTransfer.files[0];
-    if (file) api.load(file, file.name).catch(reportError); // the editor has shown it already
+    const files = [...event.dataTransfer.files];
+    if (files.length > 0) openFiles(api, files).catch((error) => reportError(error, 'Nothing was opened'));
   });
 }

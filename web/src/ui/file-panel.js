@@ -1,20 +1,23 @@
-// File panel: open a mesh (picker; drag-and-drop is in drop-zone.js), export
-// the current mesh, and reset to the mesh as loaded.
+// File panel: open a mesh or saved edits (picker; drag-and-drop is in
+// drop-zone.js), export the current mesh, save the edits (the edit document)
+// as a file, and reset to the mesh as loaded.
 import { downloadBytes } from '../io/download.js';
-import { ACCEPT_ATTRIBUTE, EXPORT_FORMATS } from '../io/mesh-formats.js';
+import { EXPORT_FORMATS } from '../io/mesh-formats.js';
+import { OPEN_ACCEPT_ATTRIBUTE, openFiles, savedEditsName } from '../io/open-files.js';
 import { h, section } from './dom.js';
 
 export function filePanel({ api, editor, reportError }) {
   const input = h('input', {
     type: 'file',
     id: 'file-input',
-    accept: ACCEPT_ATTRIBUTE,
+    accept: OPEN_ACCEPT_ATTRIBUTE,
+    multiple: true,
     className: 'visually-hidden',
     'data-testid': 'file-input',
     onchange: () => {
-      const file = input.files?.[0];
-      input.value = ''; // choosing the same file again still loads it
-      if (file) api.load(file, file.name).catch(reportError); // the editor has shown it already
+      const files = [...(input.files ?? [])];
+      input.value = ''; // choosing the same file again still opens it
+      if (files.length > 0) openFiles(api, files).catch((error) => reportError(error, 'Nothing was opened'));
     },
   });
   const format = h(
@@ -35,6 +38,19 @@ export function filePanel({ api, editor, reportError }) {
       downloadBytes(bytes, `${baseName}-edited.${format.value}`);
     },
   }, 'Export');
+  const saveButton = h('button', {
+    className: 'button',
+    'data-testid': 'save-edits',
+    title: 'The edits as a file (JSON) to open again later with the mesh: Open… both, or drop both on the view',
+    onclick: () => {
+      try {
+        const json = `${JSON.stringify(api.document(), null, 1)}\n`;
+        downloadBytes(new TextEncoder().encode(json), savedEditsName(editor.document.name), 'application/json');
+      } catch (error) {
+        reportError(error, 'The edits were not saved');
+      }
+    },
+  }, 'Save edits');
   const resetButton = h('button', {
     className: 'button',
     'data-testid': 'reset',
@@ -43,12 +59,17 @@ export function filePanel({ api, editor, reportError }) {
   }, 'Reset');
   const fileName = h('p', { className: 'file-name' });
   editor.on('mesh', (document) => (fileName.textContent = document.name));
+  // Nothing to save until an edit is made.
+  const syncSave = () => (saveButton.disabled = !(editor.ops.document?.ops.length > 0));
+  syncSave();
+  editor.on('document', syncSave);
+  editor.on('mesh', syncSave);
 
   return section(
     'Mesh',
     fileName,
     h('div', { className: 'row' }, input, h('label', { className: 'button button-primary', for: 'file-input' }, 'Open…'), resetButton),
-    h('p', { className: 'hint' }, 'OBJ, PLY, STL, OFF or GLB — or drop a file on the view.'),
-    h('div', { className: 'row' }, format, exportButton),
+    h('p', { className: 'hint' }, 'OBJ, PLY, STL, OFF or GLB — or drop a file on the view. Saved edits (.json): open or drop them with their mesh.'),
+    h('div', { className: 'row' }, format, exportButton, saveButton),
   );
 }
