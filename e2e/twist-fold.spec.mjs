@@ -1,7 +1,8 @@
 // tool-twist: a click on the mesh puts the twist's axis line through the
-// clicked point (the panel shows it); an extreme amount applied from the
-// panel folds triangles over, and the page warns about it until undo.
-import { armChange, canvasCentre, expect, openApp, test } from './support.mjs';
+// clicked point (the panel shows it); the rate offered is a quarter turn over
+// the height of each mesh loaded; an extreme amount applied from the panel
+// folds triangles over, and the page warns about it until undo.
+import { armChange, canvasCentre, expect, meshPath, openApp, selectUpperHalf, test, uploadFile } from './support.mjs';
 
 test('a click with the twist tool sets the origin to the clicked point', async ({ page }) => {
   await openApp(page);
@@ -25,9 +26,7 @@ test('an extreme twist warns that triangles folded over; undo clears it', async 
   await openApp(page);
   await page.getByTestId('tool-twist').click();
   const warning = page.getByTestId('warning');
-  // Apply needs a direction source that has a direction without a drag.
-  await page.locator('#direction-source').selectOption('global');
-  // The default amount (90°/unit) folds nothing.
+  // The default amount (a quarter turn over Spot's height) folds nothing.
   let committed = await armChange(page, 'positions');
   await page.getByTestId('apply-twist').click();
   await committed();
@@ -44,4 +43,24 @@ test('an extreme twist warns that triangles folded over; undo clears it', async 
   expect(count).toBeGreaterThan(0);
   expect(await page.evaluate(() => window.anisoform.undo())).toBe(true);
   await expect(warning).toBeHidden();
+});
+
+test('each mesh loaded offers a quarter turn over its height, which folds nothing on the armadillo', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  await page.getByTestId('tool-twist').click();
+  const rate = page.locator('#twist-degreesPerUnit');
+  await expect(rate).toHaveValue('53'); // Spot: 1.69 units tall
+  await rate.fill('90');
+  await rate.press('Tab');
+  // The armadillo is 151 units tall: 90 degrees per unit of Spot's would fold its upper half into shards.
+  expect((await uploadFile(page, meshPath('closed/armadillo.off'))).ok).toBe(true);
+  await expect(rate).toHaveValue('0.59');
+  await selectUpperHalf(page);
+  const committed = await armChange(page, 'positions');
+  await page.getByTestId('apply-twist').click();
+  await committed();
+  const twist = await page.evaluate(() => window.anisoform.document().ops[0].op.transform.twist);
+  expect(twist.degreesPerUnit).toBe(0.59);
+  await expect(page.getByTestId('warning')).toBeHidden();
+  expect(pageErrors).toEqual([]);
 });

@@ -58,7 +58,9 @@ export class Settings extends EventEmitter {
    * Puts back what only meant something on the mesh it was made on: the
    * arrows (vertex indices), the last screen drag (its anchor point), a twist
    * origin point and the heat map of the flattening. The editor runs this at
-   * every load (Editor.bindToMesh); typed amounts and choices stay.
+   * every load (Editor.bindToMesh); typed amounts and choices stay, but for
+   * the twist rate, in degrees per unit of the mesh, which the twist tool
+   * sets again for each mesh loaded.
    */
   resetMeshBound() {
     const defaults = defaultSettings();

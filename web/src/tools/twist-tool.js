@@ -8,6 +8,8 @@ import { extentAlong } from '../interaction/screen-drag.js';
 import { round } from './stretch-tool.js';
 import { TransformTool } from './transform-tool.js';
 
+const QUARTER_TURN = 90;
+
 export class TwistTool extends TransformTool {
   id = 'twist';
   label = 'Twist';
@@ -33,8 +35,20 @@ export class TwistTool extends TransformTool {
       ],
     },
     { key: 'point', label: 'Origin point', vector: true, point: true, showWhen: (values) => values.origin === 'point' },
-    { key: 'degreesPerUnit', label: '° per unit', step: 1 },
+    { key: 'degreesPerUnit', label: '° per unit', step: 'any' },
   ];
+
+  constructor(context) {
+    super(context);
+    // A rate in degrees per model unit means nothing on another mesh (Spot
+    // is 1.7 units tall, the armadillo 151: its 90 degrees per unit folded
+    // the armadillo's upper half into shards). Each load sets it to a
+    // quarter turn over the new mesh's extent along the axis.
+    this.editor.on('mesh', (document) => {
+      const extent = extentAlong(document, this.#axis()) || document.bounds().diagonal;
+      this.settings.update('twist', { degreesPerUnit: Number((QUARTER_TURN / extent).toPrecision(2)) });
+    });
+  }
 
   #axis() {
     const { axis, custom } = this.settings.values.twist;

@@ -21,6 +21,8 @@ export function numberField(settings, sectionName, { key, label, min, max, step 
     input.value = settings.values[sectionName][key];
   });
   settings.on('change', ({ section }) => section === sectionName && sync());
+  // A value set while the user was in the field (a new mesh's twist rate) shows once they leave it.
+  input.addEventListener('blur', sync);
   sync();
   return h('label', { className: 'field', for: input.id }, h('span', {}, label), input);
 }
