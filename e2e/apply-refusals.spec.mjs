@@ -109,6 +109,9 @@ test('a refused API edit reaches the banner and the error event once', async ({ 
   const errors = await page.evaluate(() => window.__errors);
   expect(errors).toEqual([rejection]);
   await expect(page.getByTestId('error')).toContainText('direction.type must be one of');
+  // Not an op at all: said as such, not as fields '0', '1', … of a string.
+  const notAnOp = await page.evaluate(() => window.anisoform.deform('stretch').then(() => null, (error) => error.message));
+  expect(notAnOp).toBe('The edit failed: op must be an object');
 });
 
 test('an edit the solver refuses is reported once', async ({ page }) => {

@@ -6,6 +6,7 @@ const TRANSFORM_NAMES = { scale: 'Stretch', shear: 'Shear', rotate: 'Rotate', tw
 const METHOD_NAMES = { anarap: 'AnARAP', andefgrad: 'AnDefGrad', arap: 'ARAP', linear: 'Linear' };
 
 export function describeEdit(op) {
+  if (typeof op !== 'object' || op === null) return 'The edit';
   if (op.method === 'arap' && op.move) return 'Move (ARAP)';
   const kind = Object.keys(op.transform ?? {}).find((key) => key in TRANSFORM_NAMES) ?? 'scale';
   return `${TRANSFORM_NAMES[kind]} (${METHOD_NAMES[op.method] ?? op.method})`;

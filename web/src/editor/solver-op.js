@@ -11,6 +11,8 @@ import { badParameter } from '../shared/errors.js';
  * @param {{cameraState(): object, pick(x: number, y: number): object|null}|null} view
  */
 export function toSolverOp(op, document, view) {
+  // Not an object: the core refuses it as it is ("op must be an object"); spread, a string would be an op of fields '0', '1', …
+  if (typeof op !== 'object' || op === null || Array.isArray(op)) return op;
   const solverOp = { ...op };
   if (op.direction) solverOp.direction = { ...op.direction };
   if (op.direction?.type === 'screen' && !op.direction.camera) {
