@@ -3,7 +3,8 @@
 // keys (tool keys, [ and ] for the brush radius, arrows to pan); C selects
 // the brush's sphere at the surface in the middle of the view without
 // painting (Shift+C takes it away), the Select tool's button a box; ? opens
-// the shortcut overlay, an accessible dialog that Esc closes.
+// the shortcut overlay, an accessible dialog that Esc closes; Ctrl+S saves
+// the edits and Ctrl+O opens the file picker, not the browser's own.
 import { saveScreenshot } from './artifacts.mjs';
 import { expect, openApp, test } from './support.mjs';
 
@@ -125,5 +126,21 @@ test('? opens the shortcut overlay, an accessible dialog that Esc closes', async
   // Back in the view, the keys work again.
   await page.keyboard.press('s');
   expect(await pressedTool(page)).toBe('tool-stretch');
+  expect(pageErrors).toEqual([]);
+});
+
+test('Ctrl+S saves the edits (nothing before the first), Ctrl+O opens the file picker', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  await tabTo(page, '[data-testid=viewport]');
+  let downloads = 0;
+  page.on('download', () => downloads++);
+  await page.keyboard.press('Control+s'); // no edit yet: nothing to save, and not the browser's Save page
+  await page.evaluate(() => window.anisoform.select({ all: true }));
+  await page.evaluate(() => window.anisoform.deform({ method: 'anarap', transform: { scale: [1.3, 1] } }));
+  const [download] = await Promise.all([page.waitForEvent('download'), page.keyboard.press('Control+s')]);
+  expect(download.suggestedFilename()).toBe('spot_triangulated-edits.json');
+  expect(downloads).toBe(1);
+  const [chooser] = await Promise.all([page.waitForEvent('filechooser'), page.keyboard.press('Control+o')]);
+  expect(chooser.isMultiple()).toBe(true);
   expect(pageErrors).toEqual([]);
 });

@@ -34,9 +34,10 @@ export function installFullUi(layout, { api, editor, settings, tools, viewer, pi
   // api.select reports a refusal itself (the banner and the 'error' event); the rejection needs no second word.
   const selectRegion = (options) => selectRegionAtViewCentre({ api, editor, viewer, picker, settings }, options)?.catch(() => {});
   const inMode = (mode, element) => showWhen(settings, 'mode', element, (current) => current === mode);
+  const files = filePanel({ api, editor, reportError });
   layout.sidePanel.append(
     modeSwitch({ settings, app: layout.root }),
-    filePanel({ api, editor, reportError }),
+    files.element,
     historyButtons({ api, editor }),
     opsPanel({ api, editor }),
     toolPanel({ editor, settings, tools, reportError, selectRegion }),
@@ -53,5 +54,5 @@ export function installFullUi(layout, { api, editor, settings, tools, viewer, pi
   installDropZone(layout.root, layout.dropOverlay, { api, reportError, lifetime });
   frameButton(layout.viewport, { api });
   const dialog = shortcutDialog(layout.root, { tools });
-  installEditingKeys(keyTarget, lifetime, { settings, dialog, selectRegion });
+  installEditingKeys(keyTarget, lifetime, { settings, dialog, selectRegion, files });
 }

@@ -2,7 +2,9 @@
 // [ and ] for the brush radius, C / Shift+C to select the brush region at
 // the view centre, ? for the shortcut overlay. Like keyboard-shortcuts.js
 // they are ignored while typing in a field or with Ctrl/Cmd/Alt held, and
-// none acts while the overlay is open.
+// none acts while the overlay is open. Ctrl/Cmd+O and Ctrl/Cmd+S are the
+// Mesh panel's Open… and Save edits, in a field too, instead of the
+// browser's own (open a page, save the page).
 import { FLATTEN_MODE_TOOLS } from '../tools/tool-registry.js';
 import { isTyping } from './keyboard-shortcuts.js';
 import { TOOL_KEYS } from './shortcut-list.js';
@@ -12,9 +14,16 @@ const RADIUS_FACTOR = 1.25;
 const RADIUS_MIN = 0.5;
 const RADIUS_MAX = 100;
 
-export function installEditingKeys(target, lifetime, { settings, dialog, selectRegion }) {
+export function installEditingKeys(target, lifetime, { settings, dialog, selectRegion, files }) {
   const toolOfKey = new Map(Object.entries(TOOL_KEYS).map(([id, key]) => [key, id]));
+  const fileActions = { o: files.open, s: files.save };
   lifetime.listen(target, 'keydown', (event) => {
+    const fileAction = fileActions[event.key.toLowerCase()];
+    if (!dialog.open && fileAction && (event.ctrlKey || event.metaKey) && !event.altKey && !event.shiftKey) {
+      event.preventDefault();
+      fileAction();
+      return;
+    }
     if (dialog.open || isTyping(event) || event.ctrlKey || event.metaKey || event.altKey) return;
     const key = event.key.toLowerCase();
     const tool = toolOfKey.get(key);

@@ -25,6 +25,8 @@ export function shortcutRows(tools) {
     ['Shift+C', 'The same, with the brush mode inverted (add ↔ subtract)'],
     ['F or Home', 'Frame the whole mesh'],
     ['Arrow keys', 'Pan the view (3D view focused); Shift+arrows orbit'],
+    ['Ctrl+O', 'Open a mesh, or saved edits (with their mesh)'],
+    ['Ctrl+S', 'Save the edits as a file (.json)'],
     ['Ctrl+Z', 'Undo'],
     ['Ctrl+Shift+Z or Ctrl+Y', 'Redo'],
     ['Esc', 'Cancel the drag or the solve in progress; close this list'],

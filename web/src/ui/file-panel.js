@@ -65,11 +65,16 @@ export function filePanel({ api, editor, reportError }) {
   editor.on('document', syncSave);
   editor.on('mesh', syncSave);
 
-  return section(
-    'Mesh',
-    fileName,
-    h('div', { className: 'row' }, input, h('label', { className: 'button button-primary', for: 'file-input' }, 'Open…'), resetButton),
-    h('p', { className: 'hint' }, 'OBJ, PLY, STL, OFF or GLB — or drop a file on the view. Saved edits (.json): open or drop them with their mesh.'),
-    h('div', { className: 'row' }, format, exportButton, saveButton),
-  );
+  return {
+    element: section(
+      'Mesh',
+      fileName,
+      h('div', { className: 'row' }, input, h('label', { className: 'button button-primary', for: 'file-input' }, 'Open…'), resetButton),
+      h('p', { className: 'hint' }, 'OBJ, PLY, STL, OFF or GLB — or drop a file on the view. Saved edits (.json): open or drop them with their mesh.'),
+      h('div', { className: 'row' }, format, exportButton, saveButton),
+    ),
+    // The keys' actions (Ctrl+O, Ctrl+S: editing-keys.js), as the buttons do them.
+    open: () => input.click(),
+    save: () => saveButton.click(), // nothing while it is disabled (no edit yet)
+  };
 }
