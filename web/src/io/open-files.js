@@ -16,7 +16,11 @@ export function savedEditsName(meshName) {
   return `${meshName.replace(/\.[^.]+$/, '')}-edits${SAVED_EDITS_EXTENSION}`;
 }
 
-/** Loads or replays `files` (an array of File); rejects with a reported error when nothing could be opened. */
+/**
+ * Loads or replays `files` (an array of File). Rejects when nothing could be
+ * opened: api.load's and api.open's errors are reported already, the others
+ * (a wrong set of files, a file that is not JSON) are the caller's to report.
+ */
 export async function openFiles(api, files) {
   const edits = files.filter(isSavedEdits);
   const meshes = files.filter((file) => !isSavedEdits(file));
