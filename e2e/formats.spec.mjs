@@ -1,6 +1,7 @@
 // Every file of shared/meshes/formats uploads through the file input and
 // gives the counts of MANIFEST.md (polygons triangulated, STL soups welded).
-import { readdirSync, readFileSync } from 'node:fs';
+// A .gltf whose geometry is in another file is refused, naming that file.
+import { readdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { expect, meshesDir, meshPath, openApp, test, uploadFile } from './support.mjs';
 
 // triangles = sum over polygons of (corners - 2)
@@ -70,4 +71,28 @@ test('dropping a file on the page loads it', async ({ page }) => {
   await page.dispatchEvent('main.viewport', 'drop', { dataTransfer });
   expect(await loaded).toMatchObject({ vertices: 829, triangles: 1654 });
   await expect(page.getByTestId('drop-overlay')).toBeHidden();
+});
+
+test('a .gltf that keeps its geometry in another file is refused naming it, and nothing is fetched', async ({ page }, testInfo) => {
+  const pageErrors = await openApp(page);
+  // The smallest such file: one triangle whose positions are in ext.bin.
+  const gltf = testInfo.outputPath('external-buffer.gltf');
+  writeFileSync(gltf, JSON.stringify({
+    asset: { version: '2.0' },
+    buffers: [{ uri: 'ext.bin', byteLength: 36 }],
+    bufferViews: [{ buffer: 0, byteLength: 36 }],
+    accessors: [{ bufferView: 0, componentType: 5126, count: 3, type: 'VEC3', min: [0, 0, 0], max: [1, 1, 0] }],
+    meshes: [{ primitives: [{ attributes: { POSITION: 0 } }] }],
+    nodes: [{ mesh: 0 }],
+    scenes: [{ nodes: [0] }],
+    scene: 0,
+  }));
+  const fetched = [];
+  page.on('request', (request) => fetched.push(request.url()));
+  const outcome = await uploadFile(page, gltf);
+  expect(outcome.ok).toBe(false);
+  expect(outcome.message).toContain('external-buffer.gltf keeps its geometry in other files (ext.bin)');
+  expect(outcome.message).toContain('The current mesh (spot_triangulated.obj) is unchanged');
+  expect(fetched.filter((url) => url.endsWith('ext.bin'))).toEqual([]);
+  expect(pageErrors).toEqual([]);
 });

@@ -14,6 +14,15 @@ export class GltfImportError extends Error {
 
 /** @returns {Promise<{positions: Float32Array, triangles: Uint32Array, notes: string[]}>} */
 export async function importGltf(bytes, name) {
+  // Geometry in other files cannot be read from a file opened in the page:
+  // said as such, before GLTFLoader asks the page's server for them.
+  const external = externalBufferUris(bytes);
+  if (external.length > 0) {
+    throw new GltfImportError(
+      `${name} keeps its geometry in other files (${external.join(', ')}), which the page cannot read: ` +
+        'open a .glb, or a .gltf with its buffers embedded (data: URIs).',
+    );
+  }
   let gltf;
   try {
     gltf = await new GLTFLoader().parseAsync(bytes, '');
@@ -73,4 +82,29 @@ export async function importGltf(bytes, name) {
   if (parts.length > 1) notes.push(`${parts.length} meshes of the glTF scene were merged into one.`);
   if (skipped > 0) notes.push(`${skipped} point, line or skinned objects were skipped.`);
   return { positions, triangles, notes };
+}
+
+// The buffer URIs of a glTF (JSON) or GLB (its JSON chunk) that name other
+// files rather than data: URIs or the GLB's own binary chunk; [] for what
+// does not parse (GLTFLoader says what is wrong with it).
+function externalBufferUris(bytes) {
+  const view = new Uint8Array(bytes.buffer ?? bytes, bytes.byteOffset ?? 0, bytes.byteLength);
+  let text = null;
+  const isGlb = view.length >= 20 && String.fromCharCode(...view.subarray(0, 4)) === 'glTF';
+  if (isGlb) {
+    const data = new DataView(view.buffer, view.byteOffset, view.byteLength);
+    const length = data.getUint32(12, true);
+    if (data.getUint32(16, true) === 0x4e4f534a && 20 + length <= view.length) { // 'JSON'
+      text = new TextDecoder().decode(view.subarray(20, 20 + length));
+    }
+  } else {
+    text = new TextDecoder().decode(view);
+  }
+  try {
+    const buffers = JSON.parse(text)?.buffers;
+    if (!Array.isArray(buffers)) return [];
+    return buffers.map((buffer) => buffer?.uri).filter((uri) => typeof uri === 'string' && !uri.startsWith('data:'));
+  } catch {
+    return [];
+  }
 }
