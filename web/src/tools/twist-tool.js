@@ -46,6 +46,7 @@ export class TwistTool extends TransformTool {
     // quarter turn over the new mesh's extent along the axis.
     this.editor.on('mesh', (document) => {
       const extent = extentAlong(document, this.#axis()) || document.bounds().diagonal;
+      if (!(extent > 0)) return; // a mesh of one point: no size to measure a turn by
       this.settings.update('twist', { degreesPerUnit: Number((QUARTER_TURN / extent).toPrecision(2)) });
     });
   }
