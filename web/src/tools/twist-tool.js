@@ -43,9 +43,12 @@ export class TwistTool extends TransformTool {
     // A rate in degrees per model unit means nothing on another mesh (Spot
     // is 1.7 units tall, the armadillo 151: its 90 degrees per unit folded
     // the armadillo's upper half into shards). Each load sets it to a
-    // quarter turn over the new mesh's extent along the axis.
+    // quarter turn over the new mesh's extent along the axis (its bounding
+    // box's, kept by the document: no pass over the vertices at a load).
     this.editor.on('mesh', (document) => {
-      const extent = extentAlong(document, this.#axis()) || document.bounds().diagonal;
+      const { min, max, diagonal } = document.bounds();
+      const axis = this.#axis();
+      const extent = axis.reduce((sum, a, k) => sum + Math.abs(a) * (max[k] - min[k]), 0) || diagonal;
       if (!(extent > 0)) return; // a mesh of one point: no size to measure a turn by
       this.settings.update('twist', { degreesPerUnit: Number((QUARTER_TURN / extent).toPrecision(2)) });
     });
