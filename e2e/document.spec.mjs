@@ -87,21 +87,101 @@ test('an op toggled off is skipped and its amounts re-run the later ops', async 
   }, second.id);
   expect(bitwise(restored, afterThree)).toBe(true);
 
-  // Undo and redo move over the ops (selecting the op in the panel selected its region: one more step).
-  const undone = await page.evaluate(() => {
-    const api = window.anisoform;
-    api.undo(); // the second op's region, selected from the panel
-    api.undo(); // the shear
-    const one = { positions: Array.from(api.positions()), ops: api.document().ops.length };
-    api.undo(); // the 'add' select
-    api.undo(); // the first select of the third region
-    api.undo(); // the twist
-    return { one, two: { positions: Array.from(api.positions()), ops: api.document().ops.length } };
-  });
-  expect(undone.one.ops).toBe(2);
-  expect(bitwise(undone.one.positions, afterTwo)).toBe(true);
-  expect(undone.two.ops).toBe(1);
-  expect(bitwise(undone.two.positions, afterOne)).toBe(true);
+  // Each change of an op is a step of the history, as each commit is: undo
+  // and redo re-run the op with its value before or after (here the undo
+  // steps named in the Undo button, back over every change to the shear's commit).
+  const positions = () => page.evaluate(() => Array.from(window.anisoform.positions()));
+  const ops = () => page.evaluate(() => window.anisoform.document().ops.map((op) => `${op.enabled}:${JSON.stringify(op.op.transform)}`));
+  const undoTitle = () => page.getByTestId('undo').getAttribute('title');
+  const step = async (which, solves = true) => {
+    const done = solves ? await armChange(page, 'document') : null;
+    expect(await page.evaluate((name) => window.anisoform[name](), which)).toBe(true);
+    if (done) await done();
+  };
+  expect(await undoTitle()).toBe('Undo Change the amounts of Twist (AnARAP) (Ctrl+Z)');
+  await step('undo');
+  expect(bitwise(await positions(), retwisted)).toBe(true);
+  await step('undo');
+  expect(bitwise(await positions(), afterThree)).toBe(true);
+  await step('undo', false); // the second op's region, selected from the panel
+  expect(await undoTitle()).toBe('Undo Turn on Shear (AnDefGrad) (Ctrl+Z)');
+  await step('undo');
+  expect((await ops())[2]).toMatch(/^false:/);
+  expect(bitwise(await positions(), afterTwo)).toBe(true);
+  await step('undo');
+  expect((await ops())[2]).toMatch(/^true:/);
+  expect(await undoTitle()).toBe('Undo Shear (AnDefGrad) (Ctrl+Z)');
+  const beforeShearUndo = await ops();
+  await step('undo'); // the shear's commit
+  expect(await page.evaluate(() => window.anisoform.document().ops.length)).toBe(2);
+  expect(bitwise(await positions(), afterTwo)).toBe(true);
+  // Redo goes forward over the same steps.
+  await step('redo');
+  expect(await ops()).toEqual(beforeShearUndo);
+  await step('redo');
+  expect((await ops())[2]).toMatch(/^false:/);
+  expect(bitwise(await positions(), afterTwo)).toBe(true);
+  await step('redo');
+  await step('redo', false);
+  await step('redo');
+  expect(await page.evaluate(() => window.anisoform.document().ops[1].op.transform.twist.degreesPerUnit)).toBe(10);
+  expect(bitwise(await positions(), retwisted)).toBe(true);
+  expect(await page.getByTestId('redo').getAttribute('title')).toBe('Redo Change the amounts of Twist (AnARAP) (Ctrl+Shift+Z)');
+
+  // A refused amount (a stretch by -1), or a field left empty, leaves the op,
+  // its field and the history as they were.
+  const first = document.ops[0];
+  await page.getByTestId(`op-select-${first.id}`).click();
+  const along = page.getByTestId(`op-amount-${first.id}-Stretch along`);
+  await expect(along).toHaveValue('1.4');
+  const refused = page.evaluate(() => new Promise((resolve) => {
+    const off = window.anisoform.on('error', ({ message }) => { off(); resolve(message); });
+  }));
+  await along.fill('-1');
+  await along.dispatchEvent('change');
+  expect(await refused).toMatch(/scale/);
+  await expect(along).toHaveValue('1.4');
+  await along.fill('');
+  await along.dispatchEvent('change');
+  await expect(along).toHaveValue('1.4');
+  expect(await page.evaluate(() => window.anisoform.document().ops[0].op.transform.scale[0])).toBe(1.4);
+  expect(await undoTitle()).toBe('Undo Select the region of Stretch (AnARAP) (Ctrl+Z)');
+  expect(bitwise(await positions(), retwisted)).toBe(true);
+  expect(pageErrors).toEqual([]);
+});
+
+test('an op deleted from the Edits list: the later ops re-run on its input, as a replay does; undo puts it back', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const { afterTwo, afterThree, document } = await editSpot(page);
+  const [first, , third] = document.ops;
+  const positions = () => page.evaluate(() => Array.from(window.anisoform.positions()));
+  const ids = () => page.evaluate(() => window.anisoform.document().ops.map((op) => op.id));
+  const changed = async (action) => {
+    const done = await armChange(page, 'document');
+    await action();
+    await done();
+  };
+
+  // The last op: the state before it, bitwise.
+  await changed(() => page.getByTestId(`op-delete-${third.id}`).click());
+  expect(await ids()).toEqual([document.ops[0].id, document.ops[1].id]);
+  await expect(page.getByTestId('op-list').locator('li')).toHaveCount(2);
+  expect(bitwise(await positions(), afterTwo)).toBe(true);
+  expect(await page.getByTestId('undo').getAttribute('title')).toBe('Undo Delete Shear (AnDefGrad) (Ctrl+Z)');
+  await changed(() => page.evaluate(() => window.anisoform.undo()));
+  expect(await ids()).toEqual(document.ops.map((op) => op.id));
+  expect(bitwise(await positions(), afterThree)).toBe(true);
+
+  // The first op: the two later ones re-run on the mesh as loaded; a replay
+  // of the document without it gives the same positions.
+  await changed(() => page.getByTestId(`op-delete-${first.id}`).click());
+  const withoutFirst = { positions: await positions(), document: await page.evaluate(() => window.anisoform.document()) };
+  expect(withoutFirst.document.ops.map((op) => op.id)).toEqual([document.ops[1].id, third.id]);
+  expect(bitwise(withoutFirst.positions, afterThree)).toBe(false);
+  await changed(() => page.evaluate((json) => window.anisoform.open(json), withoutFirst.document));
+  expect(bitwise(await positions(), withoutFirst.positions)).toBe(true);
+  expect(await page.evaluate((json) => window.anisoform.removeOp('op-99').catch((error) => error.message)))
+    .toMatch(/no op 'op-99'/);
   expect(pageErrors).toEqual([]);
 });
 

@@ -155,12 +155,14 @@ export interface Anisoform {
    * op a warm-started solver iteration (while no new value comes for 120 ms, the value goes on
    * iterating for up to 3 s, each step a live 'positions' event), on an earlier op a quick replay of
    * the ops from it on (each a few-iteration preview). Call again without it on release to commit the
-   * value. A preview a newer value superseded resolves with null.
+   * value (a step of the history). A preview a newer value superseded resolves with null.
    */
   setParameter(opId: string, patch: { transform: Transform },
     options?: { preview?: boolean }): Promise<unknown>;
-  /** Toggles an op off or on; the later ops re-run. */
+  /** Toggles an op off or on; the later ops re-run. A step of the history (undo turns it back). */
   setOpEnabled(opId: string, enabled: boolean): Promise<void>;
+  /** Deletes an op; the later ops re-run on its input. A step of the history (undo puts it back). */
+  removeOp(opId: string): Promise<void>;
   export(format: 'obj' | 'ply' | 'stl' | 'glb'): Promise<ArrayBuffer>;
   /** A garment pattern of the mesh or its selection; the mesh and history are untouched. */
   flatten(options?: FlattenOptions): Promise<FlattenResult>;

@@ -54,6 +54,7 @@ export function createAnisoformApi({ editor, viewer, picker, ready }) {
     setParameter: (opId, patch, options) =>
       reported(editor.ops.setParameter(opId, patch, options), 'The parameter was not applied'),
     setOpEnabled: (opId, enabled) => reported(editor.ops.setEnabled(opId, enabled), 'The op was not changed'),
+    removeOp: (opId) => reported(editor.ops.removeOp(opId), 'The op was not deleted'),
 
     cancel: () => editor.cancelSolve(),
     undo: () => editor.undo(),

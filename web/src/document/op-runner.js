@@ -92,12 +92,17 @@ export class OpRunner {
   /**
    * Re-runs the document from op `index` on, op by op, so that every later
    * state is cached again for undo; resolves the last op's solve stats (null
-   * when it is off).
+   * when it is off, or when no op is left from `index` on).
    */
   async rerunFrom(index) {
     this.cache.dropAfter(index);
-    await this.restore(index, { show: false });
     const n = this.#document().ops.length;
+    if (index >= n) {
+      // No op from there on (the last one was deleted): its input is the result.
+      await this.restore(n);
+      return null;
+    }
+    await this.restore(index, { show: false });
     for (let state = index; state < n - 1; state++) {
       const { positions, exact } = await this.replay(state, state + 1);
       this.cache.set(state + 1, { positions, exact });

@@ -174,14 +174,12 @@ export class OpStack {
   }
 
   // ---- an op's switch, amounts and region ----------------------------------
+  // Each change is a step of the history (undo and redo re-run the op and
+  // the later ones with the value before or after), as a commit is.
 
   setEnabled(opId, enabled) {
     if (typeof enabled !== 'boolean') return Promise.reject(badParameter('setOpEnabled needs true or false'));
-    return this.#rerunChanged(opId, (entry) => {
-      const before = entry.enabled;
-      entry.enabled = enabled;
-      return () => { entry.enabled = before; };
-    });
+    return this.#changeOp(opId, 'enabled', enabled, (label) => `Turn ${enabled ? 'on' : 'off'} ${label}`);
   }
 
   /**
@@ -203,11 +201,7 @@ export class OpStack {
       return Promise.reject(error);
     }
     if (preview && this.document.ops[index].enabled) return this.#live.preview(opId, index, op);
-    return this.#rerunChanged(opId, (entry) => {
-      const before = entry.op;
-      entry.op = op;
-      return () => { entry.op = before; };
-    });
+    return this.#changeOp(opId, 'op', op, (label) => `Change the amounts of ${label}`);
   }
 
   /** The weights of op `opId`'s region on its input (where the op evaluates it), to show them. */
@@ -225,33 +219,86 @@ export class OpStack {
 
   /** The current selection (its rule, else its weights) becomes op `opId`'s region; it and the later ops re-run. */
   useSelectionAsRegion(opId) {
-    return this.#rerunChanged(opId, (entry) => {
+    let region;
+    try {
+      this.#requireDocument().indexOf(opId);
       const mesh = this.#editor.requireDocument();
       const steps = regionSteps(this.#editor.selectionState.ruleFor(this.restVersion), mesh.selection, mesh.selectionCount);
-      const before = entry.region;
-      entry.region = this.document.regionFor(steps);
-      return () => { entry.region = before; };
+      region = this.document.regionFor(steps);
+    } catch (error) {
+      return Promise.reject(error);
+    }
+    return this.#changeOp(opId, 'region', region, (label) => `Change the region of ${label}`);
+  }
+
+  /** Deletes op `opId`: the later ops re-run on its input; a step of the history. */
+  removeOp(opId) {
+    return this.#run(async () => {
+      const index = this.#requireDocument().indexOf(opId);
+      const entry = this.document.ops[index];
+      await this.#spliceOp(index, entry, false);
+      this.document.undone = [];
+      const label = `Delete ${entry.label || entry.id}`;
+      const step = (insert) => () => this.#run(() => this.#spliceOp(index, entry, insert))
+        .catch((error) => this.#editor.report(error, `${label} could not be taken back or done again`));
+      this.#editor.history.push({ label, undo: step(true), redo: step(false) });
     });
   }
 
-  // Applies change(entry) to op `opId` (it returns how to take the change
-  // back) and re-runs the op and the later ones; on failure the change is
-  // taken back and the document's last state put back.
-  #rerunChanged(opId, change) {
+  // Inside #run: `entry` put back at `index` (insert) or taken out of it, and
+  // the ops from there re-run; on failure the list and the document's last
+  // state are put back.
+  async #spliceOp(index, entry, insert) {
+    const ops = this.document.ops;
+    const apply = (add) => (add ? ops.splice(index, 0, entry) : ops.splice(index, 1));
+    apply(insert);
+    let stats;
+    try {
+      stats = await this.#runner.rerunFrom(index);
+    } catch (error) {
+      apply(!insert);
+      await this.#runner.restore(ops.length).catch(() => {});
+      throw error;
+    }
+    this.#persistence.changed();
+    this.#reportSolved(stats);
+  }
+
+  // Sets op `opId`'s `field` (enabled, op or region) to `value` and re-runs
+  // the op and the later ones; then the change is a history step named
+  // describe(the op's label). Setting the value it has re-runs, without a step.
+  #changeOp(opId, field, value, describe) {
     return this.#run(async () => {
-      const index = this.#requireDocument().indexOf(opId);
-      const undo = change(this.document.ops[index]);
-      let stats;
-      try {
-        stats = await this.#runner.rerunFrom(index);
-      } catch (error) {
-        undo();
-        await this.#runner.restore(this.document.ops.length).catch(() => {});
-        throw error;
-      }
-      this.#persistence.changed();
-      this.#reportSolved(stats);
+      const entry = this.document.ops[this.#requireDocument().indexOf(opId)];
+      const before = entry[field];
+      await this.#setOpField(opId, field, value);
+      if (JSON.stringify(before) === JSON.stringify(value)) return;
+      // A new step ends what could be redone, the undone ops too (as a commit does).
+      this.document.undone = [];
+      const label = describe(entry.label || entry.id);
+      const step = (to) => () => this.#run(() => this.#setOpField(opId, field, to))
+        .catch((error) => this.#editor.report(error, `${label} could not be taken back or done again`));
+      this.#editor.history.push({ label, undo: step(before), redo: step(value) });
     });
+  }
+
+  // Inside #run: the field set and the op and the later ones re-run; on
+  // failure the old value and the document's last state are put back.
+  async #setOpField(opId, field, value) {
+    const index = this.#requireDocument().indexOf(opId);
+    const entry = this.document.ops[index];
+    const before = entry[field];
+    entry[field] = value;
+    let stats;
+    try {
+      stats = await this.#runner.rerunFrom(index);
+    } catch (error) {
+      entry[field] = before;
+      await this.#runner.restore(this.document.ops.length).catch(() => {});
+      throw error;
+    }
+    this.#persistence.changed();
+    this.#reportSolved(stats);
   }
 
   // A committed solve's figures (the status bar's) and its fold-over

@@ -1,6 +1,7 @@
 // The side panel's list of the edit document's ops (a non-destructive stack,
-// like Blender's modifiers): each op can be toggled off and on, selected, and
-// its amounts edited; the later ops re-run (api.setOpEnabled, api.setParameter).
+// like Blender's modifiers): each op can be toggled off and on, deleted,
+// selected, and its amounts edited; the later ops re-run (api.setOpEnabled,
+// api.removeOp, api.setParameter), and each change is a step of the history.
 // Selecting an op selects its region on the mesh (as the op evaluates it, on
 // its input), and the current selection can replace that region.
 import { h, section } from '../ui/dom.js';
@@ -19,8 +20,9 @@ export function opsPanel({ api, editor }) {
   const list = h('ol', { className: 'op-list', 'data-testid': 'op-list' });
   const empty = h('p', { className: 'op-empty' }, 'No edits yet: each committed edit appears here.');
   let selected = null;
-  // The editor reports failures itself (the banner); the rejected promise needs no second word.
-  const quietly = (promise) => promise.catch(() => {});
+  // The editor reports failures itself (the banner); a refused change only
+  // needs the rows drawn again, so that the fields show the values kept.
+  const redrawIfRefused = (promise) => promise.catch(() => render());
 
   const amountFields = (entry) => {
     const transform = entry.op.transform ?? {};
@@ -32,8 +34,13 @@ export function opsPanel({ api, editor }) {
           value: String(read(transform)),
           'data-testid': `op-amount-${entry.id}-${label}`,
           onchange: (event) => {
-            const value = Number(event.target.value);
-            quietly(api.setParameter(entry.id, { transform: write(transform, value) }));
+            // A field left empty (or not a number) is no amount: it shows the op's again.
+            const value = event.target.value.trim() === '' ? NaN : Number(event.target.value);
+            if (!Number.isFinite(value)) {
+              render();
+              return;
+            }
+            redrawIfRefused(api.setParameter(entry.id, { transform: write(transform, value) }));
           },
         })));
   };
@@ -59,13 +66,15 @@ export function opsPanel({ api, editor }) {
   const row = (entry) => {
     const isSelected = entry.id === selected;
     return h('li', { className: `op-row${isSelected ? ' selected' : ''}${entry.enabled ? '' : ' disabled'}`, 'data-op': entry.id },
-      h('input', {
-        type: 'checkbox',
-        checked: entry.enabled,
-        title: entry.enabled ? 'Turn this edit off' : 'Turn this edit on',
-        'data-testid': `op-toggle-${entry.id}`,
-        onchange: (event) => quietly(api.setOpEnabled(entry.id, event.target.checked)),
-      }),
+      // The label is the touch target (44 px on phones), the box keeps its size.
+      h('label', { className: 'op-toggle', title: entry.enabled ? 'Turn this edit off' : 'Turn this edit on' },
+        h('input', {
+          type: 'checkbox',
+          checked: entry.enabled,
+          'aria-label': `${entry.label || entry.id} on`,
+          'data-testid': `op-toggle-${entry.id}`,
+          onchange: (event) => redrawIfRefused(api.setOpEnabled(entry.id, event.target.checked)),
+        })),
       h('button', {
         className: 'op-label',
         'data-testid': `op-select-${entry.id}`,
@@ -75,6 +84,14 @@ export function opsPanel({ api, editor }) {
           if (selected) showRegion(entry);
         },
       }, entry.label || entry.id),
+      h('button', {
+        type: 'button',
+        className: 'dismiss op-delete',
+        title: 'Delete this edit: the later edits re-run (Undo puts it back)',
+        'aria-label': `Delete ${entry.label || entry.id}`,
+        'data-testid': `op-delete-${entry.id}`,
+        onclick: () => redrawIfRefused(api.removeOp(entry.id)),
+      }, '×'),
       isSelected ? h('div', { className: 'op-amounts' }, amountFields(entry), regionControls(entry)) : null);
   };
 
