@@ -185,6 +185,59 @@ test('an op deleted from the Edits list: the later ops re-run on its input, as a
   expect(pageErrors).toEqual([]);
 });
 
+test("an earlier op's method and direction from the Edits list: it re-runs as a replay of the changed document does; undo takes each back", async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const { afterThree, document } = await editSpot(page);
+  const [first] = document.ops;
+  const positions = () => page.evaluate(() => Array.from(window.anisoform.positions()));
+  const firstOp = () => page.evaluate(() => window.anisoform.document().ops[0]);
+  const changed = async (action) => {
+    const done = await armChange(page, 'document');
+    await action();
+    await done();
+  };
+  await page.getByTestId(`op-select-${first.id}`).click();
+  const method = page.getByTestId(`op-method-${first.id}`);
+  await expect(method).toHaveValue('anarap');
+  await expect(page.getByTestId(`op-direction-${first.id}-z`)).toHaveValue('1');
+
+  await changed(() => method.selectOption('andefgrad'));
+  expect((await firstOp()).op.method).toBe('andefgrad');
+  await expect(page.getByTestId(`op-select-${first.id}`)).toHaveText('Stretch (AnDefGrad)');
+  const byAnDefGrad = await positions();
+  expect(bitwise(byAnDefGrad, afterThree)).toBe(false);
+
+  const x = page.getByTestId(`op-direction-${first.id}-x`);
+  await changed(async () => {
+    await x.fill('1');
+    await x.press('Enter');
+  });
+  expect((await firstOp()).op.direction).toEqual({ type: 'global', vector: [1, 0, 1] });
+  const tilted = await positions();
+  expect(bitwise(tilted, byAnDefGrad)).toBe(false);
+  const changedDocument = await page.evaluate(() => window.anisoform.document());
+
+  expect(await page.getByTestId('undo').getAttribute('title')).toBe('Undo Change the direction of Stretch (AnDefGrad) (Ctrl+Z)');
+  const undo = async () => changed(async () => expect(await page.evaluate(() => window.anisoform.undo())).toBe(true));
+  await undo();
+  expect(bitwise(await positions(), byAnDefGrad)).toBe(true);
+  await undo();
+  expect(bitwise(await positions(), afterThree)).toBe(true);
+  expect((await firstOp()).label).toBe('Stretch (AnARAP)');
+
+  // Refused, naming the problem: a screen drag, an empty patch, a method the core does not know.
+  const refusal = (patch) => page.evaluate(([id, p]) => window.anisoform.setParameter(id, p).then(() => 'applied', (error) => error.message), [first.id, patch]);
+  expect(await refusal({ direction: { type: 'screen', from: [0, 0], to: [1, 1] } })).toMatch(/screen drag cannot be stored/);
+  expect(await refusal({})).toMatch(/changes nothing/);
+  expect(await refusal({ method: 'magic' })).toMatch(/method/);
+  expect(bitwise(await positions(), afterThree)).toBe(true);
+
+  // The changed document replays to bitwise the positions the list gave.
+  await changed(() => page.evaluate((json) => window.anisoform.open(json), changedDocument));
+  expect(bitwise(await positions(), tilted)).toBe(true);
+  expect(pageErrors).toEqual([]);
+});
+
 test("an op's region shows on the mesh and the current selection replaces it; the result replays bitwise", async ({ page, browser }) => {
   const pageErrors = await openApp(page);
   // The first op's region as the core selects it on the mesh as loaded (its input).

@@ -55,6 +55,16 @@ export type Direction = GlobalDirection | CurvatureDirection | PageScreenDirecti
  */
 export type DeformOp = Omit<SessionDeformOp, 'direction' | 'preview' | 'warmStart'> & { direction?: Direction };
 
+/**
+ * What setParameter changes in an op: `transform` is merged into the op's, `method` and `direction`
+ * replace its own (a screen drag has no place in a stored op: give its 3D vector as a global direction).
+ */
+export interface OpPatch {
+  transform?: Transform;
+  method?: SessionDeformOp['method'];
+  direction?: GlobalDirection | CurvatureDirection | ConstraintsDirection;
+}
+
 /** `converged`: false when the solve stopped at its iteration cap (`maxIterations`) before the tolerance. */
 export type DeformResult = Pick<SessionDeformResult, 'iterations' | 'energy' | 'ms' | 'inverted' | 'converged'>;
 
@@ -150,15 +160,15 @@ export interface Anisoform {
    */
   open(document: EditDocument, meshBytes?: ArrayBuffer | Uint8Array): Promise<void>;
   /**
-   * Merges `transform` into op `opId`'s and re-solves from that op's input, re-running the later ops.
+   * Merges `transform` into op `opId`'s (and replaces its `method` and `direction`, if given) and
+   * re-solves from that op's input, re-running the later ops.
    * {preview: true}: a live preview only (a slider being dragged), the document unchanged; on the last
    * op a warm-started solver iteration (while no new value comes for 120 ms, the value goes on
    * iterating for up to 3 s, each step a live 'positions' event), on an earlier op a quick replay of
    * the ops from it on (each a few-iteration preview). Call again without it on release to commit the
    * value (a step of the history). A preview a newer value superseded resolves with null.
    */
-  setParameter(opId: string, patch: { transform: Transform },
-    options?: { preview?: boolean }): Promise<unknown>;
+  setParameter(opId: string, patch: OpPatch, options?: { preview?: boolean }): Promise<unknown>;
   /** Toggles an op off or on; the later ops re-run. A step of the history (undo turns it back). */
   setOpEnabled(opId: string, enabled: boolean): Promise<void>;
   /** Deletes an op; the later ops re-run on its input. A step of the history (undo puts it back). */

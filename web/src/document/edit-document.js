@@ -90,10 +90,17 @@ export class EditDocument {
     return op ?? null;
   }
 
-  /** The op with `transform` merged into its transform (a copy; the document is unchanged). */
-  withTransform(opId, transform) {
+  /**
+   * The op with `patch` applied (a copy; the document is unchanged): its
+   * transform merged into the op's, its method and direction replacing the op's.
+   */
+  withChanges(opId, { transform, method, direction }) {
     const entry = this.ops[this.indexOf(opId)];
-    return { ...clone(entry.op), transform: { ...entry.op.transform, ...clone(transform) } };
+    const op = clone(entry.op);
+    if (transform) op.transform = { ...op.transform, ...clone(transform) };
+    if (method !== undefined) op.method = method;
+    if (direction !== undefined) op.direction = clone(direction);
+    return op;
   }
 }
 

@@ -8,12 +8,35 @@
 //   live-preview.js          a slider being dragged (setParameter with {preview: true})
 //   document-persistence.js  open(), the 'document' announcements, autosave
 import { Request } from '../worker/protocol.js';
-import { foldOverWarning } from '../editor/edit-wording.js';
+import { describeEdit, foldOverWarning } from '../editor/edit-wording.js';
 import { EditDocument, regionSteps } from './edit-document.js';
 import { OpRunner } from './op-runner.js';
 import { LivePreview } from './live-preview.js';
 import { DocumentPersistence } from './document-persistence.js';
 import { badParameter } from '../shared/errors.js';
+
+// What setParameter may change, in the words of its history step.
+const PATCH_WORDS = { transform: 'amounts', method: 'method', direction: 'direction' };
+
+// Why `patch` is no setParameter patch (null if it is one): an object with
+// some of transform (an object), method (a string), direction (an object).
+function patchProblem(patch) {
+  if (!patch || typeof patch !== 'object' || Array.isArray(patch)) return 'the patch must be an object';
+  const keys = Object.keys(patch);
+  if (keys.length === 0) return 'the patch changes nothing';
+  const unknown = keys.find((key) => !(key in PATCH_WORDS));
+  if (unknown) return `'${unknown}' cannot be set`;
+  for (const key of ['transform', 'direction']) {
+    if (key in patch && (typeof patch[key] !== 'object' || patch[key] === null || Array.isArray(patch[key]))) {
+      return `${key} must be an object`;
+    }
+  }
+  if ('method' in patch && typeof patch.method !== 'string') return 'method must be a string';
+  if (patch.direction?.type === 'screen') {
+    return "a screen drag cannot be stored in an op: give its 3D vector, {type: 'global', vector}";
+  }
+  return null;
+}
 
 export class OpStack {
   #editor;
@@ -183,25 +206,26 @@ export class OpStack {
   }
 
   /**
-   * Changes op `opId`'s transform ({transform: {...}} merged into it) and
-   * re-runs it and the ops after it. With {preview: true}: a live preview
-   * only (a slider being dragged, live-preview.js); call again without it to commit.
+   * Changes op `opId` by `patch` ({transform} merged into its transform,
+   * {method} and {direction} replacing its own; the core checks the values
+   * as it re-runs) and re-runs it and the ops after it. With {preview: true}:
+   * a live preview only (a slider being dragged, live-preview.js); call
+   * again without it to commit.
    */
   setParameter(opId, patch, { preview = false } = {}) {
-    if (!patch || typeof patch !== 'object' || Object.keys(patch).some((key) => key !== 'transform')
-        || typeof patch.transform !== 'object' || patch.transform === null) {
-      return Promise.reject(badParameter("setParameter(opId, {transform: {...}}): only 'transform' can be set"));
-    }
+    const problem = patchProblem(patch);
+    if (problem) return Promise.reject(badParameter(`setParameter(opId, {transform?, method?, direction?}): ${problem}`));
     let index;
     let op;
     try {
       index = this.#requireDocument().indexOf(opId);
-      op = this.document.withTransform(opId, patch.transform);
+      op = this.document.withChanges(opId, patch);
     } catch (error) {
       return Promise.reject(error);
     }
     if (preview && this.document.ops[index].enabled) return this.#live.preview(opId, index, op);
-    return this.#changeOp(opId, 'op', op, (label) => `Change the amounts of ${label}`);
+    const what = Object.keys(patch).map((key) => PATCH_WORDS[key]).join(' and ');
+    return this.#changeOp(opId, 'op', op, (label) => `Change the ${what} of ${label}`);
   }
 
   /** The weights of op `opId`'s region on its input (where the op evaluates it), to show them. */
@@ -271,11 +295,11 @@ export class OpStack {
     return this.#run(async () => {
       const entry = this.document.ops[this.#requireDocument().indexOf(opId)];
       const before = entry[field];
+      const label = describe(entry.label || entry.id);
       await this.#setOpField(opId, field, value);
       if (JSON.stringify(before) === JSON.stringify(value)) return;
       // A new step ends what could be redone, the undone ops too (as a commit does).
       this.document.undone = [];
-      const label = describe(entry.label || entry.id);
       const step = (to) => () => this.#run(() => this.#setOpField(opId, field, to))
         .catch((error) => this.#editor.report(error, `${label} could not be taken back or done again`));
       this.#editor.history.push({ label, undo: step(before), redo: step(value) });
@@ -288,12 +312,16 @@ export class OpStack {
     const index = this.#requireDocument().indexOf(opId);
     const entry = this.document.ops[index];
     const before = entry[field];
+    const labelBefore = entry.label;
     entry[field] = value;
+    // A label the page gave the op follows its method ("Twist (AnDefGrad)").
+    if (field === 'op' && entry.label === describeEdit(before)) entry.label = describeEdit(value);
     let stats;
     try {
       stats = await this.#runner.rerunFrom(index);
     } catch (error) {
       entry[field] = before;
+      entry.label = labelBefore;
       await this.#runner.restore(this.document.ops.length).catch(() => {});
       throw error;
     }

@@ -5,16 +5,7 @@
 // Selecting an op selects its region on the mesh (as the op evaluates it, on
 // its input), and the current selection can replace that region.
 import { h, section } from '../ui/dom.js';
-
-// The amounts of a transform an op's row offers, as [label, read, write].
-const AMOUNTS = [
-  ['Stretch along', (t) => t.scale?.[0] ?? t.scale, (t, v) => ({ scale: [v, t.scale?.[1] ?? 1] })],
-  ['Stretch across', (t) => t.scale?.[1], (t, v) => ({ scale: [t.scale?.[0] ?? t.scale ?? 1, v] })],
-  ['Thickness', (t) => t.thickness, (t, v) => ({ thickness: v })],
-  ['Shear', (t) => t.shear, (t, v) => ({ shear: v })],
-  ['Rotate (degrees)', (t) => t.rotate?.degrees, (t, v) => ({ rotate: { ...t.rotate, degrees: v } })],
-  ['Twist (degrees/unit)', (t) => t.twist?.degreesPerUnit, (t, v) => ({ twist: { ...t.twist, degreesPerUnit: v } })],
-];
+import { opFields } from './op-fields.js';
 
 export function opsPanel({ api, editor }) {
   const list = h('ol', { className: 'op-list', 'data-testid': 'op-list' });
@@ -23,27 +14,6 @@ export function opsPanel({ api, editor }) {
   // The editor reports failures itself (the banner); a refused change only
   // needs the rows drawn again, so that the fields show the values kept.
   const redrawIfRefused = (promise) => promise.catch(() => render());
-
-  const amountFields = (entry) => {
-    const transform = entry.op.transform ?? {};
-    return AMOUNTS.filter(([, read]) => typeof read(transform) === 'number').map(([label, read, write]) =>
-      h('label', { className: 'field op-amount' }, label,
-        h('input', {
-          type: 'number',
-          step: 'any',
-          value: String(read(transform)),
-          'data-testid': `op-amount-${entry.id}-${label}`,
-          onchange: (event) => {
-            // A field left empty (or not a number) is no amount: it shows the op's again.
-            const value = event.target.value.trim() === '' ? NaN : Number(event.target.value);
-            if (!Number.isFinite(value)) {
-              render();
-              return;
-            }
-            redrawIfRefused(api.setParameter(entry.id, { transform: write(transform, value) }));
-          },
-        })));
-  };
 
   const regionControls = (entry) => h('div', { className: 'op-region' },
     h('span', { 'data-testid': `op-region-${entry.id}` }, `Region: ${entry.region}`),
@@ -92,7 +62,9 @@ export function opsPanel({ api, editor }) {
         'data-testid': `op-delete-${entry.id}`,
         onclick: () => redrawIfRefused(api.removeOp(entry.id)),
       }, '×'),
-      isSelected ? h('div', { className: 'op-amounts' }, amountFields(entry), regionControls(entry)) : null);
+      isSelected ? h('div', { className: 'op-amounts' },
+        opFields(entry, { change: (patch) => redrawIfRefused(api.setParameter(entry.id, patch)), redraw: render }),
+        regionControls(entry)) : null);
   };
 
   function render() {

@@ -2,8 +2,8 @@
 // label of an edit, the fold-over warning, and the one way an error reaches
 // the user (reporter()).
 
-const TRANSFORM_NAMES = { scale: 'Stretch', shear: 'Shear', rotate: 'Rotate', twist: 'Twist' };
-const METHOD_NAMES = { anarap: 'AnARAP', andefgrad: 'AnDefGrad', arap: 'ARAP', linear: 'Linear' };
+const TRANSFORM_NAMES = { scale: 'Stretch', thickness: 'Thicken', shear: 'Shear', rotate: 'Rotate', twist: 'Twist' };
+export const METHOD_NAMES = { anarap: 'AnARAP', andefgrad: 'AnDefGrad', arap: 'ARAP', linear: 'Linear' };
 
 export function describeEdit(op) {
   if (typeof op !== 'object' || op === null) return 'The edit';

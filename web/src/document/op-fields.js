@@ -1,0 +1,83 @@
+// The fields of the Edits list's selected op (ops-panel.js): its amounts, its
+// method and its direction, each written back with api.setParameter (the op
+// and the later ones re-run; a step of the history). A field left empty, or
+// not a number, is no value: the op's own shows again.
+import { h } from '../ui/dom.js';
+import { METHOD_NAMES } from '../editor/edit-wording.js';
+import { transformUsesDirection } from '../tools/direction-source.js';
+
+// The amounts of a transform an op's row offers, as [label, read, write].
+const AMOUNTS = [
+  ['Stretch along', (t) => t.scale?.[0] ?? t.scale, (t, v) => ({ scale: [v, t.scale?.[1] ?? 1] })],
+  ['Stretch across', (t) => t.scale?.[1], (t, v) => ({ scale: [t.scale?.[0] ?? t.scale ?? 1, v] })],
+  ['Thickness', (t) => t.thickness, (t, v) => ({ thickness: v })],
+  ['Shear', (t) => t.shear, (t, v) => ({ shear: v })],
+  ['Rotate (degrees)', (t) => t.rotate?.degrees, (t, v) => ({ rotate: { ...t.rotate, degrees: v } })],
+  ['Twist (degrees/unit)', (t) => t.twist?.degreesPerUnit, (t, v) => ({ twist: { ...t.twist, degreesPerUnit: v } })],
+];
+
+// The methods an op can switch between: the ones that take any transform on
+// a region (ARAP with handles moves a dragged part instead).
+const SWITCHABLE = ['anarap', 'andefgrad', 'linear'];
+
+const numberOf = (text) => (text.trim() === '' ? NaN : Number(text));
+
+/**
+ * The selected op's fields. change(patch) sends {transform}, {method} or
+ * {direction} to setParameter; redraw() shows the op's values again.
+ */
+export function opFields(entry, { change, redraw }) {
+  const op = entry.op;
+  const transform = op.transform ?? {};
+  const number = (label, value, testId, write) => h('label', { className: 'field op-amount' }, label,
+    h('input', {
+      type: 'number',
+      step: 'any',
+      value: String(value),
+      'data-testid': testId,
+      onchange: (event) => {
+        const typed = numberOf(event.target.value);
+        if (Number.isFinite(typed)) write(typed);
+        else redraw();
+      },
+    }));
+
+  const amounts = AMOUNTS.filter(([, read]) => typeof read(transform) === 'number').map(([label, read, write]) =>
+    number(label, read(transform), `op-amount-${entry.id}-${label}`, (value) => change({ transform: write(transform, value) })));
+
+  const method = SWITCHABLE.includes(op.method)
+    ? h('label', { className: 'field op-amount' }, 'Method',
+      h('select', {
+        'data-testid': `op-method-${entry.id}`,
+        onchange: (event) => change({ method: event.target.value }),
+      }, SWITCHABLE.map((name) => h('option', { value: name, selected: name === op.method }, METHOD_NAMES[name]))))
+    : null;
+
+  return [...amounts, method, transformUsesDirection(transform) ? directionFields(entry, number, change) : null];
+}
+
+// A global direction as x, y, z (each field changes its own component); a
+// curvature direction as its min/max choice; arrows and dense fields are
+// shown, not edited here.
+function directionFields(entry, number, change) {
+  const direction = entry.op.direction;
+  if (direction?.type === 'global') {
+    const vector = direction.vector;
+    return h('div', { className: 'op-direction' }, h('span', {}, 'Direction'),
+      h('div', { className: 'xyz' }, [0, 1, 2].map((axis) => number('xyz'[axis],
+        Number(vector[axis].toFixed(4)), `op-direction-${entry.id}-${'xyz'[axis]}`,
+        (value) => change({ direction: { type: 'global', vector: vector.map((v, k) => (k === axis ? value : v)) } })))));
+  }
+  if (direction?.type === 'curvature') {
+    return h('label', { className: 'field op-amount' }, 'Direction',
+      h('select', {
+        'data-testid': `op-direction-${entry.id}-curvature`,
+        onchange: (event) => change({ direction: { ...direction, which: event.target.value } }),
+      }, [['min', 'Min curvature'], ['max', 'Max curvature']].map(([value, text]) =>
+        h('option', { value, selected: value === direction.which }, text))));
+  }
+  const described = direction?.type === 'constraints'
+    ? `${direction.constraints.length} arrow${direction.constraints.length === 1 ? '' : 's'}, propagated`
+    : 'a direction per vertex';
+  return h('p', { className: 'op-direction-note' }, `Direction: ${described}`);
+}
