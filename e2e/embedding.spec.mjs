@@ -408,3 +408,88 @@ test('a solver pool hands a disposed modeller\'s idle worker to the next one, wh
   ]);
   expect(pageErrors).toEqual([]);
 });
+
+test('<anisoform-modeller edits>: saved edits open with src, alone on the mesh loaded, or with a new src; bad ones are refused and the work kept', async ({ page }) => {
+  const pageErrors = await openExample(page);
+  // Two saved edits of the spool (one op, two ops), made by a modeller of the page, served as files.
+  const made = await page.evaluate(async () => {
+    const host = document.createElement('div');
+    host.style.height = '200px';
+    document.body.append(host);
+    const modeller = window.anisoformExample.createModeller(host, { ui: 'none', mesh: '../spool.off' });
+    const { api } = modeller;
+    await api.ready;
+    await api.select({ box: { min: [-1, 0.2, -1], max: [1, 1, 1] } });
+    await api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.3, 1] } });
+    const one = { document: api.document(), positions: Array.from(api.positions()) };
+    await api.select({ sphere: { center: [0, 0, 0], radius: 0.4 } });
+    await api.deform({ method: 'andefgrad', direction: { type: 'global', vector: [1, 0, 0] }, transform: { shear: 0.2 } });
+    const two = { document: api.document(), positions: Array.from(api.positions()) };
+    modeller.dispose();
+    host.remove();
+    return { one, two };
+  });
+  // Served with the server's own headers (its strict CSP), as a file beside the example would be.
+  const serve = (name, body) => page.route(`**/${name}`, async (route) => {
+    const response = await route.fetch({ url: new URL('../spool.off', route.request().url()).href });
+    await route.fulfill({ response, body, contentType: 'application/json' });
+  });
+  await serve('spool-one.json', JSON.stringify(made.one.document));
+  await serve('spool-two.json', JSON.stringify(made.two.document));
+  await serve('broken.json', '{"format": ');
+
+  const state = () => page.evaluate(() => ({ vertices: window.element.api.info().vertices,
+    ops: window.element.api.document().ops.length, positions: Array.from(window.element.api.positions()) }));
+  const nextError = () => page.evaluate(() => new Promise((resolve) => {
+    window.element.addEventListener('error', (event) => resolve(event.detail.message), { once: true });
+  }));
+  const bitwise = (a, b) => a.length === b.length && a.every((value, i) => Object.is(value, b[i]));
+
+  // src and edits at the start: the edits replayed on the mesh, bitwise.
+  await page.evaluate(async () => {
+    const element = document.createElement('anisoform-modeller');
+    element.setAttribute('ui', 'none');
+    element.setAttribute('src', '../spool.off');
+    element.setAttribute('edits', '../spool-one.json');
+    element.style.height = '240px';
+    window.loads = 0;
+    element.addEventListener('change', (event) => { if (event.detail.reason === 'load') window.loads++; });
+    document.body.append(element);
+    window.element = element;
+    await element.api.ready;
+  });
+  let now = await state();
+  expect([now.vertices, now.ops]).toEqual([649, 1]);
+  expect(bitwise(now.positions, made.one.positions)).toBe(true);
+
+  // edits alone: opened on the mesh loaded.
+  await page.evaluate(() => window.element.setAttribute('edits', '../spool-two.json'));
+  await expect.poll(async () => (await state()).ops).toBe(2);
+  expect(bitwise((await state()).positions, made.two.positions)).toBe(true);
+
+  // Not JSON, or edits of another mesh given with it: refused, naming why; the spool and its two ops stay.
+  let failed = nextError();
+  await page.evaluate(() => window.element.setAttribute('edits', '../broken.json'));
+  expect(await failed).toMatch(/broken\.json is not JSON/);
+  failed = nextError();
+  await page.evaluate(() => {
+    window.element.setAttribute('src', '../spot_triangulated.obj');
+    window.element.setAttribute('edits', '../spool-one.json');
+  });
+  expect(await failed).toMatch(/does not match the loaded mesh/);
+  now = await state();
+  expect([now.vertices, now.ops]).toEqual([649, 2]);
+  expect(bitwise(now.positions, made.two.positions)).toBe(true);
+
+  // src and edits changed together: one load, of the new mesh with the new edits.
+  const loadsBefore = await page.evaluate(() => window.loads);
+  await page.evaluate(() => {
+    window.element.setAttribute('src', '../spool.off?again');
+    window.element.setAttribute('edits', '../spool-one.json');
+  });
+  await expect.poll(async () => (await state()).ops).toBe(1);
+  expect(bitwise((await state()).positions, made.one.positions)).toBe(true);
+  expect(await page.evaluate(() => window.loads)).toBe(loadsBefore + 1);
+  await page.evaluate(() => window.element.remove());
+  expect(pageErrors).toEqual([]);
+});

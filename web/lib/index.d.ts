@@ -15,7 +15,7 @@ export interface ModellerOptions {
   mesh?: MeshSource;
   /** The file name of `mesh` when it is bytes or a nameless Blob: its extension picks the reader (obj, off, ply, stl, glb). */
   meshName?: string;
-  /** An edit document to open on `mesh` as its base mesh (api.open); needs `mesh`. */
+  /** An edit document (saved edits), or its URL, to open on `mesh` as its base mesh (api.open); needs `mesh`. */
   document?: unknown;
   /**
    * Keep the work (edit document and base mesh) in IndexedDB after every change and restore it on
@@ -65,6 +65,11 @@ export interface Modeller {
   readonly api: Anisoform;
   /** Like api.load, and also takes a URL; failures are also 'error' events. */
   load(source: MeshSource, name?: string): Promise<{ vertices: number; triangles: number }>;
+  /**
+   * Opens an edit document (saved edits), or its URL, on the mesh loaded, or on `mesh` as its base
+   * (like api.open, which takes no URLs); failures are also 'error' events, and the work is kept.
+   */
+  open(document: unknown, mesh?: MeshSource, name?: string): Promise<void>;
   /** Cancels the pending frame, stops the ResizeObservers, the worker (and its WASM session; an idle worker goes back to the `solvers` pool) and removes every listener and element it added. */
   dispose(): void;
   /** Listeners and clean-up steps the modeller still holds (0 after dispose). */
@@ -74,8 +79,9 @@ export interface Modeller {
 export function createModeller(container: HTMLElement, options?: ModellerOptions): Modeller;
 
 /**
- * <anisoform-modeller src="part.glb" ui="none">: attributes src (mesh URL,
- * loaded when set or changed) and ui ('full' | 'none'); CustomEvents
+ * <anisoform-modeller src="part.glb" edits="part-edits.json" ui="none">: attributes src (mesh URL,
+ * loaded when set or changed), edits (saved edits' URL, opened on src when set or changed; src and
+ * edits changed together open the new edits on the new mesh) and ui ('full' | 'none'); CustomEvents
  * 'change', 'error', 'progress' with the api's payload as `detail`; `.api`
  * while connected; disposed when disconnected. Registered on import.
  */

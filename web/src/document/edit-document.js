@@ -105,6 +105,17 @@ export class EditDocument {
 }
 
 /**
+ * `json` with its base mesh named `meshName` when it is opened with a mesh
+ * file of that name: the file's own name says its format (the document
+ * keeps the name the mesh was loaded under). Anything else is returned as
+ * it is, for open() to refuse.
+ */
+export function withMeshFileName(json, meshName) {
+  if (!json || typeof json !== 'object' || !json.mesh || typeof json.mesh !== 'object' || !meshName) return json;
+  return { ...json, mesh: { ...json.mesh, name: meshName } };
+}
+
+/**
  * The select steps of the selection an op is committed with: the rule when
  * the selection came from region selects on the current rest pose, else its
  * weights as a sparse vertex list; an empty selection means the whole mesh

@@ -5,6 +5,7 @@
 // pending frame, the ResizeObservers, the worker (and with it the WASM session)
 // and every listener it added; several modellers on a page are independent.
 import { createAnisoformApi } from '../api/create-api.js';
+import { withMeshFileName } from '../document/edit-document.js';
 import { Editor } from '../editor/editor.js';
 import { BrushCursor } from '../interaction/brush-cursor.js';
 import { DragReadout } from '../interaction/drag-readout.js';
@@ -24,7 +25,7 @@ import { SolverPool } from '../worker/solver-pool.js';
 import { Request } from '../worker/protocol.js';
 import { installFullUi } from './full-ui.js';
 import { Lifetime } from './lifetime.js';
-import { resolveMeshSource } from './mesh-source.js';
+import { resolveDocumentSource, resolveMeshSource } from './mesh-source.js';
 import { UI_MODES, buildLayout } from './modeller-layout.js';
 
 const OPTIONS = ['ui', 'mesh', 'meshName', 'document', 'keyboard', 'autosave', 'workerUrl', 'wasmUrl', 'solvers'];
@@ -36,7 +37,7 @@ const OPTIONS = ['ui', 'mesh', 'meshName', 'document', 'keyboard', 'autosave', '
  *       messages, or the 3D view alone (orbit only; edits through the api)
  *   mesh: URL string/URL, File, Blob, ArrayBuffer or typed array to load first (default: none)
  *   meshName: its file name when `mesh` is bytes (the extension picks the reader)
- *   document: an edit document to open with `mesh` as its base (api.open)
+ *   document: an edit document (or its URL) to open with `mesh` as its base (api.open)
  *   autosave: keep the work in IndexedDB and restore it on the next start
  *             instead of `mesh` (default false: one store per origin, so
  *             only a page with a single modeller should turn it on)
@@ -142,8 +143,10 @@ export function createModeller(container, options = {}) {
   // The mesh download overlaps with compiling the WASM in the worker.
   const meshSource = mesh === undefined ? null : resolveMeshSource(mesh, meshName);
   meshSource?.catch(() => {}); // reported through `ready`
+  const documentSource = editDocument === undefined ? undefined : resolveDocumentSource(editDocument);
+  documentSource?.catch(() => {}); // reported through `ready`
   const ready = (async () => {
-    const [, source] = await Promise.all([starting, meshSource]);
+    const [, source, json] = await Promise.all([starting, meshSource, documentSource]);
     if (autosave && !lifetime.disposed) {
       editor.ops.enableAutosave();
       lifetime.defer(() => editor.ops.disableAutosave());
@@ -160,7 +163,7 @@ export function createModeller(container, options = {}) {
       await editor.load(source.data, source.name);
     } else {
       if (typeof api.open !== 'function') throw badParameter('createModeller: this build cannot open edit documents (no api.open)');
-      await api.open(editDocument, source.data);
+      await api.open(withMeshFileName(json, source.name), source.data);
     }
     await drawn();
   })();
@@ -197,9 +200,26 @@ export function createModeller(container, options = {}) {
     return api.load(resolved.data, resolved.name);
   }
 
+  /**
+   * Opens an edit document (or its URL) on the mesh loaded, or on `mesh`
+   * (as load takes it) as its base; failures are reported as 'error' events too.
+   */
+  async function open(documentSource, mesh, name) {
+    let json;
+    let resolved;
+    try {
+      [json, resolved] = await Promise.all([resolveDocumentSource(documentSource),
+        mesh === undefined ? undefined : resolveMeshSource(mesh, name)]);
+    } catch (error) {
+      throw reportError(error, 'Could not open the edits');
+    }
+    return resolved ? api.open(withMeshFileName(json, resolved.name), resolved.data) : api.open(json);
+  }
+
   return Object.freeze({
     api,
     load,
+    open,
     /** Stops everything this modeller started; the container is left as it was. */
     dispose: () => lifetime.dispose(),
     /** Listeners and clean-up steps still held (0 after dispose): for tests. */

@@ -1,5 +1,7 @@
-// <anisoform-modeller src="part.glb" ui="none">: a modeller as an HTML
-// element. Attributes: src (a mesh URL, loaded when set or changed), ui
+// <anisoform-modeller src="part.glb" edits="part-edits.json" ui="none">: a
+// modeller as an HTML element. Attributes: src (a mesh URL, loaded when set
+// or changed), edits (the URL of saved edits, opened on src when set or
+// changed: both changed together open the edits on the new mesh), ui
 // ('full', the default, or 'none'; a change rebuilds the modeller). The api's
 // events come out as DOM CustomEvents ('change', 'error', 'progress', with the
 // api's payload as `detail`); `.api` is the modeller's api while connected.
@@ -15,13 +17,16 @@ import { SolverPool } from '../worker/solver-pool.js';
 const RELAYED_EVENTS = ['change', 'error', 'progress'];
 
 export class AnisoformModellerElement extends HTMLElement {
-  static observedAttributes = ['src', 'ui'];
+  static observedAttributes = ['src', 'edits', 'ui'];
   #modeller = null;
   #offs = [];
   /** The embedder's pool (the `solvers` property), or null. */
   #sharedSolvers = null;
   /** While connected without a shared pool: the pool a rebuild takes the worker from. */
   #ownSolvers = null;
+  /** Whether src changed since the last load (a change of edits alone opens them on the mesh loaded). */
+  #srcChanged = false;
+  #reconciling = false;
 
   /** A pool (createSolverPool) to take the solver worker from and give it back to; used from the next connection or ui change. */
   get solvers() {
@@ -56,9 +61,26 @@ export class AnisoformModellerElement extends HTMLElement {
     if (name === 'ui') {
       this.#teardown();
       this.#build();
-    } else if (name === 'src' && value) {
-      this.#modeller.load(value).catch(() => {}); // the 'error' event has told
+    } else {
+      // src and edits set one after the other (a configurator switching
+      // products) load once: the new mesh with the new edits.
+      this.#srcChanged ||= name === 'src';
+      if (this.#reconciling) return;
+      this.#reconciling = true;
+      queueMicrotask(() => this.#reconcile());
     }
+  }
+
+  #reconcile() {
+    this.#reconciling = false;
+    const src = this.getAttribute('src');
+    const edits = this.getAttribute('edits');
+    const srcChanged = this.#srcChanged;
+    this.#srcChanged = false;
+    if (!this.#modeller) return;
+    const done = () => {}; // the 'error' event has told
+    if (edits) this.#modeller.open(edits, srcChanged && src ? src : undefined).catch(done);
+    else if (srcChanged && src) this.#modeller.load(src).catch(done);
   }
 
   #build() {
@@ -69,9 +91,11 @@ export class AnisoformModellerElement extends HTMLElement {
     } else {
       this.#ownSolvers ??= new SolverPool();
     }
+    const edits = this.getAttribute('edits');
     this.#modeller = createModeller(this, {
       ui: this.getAttribute('ui') ?? 'full',
       ...(src ? { mesh: src } : {}),
+      ...(src && edits ? { document: edits } : {}),
       solvers: this.#sharedSolvers ?? this.#ownSolvers,
     });
     const { api } = this.#modeller;

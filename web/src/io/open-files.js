@@ -3,6 +3,7 @@
 // writes it, .json) are replayed on the mesh loaded, or on the mesh file
 // opened with them, through the same api.load and api.open as embedders use.
 import { badParameter } from '../shared/errors.js';
+import { withMeshFileName } from '../document/edit-document.js';
 import { ACCEPT_ATTRIBUTE } from './mesh-formats.js';
 
 export const SAVED_EDITS_EXTENSION = '.json';
@@ -33,9 +34,7 @@ export async function openFiles(api, files) {
   if (edits.length === 0) return api.load(meshes[0], meshes[0].name);
   const document = parseSavedEdits(edits[0].name, await edits[0].text());
   if (meshes.length === 0) return api.open(document);
-  // The mesh file's own name says its format (the document keeps the name it was loaded under).
-  const mesh = { ...document.mesh, name: meshes[0].name };
-  return api.open({ ...document, mesh }, new Uint8Array(await meshes[0].arrayBuffer()));
+  return api.open(withMeshFileName(document, meshes[0].name), new Uint8Array(await meshes[0].arrayBuffer()));
 }
 
 function parseSavedEdits(fileName, text) {
