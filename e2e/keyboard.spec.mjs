@@ -132,6 +132,9 @@ test('? opens the shortcut overlay, an accessible dialog that Esc closes', async
 test('Ctrl+S is Save edits, Ctrl+O is Open…, not the browser\'s own', async ({ page }) => {
   const pageErrors = await openApp(page);
   await tabTo(page, '[data-testid=viewport]');
+  // Before any edit there is nothing to save: the key says so.
+  await page.keyboard.press('Control+s');
+  await expect(page.getByTestId('notice')).toContainText('No edits to save yet');
   await page.evaluate(() => window.anisoform.select({ all: true }));
   await page.evaluate(() => window.anisoform.deform({ method: 'anarap', transform: { scale: [1.3, 1] } }));
   // The keys click the Mesh panel's Save edits button and the Open… file

@@ -75,6 +75,10 @@ export function filePanel({ api, editor, reportError }) {
     ),
     // The keys' actions (Ctrl+O, Ctrl+S: editing-keys.js), as the buttons do them.
     open: () => input.click(),
-    save: () => saveButton.click(), // nothing while it is disabled (no edit yet)
+    // Before the first edit the button is disabled; the key says why instead of nothing.
+    save: () => {
+      if (!saveButton.disabled) saveButton.click();
+      else editor.emit('notice', { message: 'No edits to save yet: Save edits keeps the edits once one is made (Export saves the mesh).', source: 'save' });
+    },
   };
 }
