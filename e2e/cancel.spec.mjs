@@ -135,3 +135,45 @@ test('api.cancel(), the Cancel button and Esc stop a long commit at once; the ne
   expectKept(await cancelLongEdit(page, 'escape'));
   expect(pageErrors).toEqual([]);
 });
+
+// A change in the Edits list re-runs the ops from the one changed; Esc stops
+// that too. The states on screen are still cached (the re-run replaces them
+// only once it has solved every op), so the restarted solver gets them back
+// without replaying a single op, and the list shows the op as it was.
+test('Esc stops the re-run an Edits-list toggle started; the states on screen come back without a replay', { tag: '@speed' }, async ({ page }) => {
+  test.setTimeout(120_000);
+  const pageErrors = await setUp(page);
+  // A second op whose re-run lasts a few seconds (400 iterations, no early stop).
+  await page.evaluate(() => window.anisoform.deform({ method: 'anarap', direction: { type: 'global', vector: [1, 0, 0] },
+    transform: { shear: 0.2 }, maxIterations: 400, tolerance: 1e-15, acceleration: 'none' }));
+  const before = await page.evaluate(() => {
+    // Every request the page posts to a solver worker (the restarted one too), by kind.
+    window.__posted = [];
+    const post = Worker.prototype.postMessage;
+    Worker.prototype.postMessage = function postMessage(message, ...rest) {
+      window.__posted.push(message?.kind);
+      return post.call(this, message, ...rest);
+    };
+    return { positions: Array.from(window.anisoform.positions()), document: JSON.stringify(window.anisoform.document()),
+      undo: document.querySelector('[data-testid="undo"]').title };
+  });
+  const toggle = page.getByTestId('op-toggle-op-1');
+  await toggle.uncheck();
+  // As soon as the re-run shows its progress, Esc (the focus is on the checkbox, as after a click).
+  await page.waitForFunction(() => /(Solving|Preparing the solver) \d+ %/.test(document.querySelector('[data-testid="progress"]')?.textContent ?? ''),
+    null, { polling: 20 });
+  const postedBefore = await page.evaluate(() => window.__posted.length);
+  await page.keyboard.press('Escape');
+  await expect(page.getByTestId('notice')).toContainText('Cancelled: the solve was stopped');
+  await expect(toggle).toBeChecked();
+  const after = await page.evaluate((from) => ({ positions: Array.from(window.anisoform.positions()),
+    document: JSON.stringify(window.anisoform.document()), undo: document.querySelector('[data-testid="undo"]').title,
+    posted: window.__posted.slice(from), errorShown: !document.querySelector('[data-testid="error"]').hidden }), postedBefore);
+  expect(after.positions.every((x, i) => Object.is(x, before.positions[i]))).toBe(true);
+  expect(after.document).toBe(before.document);
+  expect(after.undo).toBe(before.undo); // the toggle is no step of the history
+  expect(after.posted).toContain('setMesh'); // the new worker...
+  expect(after.posted).not.toContain('replay'); // ...given the cached state, not a replay of the ops
+  expect(after.errorShown).toBe(false);
+  expect(pageErrors).toEqual([]);
+});

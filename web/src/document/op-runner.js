@@ -92,22 +92,28 @@ export class OpRunner {
   /**
    * Re-runs the document from op `index` on, op by op, so that every later
    * state is cached again for undo; resolves the last op's solve stats (null
-   * when it is off, or when no op is left from `index` on).
+   * when it is off, or when no op is left from `index` on). The new states
+   * replace the cached ones only once all are solved: after a failure or a
+   * cancel (the document's change taken back) the cache still holds the
+   * states on screen, which come back at once instead of being replayed.
    */
   async rerunFrom(index) {
-    this.cache.dropAfter(index);
     const n = this.#document().ops.length;
     if (index >= n) {
       // No op from there on (the last one was deleted): its input is the result.
+      this.cache.dropAfter(index);
       await this.restore(n);
       return null;
     }
     await this.restore(index, { show: false });
+    const states = [];
     for (let state = index; state < n - 1; state++) {
       const { positions, exact } = await this.replay(state, state + 1);
-      this.cache.set(state + 1, { positions, exact });
+      states.push({ positions, exact });
     }
     const last = await this.replay(n - 1, n);
+    this.cache.dropAfter(index);
+    states.forEach((state, k) => this.cache.set(index + 1 + k, state));
     this.show(n, last);
     return last.summary.last ?? null;
   }
