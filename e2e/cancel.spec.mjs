@@ -162,8 +162,11 @@ test('Esc stops the re-run an Edits-list toggle started; the states on screen co
   // As soon as the re-run shows its progress, Esc (the focus is on the checkbox, as after a click).
   await page.waitForFunction(() => /(Solving|Preparing the solver) \d+ %/.test(document.querySelector('[data-testid="progress"]')?.textContent ?? ''),
     null, { polling: 20 });
-  const postedBefore = await page.evaluate(() => window.__posted.length);
+  const [postedBefore, progress] = await page.evaluate(() => [window.__posted.length,
+    document.querySelector('[data-testid="progress"]').textContent]);
   await page.keyboard.press('Escape');
+  // The re-run says which op it is at.
+  expect(progress).toMatch(/^Edit [12] of 2: (Solving|Preparing the solver) \d+ %/);
   await expect(page.getByTestId('notice')).toContainText('Cancelled: the solve was stopped');
   await expect(toggle).toBeChecked();
   const after = await page.evaluate((from) => ({ positions: Array.from(window.anisoform.positions()),

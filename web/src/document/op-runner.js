@@ -41,13 +41,14 @@ export class OpRunner {
   /**
    * The core's replay of ops [from, to) of `json` (default: the document)
    * from the worker's rest pose; `preview`: each op as a live preview;
-   * `distortion`: the heat map's kind to send back (default: the one shown).
+   * `distortion`: the heat map's kind to send back (default: the one shown);
+   * `label`: what its progress messages begin with.
    */
-  replay(from, to, { json = this.#document().toJSON(), preview = false, distortion = this.#editor.heatMapKind } = {}) {
+  replay(from, to, { json = this.#document().toJSON(), preview = false, distortion = this.#editor.heatMapKind, label } = {}) {
     // The core's replay leaves the session with no selection (replay_document):
     // the page's goes again before the next edit or flattening that uses it.
     this.#editor.selectionState.forget();
-    return this.#client.request(Request.replay, { document: json, from, to, preview, distortion });
+    return this.#client.request(Request.replay, { document: json, from, to, preview, distortion, label });
   }
 
   /** Puts positions (a cached state) in the worker as its rest pose. */
@@ -66,7 +67,7 @@ export class OpRunner {
     }
     const from = this.cache.nearest(n);
     if (from > 0) await this.setPositions(this.cache.get(from));
-    const result = await this.replay(from, n);
+    const result = await this.replay(from, n, { label: n - from > 1 ? `Edits ${from + 1}-${n}` : `Edit ${n}` });
     this.cache.set(n, { positions: result.positions, exact: result.exact });
     if (show) this.show(n, result);
   }
@@ -107,11 +108,12 @@ export class OpRunner {
     }
     await this.restore(index, { show: false });
     const states = [];
+    const label = (state) => `Edit ${state + 1} of ${n}`;
     for (let state = index; state < n - 1; state++) {
-      const { positions, exact } = await this.replay(state, state + 1);
+      const { positions, exact } = await this.replay(state, state + 1, { label: label(state) });
       states.push({ positions, exact });
     }
-    const last = await this.replay(n - 1, n);
+    const last = await this.replay(n - 1, n, { label: label(n - 1) });
     this.cache.dropAfter(index);
     states.forEach((state, k) => this.cache.set(index + 1 + k, state));
     this.show(n, last);

@@ -67,9 +67,10 @@ export const Request = Object.freeze({
   /** {op} -> {op}: the op as the edit document stores it (Session.resolveOp: on the rest pose and selection). */
   resolveOp: 'resolveOp',
   /**
-   * {document, from, to, preview?, distortion?} -> {positions, exact: Float64Array, summary, distortion?}:
+   * {document, from, to, preview?, distortion?, label?} -> {positions, exact: Float64Array, summary, distortion?}:
    * Session.replay of ops [from, to) (from > 0: from the session's rest pose; preview: each op as a
-   * live preview, a slider on an earlier op); the result is the rest pose.
+   * live preview, a slider on an earlier op); the result is the rest pose. `label` begins its
+   * progress messages ("Edit 2 of 3: Solving").
    */
   replay: 'replay',
   /**

@@ -61,7 +61,8 @@ export class SessionHost {
     // The parts of one preparation count as one call: a long one shows its
     // progress from its first part on.
     const started = (kind === Request.prepareStep && this.#preparingSince) || performance.now();
-    this.#progress = { started, posted: -Infinity, stage: null, shown: !livePreview };
+    const label = kind === Request.replay ? payload.label : undefined;
+    this.#progress = { started, posted: -Infinity, stage: null, shown: !livePreview, label };
     return handler(payload);
   }
 
@@ -82,7 +83,7 @@ export class SessionHost {
     if (!edge && now - progress.posted < PROGRESS_EVERY_MS) return;
     progress.stage = stage;
     progress.posted = now;
-    this.reportProgress(stage, message, fraction);
+    this.reportProgress(stage, progress.label ? `${progress.label}: ${message}` : message, fraction);
   }
 
   // A picked File is read here (a promise), a buffer is loaded at once. The
