@@ -164,6 +164,10 @@ test('Esc stops the re-run an Edits-list toggle started; the states on screen co
     null, { polling: 20 });
   const [postedBefore, progress] = await page.evaluate(() => [window.__posted.length,
     document.querySelector('[data-testid="progress"]').textContent]);
+  // Undo waits for the solve, and says so (the focus is on a checkbox, which takes no keys).
+  await expect(page.getByTestId('undo')).toBeDisabled();
+  await page.keyboard.press('Control+z');
+  await expect(page.getByTestId('notice')).toContainText('Undo waits until the solve has ended');
   await page.keyboard.press('Escape');
   // The re-run says which op it is at.
   expect(progress).toMatch(/^Edit [12] of 2: (Solving|Preparing the solver) \d+ %/);

@@ -341,13 +341,21 @@ export class Editor extends EventEmitter {
   // ---- history -------------------------------------------------------------
 
   undo() {
-    if (this.gestureActive || this.busy) return false;
+    if (this.gestureActive || this.#refusedWhileBusy('Undo')) return false;
     return this.history.undo();
   }
 
   redo() {
-    if (this.gestureActive || this.busy) return false;
+    if (this.gestureActive || this.#refusedWhileBusy('Redo')) return false;
     return this.history.redo();
+  }
+
+  // Undo and redo wait for no solve: while one runs they say so (a notice)
+  // instead of doing nothing without a word.
+  #refusedWhileBusy(what) {
+    if (!this.busy) return false;
+    this.emit('notice', { message: `${what} waits until the solve has ended: press Esc to cancel it.`, source: 'busy' });
+    return true;
   }
 
   /** Back to the positions as loaded (undoable). */

@@ -33,9 +33,13 @@ export function installKeyboardShortcuts(target, lifetime, { undo, redo, cancel,
   });
 }
 
+// Inputs that take no typing: a key pressed on one (after a click on an
+// Edits-list checkbox, say) is the modeller's.
+const KEYLESS_INPUTS = new Set(['checkbox', 'radio', 'button', 'submit', 'reset', 'color', 'file']);
+
 /** Whether the key goes to a text field, select or editable element rather than to the modeller. */
 export function isTyping(event) {
   const target = event.target;
-  return target instanceof HTMLInputElement || target instanceof HTMLSelectElement
+  return (target instanceof HTMLInputElement && !KEYLESS_INPUTS.has(target.type)) || target instanceof HTMLSelectElement
     || target instanceof HTMLTextAreaElement || target?.isContentEditable === true;
 }
