@@ -238,6 +238,41 @@ test("an earlier op's method and direction from the Edits list: it re-runs as a 
   expect(pageErrors).toEqual([]);
 });
 
+test("an ARAP drag's move from the Edits list: the dragged part moves by the new offset; undo takes it back", async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const { rest, dragged } = await page.evaluate(async () => {
+    const api = window.anisoform;
+    const rest = Array.from(api.positions());
+    await api.select({ box: { min: [-1, 0.5, -1], max: [1, 2, 1] } });
+    const selection = api.selection();
+    await api.deform({ method: 'arap', move: [0, 0.2, 0] });
+    return { rest, dragged: selection.findIndex((weight) => weight === 1) };
+  });
+  const op = (await page.evaluate(() => window.anisoform.document().ops[0]));
+  expect(op.label).toBe('Move (ARAP)');
+  await page.getByTestId(`op-select-${op.id}`).click();
+  // No method or direction: ARAP with handles moves the part by its offset.
+  await expect(page.getByTestId(`op-move-${op.id}-y`)).toHaveValue('0.2');
+  await expect(page.getByTestId(`op-method-${op.id}`)).toHaveCount(0);
+  await expect(page.getByTestId(`op-direction-${op.id}-x`)).toHaveCount(0);
+  const moved = async () => page.evaluate((i) => Array.from(window.anisoform.positions().slice(3 * i, 3 * i + 3)), dragged);
+  const y = page.getByTestId(`op-move-${op.id}-y`);
+  const changed = await armChange(page, 'document');
+  await y.fill('0.4');
+  await y.press('Enter');
+  await changed();
+  expect((await page.evaluate(() => window.anisoform.document().ops[0].op.move))).toEqual([0, 0.4, 0]);
+  const offset = (await moved()).map((value, axis) => value - rest[3 * dragged + axis]);
+  expect(offset[0]).toBeCloseTo(0, 5);
+  expect(offset[1]).toBeCloseTo(0.4, 5);
+  expect(offset[2]).toBeCloseTo(0, 5);
+  const undone = await armChange(page, 'document');
+  expect(await page.evaluate(() => window.anisoform.undo())).toBe(true);
+  await undone();
+  expect((await moved())[1] - rest[3 * dragged + 1]).toBeCloseTo(0.2, 5);
+  expect(pageErrors).toEqual([]);
+});
+
 test("an op's region shows on the mesh and the current selection replaces it; the result replays bitwise", async ({ page, browser }) => {
   const pageErrors = await openApp(page);
   // The first op's region as the core selects it on the mesh as loaded (its input).

@@ -56,13 +56,15 @@ export type Direction = GlobalDirection | CurvatureDirection | PageScreenDirecti
 export type DeformOp = Omit<SessionDeformOp, 'direction' | 'preview' | 'warmStart'> & { direction?: Direction };
 
 /**
- * What setParameter changes in an op: `transform` is merged into the op's, `method` and `direction`
- * replace its own (a screen drag has no place in a stored op: give its 3D vector as a global direction).
+ * What setParameter changes in an op: `transform` is merged into the op's, `method`, `direction`
+ * and `move` replace its own (a screen drag has no place in a stored op: give its 3D vector as a global direction).
  */
 export interface OpPatch {
   transform?: Transform;
   method?: SessionDeformOp['method'];
   direction?: GlobalDirection | CurvatureDirection | ConstraintsDirection;
+  /** An ARAP drag's offset of the dragged part (method 'arap'). */
+  move?: Vec3;
 }
 
 /** `converged`: false when the solve stopped at its iteration cap (`maxIterations`) before the tolerance. */
@@ -160,7 +162,7 @@ export interface Anisoform {
    */
   open(document: EditDocument, meshBytes?: ArrayBuffer | Uint8Array): Promise<void>;
   /**
-   * Merges `transform` into op `opId`'s (and replaces its `method` and `direction`, if given) and
+   * Merges `transform` into op `opId`'s (and replaces its `method`, `direction` and `move`, if given) and
    * re-solves from that op's input, re-running the later ops.
    * {preview: true}: a live preview only (a slider being dragged), the document unchanged; on the last
    * op a warm-started solver iteration (while no new value comes for 120 ms, the value goes on

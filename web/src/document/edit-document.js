@@ -92,14 +92,15 @@ export class EditDocument {
 
   /**
    * The op with `patch` applied (a copy; the document is unchanged): its
-   * transform merged into the op's, its method and direction replacing the op's.
+   * transform merged into the op's, its method, direction and move replacing the op's.
    */
-  withChanges(opId, { transform, method, direction }) {
+  withChanges(opId, { transform, method, direction, move }) {
     const entry = this.ops[this.indexOf(opId)];
     const op = clone(entry.op);
     if (transform) op.transform = { ...op.transform, ...clone(transform) };
     if (method !== undefined) op.method = method;
     if (direction !== undefined) op.direction = clone(direction);
+    if (move !== undefined) op.move = clone(move);
     return op;
   }
 }

@@ -1,5 +1,5 @@
 // The fields of the Edits list's selected op (ops-panel.js): its amounts, its
-// method and its direction, each written back with api.setParameter (the op
+// method and its direction (an ARAP drag's move), each written back with api.setParameter (the op
 // and the later ones re-run; a step of the history). A field left empty, or
 // not a number, is no value: the op's own shows again.
 import { h } from '../ui/dom.js';
@@ -23,8 +23,8 @@ const SWITCHABLE = ['anarap', 'andefgrad', 'linear'];
 const numberOf = (text) => (text.trim() === '' ? NaN : Number(text));
 
 /**
- * The selected op's fields. change(patch) sends {transform}, {method} or
- * {direction} to setParameter; redraw() shows the op's values again.
+ * The selected op's fields. change(patch) sends {transform}, {method},
+ * {direction} or {move} to setParameter; redraw() shows the op's values again.
  */
 export function opFields(entry, { change, redraw }) {
   const op = entry.op;
@@ -53,20 +53,25 @@ export function opFields(entry, { change, redraw }) {
       }, SWITCHABLE.map((name) => h('option', { value: name, selected: name === op.method }, METHOD_NAMES[name]))))
     : null;
 
-  return [...amounts, method, transformUsesDirection(transform) ? directionFields(entry, number, change) : null];
+  // x, y, z fields of a vector, each changing its own component.
+  const xyz = (label, vector, testId, write) => h('div', { className: 'op-direction' }, h('span', {}, label),
+    h('div', { className: 'xyz' }, [0, 1, 2].map((axis) => number('xyz'[axis], Number(vector[axis].toFixed(4)),
+      `${testId}-${'xyz'[axis]}`, (value) => write(vector.map((v, k) => (k === axis ? value : v)))))));
+
+  // ARAP with handles moves the dragged part by `move`; the direction plays no part.
+  if (op.method === 'arap') {
+    return [...amounts, op.move ? xyz('Move', op.move, `op-move-${entry.id}`, (move) => change({ move })) : null];
+  }
+  return [...amounts, method, transformUsesDirection(transform) ? directionFields(entry, xyz, change) : null];
 }
 
-// A global direction as x, y, z (each field changes its own component); a
-// curvature direction as its min/max choice; arrows and dense fields are
-// shown, not edited here.
-function directionFields(entry, number, change) {
+// A global direction as x, y, z; a curvature direction as its min/max
+// choice; arrows and dense fields are shown, not edited here.
+function directionFields(entry, xyz, change) {
   const direction = entry.op.direction;
   if (direction?.type === 'global') {
-    const vector = direction.vector;
-    return h('div', { className: 'op-direction' }, h('span', {}, 'Direction'),
-      h('div', { className: 'xyz' }, [0, 1, 2].map((axis) => number('xyz'[axis],
-        Number(vector[axis].toFixed(4)), `op-direction-${entry.id}-${'xyz'[axis]}`,
-        (value) => change({ direction: { type: 'global', vector: vector.map((v, k) => (k === axis ? value : v)) } })))));
+    return xyz('Direction', direction.vector, `op-direction-${entry.id}`,
+      (vector) => change({ direction: { type: 'global', vector } }));
   }
   if (direction?.type === 'curvature') {
     return h('label', { className: 'field op-amount' }, 'Direction',

@@ -16,10 +16,11 @@ import { DocumentPersistence } from './document-persistence.js';
 import { badParameter } from '../shared/errors.js';
 
 // What setParameter may change, in the words of its history step.
-const PATCH_WORDS = { transform: 'amounts', method: 'method', direction: 'direction' };
+const PATCH_WORDS = { transform: 'amounts', method: 'method', direction: 'direction', move: 'move' };
 
 // Why `patch` is no setParameter patch (null if it is one): an object with
-// some of transform (an object), method (a string), direction (an object).
+// some of transform (an object), method (a string), direction (an object),
+// move (an ARAP drag's [x, y, z]; the core checks the values).
 function patchProblem(patch) {
   if (!patch || typeof patch !== 'object' || Array.isArray(patch)) return 'the patch must be an object';
   const keys = Object.keys(patch);
@@ -32,6 +33,7 @@ function patchProblem(patch) {
     }
   }
   if ('method' in patch && typeof patch.method !== 'string') return 'method must be a string';
+  if ('move' in patch && !Array.isArray(patch.move)) return 'move must be [x, y, z]';
   if (patch.direction?.type === 'screen') {
     return "a screen drag cannot be stored in an op: give its 3D vector, {type: 'global', vector}";
   }
@@ -207,14 +209,14 @@ export class OpStack {
 
   /**
    * Changes op `opId` by `patch` ({transform} merged into its transform,
-   * {method} and {direction} replacing its own; the core checks the values
+   * {method}, {direction} and {move} replacing its own; the core checks the values
    * as it re-runs) and re-runs it and the ops after it. With {preview: true}:
    * a live preview only (a slider being dragged, live-preview.js); call
    * again without it to commit.
    */
   setParameter(opId, patch, { preview = false } = {}) {
     const problem = patchProblem(patch);
-    if (problem) return Promise.reject(badParameter(`setParameter(opId, {transform?, method?, direction?}): ${problem}`));
+    if (problem) return Promise.reject(badParameter(`setParameter(opId, {transform?, method?, direction?, move?}): ${problem}`));
     let index;
     let op;
     try {
