@@ -273,6 +273,54 @@ test("an ARAP drag's move from the Edits list: the dragged part moves by the new
   expect(pageErrors).toEqual([]);
 });
 
+test('an amount typed in the Edits list previews live; leaving the field commits it, or, typed back, shows the committed shape again', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const { afterThree, document } = await editSpot(page);
+  const second = document.ops[1];
+  const positions = () => page.evaluate(() => Array.from(window.anisoform.positions()));
+  const rate = () => page.evaluate(() => window.anisoform.document().ops[1].op.transform.twist.degreesPerUnit);
+  await page.getByTestId(`op-select-${second.id}`).click();
+  const amount = page.getByTestId(`op-amount-${second.id}-Twist (degrees/unit)`);
+  await expect(amount).toHaveValue('30');
+  const undoTitle = await page.getByTestId('undo').getAttribute('title');
+
+  // Typing 60: the shape follows live (live 'positions' events; the document keeps 30).
+  await page.evaluate(() => {
+    window.__live = 0;
+    window.anisoform.on('positions', ({ live, positions }) => {
+      if (live) window.__live++;
+      window.__shown = { live, positions: Array.from(positions) };
+    });
+  });
+  await amount.click();
+  await amount.press('Control+a');
+  await page.keyboard.type('60');
+  await expect.poll(() => page.evaluate(() => window.__live)).toBeGreaterThan(0);
+  expect(await rate()).toBe(30);
+  // Typed back to 30 and left: no change, and the committed shape comes back, bitwise.
+  await amount.press('Control+a');
+  await page.keyboard.type('30');
+  const back = await armChange(page, 'document');
+  await amount.blur();
+  await back();
+  const shown = await page.evaluate(() => window.__shown);
+  expect(shown.live).toBe(false);
+  expect(bitwise(shown.positions, afterThree)).toBe(true);
+  expect(await rate()).toBe(30);
+  expect(await page.getByTestId('undo').getAttribute('title')).toBe(undoTitle);
+
+  // Typed and left with a new value: committed, a step of the history.
+  await amount.click();
+  await amount.press('Control+a');
+  await page.keyboard.type('45');
+  const committed = await armChange(page, 'document');
+  await amount.press('Tab');
+  await committed();
+  expect(await rate()).toBe(45);
+  expect(await page.getByTestId('undo').getAttribute('title')).toBe('Undo Change the amounts of Twist (AnARAP) (Ctrl+Z)');
+  expect(pageErrors).toEqual([]);
+});
+
 test("an op's region shows on the mesh and the current selection replaces it; the result replays bitwise", async ({ page, browser }) => {
   const pageErrors = await openApp(page);
   // The first op's region as the core selects it on the mesh as loaded (its input).

@@ -1,7 +1,8 @@
 // The fields of the Edits list's selected op (ops-panel.js): its amounts, its
 // method and its direction (an ARAP drag's move), each written back with api.setParameter (the op
-// and the later ones re-run; a step of the history). A field left empty, or
-// not a number, is no value: the op's own shows again.
+// and the later ones re-run; a step of the history), and previewed live while
+// a number is typed. A field left empty, or not a number, is no value: the
+// op's own shows again.
 import { h } from '../ui/dom.js';
 import { METHOD_NAMES } from '../editor/edit-wording.js';
 import { transformUsesDirection } from '../tools/direction-source.js';
@@ -24,26 +25,49 @@ const numberOf = (text) => (text.trim() === '' ? NaN : Number(text));
 
 /**
  * The selected op's fields. change(patch) sends {transform}, {method},
- * {direction} or {move} to setParameter; redraw() shows the op's values again.
+ * {direction} or {move} to setParameter; preview(patch) shows it live (a
+ * number being typed); redraw() shows the op's values again.
  */
-export function opFields(entry, { change, redraw }) {
+export function opFields(entry, { change, preview, redraw }) {
   const op = entry.op;
   const transform = op.transform ?? {};
-  const number = (label, value, testId, write) => h('label', { className: 'field op-amount' }, label,
-    h('input', {
-      type: 'number',
-      step: 'any',
-      value: String(value),
-      'data-testid': testId,
-      onchange: (event) => {
-        const typed = numberOf(event.target.value);
-        if (Number.isFinite(typed)) write(typed);
-        else redraw();
-      },
-    }));
+  // write(value, send) builds the patch for `value` and hands it to send:
+  // while typing a live preview of each number, on Enter or leaving the field
+  // the change. A field left with a preview on screen and no change (the
+  // op's own value typed again, or none) sends the value kept, so that the
+  // screen shows the op's committed shape again (a value the op has makes no
+  // step of the history).
+  const number = (label, value, testId, write) => {
+    let previewed = false;
+    const settle = (typed) => {
+      const wasPreviewed = previewed;
+      previewed = false;
+      if (Number.isFinite(typed)) write(typed, change);
+      else if (wasPreviewed) write(value, change);
+    };
+    return h('label', { className: 'field op-amount' }, label,
+      h('input', {
+        type: 'number',
+        step: 'any',
+        value: String(value),
+        'data-testid': testId,
+        oninput: (event) => {
+          const typed = numberOf(event.target.value);
+          if (!Number.isFinite(typed)) return;
+          previewed = true;
+          write(typed, preview);
+        },
+        onchange: (event) => {
+          const typed = numberOf(event.target.value);
+          settle(typed);
+          if (!Number.isFinite(typed)) redraw();
+        },
+        onblur: () => previewed && settle(value),
+      }));
+  };
 
   const amounts = AMOUNTS.filter(([, read]) => typeof read(transform) === 'number').map(([label, read, write]) =>
-    number(label, read(transform), `op-amount-${entry.id}-${label}`, (value) => change({ transform: write(transform, value) })));
+    number(label, read(transform), `op-amount-${entry.id}-${label}`, (value, send) => send({ transform: write(transform, value) })));
 
   const method = SWITCHABLE.includes(op.method)
     ? h('label', { className: 'field op-amount' }, 'Method',
@@ -56,11 +80,11 @@ export function opFields(entry, { change, redraw }) {
   // x, y, z fields of a vector, each changing its own component.
   const xyz = (label, vector, testId, write) => h('div', { className: 'op-direction' }, h('span', {}, label),
     h('div', { className: 'xyz' }, [0, 1, 2].map((axis) => number('xyz'[axis], Number(vector[axis].toFixed(4)),
-      `${testId}-${'xyz'[axis]}`, (value) => write(vector.map((v, k) => (k === axis ? value : v)))))));
+      `${testId}-${'xyz'[axis]}`, (value, send) => write(vector.map((v, k) => (k === axis ? value : v)), send)))));
 
   // ARAP with handles moves the dragged part by `move`; the direction plays no part.
   if (op.method === 'arap') {
-    return [...amounts, op.move ? xyz('Move', op.move, `op-move-${entry.id}`, (move) => change({ move })) : null];
+    return [...amounts, op.move ? xyz('Move', op.move, `op-move-${entry.id}`, (move, send) => send({ move })) : null];
   }
   return [...amounts, method, transformUsesDirection(transform) ? directionFields(entry, xyz, change) : null];
 }
@@ -71,7 +95,7 @@ function directionFields(entry, xyz, change) {
   const direction = entry.op.direction;
   if (direction?.type === 'global') {
     return xyz('Direction', direction.vector, `op-direction-${entry.id}`,
-      (vector) => change({ direction: { type: 'global', vector } }));
+      (vector, send) => send({ direction: { type: 'global', vector } }));
   }
   if (direction?.type === 'curvature') {
     return h('label', { className: 'field op-amount' }, 'Direction',

@@ -63,7 +63,12 @@ export function opsPanel({ api, editor }) {
         onclick: () => redrawIfRefused(api.removeOp(entry.id)),
       }, '×'),
       isSelected ? h('div', { className: 'op-amounts' },
-        opFields(entry, { change: (patch) => redrawIfRefused(api.setParameter(entry.id, patch)), redraw: render }),
+        opFields(entry, {
+          change: (patch) => redrawIfRefused(api.setParameter(entry.id, patch)),
+          // A value being typed may be half-written ("0."): its preview's refusal says nothing.
+          preview: (patch) => entry.enabled && editor.ops.setParameter(entry.id, patch, { preview: true }).catch(() => {}),
+          redraw: render,
+        }),
         regionControls(entry)) : null);
   };
 
