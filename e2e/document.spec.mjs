@@ -150,7 +150,7 @@ test('an op toggled off is skipped and its amounts re-run the later ops', async 
   expect(pageErrors).toEqual([]);
 });
 
-test('an op deleted from the Edits list: the later ops re-run on its input, as a replay does; undo puts it back', async ({ page }) => {
+test('an op deleted or moved in the Edits list: the later ops re-run, as a replay does; undo puts it back', async ({ page }) => {
   const pageErrors = await openApp(page);
   const { afterTwo, afterThree, document } = await editSpot(page);
   const [first, , third] = document.ops;
@@ -180,6 +180,23 @@ test('an op deleted from the Edits list: the later ops re-run on its input, as a
   expect(bitwise(withoutFirst.positions, afterThree)).toBe(false);
   await changed(() => page.evaluate((json) => window.anisoform.open(json), withoutFirst.document));
   expect(bitwise(await positions(), withoutFirst.positions)).toBe(true);
+
+  // Moved up: the two re-run in their new order, as a replay of that order does; undo puts it back.
+  await changed(() => page.evaluate((json) => window.anisoform.open(json), document));
+  await page.getByTestId(`op-select-${third.id}`).click();
+  await expect(page.getByTestId(`op-down-${third.id}`)).toBeDisabled();
+  await changed(() => page.getByTestId(`op-up-${third.id}`).click());
+  const reordered = { positions: await positions(), document: await page.evaluate(() => window.anisoform.document()) };
+  expect(reordered.document.ops.map((op) => op.id)).toEqual([first.id, third.id, document.ops[1].id]);
+  expect(bitwise(reordered.positions, afterThree)).toBe(false);
+  expect(await page.getByTestId('undo').getAttribute('title')).toBe('Undo Move Shear (AnDefGrad) up (Ctrl+Z)');
+  await changed(() => page.evaluate(() => window.anisoform.undo()));
+  expect(await ids()).toEqual(document.ops.map((op) => op.id));
+  expect(bitwise(await positions(), afterThree)).toBe(true);
+  await changed(() => page.evaluate((json) => window.anisoform.open(json), reordered.document));
+  expect(bitwise(await positions(), reordered.positions)).toBe(true);
+  expect(await page.evaluate((id) => window.anisoform.moveOp(id, 3).catch((error) => error.message), first.id))
+    .toMatch(/index must be an integer from 0 to 2, got 3/);
   expect(await page.evaluate((json) => window.anisoform.removeOp('op-99').catch((error) => error.message)))
     .toMatch(/no op 'op-99'/);
   expect(pageErrors).toEqual([]);

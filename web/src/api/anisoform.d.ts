@@ -175,6 +175,8 @@ export interface Anisoform {
   setOpEnabled(opId: string, enabled: boolean): Promise<void>;
   /** Deletes an op; the later ops re-run on its input. A step of the history (undo puts it back). */
   removeOp(opId: string): Promise<void>;
+  /** Moves an op to place `index` (0-based) of the list; the ops from the first place that changed re-run. A step of the history. */
+  moveOp(opId: string, index: number): Promise<void>;
   export(format: 'obj' | 'ply' | 'stl' | 'glb'): Promise<ArrayBuffer>;
   /** A garment pattern of the mesh or its selection; the mesh and history are untouched. */
   flatten(options?: FlattenOptions): Promise<FlattenResult>;

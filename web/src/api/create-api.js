@@ -55,6 +55,7 @@ export function createAnisoformApi({ editor, viewer, picker, ready }) {
       reported(editor.ops.setParameter(opId, patch, options), 'The parameter was not applied'),
     setOpEnabled: (opId, enabled) => reported(editor.ops.setEnabled(opId, enabled), 'The op was not changed'),
     removeOp: (opId) => reported(editor.ops.removeOp(opId), 'The op was not deleted'),
+    moveOp: (opId, index) => reported(editor.ops.moveOp(opId, index), 'The op was not moved'),
 
     cancel: () => editor.cancelSolve(),
     undo: () => editor.undo(),

@@ -271,6 +271,44 @@ export class OpStack {
     });
   }
 
+  /** Moves op `opId` to place `to` (0-based) in the list: the ops from the first place that changed re-run; a step of the history. */
+  moveOp(opId, to) {
+    const count = this.document?.ops.length ?? 0;
+    if (!Number.isInteger(to) || to < 0 || to >= count) {
+      return Promise.reject(badParameter(`moveOp(opId, index): index must be an integer from 0 to ${count - 1}, got ${JSON.stringify(to)}`));
+    }
+    return this.#run(async () => {
+      const from = this.#requireDocument().indexOf(opId);
+      if (from === to) return;
+      const entry = this.document.ops[from];
+      await this.#reorder(from, to);
+      this.document.undone = [];
+      const label = `Move ${entry.label || entry.id} ${to < from ? 'up' : 'down'}`;
+      const step = (a, b) => () => this.#run(() => this.#reorder(a, b))
+        .catch((error) => this.#editor.report(error, `${label} could not be taken back or done again`));
+      this.#editor.history.push({ label, undo: step(to, from), redo: step(from, to) });
+    });
+  }
+
+  // Inside #run: the op at `from` moved to `to` and the ops from the first
+  // place that changed re-run; on failure the order and the document's last
+  // state are put back.
+  async #reorder(from, to) {
+    const ops = this.document.ops;
+    const move = (a, b) => ops.splice(b, 0, ...ops.splice(a, 1));
+    move(from, to);
+    let stats;
+    try {
+      stats = await this.#runner.rerunFrom(Math.min(from, to));
+    } catch (error) {
+      move(to, from);
+      await this.#runner.restore(ops.length).catch(() => {});
+      throw error;
+    }
+    this.#persistence.changed();
+    this.#reportSolved(stats);
+  }
+
   // Inside #run: `entry` put back at `index` (insert) or taken out of it, and
   // the ops from there re-run; on failure the list and the document's last
   // state are put back.

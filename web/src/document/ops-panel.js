@@ -1,7 +1,8 @@
 // The side panel's list of the edit document's ops (a non-destructive stack,
 // like Blender's modifiers): each op can be toggled off and on, deleted,
-// selected, and its amounts edited; the later ops re-run (api.setOpEnabled,
-// api.removeOp, api.setParameter), and each change is a step of the history.
+// moved up or down, selected, and its amounts edited; the later ops re-run
+// (api.setOpEnabled, api.removeOp, api.moveOp, api.setParameter), and each
+// change is a step of the history.
 // Selecting an op selects its region on the mesh (as the op evaluates it, on
 // its input), and the current selection can replace that region.
 import { h, section } from '../ui/dom.js';
@@ -14,6 +15,19 @@ export function opsPanel({ api, editor }) {
   // The editor reports failures itself (the banner); a refused change only
   // needs the rows drawn again, so that the fields show the values kept.
   const redrawIfRefused = (promise) => promise.catch(() => render());
+
+  // Up and down in the list (the order the ops run in).
+  const orderControls = (entry, index, count) => h('div', { className: 'row op-order' },
+    [['up', index - 1, 'Move up', 'Run this edit before the one above it'],
+      ['down', index + 1, 'Move down', 'Run this edit after the one below it']].map(([way, to, text, title]) =>
+      h('button', {
+        type: 'button',
+        className: 'button',
+        disabled: to < 0 || to >= count,
+        title,
+        'data-testid': `op-${way}-${entry.id}`,
+        onclick: () => redrawIfRefused(api.moveOp(entry.id, to)),
+      }, text)));
 
   const regionControls = (entry) => h('div', { className: 'op-region' },
     h('span', { 'data-testid': `op-region-${entry.id}` }, `Region: ${entry.region}`),
@@ -33,7 +47,7 @@ export function opsPanel({ api, editor }) {
     })
     .catch((error) => editor.report(error, 'The region could not be shown'));
 
-  const row = (entry) => {
+  const row = (entry, index, ops) => {
     const isSelected = entry.id === selected;
     return h('li', { className: `op-row${isSelected ? ' selected' : ''}${entry.enabled ? '' : ' disabled'}`, 'data-op': entry.id },
       // The label is the touch target (44 px on phones), the box keeps its size.
@@ -69,7 +83,8 @@ export function opsPanel({ api, editor }) {
           preview: (patch) => entry.enabled && editor.ops.setParameter(entry.id, patch, { preview: true }).catch(() => {}),
           redraw: render,
         }),
-        regionControls(entry)) : null);
+        regionControls(entry),
+        orderControls(entry, index, ops.length)) : null);
   };
 
   function render() {
