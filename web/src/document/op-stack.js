@@ -262,12 +262,11 @@ export class OpStack {
     return this.#run(async () => {
       const index = this.#requireDocument().indexOf(opId);
       const entry = this.document.ops[index];
-      await this.#spliceOp(index, entry, false);
-      this.document.undone = [];
-      const label = `Delete ${entry.label || entry.id}`;
-      const step = (insert) => () => this.#run(() => this.#spliceOp(index, entry, insert))
-        .catch((error) => this.#editor.report(error, `${label} could not be taken back or done again`));
-      this.#editor.history.push({ label, undo: step(true), redo: step(false) });
+      const ops = () => this.document.ops;
+      const remove = () => this.#rerunAfter(index, () => ops().splice(index, 1), () => ops().splice(index, 0, entry));
+      const insert = () => this.#rerunAfter(index, () => ops().splice(index, 0, entry), () => ops().splice(index, 1));
+      await remove();
+      this.#pushStep(`Delete ${entry.label || entry.id}`, insert, remove);
     });
   }
 
@@ -281,51 +280,12 @@ export class OpStack {
       const from = this.#requireDocument().indexOf(opId);
       if (from === to) return;
       const entry = this.document.ops[from];
-      await this.#reorder(from, to);
-      this.document.undone = [];
-      const label = `Move ${entry.label || entry.id} ${to < from ? 'up' : 'down'}`;
-      const step = (a, b) => () => this.#run(() => this.#reorder(a, b))
-        .catch((error) => this.#editor.report(error, `${label} could not be taken back or done again`));
-      this.#editor.history.push({ label, undo: step(to, from), redo: step(from, to) });
+      const move = (a, b) => () => this.document.ops.splice(b, 0, ...this.document.ops.splice(a, 1));
+      const there = () => this.#rerunAfter(Math.min(from, to), move(from, to), move(to, from));
+      const back = () => this.#rerunAfter(Math.min(from, to), move(to, from), move(from, to));
+      await there();
+      this.#pushStep(`Move ${entry.label || entry.id} ${to < from ? 'up' : 'down'}`, back, there);
     });
-  }
-
-  // Inside #run: the op at `from` moved to `to` and the ops from the first
-  // place that changed re-run; on failure the order and the document's last
-  // state are put back.
-  async #reorder(from, to) {
-    const ops = this.document.ops;
-    const move = (a, b) => ops.splice(b, 0, ...ops.splice(a, 1));
-    move(from, to);
-    let stats;
-    try {
-      stats = await this.#runner.rerunFrom(Math.min(from, to));
-    } catch (error) {
-      move(to, from);
-      await this.#runner.restore(ops.length).catch(() => {});
-      throw error;
-    }
-    this.#persistence.changed();
-    this.#reportSolved(stats);
-  }
-
-  // Inside #run: `entry` put back at `index` (insert) or taken out of it, and
-  // the ops from there re-run; on failure the list and the document's last
-  // state are put back.
-  async #spliceOp(index, entry, insert) {
-    const ops = this.document.ops;
-    const apply = (add) => (add ? ops.splice(index, 0, entry) : ops.splice(index, 1));
-    apply(insert);
-    let stats;
-    try {
-      stats = await this.#runner.rerunFrom(index);
-    } catch (error) {
-      apply(!insert);
-      await this.#runner.restore(ops.length).catch(() => {});
-      throw error;
-    }
-    this.#persistence.changed();
-    this.#reportSolved(stats);
   }
 
   // Sets op `opId`'s `field` (enabled, op or region) to `value` and re-runs
@@ -338,35 +298,47 @@ export class OpStack {
       const label = describe(entry.label || entry.id);
       await this.#setOpField(opId, field, value);
       if (JSON.stringify(before) === JSON.stringify(value)) return;
-      // A new step ends what could be redone, the undone ops too (as a commit does).
-      this.document.undone = [];
-      const step = (to) => () => this.#run(() => this.#setOpField(opId, field, to))
-        .catch((error) => this.#editor.report(error, `${label} could not be taken back or done again`));
-      this.#editor.history.push({ label, undo: step(before), redo: step(value) });
+      this.#pushStep(label, () => this.#setOpField(opId, field, before), () => this.#setOpField(opId, field, value));
     });
   }
 
-  // Inside #run: the field set and the op and the later ones re-run; on
-  // failure the old value and the document's last state are put back.
-  async #setOpField(opId, field, value) {
+  // Inside #run: the field set and the op and the later ones re-run. A label
+  // the page gave the op follows its method ("Twist (AnDefGrad)").
+  #setOpField(opId, field, value) {
     const index = this.#requireDocument().indexOf(opId);
     const entry = this.document.ops[index];
-    const before = entry[field];
-    const labelBefore = entry.label;
-    entry[field] = value;
-    // A label the page gave the op follows its method ("Twist (AnDefGrad)").
-    if (field === 'op' && entry.label === describeEdit(before)) entry.label = describeEdit(value);
+    const before = { [field]: entry[field], label: entry.label };
+    return this.#rerunAfter(index, () => {
+      entry[field] = value;
+      if (field === 'op' && entry.label === describeEdit(before.op)) entry.label = describeEdit(value);
+    }, () => Object.assign(entry, before));
+  }
+
+  // Inside #run: apply() changes the document, and the ops from `index` on
+  // re-run; on failure revert() takes the change back and the document's
+  // last state is put back in the worker.
+  async #rerunAfter(index, apply, revert) {
+    apply();
     let stats;
     try {
       stats = await this.#runner.rerunFrom(index);
     } catch (error) {
-      entry[field] = before;
-      entry.label = labelBefore;
+      revert();
       await this.#runner.restore(this.document.ops.length).catch(() => {});
       throw error;
     }
     this.#persistence.changed();
     this.#reportSolved(stats);
+  }
+
+  // A change to the ops becomes a step of the history (undo() and redo()
+  // each re-run what they change); as a commit does, it ends what could be
+  // redone, the undone ops too.
+  #pushStep(label, undo, redo) {
+    this.document.undone = [];
+    const step = (work) => () => this.#run(work)
+      .catch((error) => this.#editor.report(error, `${label} could not be taken back or done again`));
+    this.#editor.history.push({ label, undo: step(undo), redo: step(redo) });
   }
 
   // A committed solve's figures (the status bar's) and its fold-over
