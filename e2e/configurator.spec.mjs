@@ -86,6 +86,45 @@ test('each slider sets its op by setParameter, reset restores the shape exactly,
   expect(pageErrors).toEqual([]);
 });
 
+test('undo and redo in the view take the slider changes back and forth, and the sliders follow', async ({ page }) => {
+  const pageErrors = await openConfigurator(page);
+  const base = await positions(page);
+  await slide(page, 'height', 1.4);
+  const higher = await positions(page);
+  await slide(page, 'twist', 60);
+  const twisted = await positions(page);
+  const height = page.locator('input[name=height]');
+  const twist = page.locator('input[name=twist]');
+  // Keys reach the modeller when the focus is in it (the view).
+  await page.locator('anisoform-modeller canvas').focus();
+  const press = async (keys, expected) => {
+    const changed = page.evaluate(() => new Promise((resolve) => {
+      document.querySelector('anisoform-modeller').addEventListener('change', (event) => {
+        if (event.detail.reason === 'document') resolve();
+      });
+    }));
+    await page.keyboard.press(keys);
+    await changed;
+    expect(bitwise(await positions(page), expected)).toBe(true);
+  };
+  await press('Control+z', higher);
+  await expect(twist).toHaveValue('0');
+  await expect(height).toHaveValue('1.4');
+  await press('Control+z', base);
+  await expect(height).toHaveValue('1');
+  await press('Control+Shift+z', higher);
+  await expect(height).toHaveValue('1.4');
+  await press('Control+Shift+z', twisted);
+  await expect(twist).toHaveValue('60');
+  await expect(page.locator('output[for=twist]')).toHaveText('60°');
+  // Further back than the slider changes: the first edits go, their sliders wait.
+  await press('Control+z', higher);
+  await press('Control+z', base);
+  await page.keyboard.press('Control+z');
+  await expect(page.locator('input[name=thickness]')).toBeDisabled();
+  expect(pageErrors).toEqual([]);
+});
+
 // A 2 s drag of a slider: a new value every animation frame ('input' only:
 // previews), then the release ('change': the commit). The document must not
 // change while dragging, and after the release hold the final value in the

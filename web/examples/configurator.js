@@ -9,7 +9,8 @@
 // preview, and when it is let go ('change') committed, which re-solves the
 // op and the ones after it from the op's input. A slider position therefore
 // always gives the same shape (the document's replay), and the document
-// always holds exactly three ops.
+// holds the three ops (undo in the view can take back slider changes, and
+// then the three first edits: a slider whose op is gone waits, disabled).
 import 'anisoform';
 
 const AXIS = [1, 0, 0]; // the spool's axis of revolution (x in spool.off)
@@ -29,6 +30,12 @@ const EDITS = {
   twist: (stored, value) => ({ twist: { axis: AXIS, ...stored.twist, degreesPerUnit: value / length } }),
   thickness: (stored, value) => ({ scale: [1, value] }),
 };
+// And back: the slider value an op's transform holds (a neutral stretch is stored without its scale).
+const VALUES = {
+  height: (transform) => transform.scale?.[0] ?? 1,
+  twist: (transform) => (transform.twist?.degreesPerUnit ?? 0) * length,
+  thickness: (transform) => transform.scale?.[1] ?? 1,
+};
 
 // The upper part: everything above the middle, blended over a fifth of the length.
 await api.select({ box: { min: [0, -10, -10], max: [10, 10, 10] } }, { falloff: 0.2 * length });
@@ -37,7 +44,7 @@ for (const [name, transformAt] of Object.entries(EDITS)) {
   await api.deform({ method: 'anarap', direction: { type: 'global', vector: AXIS },
     transform: transformAt({}, Number(sliders[name].value)) });
   const op = api.document().ops.at(-1);
-  ops[name] = { id: op.id, stored: op.op.transform };
+  ops[name] = { id: op.id, stored: op.op.transform, sent: VALUES[name](op.op.transform) };
 }
 
 let updates = 0;
@@ -49,6 +56,27 @@ api.on('positions', ({ live }) => {
   form.dataset.solved = live ? 'preview' : 'full';
 });
 setState('idle', 'Ready');
+
+// Undo and redo (Ctrl+Z in the view) change the ops' amounts too: a slider
+// follows its op when the op holds another value than the slider last sent
+// (not on the slider's own commits, so that a slider dragged again during
+// one does not jump). An op undone away (one of the three first edits)
+// leaves its slider disabled until redo brings it back.
+api.on('change', ({ reason }) => {
+  if (reason !== 'document') return;
+  const document = api.document();
+  for (const [name, slider] of Object.entries(sliders)) {
+    const op = document.ops.find((entry) => entry.id === ops[name].id);
+    slider.disabled = !op;
+    if (!op) continue;
+    ops[name].stored = op.op.transform;
+    const value = VALUES[name](op.op.transform);
+    if (value === ops[name].sent) continue;
+    ops[name].sent = value;
+    slider.value = String(value);
+  }
+  showValues();
+});
 
 form.addEventListener('input', (event) => {
   showValues();
@@ -82,6 +110,7 @@ async function setAmount(name, { preview = false } = {}) {
     api.setParameter(id, { transform }, { preview: true }).catch(showFailure);
     return;
   }
+  ops[name].sent = VALUES[name](transform);
   committing++;
   setState('solving', 'Solving…');
   const started = performance.now();
