@@ -585,3 +585,54 @@ test('a slider on the last op updates the shape live at 20k vertices', { tag: '@
   }
   expect(pageErrors).toEqual([]);
 });
+
+// open() replays the ops one at a time ("Edit 2 of 3" in the progress) and
+// keeps the states between them: undo after it shows a kept state, with no
+// replay. A document whose second op fails after its first has solved is
+// refused, and the solver is back on the work in the page: the next edit
+// gives bitwise what it gave there before.
+test('open keeps the states between the ops for undo; a document failing at its second op leaves the solver on the work kept', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const { afterTwo, document } = await editSpot(page);
+  const counted = await page.evaluate(() => {
+    window.__posted = [];
+    const post = Worker.prototype.postMessage;
+    Worker.prototype.postMessage = function postMessage(message, ...rest) {
+      window.__posted.push(message?.kind);
+      return post.call(this, message, ...rest);
+    };
+    return true;
+  });
+  expect(counted).toBe(true);
+  const replays = () => page.evaluate(() => window.__posted.filter((kind) => kind === 'replay').length);
+  const positions = () => page.evaluate(() => Array.from(window.anisoform.positions()));
+
+  await page.evaluate((json) => window.anisoform.open(json), document);
+  expect(await replays()).toBe(3); // one per op
+  const before = await replays();
+  const undone = await armChange(page, 'document');
+  expect(await page.evaluate(() => window.anisoform.undo())).toBe(true);
+  await undone();
+  expect(bitwise(await positions(), afterTwo)).toBe(true);
+  expect(await replays()).toBe(before); // the state after two ops was kept
+
+  // The same edit on the state in the page, before and after a failed open.
+  const edit = { method: 'anarap', direction: { type: 'global', vector: [1, 0, 0] }, transform: { scale: [1.2, 1] } };
+  const again = async () => page.evaluate(async (op) => {
+    const api = window.anisoform;
+    await api.select({ box: { min: [-1, -1, -1], max: [0, 1, 1] } });
+    await api.deform(op);
+    const result = Array.from(api.positions());
+    api.undo(); // the edit (its state is kept: shown at once)
+    return result;
+  }, edit);
+  const edited = await again();
+  await page.evaluate(() => new Promise((resolve) => setTimeout(resolve, 300)));
+  const [first] = document.ops;
+  const failing = { ...document, ops: [first, { ...first, id: 'thick', op: { ...first.op, transform: { thickness: 1.2 } } }] };
+  const refused = await page.evaluate((json) => window.anisoform.open(json).then(() => 'opened', (error) => error.message), failing);
+  expect(refused).toMatch(/document\.ops\[1\] \(id 'thick'\).*thickness/);
+  expect(bitwise(await positions(), afterTwo)).toBe(true);
+  expect(bitwise(await again(), edited)).toBe(true);
+  expect(pageErrors).toEqual([]);
+});

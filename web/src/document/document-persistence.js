@@ -40,30 +40,52 @@ export class DocumentPersistence {
       const previous = current && { json: current.toJSON(), mesh: this.mesh };
       if (meshBytes !== undefined) await editor.load(meshBytes, json.mesh?.name);
       else if (!this.#stack.document) throw badParameter('no mesh is loaded yet');
-      let result;
+      let replayed;
       try {
-        result = await this.#runner.replay(0, json.ops?.length ?? 0, { json });
+        replayed = await this.#replayEach(json);
       } catch (error) {
-        // The core's replay leaves the session as it was; only a mesh loaded for it is undone.
+        // The work is put back: the mesh loaded for the document undone, or
+        // the current document's state (the ops before the failing one stay in
+        // the session as its rest pose).
         if (meshBytes !== undefined && previous) await this.#reopen(previous);
+        else if (current) await this.#runner.restore(current.ops.length).catch(() => {});
         throw error;
       }
-      this.#adopt(json, result);
+      this.#adopt(json, replayed);
     });
+  }
+
+  // The ops of `json` replayed one at a time from the mesh as loaded, so
+  // that the progress says which one runs ("Edit 2 of 5: Solving 40 %") and
+  // the states between them are kept for undo. The first call checks the
+  // whole document, so a bad one is refused before anything is solved.
+  async #replayEach(json, options = {}) {
+    const n = Array.isArray(json.ops) ? json.ops.length : 0;
+    if (n === 0) return { states: [], result: await this.#runner.replay(0, 0, { json, ...options }) };
+    const states = [];
+    let result;
+    for (let i = 0; i < n; i++) {
+      // The heat map's values only for the state shown.
+      const last = i === n - 1 ? {} : { distortion: null };
+      result = await this.#runner.replay(i, i + 1, { json, label: `Edit ${i + 1} of ${n}`, ...last, ...options });
+      if (i < n - 1) states.push({ positions: result.positions, exact: result.exact });
+    }
+    return { states, result };
   }
 
   async #reopen({ json, mesh }) {
     await this.#editor.load(mesh.bytes, mesh.name);
-    this.#adopt(json, await this.#runner.replay(0, json.ops.length, { json, distortion: null }));
+    this.#adopt(json, await this.#replayEach(json, { distortion: null }));
   }
 
-  #adopt(json, result) {
+  #adopt(json, { states, result }) {
     const cache = this.#runner.cache;
     const state0 = cache.get(0);
     const document = EditDocument.fromJSON(json);
     this.#stack.document = document;
     cache.clear();
     cache.set(0, state0);
+    states.forEach((state, k) => cache.set(k + 1, state));
     this.#runner.show(document.ops.length, result);
     const history = this.#editor.history;
     history.clear();
