@@ -378,6 +378,25 @@ test("an op's region shows on the mesh and the current selection replaces it; th
   }, changed.document);
   expect(bitwise(replayed, changed.positions)).toBe(true);
   await fresh.close();
+
+  // A wider soft border: the op's region is the same box with the new falloff; undo takes it back.
+  const falloff = page.getByTestId(`op-falloff-${first.id}`);
+  await expect(falloff).toHaveValue('0.1');
+  const softer = await armChange(page, 'document');
+  await falloff.fill('0.3');
+  await falloff.press('Enter');
+  await softer();
+  const widened = await page.evaluate(() => ({ positions: Array.from(window.anisoform.positions()), document: window.anisoform.document() }));
+  const widenedRegion = widened.document.regions.find((r) => r.name === widened.document.ops[0].region);
+  expect(widenedRegion.steps).toEqual([{ region: { box }, falloff: 0.3 }]);
+  expect(bitwise(widened.positions, changed.positions)).toBe(false);
+  expect(await page.getByTestId('undo').getAttribute('title')).toBe('Undo Change the region of Stretch (AnARAP) (Ctrl+Z)');
+  const undone = await armChange(page, 'document');
+  expect(await page.evaluate(() => window.anisoform.undo())).toBe(true);
+  await undone();
+  expect(bitwise(await page.evaluate(() => Array.from(window.anisoform.positions())), changed.positions)).toBe(true);
+  expect(await page.evaluate(() => window.anisoform.setRegion('op-1', []).catch((error) => error.message)))
+    .toMatch(/steps must be a list of select steps/);
   expect(pageErrors).toEqual([]);
   expect(freshErrors).toEqual([]);
 });

@@ -9,6 +9,7 @@
 // a screen drag given in canvas pixels, the camera filled in by the page.
 import type {
   ConstraintsDirection,
+  DocumentSelectStep,
   CurvatureDirection,
   DeformOp as SessionDeformOp,
   DeformResult as SessionDeformResult,
@@ -177,6 +178,11 @@ export interface Anisoform {
   removeOp(opId: string): Promise<void>;
   /** Moves an op to place `index` (0-based) of the list; the ops from the first place that changed re-run. A step of the history. */
   moveOp(opId: string, index: number): Promise<void>;
+  /**
+   * Gives an op the region of these select steps (as a document's region holds them: a soft border
+   * is a step's `falloff`); the op and the later ones re-run. A step of the history.
+   */
+  setRegion(opId: string, steps: DocumentSelectStep[]): Promise<void>;
   export(format: 'obj' | 'ply' | 'stl' | 'glb'): Promise<ArrayBuffer>;
   /** A garment pattern of the mesh or its selection; the mesh and history are untouched. */
   flatten(options?: FlattenOptions): Promise<FlattenResult>;

@@ -1,8 +1,9 @@
 // The fields of the Edits list's selected op (ops-panel.js): its amounts, its
-// method and its direction (an ARAP drag's move), each written back with api.setParameter (the op
-// and the later ones re-run; a step of the history), and previewed live while
-// a number is typed. A field left empty, or not a number, is no value: the
-// op's own shows again.
+// method and its direction (an ARAP drag's move), each written back with
+// api.setParameter (the op and the later ones re-run; a step of the
+// history), and previewed live while a number is typed; and its region's
+// soft border (api.setRegion). A field left empty, or not a number, is no
+// value: the op's own shows again.
 import { h } from '../ui/dom.js';
 import { METHOD_NAMES } from '../editor/edit-wording.js';
 import { transformUsesDirection } from '../tools/direction-source.js';
@@ -109,4 +110,26 @@ function directionFields(entry, xyz, change) {
     ? `${direction.constraints.length} arrow${direction.constraints.length === 1 ? '' : 's'}, propagated`
     : 'a direction per vertex';
   return h('p', { className: 'op-direction-note' }, `Direction: ${described}`);
+}
+
+/**
+ * The soft border of the op's region (the falloff of its select steps, in
+ * model units along the surface): a new width gives the op a region of the
+ * same steps with that falloff, through setRegion(steps).
+ */
+export function falloffField(entry, steps, { setRegion, redraw }) {
+  return h('label', { className: 'field op-amount', title: "The width of the soft border around the edit's region, in model units along the surface" },
+    'Soft border',
+    h('input', {
+      type: 'number',
+      min: 0,
+      step: 'any',
+      value: String(steps[0]?.falloff ?? 0),
+      'data-testid': `op-falloff-${entry.id}`,
+      onchange: (event) => {
+        const width = numberOf(event.target.value);
+        if (Number.isFinite(width)) setRegion(steps.map((step) => ({ ...step, falloff: width })));
+        else redraw();
+      },
+    }));
 }

@@ -245,16 +245,35 @@ export class OpStack {
 
   /** The current selection (its rule, else its weights) becomes op `opId`'s region; it and the later ops re-run. */
   useSelectionAsRegion(opId) {
+    let steps;
+    try {
+      const mesh = this.#editor.requireDocument();
+      steps = regionSteps(this.#editor.selectionState.ruleFor(this.restVersion), mesh.selection, mesh.selectionCount);
+    } catch (error) {
+      return Promise.reject(error);
+    }
+    return this.setRegion(opId, steps);
+  }
+
+  /** Op `opId`'s region becomes the one of these select steps ({region, falloff?, mode?}...); it and the later ops re-run. */
+  setRegion(opId, steps) {
+    if (!Array.isArray(steps) || steps.length === 0 || steps.some((step) => typeof step?.region !== 'object' || step.region === null)) {
+      return Promise.reject(badParameter('setRegion(opId, steps): steps must be a list of select steps, each {region, falloff?, mode?}'));
+    }
     let region;
     try {
       this.#requireDocument().indexOf(opId);
-      const mesh = this.#editor.requireDocument();
-      const steps = regionSteps(this.#editor.selectionState.ruleFor(this.restVersion), mesh.selection, mesh.selectionCount);
       region = this.document.regionFor(steps);
     } catch (error) {
       return Promise.reject(error);
     }
     return this.#changeOp(opId, 'region', region, (label) => `Change the region of ${label}`);
+  }
+
+  /** The select steps of op `opId`'s region (a copy). */
+  regionSteps(opId) {
+    const { region } = this.#requireDocument().ops[this.document.indexOf(opId)];
+    return structuredClone(this.document.regions.find((entry) => entry.name === region)?.steps ?? []);
   }
 
   /** Deletes op `opId`: the later ops re-run on its input; a step of the history. */

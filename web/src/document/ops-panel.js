@@ -4,9 +4,10 @@
 // (api.setOpEnabled, api.removeOp, api.moveOp, api.setParameter), and each
 // change is a step of the history.
 // Selecting an op selects its region on the mesh (as the op evaluates it, on
-// its input), and the current selection can replace that region.
+// its input); its soft border can be changed, and the current selection can
+// replace that region.
 import { h, section } from '../ui/dom.js';
-import { opFields } from './op-fields.js';
+import { falloffField, opFields } from './op-fields.js';
 
 export function opsPanel({ api, editor }) {
   const list = h('ol', { className: 'op-list', 'data-testid': 'op-list' });
@@ -31,6 +32,10 @@ export function opsPanel({ api, editor }) {
 
   const regionControls = (entry) => h('div', { className: 'op-region' },
     h('span', { 'data-testid': `op-region-${entry.id}` }, `Region: ${entry.region}`),
+    falloffField(entry, editor.ops.regionSteps(entry.id), {
+      setRegion: (steps) => redrawIfRefused(api.setRegion(entry.id, steps)),
+      redraw: render,
+    }),
     h('button', {
       type: 'button',
       className: 'button',
@@ -84,7 +89,7 @@ export function opsPanel({ api, editor }) {
           redraw: render,
         }),
         regionControls(entry),
-        orderControls(entry, index, ops.length)) : null);
+        ops.length > 1 ? orderControls(entry, index, ops.length) : null) : null);
   };
 
   function render() {
