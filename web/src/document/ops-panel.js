@@ -67,6 +67,13 @@ export function opsPanel({ api, editor }) {
       h('button', {
         className: 'op-label',
         'data-testid': `op-select-${entry.id}`,
+        title: 'Show this edit\'s amounts and region (Delete deletes it)',
+        // Delete (or Backspace) on the focused name deletes the edit, as the × does.
+        onkeydown: (event) => {
+          if (event.key !== 'Delete' && event.key !== 'Backspace') return;
+          event.preventDefault();
+          redrawIfRefused(api.removeOp(entry.id));
+        },
         onclick: () => {
           selected = isSelected ? null : entry.id;
           render();

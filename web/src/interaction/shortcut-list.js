@@ -27,6 +27,7 @@ export function shortcutRows(tools) {
     ['Arrow keys', 'Pan the view (3D view focused); Shift+arrows orbit'],
     ['Ctrl+O', 'Open a mesh, or saved edits (with their mesh)'],
     ['Ctrl+S', 'Save the edits as a file (.json)'],
+    ['Delete', 'Delete the edit whose name has the focus in the Edits list'],
     ['Ctrl+Z', 'Undo'],
     ['Ctrl+Shift+Z or Ctrl+Y', 'Redo'],
     ['Esc', 'Cancel the drag or the solve in progress; close this list'],
