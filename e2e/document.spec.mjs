@@ -291,18 +291,11 @@ test("an ARAP drag's move from the Edits list: the dragged part moves by the new
   expect(pageErrors).toEqual([]);
 });
 
-test('an amount typed in the Edits list previews live; leaving the field commits it, or, typed back, shows the committed shape again', async ({ page }) => {
+test('an amount typed in the last edit previews live; leaving the field commits it, or, typed back, shows the committed shape again', async ({ page }) => {
   const pageErrors = await openApp(page);
   const { afterThree, document } = await editSpot(page);
-  const second = document.ops[1];
-  const positions = () => page.evaluate(() => Array.from(window.anisoform.positions()));
-  const rate = () => page.evaluate(() => window.anisoform.document().ops[1].op.transform.twist.degreesPerUnit);
-  await page.getByTestId(`op-select-${second.id}`).click();
-  const amount = page.getByTestId(`op-amount-${second.id}-Twist (degrees/unit)`);
-  await expect(amount).toHaveValue('30');
-  const undoTitle = await page.getByTestId('undo').getAttribute('title');
-
-  // Typing 60: the shape follows live (live 'positions' events; the document keeps 30).
+  const [, second, third] = document.ops;
+  const shear = () => page.evaluate(() => window.anisoform.document().ops[2].op.transform.shear);
   await page.evaluate(() => {
     window.__live = 0;
     window.anisoform.on('positions', ({ live, positions }) => {
@@ -310,32 +303,49 @@ test('an amount typed in the Edits list previews live; leaving the field commits
       window.__shown = { live, positions: Array.from(positions) };
     });
   });
-  await amount.click();
-  await amount.press('Control+a');
-  await page.keyboard.type('60');
+  const typeInto = async (field, text) => {
+    await field.click();
+    await field.press('Control+a');
+    await page.keyboard.type(text);
+  };
+
+  // An earlier edit: no preview while typing (it would replay the later ones).
+  await page.getByTestId(`op-select-${second.id}`).click();
+  const rate = page.getByTestId(`op-amount-${second.id}-Twist (degrees/unit)`);
+  await typeInto(rate, '60');
+  await page.waitForTimeout(500);
+  expect(await page.evaluate(() => window.__live)).toBe(0);
+  await rate.fill('30'); // its own value again: nothing to commit
+  await rate.blur();
+
+  // The last edit: typing 0.6, the shape follows live (the document keeps 0.3).
+  await page.getByTestId(`op-select-${third.id}`).click();
+  const amount = page.getByTestId(`op-amount-${third.id}-Shear`);
+  await expect(amount).toHaveValue('0.3');
+  // (Selecting the edit selected its region: a step of its own.)
+  await expect(page.getByTestId('undo')).toHaveAttribute('title', 'Undo Select the region of Shear (AnDefGrad) (Ctrl+Z)');
+  const undoTitle = await page.getByTestId('undo').getAttribute('title');
+  await typeInto(amount, '0.6');
   await expect.poll(() => page.evaluate(() => window.__live)).toBeGreaterThan(0);
-  expect(await rate()).toBe(30);
-  // Typed back to 30 and left: no change, and the committed shape comes back, bitwise.
-  await amount.press('Control+a');
-  await page.keyboard.type('30');
+  expect(await shear()).toBe(0.3);
+  // Typed back to 0.3 and left: no change, and the committed shape comes back, bitwise.
+  await typeInto(amount, '0.3');
   const back = await armChange(page, 'document');
   await amount.blur();
   await back();
   const shown = await page.evaluate(() => window.__shown);
   expect(shown.live).toBe(false);
   expect(bitwise(shown.positions, afterThree)).toBe(true);
-  expect(await rate()).toBe(30);
+  expect(await shear()).toBe(0.3);
   expect(await page.getByTestId('undo').getAttribute('title')).toBe(undoTitle);
 
   // Typed and left with a new value: committed, a step of the history.
-  await amount.click();
-  await amount.press('Control+a');
-  await page.keyboard.type('45');
+  await typeInto(amount, '0.45');
   const committed = await armChange(page, 'document');
   await amount.press('Tab');
   await committed();
-  expect(await rate()).toBe(45);
-  expect(await page.getByTestId('undo').getAttribute('title')).toBe('Undo Change the amounts of Twist (AnARAP) (Ctrl+Z)');
+  expect(await shear()).toBe(0.45);
+  expect(await page.getByTestId('undo').getAttribute('title')).toBe('Undo Change the amounts of Shear (AnDefGrad) (Ctrl+Z)');
   expect(pageErrors).toEqual([]);
 });
 

@@ -91,8 +91,12 @@ export function opsPanel({ api, editor }) {
       isSelected ? h('div', { className: 'op-amounts' },
         opFields(entry, {
           change: (patch) => redrawIfRefused(api.setParameter(entry.id, patch)),
+          // Typing previews the last edit (warm-started iterations, cheap);
+          // an earlier one's preview replays every later edit, seconds a
+          // keystroke on a big mesh, so it waits for the value's commit.
           // A value being typed may be half-written ("0."): its preview's refusal says nothing.
-          preview: (patch) => entry.enabled && editor.ops.setParameter(entry.id, patch, { preview: true }).catch(() => {}),
+          preview: (patch) => entry.enabled && index === ops.length - 1
+            && editor.ops.setParameter(entry.id, patch, { preview: true }).catch(() => {}),
           redraw: render,
         }),
         regionControls(entry),
