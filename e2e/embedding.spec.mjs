@@ -493,3 +493,65 @@ test('<anisoform-modeller edits>: saved edits open with src, alone on the mesh l
   await page.evaluate(() => window.element.remove());
   expect(pageErrors).toEqual([]);
 });
+
+test('<anisoform-modeller edits> that cannot be opened: the mesh is shown without them, the error reported, and edits apply as on the mesh alone', async ({ page }) => {
+  const pageErrors = await openExample(page);
+  const edit = { method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.3, 1] } };
+  // Saved edits of the spool whose second op fails once the first has solved.
+  const failing = await page.evaluate(async (op) => {
+    const host = document.createElement('div');
+    host.style.height = '200px';
+    document.body.append(host);
+    const modeller = window.anisoformExample.createModeller(host, { ui: 'none', mesh: '../spool.off' });
+    await modeller.api.ready;
+    await modeller.api.select({ box: { min: [-1, 0.2, -1], max: [1, 1, 1] } });
+    await modeller.api.deform(op);
+    const json = modeller.api.document();
+    modeller.dispose();
+    host.remove();
+    const [first] = json.ops;
+    return { ...json, ops: [first, { ...first, id: 'thick', op: { ...first.op, transform: { thickness: 1.2 } } }] };
+  }, edit);
+  await page.route('**/failing-edits.json', async (route) => {
+    const response = await route.fetch({ url: new URL('../spool.off', route.request().url()).href });
+    await route.fulfill({ response, body: JSON.stringify(failing), contentType: 'application/json' });
+  });
+
+  const outcomes = await page.evaluate(async (op) => {
+    const make = (edits) => {
+      const element = document.createElement('anisoform-modeller');
+      element.setAttribute('ui', 'none');
+      element.setAttribute('src', '../spool.off');
+      if (edits) element.setAttribute('edits', edits);
+      element.style.height = '160px';
+      const errors = [];
+      element.addEventListener('error', (event) => errors.push(event.detail.message));
+      document.body.append(element);
+      return { element, errors };
+    };
+    const results = {};
+    for (const [name, edits] of [['plain', null], ['missing', '../missing-edits.json'], ['failing', '../failing-edits.json']]) {
+      const { element, errors } = make(edits);
+      await element.api.ready;
+      const { api } = element;
+      const shown = { vertices: api.info().vertices, ops: api.document().ops.length };
+      // A band the first op of the failing edits would have moved: selected on the solver's rest pose.
+      const band = await api.select({ box: { min: [-1, 0.3, -1], max: [1, 0.4, 1] } });
+      await api.select({ box: { min: [-1, 0.2, -1], max: [1, 1, 1] } });
+      await api.deform(op);
+      results[name] = { shown, band, errors, positions: Array.from(api.positions()) };
+      element.remove();
+    }
+    return results;
+  }, edit);
+  const bitwise = (a, b) => a.length === b.length && a.every((value, i) => Object.is(value, b[i]));
+  expect(outcomes.plain.errors).toEqual([]);
+  for (const name of ['missing', 'failing']) {
+    expect(outcomes[name].shown).toEqual({ vertices: 649, ops: 0 });
+    expect(outcomes[name].band).toBe(outcomes.plain.band);
+    expect(bitwise(outcomes[name].positions, outcomes.plain.positions)).toBe(true);
+  }
+  expect(outcomes.missing.errors).toEqual([expect.stringMatching(/edits were not opened.*missing-edits\.json could not be fetched \(HTTP 404\)/)]);
+  expect(outcomes.failing.errors).toEqual([expect.stringMatching(/document\.ops\[1\] \(id 'thick'\).*thickness/)]);
+  expect(pageErrors).toEqual([]);
+});

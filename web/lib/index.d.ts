@@ -15,7 +15,11 @@ export interface ModellerOptions {
   mesh?: MeshSource;
   /** The file name of `mesh` when it is bytes or a nameless Blob: its extension picks the reader (obj, off, ply, stl, glb). */
   meshName?: string;
-  /** An edit document (saved edits), or its URL, to open on `mesh` as its base mesh (api.open); needs `mesh`. */
+  /**
+   * An edit document (saved edits), or its URL, to open on `mesh` as its base mesh (api.open); needs
+   * `mesh`. Edits that cannot be opened leave `mesh` shown without them, the error reported as an
+   * 'error' event (`ready` still resolves).
+   */
   document?: unknown;
   /**
    * Keep the work (edit document and base mesh) in IndexedDB after every change and restore it on

@@ -44,11 +44,12 @@ export class DocumentPersistence {
       try {
         replayed = await this.#replayEach(json);
       } catch (error) {
-        // The work is put back: the mesh loaded for the document undone, or
-        // the current document's state (the ops before the failing one stay in
-        // the session as its rest pose).
+        // The work is put back (the ops before the failing one stay in the
+        // session as its rest pose): the mesh loaded for the document undone,
+        // or the state on screen, that of the current document (when the
+        // page had none, the mesh loaded for this one, as loaded).
         if (meshBytes !== undefined && previous) await this.#reopen(previous);
-        else if (current) await this.#runner.restore(current.ops.length).catch(() => {});
+        else if (this.#stack.document) await this.#runner.restore(this.#stack.document.ops.length).catch(() => {});
         throw error;
       }
       this.#adopt(json, replayed);

@@ -37,7 +37,9 @@ const OPTIONS = ['ui', 'mesh', 'meshName', 'document', 'keyboard', 'autosave', '
  *       messages, or the 3D view alone (orbit only; edits through the api)
  *   mesh: URL string/URL, File, Blob, ArrayBuffer or typed array to load first (default: none)
  *   meshName: its file name when `mesh` is bytes (the extension picks the reader)
- *   document: an edit document (or its URL) to open with `mesh` as its base (api.open)
+ *   document: an edit document (or its URL) to open with `mesh` as its base
+ *             (api.open); if it cannot be opened, `mesh` is shown without
+ *             it and the error is reported ('error'), `ready` resolving
  *   autosave: keep the work in IndexedDB and restore it on the next start
  *             instead of `mesh` (default false: one store per origin, so
  *             only a page with a single modeller should turn it on)
@@ -144,9 +146,9 @@ export function createModeller(container, options = {}) {
   const meshSource = mesh === undefined ? null : resolveMeshSource(mesh, meshName);
   meshSource?.catch(() => {}); // reported through `ready`
   const documentSource = editDocument === undefined ? undefined : resolveDocumentSource(editDocument);
-  documentSource?.catch(() => {}); // reported through `ready`
+  documentSource?.catch(() => {}); // reported below, with the mesh shown without it
   const ready = (async () => {
-    const [, source, json] = await Promise.all([starting, meshSource, documentSource]);
+    const [, source] = await Promise.all([starting, meshSource]);
     if (autosave && !lifetime.disposed) {
       editor.ops.enableAutosave();
       lifetime.defer(() => editor.ops.disableAutosave());
@@ -163,7 +165,15 @@ export function createModeller(container, options = {}) {
       await editor.load(source.data, source.name);
     } else {
       if (typeof api.open !== 'function') throw badParameter('createModeller: this build cannot open edit documents (no api.open)');
-      await api.open(withMeshFileName(json, source.name), source.data);
+      try {
+        await api.open(withMeshFileName(await documentSource, source.name), source.data);
+      } catch (error) {
+        // Edits that cannot be opened (not found, not JSON, made on another
+        // mesh, an op the core refuses) leave the mesh shown without them,
+        // the error reported: a product page still shows its product.
+        if (!editor.document) await editor.load(source.data, source.name);
+        reportError(error, 'The edits were not opened; the mesh is shown without them');
+      }
     }
     await drawn();
   })();
