@@ -3,7 +3,7 @@
 // notice (not an error) says so, the mesh, the document and the history are
 // exactly as before, and the solver comes back with that state: the next
 // edit, undo and a replay of the document all work as if nothing happened.
-import { expect, meshPath, openApp, test, uploadFile, verticalRange } from './support.mjs';
+import { expect, meshPath, openApp, recordWorkerRequests, test, uploadFile, verticalRange } from './support.mjs';
 
 // A solve that would run for tens of seconds on the armadillo.
 const LONG_EDIT = {
@@ -146,24 +146,16 @@ test('Esc stops the re-run an Edits-list toggle started; the states on screen co
   // A second op whose re-run lasts a few seconds (400 iterations, no early stop).
   await page.evaluate(() => window.anisoform.deform({ method: 'anarap', direction: { type: 'global', vector: [1, 0, 0] },
     transform: { shear: 0.2 }, maxIterations: 400, tolerance: 1e-15, acceleration: 'none' }));
-  const before = await page.evaluate(() => {
-    // Every request the page posts to a solver worker (the restarted one too), by kind.
-    window.__posted = [];
-    const post = Worker.prototype.postMessage;
-    Worker.prototype.postMessage = function postMessage(message, ...rest) {
-      window.__posted.push(message?.kind);
-      return post.call(this, message, ...rest);
-    };
-    return { positions: Array.from(window.anisoform.positions()), document: JSON.stringify(window.anisoform.document()),
-      undo: document.querySelector('[data-testid="undo"]').title };
-  });
+  const posted = await recordWorkerRequests(page);
+  const before = await page.evaluate(() => ({ positions: Array.from(window.anisoform.positions()),
+    document: JSON.stringify(window.anisoform.document()), undo: document.querySelector('[data-testid="undo"]').title }));
   const toggle = page.getByTestId('op-toggle-op-1');
   await toggle.uncheck();
   // As soon as the re-run shows its progress, Esc (the focus is on the checkbox, as after a click).
   await page.waitForFunction(() => /(Solving|Preparing the solver) \d+ %/.test(document.querySelector('[data-testid="progress"]')?.textContent ?? ''),
     null, { polling: 20 });
-  const [postedBefore, progress] = await page.evaluate(() => [window.__posted.length,
-    document.querySelector('[data-testid="progress"]').textContent]);
+  const postedBefore = (await posted()).length;
+  const progress = await page.evaluate(() => document.querySelector('[data-testid="progress"]').textContent);
   // Undo waits for the solve, and says so (the focus is on a checkbox, which takes no keys).
   await expect(page.getByTestId('undo')).toBeDisabled();
   await page.keyboard.press('Control+z');
@@ -173,9 +165,10 @@ test('Esc stops the re-run an Edits-list toggle started; the states on screen co
   expect(progress).toMatch(/^Edit [12] of 2: (Solving|Preparing the solver) \d+ %/);
   await expect(page.getByTestId('notice')).toContainText('Cancelled: the solve was stopped');
   await expect(toggle).toBeChecked();
-  const after = await page.evaluate((from) => ({ positions: Array.from(window.anisoform.positions()),
+  const after = await page.evaluate(() => ({ positions: Array.from(window.anisoform.positions()),
     document: JSON.stringify(window.anisoform.document()), undo: document.querySelector('[data-testid="undo"]').title,
-    posted: window.__posted.slice(from), errorShown: !document.querySelector('[data-testid="error"]').hidden }), postedBefore);
+    errorShown: !document.querySelector('[data-testid="error"]').hidden }));
+  after.posted = await posted(postedBefore);
   expect(after.positions.every((x, i) => Object.is(x, before.positions[i]))).toBe(true);
   expect(after.document).toBe(before.document);
   expect(after.undo).toBe(before.undo); // the toggle is no step of the history

@@ -5,7 +5,7 @@
 // live; a bad document is refused with its code and the work kept.
 import { readFileSync } from 'node:fs';
 
-import { armChange, expect, meshPath, openApp, test, uploadFile } from './support.mjs';
+import { armChange, expect, meshPath, openApp, recordWorkerRequests, test, uploadFile } from './support.mjs';
 
 // Three edits on Spot: a soft region stretch, a twist of a box, a shear of
 // a selection built with 'add'.
@@ -624,17 +624,8 @@ test('a slider on the last op updates the shape live at 20k vertices', { tag: '@
 test('open keeps the states between the ops for undo; a document failing at its second op leaves the solver on the work kept', async ({ page }) => {
   const pageErrors = await openApp(page);
   const { afterTwo, document } = await editSpot(page);
-  const counted = await page.evaluate(() => {
-    window.__posted = [];
-    const post = Worker.prototype.postMessage;
-    Worker.prototype.postMessage = function postMessage(message, ...rest) {
-      window.__posted.push(message?.kind);
-      return post.call(this, message, ...rest);
-    };
-    return true;
-  });
-  expect(counted).toBe(true);
-  const replays = () => page.evaluate(() => window.__posted.filter((kind) => kind === 'replay').length);
+  const posted = await recordWorkerRequests(page);
+  const replays = async () => (await posted()).filter((kind) => kind === 'replay').length;
   const positions = () => page.evaluate(() => Array.from(window.anisoform.positions()));
 
   await page.evaluate((json) => window.anisoform.open(json), document);

@@ -170,3 +170,20 @@ export async function verticalRange(page) {
 export async function saveScreenshot(page, name) {
   await page.screenshot({ path: resolve(repoRoot, 'e2e', 'artifacts', `${name}.png`) });
 }
+
+/**
+ * From now on, records the kind of every request the page posts to a solver
+ * worker (a restarted one too) in window.__posted; resolves a function giving
+ * those kinds, from the `from`-th on.
+ */
+export async function recordWorkerRequests(page) {
+  await page.evaluate(() => {
+    window.__posted = [];
+    const post = Worker.prototype.postMessage;
+    Worker.prototype.postMessage = function postMessage(message, ...rest) {
+      window.__posted.push(message?.kind);
+      return post.call(this, message, ...rest);
+    };
+  });
+  return (from = 0) => page.evaluate((start) => window.__posted.slice(start), from);
+}
