@@ -137,6 +137,7 @@ test('Ctrl+S is Save edits, Ctrl+O is Open…, not the browser\'s own', async ({
   await expect(page.getByTestId('notice')).toContainText('No edits to save yet');
   await page.evaluate(() => window.anisoform.select({ all: true }));
   await page.evaluate(() => window.anisoform.deform({ method: 'anarap', transform: { scale: [1.3, 1] } }));
+  await expect(page.getByTestId('notice')).toBeHidden(); // moot now: there are edits to save
   // The keys click the Mesh panel's Save edits button and the Open… file
   // input (what the button does is saved-edits.spec.mjs's); the clicks are
   // counted here in place of the download and the browser's file picker.

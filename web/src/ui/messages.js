@@ -52,8 +52,8 @@ export function installMessages(root, { editor, lifetime }) {
     show(notice, message, details);
     notice.dataset.source = source;
   });
-  // element.dataset.source: what put the message there (a notice: 'load' or
-  // 'cancel'; a warning: 'edit', 'preview' or 'flatten').
+  // element.dataset.source: what put the message there (a notice: 'load',
+  // 'cancel', 'busy' or 'save'; a warning: 'edit', 'preview' or 'flatten').
   const hideFrom = (element, source) => {
     if (element.dataset.source === source) element.hidden = true;
   };
@@ -70,7 +70,10 @@ export function installMessages(root, { editor, lifetime }) {
     if (reason !== 'positions') return;
     warning.hidden = true;
     clearCancelNotice();
+    hideFrom(notice, 'save'); // "No edits to save yet" is moot once there is a shape to save
   });
+  // "Undo waits until the solve has ended" is moot once it has.
+  editor.on('busy', (busy) => !busy && hideFrom(notice, 'busy'));
   editor.on('warning', ({ message, source = 'edit' }) => warn(message, source));
   // The live preview warns while it folds; the commit's own warning follows its 'change'.
   editor.on('stats', ({ live, inverted }) => {
