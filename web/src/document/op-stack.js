@@ -110,8 +110,7 @@ export class OpStack {
   commit(solverOp, label) {
     return this.#run(async () => {
       const editor = this.#editor;
-      const mesh = editor.requireDocument();
-      const steps = regionSteps(editor.selectionState.ruleFor(this.restVersion), mesh.selection, mesh.selectionCount);
+      const steps = this.#selectionSteps();
       editor.selectionState.syncForEdit();
       const { op } = await this.#client.request(Request.resolveOp, { op: solverOp });
       const index = this.document.ops.length;
@@ -247,8 +246,7 @@ export class OpStack {
   useSelectionAsRegion(opId) {
     let steps;
     try {
-      const mesh = this.#editor.requireDocument();
-      steps = regionSteps(this.#editor.selectionState.ruleFor(this.restVersion), mesh.selection, mesh.selectionCount);
+      steps = this.#selectionSteps();
     } catch (error) {
       return Promise.reject(error);
     }
@@ -271,7 +269,7 @@ export class OpStack {
   }
 
   /** The select steps of op `opId`'s region (a copy). */
-  regionSteps(opId) {
+  stepsOfRegion(opId) {
     const { region } = this.#requireDocument().ops[this.document.indexOf(opId)];
     return structuredClone(this.document.regions.find((entry) => entry.name === region)?.steps ?? []);
   }
@@ -395,6 +393,12 @@ export class OpStack {
   }
 
   // ---- helpers -------------------------------------------------------------
+
+  // The select steps of the current selection, as an op's region stores them.
+  #selectionSteps() {
+    const mesh = this.#editor.requireDocument();
+    return regionSteps(this.#editor.selectionState.ruleFor(this.restVersion), mesh.selection, mesh.selectionCount);
+  }
 
   #requireDocument() {
     if (!this.document) throw badParameter('no mesh is loaded yet');

@@ -32,7 +32,7 @@ export function opsPanel({ api, editor }) {
 
   const regionControls = (entry) => h('div', { className: 'op-region' },
     h('span', { 'data-testid': `op-region-${entry.id}` }, `Region: ${entry.region}`),
-    falloffField(entry, editor.ops.regionSteps(entry.id), {
+    falloffField(entry, editor.ops.stepsOfRegion(entry.id), {
       setRegion: (steps) => redrawIfRefused(api.setRegion(entry.id, steps)),
       redraw: render,
     }),
