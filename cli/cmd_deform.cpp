@@ -16,6 +16,7 @@
 
 #include "anisoform/deform_request.h"
 #include "anisoform/direction_field.h"
+#include "anisoform/limits.h"
 #include "anisoform/op.h"
 #include "anisoform/transforms.h"
 #include "cli_common.h"
@@ -147,7 +148,7 @@ DeformOp edit_from_flags(const DeformArguments& args, DeformPlan& plan) {
   }
   if (!args.iterations.empty()) {
     const int iterations = parse_integer(args.iterations, "--iterations");
-    if (iterations < 1) fail(ErrorCode::BadParameter, "--iterations: must be at least 1, got " + args.iterations);
+    check_iteration_count(iterations, "--iterations");
     // One count for both: AnARAP iterates to the tolerance (capped), except
     // that the paper's rotation scheme (--rotations steps), which has no fixed
     // point, runs exactly this many steps (DeformRequest::rotation_steps).

@@ -13,6 +13,7 @@
 #include <optional>
 
 #include "anisoform/direction_field.h"
+#include "anisoform/limits.h"
 #include "anisoform/flatten.h"
 #include "anisoform/op.h"
 #include "anisoform/pattern_export.h"
@@ -120,9 +121,7 @@ FlattenPlan plan_flatten(const FlattenArguments& args) {
   if (!args.mm_per_unit.empty()) plan.mm_per_unit = positive_number(args.mm_per_unit, "--mm-per-unit");
   if (!args.iterations.empty()) {
     plan.request.max_iterations = parse_integer(args.iterations, "--iterations");
-    if (plan.request.max_iterations < 1) {
-      fail(ErrorCode::BadParameter, "--iterations: must be at least 1, got " + args.iterations);
-    }
+    check_iteration_count(plan.request.max_iterations, "--iterations");
   }
   if (!args.tolerance.empty()) {
     plan.request.tolerance = parse_number(args.tolerance, "--tolerance");

@@ -5,6 +5,7 @@
 // live; a bad document is refused with its code and the work kept.
 import { readFileSync } from 'node:fs';
 
+import { schemaErrors } from '../docs/document-schema.mjs';
 import { armChange, expect, meshPath, openApp, recordWorkerRequests, test, uploadFile } from './support.mjs';
 
 // Three edits on Spot: a soft region stretch, a twist of a box, a shear of
@@ -36,6 +37,7 @@ test('a document replays on a fresh page to bitwise the same positions', async (
   expect(document.ops[1].op.transform.twist.origin).toHaveLength(3);
   expect(document.regions[0].steps[0].region.sphere.radius).toBe(0.4);
   expect(document.regions.at(-1).steps.map((step) => step.mode ?? 'replace')).toEqual(['replace', 'add']);
+  expect(schemaErrors(document)).toEqual([]);
 
   const fresh = await browser.newPage();
   const freshErrors = await openApp(fresh);

@@ -6,6 +6,7 @@
 // page stays.
 import { readFileSync, writeFileSync } from 'node:fs';
 import { basename } from 'node:path';
+import { schemaErrors } from '../docs/document-schema.mjs';
 import { armChange, expect, meshPath, openApp, selectUpperHalf, test, uploadFile } from './support.mjs';
 
 async function recordErrors(page) {
@@ -62,6 +63,7 @@ test('Save edits, then Open… them on the mesh loaded, or drop them with their 
   expect(json.format).toBe('anisoform-document');
   expect(json.mesh.name).toBe('spot_triangulated.obj');
   expect(json.ops.map((entry) => Object.keys(entry.op.transform))).toEqual([['twist']]);
+  expect(schemaErrors(json)).toEqual([]);  // the schema embedders are given
 
   // Reset clears the edits; the saved ones, opened alone, replay on the mesh loaded.
   await page.getByTestId('reset').click();

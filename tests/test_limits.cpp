@@ -2,6 +2,7 @@
 // refused by name (CLI exit 2 for parameters, 3 for the mesh), nothing
 // non-finite is printed, and within them the result does not depend on the
 // mesh's units (the deformer solves on a unit-size copy).
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,7 @@
 
 #include "anisoform/deformer.h"
 #include "anisoform/error.h"
+#include "anisoform/flatten.h"
 #include "anisoform/limits.h"
 #include "anisoform/mesh_check.h"
 #include "anisoform/mesh_io.h"
@@ -60,6 +62,13 @@ TEST_CASE("limits: huge amounts on the command line are refused by name with exi
       {{"flatten", aniso::test::mesh_path("open/spothead.obj"), temp_path("limits_pattern.obj"), "--compress",
         "1e300"},
        "su = 1e+300 is out of range (0.01 .. 100)"},
+      {{"deform", in, out, "--scale", "1.2", "--iterations", "10001"},
+       "--iterations must be an integer from 1 to 10000, got 10001"},
+      {{"deform", in, out, "--scale", "1.2", "--iterations", "0"},
+       "--iterations must be an integer from 1 to 10000, got 0"},
+      {{"flatten", aniso::test::mesh_path("open/spothead.obj"), temp_path("limits_pattern.obj"), "--iterations",
+        "2147483647"},
+       "--iterations must be an integer from 1 to 10000, got 2147483647"},
   };
   for (const Case& c : cases) {
     const CliRun run = run_limits_case(c.args, 2);
@@ -133,6 +142,35 @@ TEST_CASE("limits: a twist's range is relative to the mesh size", "[limits]") {
   // The same rate on spot a thousand times smaller is 1000 turns... / 1000.
   aniso::Deformer small(aniso::Mesh{spot.V * 1e-3, spot.F});
   CHECK(small.deform(request).V.allFinite());
+}
+
+// A crafted request with tolerance 0 would otherwise hold the solver for as
+// many iterations as it asks (2^31 - 1 passed every check).
+TEST_CASE("limits: iteration counts and rotation steps above 10000 are refused before any solve", "[limits]") {
+  const aniso::Mesh spot = aniso::test::load("closed/spot_triangulated.obj");
+  aniso::Deformer deformer(spot);
+  aniso::DeformRequest request;
+  request.transform.su = 1.2;
+  request.tolerance = 0.0;
+  request.max_iterations = aniso::limits::kMaxIterations + 1;
+  CHECK(aniso::test::bad_parameter_message([&] { deformer.deform(request); }) ==
+        "iterations must be an integer from 1 to 10000, got 10001");
+  request.max_iterations = 3;
+  request.rotation_steps = std::numeric_limits<int>::max();
+  CHECK(aniso::test::bad_parameter_message([&] { deformer.deform(request); }) ==
+        "rotation steps must be an integer from 1 to 10000, got 2147483647");
+  request.rotation_steps = 1;
+  CHECK(deformer.deform(request).iterations == 3);  // the deformer is still usable
+
+  const aniso::Mesh head = aniso::test::load("open/spothead.obj");
+  aniso::FlattenOptions options;
+  options.solver.max_iterations = 0;
+  CHECK(aniso::test::bad_parameter_message([&] { aniso::flatten(head, {}, options); }) ==
+        "flatten: maxIterations must be an integer from 1 to 10000, got 0");
+  options.solver.max_iterations = 10;
+  options.solver.tolerance = std::numeric_limits<double>::quiet_NaN();
+  CHECK(aniso::test::bad_parameter_message([&] { aniso::flatten(head, {}, options); }) ==
+        "flatten: the tolerance must be a finite number >= 0");
 }
 
 TEST_CASE("limits: a session's vertex limit refuses a bigger mesh by name and keeps the one it has", "[limits]") {

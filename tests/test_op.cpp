@@ -158,6 +158,9 @@ TEST_CASE("op: refusals name the field and quote the value", "[op]") {
   CHECK(refusal_of_op(R"({"transform":{"twist":{"axis":[0,0,1]}}})") ==
         "op.transform.twist.degreesPerUnit is missing");
   CHECK(refusal_of_op(R"([1,2])") == "op must be an object");
+  CHECK(refusal_of_op(R"({"maxIterations":10001})") == "op.maxIterations must be an integer from 1 to 10000, got 10001");
+  CHECK(refusal_of_op(R"({"rotationSteps":1e9})") ==
+        "op.rotationSteps must be an integer from 1 to 10000, got 1000000000");
   // Ranges are the core's validators', named by where the value came from.
   CHECK(refusal_of_op(R"({"transform":{"scale":-1}})") == "op.transform: scale su must be positive, got -1");
   CHECK(refusal_of_op(R"({"transform":{"shear":1000}})").rfind("op.transform: shear", 0) == 0);
@@ -174,6 +177,8 @@ TEST_CASE("op: refusals name the field and quote the value", "[op]") {
         "flatten: options.direction.type must be one of global, constraints, got 'curvature'");
   CHECK(flatten_refusal(R"({"tolerance":-1})") == "flatten: options.tolerance must be >= 0, got -1");
   CHECK(flatten_refusal("null") == "flatten: options must be an object");
+  CHECK(flatten_refusal(R"({"maxIterations":20000})") ==
+        "flatten: options.maxIterations must be an integer from 1 to 10000, got 20000");
   CHECK(flatten_refusal(R"({"refine":1})") == "flatten: options.refine must be true or false, got 1");
   CHECK(flatten_options_from_json(Json::parse("{}")).refine);
   CHECK_FALSE(flatten_options_from_json(Json::parse(R"({"refine":false})")).refine);

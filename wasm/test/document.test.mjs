@@ -153,3 +153,56 @@ test("a replay's factorizations and iterations are the session's progress (its s
     session.delete();
   }
 });
+
+// Every kind of op and region the page records (its API and tools go through
+// Session.resolveOp as here), written as the core resolves them.
+const VARIED_REGIONS = [
+  ...REGIONS,
+  { name: 'painted', steps: [{ region: { vertices: [0, 1, 2, 3, 40], weights: [1, 1, 0.5, 0.25, 1] } }] },
+];
+const VARIED_OPS = [
+  ...OPS,
+  { id: 'drag', region: 'top', op: { method: 'arap', move: [0.05, 0.1, 0] } },
+  { id: 'curvature-shear', region: 'middle', op: { direction: { type: 'curvature', which: 'max', smoothing: 3 },
+    transform: { shear: 0.2 } } },
+  { id: 'field-rotate', region: 'middle', op: { direction: { type: 'constraints', constraints: [
+    { vertex: 5, direction: [1, 0, 0] }, { vertex: 60, direction: [0, 0, 1] }] },
+  transform: { rotate: { axis: 'n', degrees: 15 } }, rotations: 'steps', rotationSteps: 3, acceleration: 'anderson' } },
+  { id: 'linear', region: 'painted', op: { method: 'linear', direction: { type: 'global', vector: [0, 0, 1] },
+    transform: { thickness: 1.1 }, maxIterations: 10000 } },
+];
+
+test('documents the core writes pass docs/document.schema.json, whose iteration bounds are the core\'s', async () => {
+  const { schemaErrors } = await import('../../docs/document-schema.mjs');
+  const session = sessionWith(wasm, MESH);
+  try {
+    const ops = VARIED_OPS.map(({ id, region, op }) => {
+      const rule = VARIED_REGIONS.find((r) => r.name === region);
+      session.setSelection(new Float32Array(session.info().vertices));
+      for (const step of rule.steps) session.select(step.region, { falloff: step.falloff, mode: step.mode });
+      return { id, label: id, enabled: true, region, op: session.resolveOp(op) };
+    });
+    const info = session.info();
+    const document = {
+      format: 'anisoform-document',
+      version: 1,
+      mesh: { name: 'spool.off', vertices: info.vertices, triangles: info.triangles, hash: session.meshHash() },
+      regions: VARIED_REGIONS,
+      ops,
+    };
+    assert.deepEqual(ops.map((entry) => entry.op.acceleration), ['lbfgs', 'lbfgs', 'lbfgs', 'lbfgs', 'lbfgs', 'anderson', 'lbfgs']);
+    assert.deepEqual(schemaErrors(document), []);
+    assert.deepEqual(schemaErrors(documentOfSpool), []);
+    assert.equal(session.replay(document).replayed, VARIED_OPS.length);
+
+    // One past the bound: the schema and the core both refuse it, by name.
+    for (const key of ['maxIterations', 'rotationSteps']) {
+      const over = structuredClone(document);
+      over.ops[0].op[key] = 10001;
+      assert.ok(schemaErrors(over).some((line) => line.startsWith(`/ops/0/op/${key}: must be <= 10000`)), key);
+      assert.throws(() => session.replay(over), new RegExp(`op\\.${key} must be an integer from 1 to 10000, got 10001`));
+    }
+  } finally {
+    session.delete();
+  }
+});

@@ -11,6 +11,8 @@
 // typing mistake (1e300 overflowed to inf and printed null).
 #pragma once
 
+#include <string>
+
 namespace aniso {
 namespace limits {
 
@@ -39,5 +41,19 @@ constexpr double kMaxTwistDegrees = 36000.0;
 // range the result does not depend on the mesh's units.
 constexpr double kMaxCoordinate = 1e150;
 
+// Iterations of one solve: a deformation's maxIterations and the paper's
+// rotation scheme's rotationSteps (each a full solve), a flattening's
+// maxIterations. The solvers stop at their tolerance long before (a 200k
+// mesh commits in 50; the open bunny's flattening with its refinement takes
+// 332), so the bound only stops a typing mistake or a crafted document with
+// tolerance 0 from holding the solver for hours: 10000 iterations of a 200k
+// mesh are about ten minutes natively.
+constexpr int kMaxIterations = 10000;
+
 }  // namespace limits
+
+// Error(BadParameter) "WHAT must be an integer from 1 to 10000, got COUNT"
+// unless 1 <= count <= limits::kMaxIterations.
+void check_iteration_count(long long count, const std::string& what);
+
 }  // namespace aniso

@@ -20,6 +20,7 @@
 #include "directions/curvature.h"
 #include "deform/element_targets.h"
 #include "anisoform/error.h"
+#include "anisoform/limits.h"
 #include "deform/gauge.h"
 #include "geometry/laplacian_solver.h"
 #include "geometry/supernodal_ldlt.h"
@@ -128,12 +129,8 @@ void validate_request(const DeformRequest& request, int n) {
     fail(ErrorCode::BadParameter, "handles are only used by the arap method");
   }
   if (!request.handle_offset.allFinite()) fail(ErrorCode::BadParameter, "the handle offset must be finite");
-  if (request.max_iterations < 1) {
-    fail(ErrorCode::BadParameter, "iterations must be at least 1, got " + std::to_string(request.max_iterations));
-  }
-  if (request.rotation_steps < 1) {
-    fail(ErrorCode::BadParameter, "rotation steps must be at least 1, got " + std::to_string(request.rotation_steps));
-  }
+  check_iteration_count(request.max_iterations, "iterations");
+  check_iteration_count(request.rotation_steps, "rotation steps");
   if (!(request.rotation_coupling > 0.0) || !std::isfinite(request.rotation_coupling)) {
     fail(ErrorCode::BadParameter, "the rotation coupling must be a finite number > 0");
   }

@@ -1,8 +1,10 @@
 // The Flattener: keeps what depends only on the patch (charts, start maps, the
 // one factorization) and runs a flattening per request, ours or the baseline.
 #include <chrono>
+#include <cmath>
 #include <optional>
 
+#include "anisoform/limits.h"
 #include "anisoform/mesh_check.h"
 #include "flatten/flatten_pipeline.h"
 
@@ -101,6 +103,11 @@ int Flattener::factorizations() const { return impl_->arap->factorizations(); }
 
 FlattenResult Flattener::flatten(const FlattenOptions& options) {
   const auto started = std::chrono::steady_clock::now();
+  // The hosts' readers (op JSON, CLI) refuse these first, naming their field.
+  check_iteration_count(options.solver.max_iterations, "flatten: maxIterations");
+  if (!(options.solver.tolerance >= 0.0) || !std::isfinite(options.solver.tolerance)) {
+    fail(ErrorCode::BadParameter, "flatten: the tolerance must be a finite number >= 0");
+  }
   Impl& im = *impl_;
   const FlattenPatch& patch = im.patch;
   const Triangles& F = patch.mesh.F;

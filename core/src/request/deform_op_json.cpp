@@ -98,7 +98,7 @@ DeformOp deform_op_from_json(const Json& op) {
                            ? ArapElements::Spokes
                            : ArapElements::SpokesAndRims;
   }
-  if (has(op, "maxIterations")) request.max_iterations = integer_at_least(op["maxIterations"], 1, "op.maxIterations");
+  if (has(op, "maxIterations")) request.max_iterations = iteration_count(op["maxIterations"], "op.maxIterations");
   if (has(op, "rotations")) request.rotations = rotation_scheme_from_json(op["rotations"], "op.rotations");
   if (has(op, "rotationCoupling")) {
     request.rotation_coupling = finite_number(op["rotationCoupling"], "op.rotationCoupling");
@@ -107,7 +107,7 @@ DeformOp deform_op_from_json(const Json& op) {
     }
   }
   if (has(op, "acceleration")) request.acceleration = acceleration_from_json(op["acceleration"], "op.acceleration");
-  if (has(op, "rotationSteps")) request.rotation_steps = integer_at_least(op["rotationSteps"], 1, "op.rotationSteps");
+  if (has(op, "rotationSteps")) request.rotation_steps = iteration_count(op["rotationSteps"], "op.rotationSteps");
   if (has(op, "tolerance")) {
     request.tolerance = finite_number(op["tolerance"], "op.tolerance");
     if (request.tolerance < 0.0) refuse("op.tolerance", "must be >= 0, got " + describe(op["tolerance"]));

@@ -57,7 +57,7 @@ SessionFlatten flatten_options_from_json(const Json& options) {
     out.use_selection = one_of(options["patch"], {"mesh", "selection"}, name + ".patch") == "selection";
   }
   if (has(options, "maxIterations")) {
-    out.max_iterations = integer_at_least(options["maxIterations"], 1, name + ".maxIterations");
+    out.max_iterations = iteration_count(options["maxIterations"], name + ".maxIterations");
   }
   if (has(options, "tolerance")) {
     out.tolerance = finite_number(options["tolerance"], name + ".tolerance");

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "anisoform/error.h"
+#include "anisoform/limits.h"
 
 namespace aniso::json_fields {
 
@@ -56,6 +57,12 @@ int integer_at_least(const Json& value, int minimum, const std::string& field) {
     refuse(field, "must be an integer >= " + std::to_string(minimum) + ", got " + describe(value));
   }
   return static_cast<int>(value.get<double>());
+}
+
+int iteration_count(const Json& value, const std::string& field) {
+  const int count = integer_at_least(value, 1, field);
+  check_iteration_count(count, field);
+  return count;
 }
 
 bool flag(const Json& value, const std::string& field) {

@@ -30,6 +30,9 @@ const Json& member(const Json& object, const char* key, const std::string& field
 
 double finite_number(const Json& value, const std::string& field);
 int integer_at_least(const Json& value, int minimum, const std::string& field);
+// An integer within limits.h's iteration bound ("FIELD must be an integer
+// from 1 to 10000, got 20000").
+int iteration_count(const Json& value, const std::string& field);
 bool flag(const Json& value, const std::string& field);  // "must be true or false"
 // The string, if it is one of `choices`.
 std::string one_of(const Json& value, const Keys& choices, const std::string& field);

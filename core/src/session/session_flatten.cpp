@@ -97,13 +97,6 @@ SessionFlattenResult Session::flatten(const SessionFlatten& given) {
 SessionFlattenResult Session::flatten_once(const SessionFlatten& given) {
   require_mesh();
   const SessionFlatten request = resolve_flatten(given, current_);
-  if (!(request.max_iterations >= 1)) {
-    fail(ErrorCode::BadParameter, "flatten: maxIterations must be at least 1, got " +
-                                      std::to_string(request.max_iterations));
-  }
-  if (!(request.tolerance >= 0.0)) {
-    fail(ErrorCode::BadParameter, "flatten: tolerance must be >= 0, got " + short_number(request.tolerance));
-  }
   SessionFlattenState& state = *flatten_;
   std::vector<char> mask = patch_mask(weights_, request.use_selection);
 
