@@ -45,6 +45,23 @@ test('a notice is sentences, and a failed load clears the old one', async ({ pag
   expect(pageErrors).toEqual([]);
 });
 
+// An open surface is no problem: the status bar says it, no banner covers the view.
+test('an open mesh with nothing to repair loads without a notice; the status bar says it is open', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const status = page.getByTestId('status-mesh');
+  await expect(status).toHaveAttribute('title', 'Closed surface');
+  expect((await uploadFile(page, meshPath('open/human_woman_torso_front_patch.obj'))).ok).toBe(true);
+  await expect(status).toHaveText('531 vertices · 972 triangles · open');
+  await expect(status).toHaveAttribute('title', 'Open surface: 1 boundary loop');
+  await expect(page.getByTestId('notice')).toBeHidden();
+  // With something to say, the notice says that only.
+  expect((await uploadFile(page, meshPath('open/stanford-bunny.obj'))).ok).toBe(true);
+  await expect(status).toHaveAttribute('title', 'Open surface: 5 boundary loops');
+  await expect(page.getByTestId('notice')).toBeVisible();
+  expect(await noticeSummary(page)).not.toContain('boundary loop');
+  expect(pageErrors).toEqual([]);
+});
+
 test('a repair notice counts problems and lists them on demand', async ({ page }) => {
   await openApp(page);
   expect((await uploadFile(page, meshPath('malformed/Spider_binary.stl'))).ok).toBe(true);

@@ -2,6 +2,7 @@
 // its iteration cap), frames per second, and progress of loading /
 // factorizing (a bar with a fraction, or an indeterminate one when the
 // worker cannot tell how far it is).
+import { openSurface } from '../editor/problem-summary.js';
 import { h } from './dom.js';
 
 export function statusBar(container, { editor, viewer, lifetime }) {
@@ -19,7 +20,9 @@ export function statusBar(container, { editor, viewer, lifetime }) {
   container.append(mesh, progress, h('span', { className: 'spacer' }), solve, fps);
 
   editor.on('mesh', (document) => {
-    mesh.textContent = `${document.vertexCount.toLocaleString()} vertices · ${document.triangleCount.toLocaleString()} triangles`;
+    const surface = openSurface(document.info);
+    mesh.textContent = `${document.vertexCount.toLocaleString()} vertices · ${document.triangleCount.toLocaleString()} triangles${surface.text}`;
+    mesh.title = surface.title;
   });
   editor.on('stats', ({ ms, iterations, live, converged }) => {
     // A committed solve cut off by its iteration cap says so: on a large
