@@ -94,6 +94,13 @@ val set_mesh(Session& s, const val& positions, const val& triangles, const std::
   });
 }
 
+val input_vertex_map(Session& s) {
+  return guarded([&] {
+    const std::vector<std::uint32_t>& map = s.input_vertex_map();
+    return copy_to_js(map.data(), map.size());
+  });
+}
+
 val info(Session& s) {
   return guarded([&] { return to_js(to_json(s.info())); });
 }
@@ -291,6 +298,7 @@ EMSCRIPTEN_BINDINGS(anisoform) {
       .function("loadMesh", &load_mesh)
       .function("setMesh", &set_mesh)
       .function("info", &info)
+      .function("inputVertexMap", &input_vertex_map)
       .function("positions", &positions_view)
       .function("triangles", &triangles_view)
       .function("select", &select)

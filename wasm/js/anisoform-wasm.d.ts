@@ -415,6 +415,11 @@ export interface Session {
   loadMesh(bytes: Uint8Array | ArrayBuffer | ArrayBufferView, name: string): MeshInfo;
   /** Replaces the mesh from flat arrays; `weld` merges vertices at equal positions. */
   setMesh(positions: Float32Array | Float64Array | number[], triangles: Uint32Array | number[], options?: SetMeshOptions): MeshInfo;
+  /**
+   * After setMesh: vertex i of its arrays is vertex map[i] of the mesh loaded (welding merges
+   * vertices; else the identity). Empty after loadMesh. A copy.
+   */
+  inputVertexMap(): Uint32Array;
   info(): MeshInfo;
   /** VIEW on the WASM heap (xyz per vertex): fetch again after every call, copy to keep. */
   positions(): Float32Array;

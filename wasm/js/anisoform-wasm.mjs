@@ -146,6 +146,8 @@ export async function instantiateAnisoform(factory, options = {}) {
         toJson(options, 'setMesh options'));
     }
 
+    inputVertexMap() { return this.#call('inputVertexMap'); }
+
     info() { return this.#call('info'); }
 
     positions() { return this.#call('positions'); }

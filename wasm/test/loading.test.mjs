@@ -157,19 +157,30 @@ test('setMesh takes flat arrays, welds on request and refuses out-of-range indic
     const positions = new Float32Array([0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 1, 1, 0]);
     const corners = new Uint32Array([0, 1, 2, 0, 4, 3]);
     assert.equal(session.setMesh(positions, corners).vertices, 5);
+    assert.deepEqual(Array.from(session.inputVertexMap()), [0, 1, 2, 3, 4]);
     const welded = session.setMesh(positions, corners, { weld: true });
     assert.equal(welded.vertices, 4);
+    // Where each input vertex went: corner 4 onto corner 2.
+    assert.deepEqual(Array.from(session.inputVertexMap()), [0, 1, 2, 3, 2]);
     assert.equal(welded.triangles, 2);
     assert.equal(welded.boundaryLoops, 1);
     assert.ok(welded.notes.some((n) => /welded/.test(n)));
     // A soup (no shared vertex at all) is welded whatever `weld` says, as files are.
     const soup = new Float32Array([0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 0, 0, 1, 1, 0, 0, 1, 0]);
     assert.equal(session.setMesh(soup, new Uint32Array([0, 1, 2, 3, 4, 5])).vertices, 4);
+    const map = session.inputVertexMap();
+    const loaded = session.positions();
+    for (let i = 0; i < 6; i++) {
+      assert.deepEqual(Array.from(loaded.subarray(3 * map[i], 3 * map[i] + 3)), Array.from(soup.subarray(3 * i, 3 * i + 3)));
+    }
     assert.throws(() => session.setMesh(soup, new Uint32Array([0, 1, 6])),
       (error) => error.code === 'bad-mesh' && /triangle 0 references vertex 6, but there are only 6 vertices/.test(error.message));
     assert.throws(() => session.setMesh(soup, new Uint32Array([0, 1, 2, 3])),
       (error) => error.code === 'bad-parameter' && /3 indices per triangle/.test(error.message));
     assert.equal(session.info().vertices, 4, 'a refused setMesh keeps the mesh');
+    assert.equal(session.inputVertexMap().length, 6, 'and its map');
+    session.loadMesh(meshBytes('formats/spot_lowres.off'), 'spot_lowres.off');
+    assert.equal(session.inputVertexMap().length, 0, 'a file has no input arrays to map');
   } finally {
     session.delete();
   }

@@ -120,6 +120,12 @@ class Session {
   // merges vertices at equal positions (an unindexed three.js geometry).
   const SessionMeshInfo& set_mesh(const std::vector<double>& positions,
                                   const std::vector<std::uint32_t>& triangles, bool weld);
+  // After set_mesh: vertex i of its arrays is vertex input_vertex_map()[i] of
+  // the mesh loaded (welding merges vertices; without it, the identity).
+  // Empty after load_mesh and adopt_mesh. A host that keeps the input's own
+  // data (a glTF scene's UVs, materials and nodes) writes the edited
+  // positions back through it.
+  const std::vector<std::uint32_t>& input_vertex_map() const { return input_vertex_map_; }
 
   // Same from a mesh already read (the CLI reads files itself, for its own
   // error texts): the one preparation every host's mesh goes through. `notes`
@@ -265,6 +271,7 @@ class Session {
   std::vector<float> positions_f32_;
   std::vector<std::uint32_t> triangles_u32_;
   std::vector<float> weights_f32_;
+  std::vector<std::uint32_t> input_vertex_map_;  // set_mesh's, see input_vertex_map()
 };
 
 }  // namespace aniso

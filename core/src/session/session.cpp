@@ -128,10 +128,11 @@ const SessionMeshInfo& Session::set_mesh(const std::vector<double>& positions,
         static_cast<int>(triangles[i]);
   }
   std::vector<std::string> notes;
+  std::vector<int> map;
   if (weld) {
     const int before = mesh.num_vertices();
     const int faces_before = mesh.num_triangles();
-    mesh = weld_vertices(mesh);
+    mesh = weld_vertices(mesh, 0.0, &map);
     if (mesh.num_vertices() < before) {
       notes.push_back("welded vertices at equal positions: " + std::to_string(before) + " -> " +
                       std::to_string(mesh.num_vertices()) + " vertices");
@@ -141,7 +142,16 @@ const SessionMeshInfo& Session::set_mesh(const std::vector<double>& positions,
                       " triangle(s) collapsed by welding were dropped");
     }
   }
-  return adopt_mesh(std::move(mesh), std::move(notes));
+  // adopt_mesh welds a triangle soup, exactly as here: the map follows it
+  // (after a weld here, a second one merges nothing).
+  if (map.empty() && is_triangle_soup(mesh)) weld_vertices(mesh, 0.0, &map);
+  std::vector<std::uint32_t> input_map(map.empty() ? positions.size() / 3 : map.size());
+  for (std::size_t i = 0; i < input_map.size(); ++i) {
+    input_map[i] = static_cast<std::uint32_t>(map.empty() ? static_cast<int>(i) : map[i]);
+  }
+  const SessionMeshInfo& info = adopt_mesh(std::move(mesh), std::move(notes));
+  input_vertex_map_ = std::move(input_map);
+  return info;
 }
 
 void Session::set_vertex_limit(int max_vertices, std::string why) {
@@ -198,6 +208,7 @@ const SessionMeshInfo& Session::adopt_mesh(Mesh mesh, std::vector<std::string> n
   info_ = std::move(info);
   loaded_ = std::move(loaded);
   triangles_u32_ = std::move(triangles_u32);
+  input_vertex_map_.clear();
   set_current(std::move(current));
   weights_ = std::move(weights);
   weights_f32_ = std::move(weights_f32);

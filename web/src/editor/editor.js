@@ -172,11 +172,11 @@ export class Editor extends EventEmitter {
   // selection, the history, the arrows and whatever else bindToMesh named)
   // is dropped before the new mesh is announced.
   #adopt(payload, name) {
-    const { info, positions, triangles, normals, bvh } = payload;
+    const { info, positions, triangles, normals, bvh, gltf } = payload;
     this.#gestures.abandon();
     this.#patterns.drop();
     for (const reset of this.#meshBound) reset();
-    this.document = new MeshDocument({ name, positions, triangles, info, display: { normals, bvh } });
+    this.document = new MeshDocument({ name, positions, triangles, info, display: { normals, bvh }, gltf });
     this.history.clear();
     this.ops.adoptMesh(payload, name);
     // Before the mesh is announced: what its listeners ask of the worker

@@ -14,18 +14,20 @@ export class MeshDocument {
 
   /**
    * @param {{name: string, positions: Float32Array, triangles: Uint32Array, info: object,
-   *   display: {normals: Float32Array, bvh: object}}} mesh
+   *   display: {normals: Float32Array, bvh: object}, gltf?: import('../io/gltf-source.js').GltfSource}} mesh
    *   display: the worker's vertex normals and picking BVH of the mesh as
    *   loaded (worker/mesh-display.js), for the view to draw and pick it; the
-   *   view takes their arrays over (it writes them as the shape changes)
+   *   view takes their arrays over (it writes them as the shape changes);
+   *   gltf: the scene of a glTF file, which a GLB export writes the shape into
    */
-  constructor({ name, positions, triangles, info, display }) {
+  constructor({ name, positions, triangles, info, display, gltf = null }) {
     this.name = name;
     this.positions = positions;
     this.triangles = triangles;
     this.loadedPositions = positions;
     this.info = info;
     this.display = display;
+    this.gltf = gltf;
     this.selection = new Float32Array(positions.length / 3);
     this.selectionCount = 0;
     // Bumped on every selection change, so the solver client knows when to resend.

@@ -1,6 +1,8 @@
 // The committed mesh as a file: OBJ, PLY (binary) and STL (binary) by the
-// core's writers in the worker (the CLI writes the same), GLB by three.js
-// (io/export-mesh.js), since the core has no glTF writer.
+// core's writers in the worker (the CLI writes the same), GLB by three.js,
+// since the core has no glTF writer: a mesh loaded from a glTF file goes back
+// into its own scene, with its materials, UVs and nodes (io/gltf-source.js);
+// any other as a bare mesh (io/export-mesh.js).
 import { exportGlb } from '../io/export-mesh.js';
 import { CORE_EXPORT_FORMATS, EXPORT_FORMATS } from '../io/mesh-formats.js';
 import { Request } from '../worker/protocol.js';
@@ -12,6 +14,7 @@ export async function exportMeshFile(client, document, format) {
     throw badParameter(`export format must be one of ${EXPORT_FORMATS.join(', ')}, got '${format}'`);
   }
   if (!CORE_EXPORT_FORMATS.includes(format)) {
+    if (document.gltf) return document.gltf.exportGlb(document.positions, document.triangles);
     const baseName = document.name.replace(/\.[^.]+$/, '') || 'anisoform';
     return exportGlb(document.positions, document.triangles, baseName);
   }

@@ -28,14 +28,15 @@ export async function readMesh(client, source, name, emitProgress) {
   // IndexedDB stores a Blob's bytes off the main thread, where an ArrayBuffer
   // is cloned in the saving task (194 ms for a 30 MB file, at every autosave).
   const sourceBytes = source instanceof Blob ? source : new Blob([bytes]);
-  const { positions, triangles, notes } = await importGltf(bytes, name);
+  const { positions, triangles, notes, source: scene } = await importGltf(bytes, name);
   // glTF splits vertices at seams; welding exact duplicates joins the surface.
   const payload = await client.request(Request.setMesh, { positions, triangles, weld: true }, [
     positions.buffer,
     triangles.buffer,
   ]);
   payload.info.notes = [...notes, ...(payload.info.notes ?? [])];
-  return { ...payload, sourceBytes };
+  scene.attach(payload.inputVertexMap, payload.info.vertices);
+  return { ...payload, sourceBytes, gltf: scene };
 }
 
 /** The file name load() was given, or the File's own; refused when there is none. */

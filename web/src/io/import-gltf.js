@@ -1,8 +1,12 @@
 // GLB / glTF import with three.js's GLTFLoader: every triangle primitive of
 // the scene, in world coordinates, merged into one indexed triangle list.
 // Points and lines are skipped (and counted), as the core's OBJ reader does.
+// The scene itself is kept (GltfSource), for a GLB export with its materials,
+// UVs and nodes.
 import { Matrix4, Vector3 } from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+
+import { GltfSource } from './gltf-source.js';
 
 export class GltfImportError extends Error {
   constructor(message) {
@@ -12,7 +16,7 @@ export class GltfImportError extends Error {
   }
 }
 
-/** @returns {Promise<{positions: Float32Array, triangles: Uint32Array, notes: string[]}>} */
+/** @returns {Promise<{positions: Float32Array, triangles: Uint32Array, notes: string[], source: GltfSource}>} */
 export async function importGltf(bytes, name) {
   // Geometry in other files cannot be read from a file opened in the page:
   // said as such, before GLTFLoader asks the page's server for them.
@@ -53,7 +57,13 @@ export async function importGltf(bytes, name) {
   const toWorld = new Matrix4();
   let vertexOffset = 0;
   let indexOffset = 0;
+  const sourceParts = [];
+  const geometries = new Set();
   for (const mesh of parts) {
+    // A geometry two nodes share is edited apart in each: each its own copy.
+    if (geometries.has(mesh.geometry)) mesh.geometry = mesh.geometry.clone();
+    geometries.add(mesh.geometry);
+    sourceParts.push({ mesh, offset: vertexOffset });
     const geometry = mesh.geometry;
     const position = geometry.getAttribute('position');
     toWorld.copy(mesh.matrixWorld);
@@ -81,7 +91,7 @@ export async function importGltf(bytes, name) {
   const notes = [];
   if (parts.length > 1) notes.push(`${parts.length} meshes of the glTF scene were merged into one.`);
   if (skipped > 0) notes.push(`${skipped} point, line or skinned objects were skipped.`);
-  return { positions, triangles, notes };
+  return { positions, triangles, notes, source: new GltfSource(gltf.scene, sourceParts) };
 }
 
 // The buffer URIs of a glTF (JSON) or GLB (its JSON chunk) that name other

@@ -18,8 +18,9 @@ export const Request = Object.freeze({
    */
   loadFile: 'loadFile',
   /**
-   * {positions: Float32Array, triangles: Uint32Array, weld, display = true} -> MeshPayload (GLB; a
-   * restart's seed, with display false: no normals or bvh, the page shows that mesh already).
+   * {positions: Float32Array, triangles: Uint32Array, weld, display = true} -> MeshPayload &
+   * {inputVertexMap?: Uint32Array} (GLB; a restart's seed, with display false: no normals or bvh,
+   * the page shows that mesh already). inputVertexMap (with weld): Session.inputVertexMap.
    */
   setMesh: 'setMesh',
   /**

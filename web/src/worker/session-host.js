@@ -107,7 +107,14 @@ export class SessionHost {
   setMesh({ positions, triangles, weld, display = true }) {
     this.reportProgress('parse', 'Checking the mesh');
     const info = this.session.setMesh(positions, triangles, { weld });
-    return this.meshPayload(info, display);
+    const payload = this.meshPayload(info, display);
+    if (weld) {
+      // Where the arrays' vertices went: a GLB export writes the edited shape back through it.
+      const inputVertexMap = this.session.inputVertexMap();
+      payload.result.inputVertexMap = inputVertexMap;
+      payload.transfer.push(inputVertexMap.buffer);
+    }
+    return payload;
   }
 
   // display: the mesh will be shown, so its normals and picking BVH come
