@@ -1,10 +1,12 @@
 // A glTF file exports back as itself with the edited shape: its nodes and
-// their transforms, materials, UVs and vertex colours are kept, each
+// their transforms, materials, textures, UVs and vertex colours are kept, each
 // primitive's vertices (split at UV seams in the file) land where the solver
 // put their welded vertex, and the normals stay smooth across the seams.
 import { readFileSync, writeFileSync } from 'node:fs';
 
-import { meshesByName, parseGlb, spotSceneGlb, worldPositions } from './gltf-scene.mjs';
+import {
+  glbChunks, meshesByName, parseGlb, spotSceneGlb, withBaseColorTexture, worldPositions,
+} from './gltf-scene.mjs';
 import { expect, meshPath, openApp, test, uploadFile } from './support.mjs';
 
 // Deforms the part of what is loaded inside `box` (soft border) and exports
@@ -41,9 +43,38 @@ function placement(mesh, original, { rest, positions }) {
   return { worst, moved };
 }
 
-test('a glTF scene exports as itself with the edited shape: nodes, material, UVs, smooth normals', async ({ page }, testInfo) => {
+// A 4x4 PNG with a different colour in each pixel, drawn by the browser.
+const texturePng = (page) => page.evaluate(() => {
+  const canvas = Object.assign(document.createElement('canvas'), { width: 4, height: 4 });
+  const context = canvas.getContext('2d');
+  for (let i = 0; i < 16; i++) {
+    context.fillStyle = `rgb(${i * 16}, ${255 - i * 16}, ${(i * 97) % 256})`;
+    context.fillRect(i % 4, Math.floor(i / 4), 1, 1);
+  }
+  return canvas.toDataURL('image/png');
+}).then((url) => Buffer.from(url.slice(url.indexOf(',') + 1), 'base64'));
+
+// The RGBA pixels of PNG bytes, decoded by the browser.
+const pixelsOf = (page, png) => page.evaluate(async (bytes) => {
+  const bitmap = await createImageBitmap(new Blob([new Uint8Array(bytes)], { type: 'image/png' }));
+  const canvas = Object.assign(document.createElement('canvas'), { width: bitmap.width, height: bitmap.height });
+  const context = canvas.getContext('2d');
+  context.drawImage(bitmap, 0, 0);
+  return Array.from(context.getImageData(0, 0, bitmap.width, bitmap.height).data);
+}, Array.from(png));
+
+// The bytes of a GLB's one image.
+function imageOf(glb) {
+  const { json, bin } = glbChunks(glb);
+  expect(json.images).toHaveLength(1);
+  const view = json.bufferViews[json.images[0].bufferView];
+  return bin.subarray(view.byteOffset ?? 0, (view.byteOffset ?? 0) + view.byteLength);
+}
+
+test('a glTF scene exports as itself with the edited shape: nodes, material, texture, UVs, smooth normals', async ({ page }, testInfo) => {
   const pageErrors = await openApp(page);
-  const glb = await spotSceneGlb(meshPath('closed/spot_triangulated.obj'));
+  const png = await texturePng(page);
+  const glb = withBaseColorTexture(await spotSceneGlb(meshPath('closed/spot_triangulated.obj')), png);
   const input = testInfo.outputPath('spot-scene.glb');
   writeFileSync(input, glb);
   const loaded = await uploadFile(page, input);
@@ -63,8 +94,12 @@ test('a glTF scene exports as itself with the edited shape: nodes, material, UVs
   const edit = await stretchAndExport(page, box);
   const exported = meshesByName(await parseGlb(edit.bytes));
 
-  // The scene as it was: the nodes, their parent and transforms, the material.
+  // The scene as it was: the nodes (no wrapper added), their parent and
+  // transforms, the material and its texture (pixel for pixel).
+  expect(glbChunks(edit.bytes).json.nodes.map((node) => node.name)).toEqual(glbChunks(glb).json.nodes.map((node) => node.name));
   expect(Object.keys(exported).sort()).toEqual(['body', 'copy', 'crate']);
+  expect(glbChunks(edit.bytes).json.materials[0].pbrMetallicRoughness.baseColorTexture.index).toBe(0);
+  expect(await pixelsOf(page, imageOf(edit.bytes))).toEqual(await pixelsOf(page, png));
   for (const name of ['body', 'copy', 'crate']) {
     expect(exported[name].parent.name).toBe('product');
     // (Written as translation, rotation and scale again: equal to float32 rounding.)

@@ -80,10 +80,11 @@ export async function spotSceneGlb(objPath) {
   }
 }
 
-/** A GLB's scene, world matrices up to date. */
+/** A GLB's scene, world matrices up to date (textures left out: Node has no image decoder). */
 export async function parseGlb(bytes) {
   const buffer = bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength);
-  const gltf = await new GLTFLoader().parseAsync(buffer, '');
+  const withoutTextures = () => ({ name: 'no_textures_in_node', loadTexture: () => Promise.resolve(null) });
+  const gltf = await new GLTFLoader().register(withoutTextures).parseAsync(buffer, '');
   gltf.scene.updateMatrixWorld(true);
   return gltf.scene;
 }
@@ -107,4 +108,39 @@ export function worldPositions(mesh) {
     out.set([point.x, point.y, point.z], 3 * i);
   }
   return out;
+}
+
+/** A GLB's JSON chunk and binary chunk. */
+export function glbChunks(glb) {
+  const jsonLength = glb.readUInt32LE(12);
+  const json = JSON.parse(glb.subarray(20, 20 + jsonLength).toString('utf8'));
+  const binLength = glb.readUInt32LE(20 + jsonLength);
+  return { json, bin: glb.subarray(28 + jsonLength, 28 + jsonLength + binLength) };
+}
+
+const padded = (bytes, fill) => Buffer.concat([bytes, Buffer.alloc((4 - (bytes.length % 4)) % 4, fill)]);
+
+/** The GLB with `png` embedded as the base colour texture of its every material. */
+export function withBaseColorTexture(glb, png) {
+  const { json, bin } = glbChunks(glb);
+  const binary = padded(Buffer.concat([padded(bin, 0), png]), 0);
+  json.buffers[0].byteLength = binary.length;
+  json.bufferViews.push({ buffer: 0, byteOffset: padded(bin, 0).length, byteLength: png.length });
+  json.images = [{ bufferView: json.bufferViews.length - 1, mimeType: 'image/png' }];
+  json.samplers = [{}];
+  json.textures = [{ source: 0, sampler: 0 }];
+  for (const material of json.materials) {
+    material.pbrMetallicRoughness = { ...material.pbrMetallicRoughness, baseColorTexture: { index: 0 } };
+  }
+  const text = padded(Buffer.from(JSON.stringify(json)), 0x20);
+  const header = Buffer.alloc(20);
+  header.write('glTF', 0);
+  header.writeUInt32LE(2, 4);
+  header.writeUInt32LE(12 + 8 + text.length + 8 + binary.length, 8);
+  header.writeUInt32LE(text.length, 12);
+  header.writeUInt32LE(0x4e4f534a, 16); // 'JSON'
+  const binHeader = Buffer.alloc(8);
+  binHeader.writeUInt32LE(binary.length, 0);
+  binHeader.writeUInt32LE(0x004e4942, 4); // 'BIN\0'
+  return Buffer.concat([header, text, binHeader, binary]);
 }

@@ -3,7 +3,7 @@
 // Points and lines are skipped (and counted), as the core's OBJ reader does.
 // The scene itself is kept (GltfSource), for a GLB export with its materials,
 // UVs and nodes.
-import { Matrix4, Vector3 } from 'three';
+import { Matrix4, Scene, TextureLoader, Vector3 } from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 
 import { GltfSource } from './gltf-source.js';
@@ -29,15 +29,19 @@ export async function importGltf(bytes, name) {
   }
   let gltf;
   try {
-    gltf = await new GLTFLoader().parseAsync(bytes, '');
+    gltf = await new GLTFLoader().register(texturesAsImages).parseAsync(bytes, '');
   } catch (error) {
     throw new GltfImportError(`${name}: not a readable glTF file: ${error?.message ?? error}`);
   }
-  gltf.scene.updateMatrixWorld(true);
+  // GLTFLoader's scene is a Group, which GLTFExporter would write as a node
+  // of a new scene: one more wrapper node at every round trip.
+  const scene = Object.assign(new Scene(), { name: gltf.scene.name });
+  scene.add(...gltf.scene.children);
+  scene.updateMatrixWorld(true);
 
   const parts = [];
   let skipped = 0;
-  gltf.scene.traverse((object) => {
+  scene.traverse((object) => {
     // Skinned meshes would need their pose evaluated; points and lines have no surface.
     if (object.isMesh && !object.isSkinnedMesh && object.geometry.getAttribute('position')) parts.push(object);
     else if (object.isLine || object.isPoints || object.isSkinnedMesh) skipped++;
@@ -91,7 +95,16 @@ export async function importGltf(bytes, name) {
   const notes = [];
   if (parts.length > 1) notes.push(`${parts.length} meshes of the glTF scene were merged into one.`);
   if (skipped > 0) notes.push(`${skipped} point, line or skinned objects were skipped.`);
-  return { positions, triangles, notes, source: new GltfSource(gltf.scene, sourceParts) };
+  return { positions, triangles, notes, source: new GltfSource(scene, sourceParts) };
+}
+
+// Embedded textures decoded as <img> from their blob: URL (CSP img-src), not
+// fetched (GLTFLoader's ImageBitmapLoader, where browsers have it), which the
+// page's connect-src refuses: the textures were lost, with a CSP violation
+// at every load of a textured GLB.
+function texturesAsImages(parser) {
+  parser.textureLoader = new TextureLoader(parser.options.manager);
+  return { name: 'anisoform_textures_as_images' };
 }
 
 // The buffer URIs of a glTF (JSON) or GLB (its JSON chunk) that name other
