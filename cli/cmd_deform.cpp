@@ -265,7 +265,9 @@ int run_deform(const DeformArguments& args) {
                        ") before the energy settled: raise --iterations for a closer result");
   }
 
-  write_mesh(args.output, Mesh{session.positions(), mesh.F}, plan.write);
+  WriteOptions write = plan.write;
+  write.texture = &session.texture();  // an OBJ keeps the input OBJ's texture coordinates
+  write_mesh(args.output, Mesh{session.positions(), mesh.F}, write);
   std::string direction = plan.direction_description;
   if (direction.empty()) {
     direction = edit.direction_given ? op_direction_description(edit.request.direction)

@@ -44,6 +44,7 @@ int run_replay(const ReplayArguments& args) {
 
   WriteOptions write;
   write.binary = !args.ascii;
+  write.texture = &session.texture();
   write_mesh(args.output, Mesh{session.positions(), session.rest().F}, write);
   Json result = {{"document", args.document},
                  {"mesh", mesh_path},

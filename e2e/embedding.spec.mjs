@@ -338,7 +338,7 @@ test('a solver pool hands a disposed modeller\'s idle worker to the next one, wh
         resolve();
       });
     });
-    const running = second.api.deform({ method: 'anarap', direction: { type: 'global', vector: [1, 0, 0] }, transform: { scale: [1.5, 1] }, maxIterations: 1e6, tolerance: 0 });
+    const running = second.api.deform({ method: 'anarap', direction: { type: 'global', vector: [1, 0, 0] }, transform: { scale: [1.5, 1] }, maxIterations: 10000, tolerance: 0 });
     await solving;
     second.dispose();
     const busy = { kept: solvers.size, workers: workers(), running: await running.then(() => 'resolved', (error) => error.message) };

@@ -7,7 +7,10 @@
 //               repaired (the soup welded, polygons triangulated, elements
 //               skipped) or what the mesh check found that editing works
 //               through (zero-area or flipped triangles, non-manifold edges,
-//               separate parts, open boundaries).
+//               separate parts);
+//   'open'      the file loads with nothing to repair but a crack: no banner
+//               over the view, the status bar says the surface is open and
+//               its title how many boundary loops it has.
 import { readdirSync } from 'node:fs';
 import { expect, meshesDir, meshPath, openApp, test, uploadFile } from './support.mjs';
 
@@ -20,8 +23,8 @@ const EXPECTED = {
   'bad_nan_coordinate.obj': 'rejected',
   'bad_nonmanifold_edge.obj': 'notice',
   'bad_triangle_soup.obj': 'notice',
-  'boxNotManifold.glb': 'notice',
-  'boxNotManifold.obj': 'notice',
+  'boxNotManifold.glb': 'open',
+  'boxNotManifold.obj': 'open',
   'box_UTF16BE.obj': 'notice',
   'box_without_lineending.obj': 'notice',
   'degtri_sliding.off': 'notice',
@@ -71,6 +74,12 @@ test.describe('loading every malformed file', () => {
         const after = await page.evaluate(() => Array.from(window.anisoform.positions()));
         expect(after).toEqual(before);
         expect(await page.evaluate(() => window.anisoform.info().vertices)).toBe(829);
+      } else if (expected === 'open') {
+        expect(outcome, `${name} should load`).toMatchObject({ ok: true });
+        await expect(page.getByTestId('error')).toBeHidden();
+        await expect(page.getByTestId('notice')).toBeHidden();
+        await expect(page.getByTestId('status-mesh')).toHaveText(/ · open$/);
+        await expect(page.getByTestId('status-mesh')).toHaveAttribute('title', 'Open surface: 1 boundary loop');
       } else {
         expect(outcome, `${name} should load`).toMatchObject({ ok: true });
         await expect(page.getByTestId('error')).toBeHidden();

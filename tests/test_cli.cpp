@@ -236,6 +236,26 @@ TEST_CASE("cli: deform on every malformed file repairs, warns or refuses by name
   }
 }
 
+// The shape changes, the texture mapping does not: an OBJ written by deform
+// has the input OBJ's vt list and per-corner indices, as read (replay writes
+// through the same Session::texture()).
+TEST_CASE("cli: deform keeps an OBJ's texture coordinates", "[cli]") {
+  const std::string in = mesh("closed/spot_triangulated.obj");
+  const aniso::ReadResult input = aniso::read_mesh(in);
+  REQUIRE(input.texture.uv.rows() == 3225);
+  const std::string out = temp_path("textured.obj");
+  run_expecting({"deform", in, out, "--scale", "1.3", "--select", "sphere:0,0.5,0.6,0.4"}, 0);
+  const aniso::ReadResult deformed = aniso::read_mesh(out);
+  CHECK(deformed.texture.uv == input.texture.uv);
+  CHECK(deformed.texture.faces == input.texture.faces);
+  CHECK(deformed.mesh.F == input.mesh.F);
+  CHECK((deformed.mesh.V - input.mesh.V).cwiseAbs().maxCoeff() > 0.05);
+  // Other formats have no per-corner coordinates: the shape alone.
+  const std::string ply = temp_path("textured.ply");
+  run_expecting({"deform", in, ply, "--scale", "1.3", "--select", "sphere:0,0.5,0.6,0.4"}, 0);
+  CHECK(aniso::read_mesh(ply).mesh.V == deformed.mesh.V);
+}
+
 TEST_CASE("cli: deform welds a triangle soup and says so", "[cli]") {
   const std::string out = temp_path("welded.obj");
   const json result = stdout_json(run_expecting(

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <map>
 #include <random>
+#include <set>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -336,6 +337,79 @@ TEST_CASE("mesh_io: write_obj_with_uv writes one vt per vertex and faces a/a b/b
   CHECK_THAT(error_message([&] { aniso::write_obj_with_uv(mesh, Eigen::MatrixX2d(3, 2)); },
                            aniso::ErrorCode::BadParameter),
              Catch::Contains("uv"));
+}
+
+// Each (vertex, texture coordinate) pair of the file's face corners, as
+// written ("739/1" -> {738, 0}), for every face.
+std::set<std::pair<int, int>> obj_corner_pairs(const std::string& text) {
+  std::set<std::pair<int, int>> pairs;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("f ", 0) != 0) continue;
+    std::istringstream corners(line.substr(2));
+    for (std::string corner; corners >> corner;) {
+      const std::size_t slash = corner.find('/');
+      pairs.emplace(std::stoi(corner.substr(0, slash)) - 1, std::stoi(corner.substr(slash + 1)) - 1);
+    }
+  }
+  return pairs;
+}
+
+TEST_CASE("mesh_io: an OBJ's texture coordinates are read per corner and written back", "[io]") {
+  for (const char* file : {"closed/spot_triangulated.obj", "formats/spot_quadrangulated.obj"}) {
+    INFO(file);
+    const std::string text = file_bytes(file);
+    const ReadResult read = read_text(text, MeshFormat::Obj);
+    // Spot's UV seams: 3225 coordinates for 2930 vertices.
+    REQUIRE(read.texture.uv.rows() == 3225);
+    REQUIRE(read.texture.faces.rows() == read.mesh.F.rows());
+    // Every triangle corner pairs its vertex with a coordinate the file pairs
+    // it with (the quads' triangles too), and all of the file's pairs are used.
+    std::set<std::pair<int, int>> pairs;
+    for (Eigen::Index f = 0; f < read.mesh.F.rows(); ++f)
+      for (int k = 0; k < 3; ++k) pairs.emplace(read.mesh.F(f, k), read.texture.faces(f, k));
+    CHECK(pairs == obj_corner_pairs(text));
+
+    // Written with them and read again: the same mesh and texture, bitwise.
+    aniso::WriteOptions options;
+    options.texture = &read.texture;
+    const std::string written = aniso::write_mesh_to_memory(read.mesh, MeshFormat::Obj, options);
+    const ReadResult back = read_text(written, MeshFormat::Obj);
+    CHECK(back.mesh.V == read.mesh.V);
+    CHECK(back.mesh.F == read.mesh.F);
+    CHECK(back.texture.uv == read.texture.uv);
+    CHECK(back.texture.faces == read.texture.faces);
+    // Without them: positions and faces only, as before.
+    CHECK(read_text(aniso::write_mesh_to_memory(read.mesh, MeshFormat::Obj), MeshFormat::Obj).texture.empty());
+  }
+}
+
+TEST_CASE("mesh_io: texture coordinates that are malformed or missing somewhere are dropped, the mesh kept", "[io]") {
+  const std::string square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
+  const auto read = [&](const std::string& rest) { return read_text(square + rest, MeshFormat::Obj); };
+  const ReadResult whole = read("vt 0 0\nvt 1 0 0.5\nvt 1 1\nvt 0.5\nf 1/1 2/2 3/3\nf 1/-4 3/-2 4/-1\n");
+  REQUIRE(whole.texture.faces.rows() == 2);
+  CHECK(whole.texture.faces.row(1) == Eigen::RowVector3i(0, 2, 3));
+  CHECK(whole.texture.uv.row(3) == Eigen::RowVector2d(0.5, 0.0));  // v defaults to 0
+  CHECK(whole.report.notes.empty());
+  const struct {
+    std::string rest;
+    std::string why;
+  } cases[] = {
+      {"vt 0 0\nvt 1 zero\nvt 1 1\nf 1/1 2/2 3/3\n", "the texture coordinate (line 6) is malformed"},
+      {"vt 0 0\nvt 1 nan\nvt 1 1\nf 1/1 2/2 3/3\n", "the texture coordinate (line 6) is malformed"},
+      {"vt 0 0\nvt 1 0\nvt 1 1\nf 1/1 2/2 3/3\nf 1 3 4\n", "some face corners have none"},
+      {"vt 0 0\nvt 1 0\nf 1/1 2/2 3/3\n", "a face corner names texture coordinate 3, but the file has 2"},
+      {"vt 0 0\nf 1/1 2/-2 3/1\n", "a face corner names texture coordinate 0, but the file has 1"},
+  };
+  for (const auto& c : cases) {
+    INFO(c.rest);
+    const ReadResult dropped = read(c.rest);
+    CHECK(dropped.texture.empty());
+    CHECK(dropped.mesh.num_triangles() >= 1);
+    REQUIRE(dropped.report.notes.size() == 1);
+    CHECK(dropped.report.notes[0] == "texture coordinates ignored (" + c.why + ")");
+  }
 }
 
 TEST_CASE("mesh_io: format_from_path maps extensions and leaves GLB to the browser app", "[io]") {

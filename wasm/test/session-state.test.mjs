@@ -2,9 +2,11 @@
 // setPositions round trips, commit and cancel, selection modes, export, and
 // failed calls leaving everything as it was.
 import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import path from 'node:path';
 import { before, test } from 'node:test';
 
-import { boundingBox, loadAnisoform, maxVertexDistance, meshBytes, sessionWith } from '../node-support.mjs';
+import { boundingBox, loadAnisoform, maxVertexDistance, meshBytes, meshesDir, sessionWith } from '../node-support.mjs';
 
 let wasm;
 let AnisoformError;
@@ -130,6 +132,20 @@ test('exportMesh round-trips through loadMesh in every format', () => withSessio
       reader.delete();
     }
   }
+}));
+
+test("an OBJ export after an edit keeps the loaded OBJ's texture coordinates and their corners", () => withSession('closed/spot_triangulated.obj', (session) => {
+  const lines = (text, prefix) => text.split('\n').filter((line) => line.startsWith(prefix));
+  const input = readFileSync(path.join(meshesDir, 'closed/spot_triangulated.obj'), 'utf8');
+  session.select({ sphere: { center: [0, 0.5, 0.6], radius: 0.4 } });
+  session.deform({ ...STRETCH_Y, transform: { scale: 1.3 } });
+  const exported = new TextDecoder().decode(session.exportMesh('obj'));
+  const coordinates = (text) => lines(text, 'vt ').map((line) => line.split(/\s+/).slice(1, 3).map(Number));
+  assert.deepEqual(coordinates(exported), coordinates(input));
+  // Every face as v/vt corners, the same as the file's.
+  const corners = (text) => lines(text, 'f ').map((line) => line.split(/\s+/).slice(1).map((c) => c.split('/').slice(0, 2).join('/')).join(' '));
+  assert.deepEqual(corners(exported), corners(input));
+  assert.notDeepEqual(lines(exported, 'v '), lines(input, 'v '), 'the shape changed');
 }));
 
 test('a deleted session refuses calls', () => {

@@ -31,9 +31,22 @@ struct ReadReport {
   std::vector<std::string> notes;  // plain-words notes for the user
 };
 
+// A surface's texture coordinates, per triangle corner: an OBJ's `vt` list
+// and, for every triangle of the mesh (the same rows as its F), which of them
+// each corner uses. Corners, not vertices: a UV seam gives one vertex two.
+// Empty when the file has none (or not for every face). The shape edits
+// positions only, so an OBJ written with them keeps the file's texture
+// mapping.
+struct CornerTexture {
+  Eigen::MatrixX2d uv;  // the coordinates, as in the file
+  Triangles faces;      // #F by 3 rows of uv indices, or 0 rows: none
+  bool empty() const { return faces.rows() == 0; }
+};
+
 struct ReadResult {
   Mesh mesh;
   ReadReport report;
+  CornerTexture texture;  // OBJ only
 };
 
 // Reads from a file / from bytes in memory. Errors: Error(BadFile) with a
@@ -47,6 +60,9 @@ ReadResult read_mesh_from_memory(const char* data, std::size_t size, MeshFormat 
 
 struct WriteOptions {
   bool binary = true;  // PLY and STL: binary (little endian) or ASCII
+  // OBJ: written as `vt` and `f v/vt` when given and its faces match the
+  // mesh's; the other formats have no per-corner coordinates.
+  const CornerTexture* texture = nullptr;
 };
 
 // Writes to a file (format from the extension; atomically, see

@@ -130,7 +130,11 @@ class Session {
   // Same from a mesh already read (the CLI reads files itself, for its own
   // error texts): the one preparation every host's mesh goes through. `notes`
   // are kept in info().notes, after which the session adds its own.
-  const SessionMeshInfo& adopt_mesh(Mesh mesh, std::vector<std::string> notes);
+  // `texture`: the file's texture coordinates per corner (mesh_io.h), which
+  // an OBJ export writes again; kept while the faces stay as read.
+  const SessionMeshInfo& adopt_mesh(Mesh mesh, std::vector<std::string> notes, CornerTexture texture = {});
+  // The texture coordinates of the mesh loaded (empty: none).
+  const CornerTexture& texture() const { return texture_; }
 
   // The most vertices a mesh may have in this host (0, the default: no
   // limit), and why, for the refusal: "more than the N <why>". The WASM
@@ -272,6 +276,7 @@ class Session {
   std::vector<std::uint32_t> triangles_u32_;
   std::vector<float> weights_f32_;
   std::vector<std::uint32_t> input_vertex_map_;  // set_mesh's, see input_vertex_map()
+  CornerTexture texture_;
 };
 
 }  // namespace aniso

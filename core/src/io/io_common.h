@@ -174,6 +174,10 @@ struct PolygonMesh {
   std::vector<double> xyz;           // 3 per vertex
   std::vector<int> corners;          // all polygons' corners, one after another
   std::vector<int> offsets{0};       // polygon i: corners[offsets[i], offsets[i+1])
+  // Texture coordinates (OBJ): uv 2 per entry, and per corner its entry;
+  // corner_uv stays empty unless every corner has one.
+  std::vector<double> uv;
+  std::vector<int> corner_uv;
 
   int num_vertices() const { return static_cast<int>(xyz.size() / 3); }
   int num_polygons() const { return static_cast<int>(offsets.size()) - 1; }
@@ -204,7 +208,7 @@ ReadResult read_off(const char* data, std::size_t size);
 ReadResult read_ply(const char* data, std::size_t size);
 ReadResult read_stl(const char* data, std::size_t size);
 
-std::string write_obj(const Mesh& mesh);
+std::string write_obj(const Mesh& mesh, const CornerTexture* texture = nullptr);
 std::string write_off(const Mesh& mesh);
 std::string write_ply(const Mesh& mesh, bool binary);
 std::string write_stl(const Mesh& mesh, bool binary);

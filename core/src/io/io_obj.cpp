@@ -1,7 +1,13 @@
-// Wavefront OBJ: reading `v` and `f` (all corner forms, negative relative
-// indices, polygons), skipping everything else; writing positions and faces,
-// optionally with texture coordinates.
+// Wavefront OBJ: reading `v`, `vt` and `f` (all corner forms, negative
+// relative indices, polygons), skipping everything else; writing positions
+// and faces, optionally with texture coordinates. Texture coordinates are
+// kept only when every face corner has a valid one; otherwise they are
+// dropped with a note and the mesh reads as before (they never made a file
+// unreadable).
+#include <algorithm>
 #include <climits>
+#include <cmath>
+#include <limits>
 
 #include "anisoform/mesh_io.h"
 #include "io/io_common.h"
@@ -15,7 +21,7 @@ namespace {
 // materials, free-form surface data. They are ignored without a note.
 bool is_ignored_statement(std::string_view keyword) {
   static constexpr std::string_view kIgnored[] = {
-      "vt",   "vn",    "vp",    "o",      "g",    "s",     "usemtl",   "mtllib",
+      "vn",   "vp",    "o",      "g",    "s",     "usemtl",   "mtllib",
       "usemap", "maplib", "lod", "shadow_obj", "trace_obj", "bevel", "c_interp", "d_interp",
       "cstype", "deg", "bmat", "step", "parm", "trim", "hole", "scrv",
       "sp",   "end",   "con",   "mg",     "ctech", "stech", "call", "csh"};
@@ -43,6 +49,8 @@ class ObjParser {
       if (keyword.empty() || keyword[0] == '#') continue;
       if (keyword == "v") {
         parse_vertex(rest);
+      } else if (keyword == "vt") {
+        parse_texture_coordinate(rest);
       } else if (keyword == "f" || keyword == "fo") {
         parse_face(rest);
       } else if (is_skipped_element(keyword)) {
@@ -52,6 +60,7 @@ class ObjParser {
       }
     }
     check_indices();
+    check_texture(report);
     note_skipped(report, skipped_elements_, "point, line or curve elements (p, l, curv, surf)");
     if (unknown_statements_ > 0) {
       report.notes.push_back("ignored " + std::to_string(unknown_statements_) +
@@ -84,8 +93,56 @@ class ObjParser {
     polygons_.add_vertex(xyz[0], xyz[1], xyz[2]);
   }
 
-  // "v", "v/vt", "v//vn" or "v/vt/vn": returns the vertex index as written.
-  long long parse_corner(std::string_view token) const {
+  // "vt u [v [w]]": u and v kept (v defaults to 0), w unused. A malformed
+  // one drops the texture, not the mesh.
+  void parse_texture_coordinate(std::string_view rest) {
+    double uv[2] = {0.0, 0.0};
+    int count = 0;
+    for (std::string_view token = next_token(rest); !token.empty(); token = next_token(rest)) {
+      if (token[0] == '#') break;
+      double value;
+      if (parse_coordinate(token, value) != nullptr || !std::isfinite(value) || count == 3) {
+        drop_texture("the texture coordinate" + at_line(line_) + " is malformed");
+        return;
+      }
+      if (count < 2) uv[count] = value;
+      ++count;
+    }
+    if (count == 0) drop_texture("the texture coordinate" + at_line(line_) + " has no value");
+    polygons_.uv.push_back(uv[0]);
+    polygons_.uv.push_back(uv[1]);
+  }
+
+  void drop_texture(const std::string& why) {
+    if (texture_dropped_.empty()) texture_dropped_ = why;
+  }
+
+  // Every corner has a texture coordinate in range, or the texture goes.
+  void check_texture(ReadReport& report) {
+    const long long count = static_cast<long long>(polygons_.uv.size() / 2);
+    if (texture_dropped_.empty() && corners_with_uv_ > 0 && corners_with_uv_ < polygons_.corners.size()) {
+      drop_texture("some face corners have none");
+    }
+    for (std::size_t c = 0; texture_dropped_.empty() && c < polygons_.corner_uv.size(); ++c) {
+      if (polygons_.corner_uv[c] < 0 || polygons_.corner_uv[c] >= count) {
+        drop_texture("a face corner names texture coordinate " + std::to_string(polygons_.corner_uv[c] + 1) +
+                     ", but the file has " + std::to_string(count));
+      }
+    }
+    if (!texture_dropped_.empty()) {
+      if (corners_with_uv_ > 0 || count > 0) {
+        report.notes.push_back("texture coordinates ignored (" + texture_dropped_ + ")");
+      }
+      polygons_.uv.clear();
+      polygons_.corner_uv.clear();
+    } else if (corners_with_uv_ == 0) {
+      polygons_.corner_uv.clear();
+    }
+  }
+
+  // "v", "v/vt", "v//vn" or "v/vt/vn": returns the vertex index as written,
+  // and the texture coordinate's in `uv` (0 when the corner has none).
+  long long parse_corner(std::string_view token, long long& uv_index) const {
     const std::size_t slash = token.find('/');
     const std::string_view vertex = token.substr(0, slash);
     long long index = 0;
@@ -100,7 +157,8 @@ class ObjParser {
       const std::string_view normal =
           second == std::string_view::npos ? std::string_view() : attributes.substr(second + 1);
       long long unused;
-      const bool uv_ok = uv.empty() ? second != std::string_view::npos : parse_integer(uv, unused);
+      uv_index = 0;
+      const bool uv_ok = uv.empty() ? second != std::string_view::npos : parse_integer(uv, uv_index);
       const bool normal_ok = second == std::string_view::npos || parse_integer(normal, unused);
       if (!uv_ok || !normal_ok) {
         fail_file("face " + std::to_string(face_number()) + " has a malformed corner " +
@@ -112,10 +170,20 @@ class ObjParser {
 
   void parse_face(std::string_view rest) {
     const long long vertices_so_far = polygons_.num_vertices();
+    const long long uv_so_far = static_cast<long long>(polygons_.uv.size() / 2);
     int corners = 0;
     for (std::string_view token = next_token(rest); !token.empty(); token = next_token(rest)) {
       if (token[0] == '#') break;
-      const long long index = parse_corner(token);
+      long long uv_index = 0;
+      const long long index = parse_corner(token, uv_index);
+      if (uv_index != 0) {
+        ++corners_with_uv_;
+        // 1-based, or negative: relative to the coordinates read so far.
+        const long long zero_based_uv = uv_index > 0 ? uv_index - 1 : uv_so_far + uv_index;
+        polygons_.corner_uv.resize(polygons_.corners.size(), -1);
+        polygons_.corner_uv.push_back(
+            static_cast<int>(std::clamp<long long>(zero_based_uv, -1, std::numeric_limits<int>::max())));
+      }
       long long zero_based = 0;
       if (index > 0) {
         // Checked against the final vertex count in check_indices(): OBJ lets a
@@ -172,6 +240,8 @@ class ObjParser {
   int face_number() const { return polygons_.num_polygons() + 1; }  // 1-based, of the face being read
 
   PolygonMesh polygons_;
+  std::size_t corners_with_uv_ = 0;
+  std::string texture_dropped_;  // why the texture coordinates are not kept ("" while they are)
   std::vector<int> face_lines_;
   int line_ = 0;
   int skipped_elements_ = 0;
@@ -191,11 +261,61 @@ ReadResult read_obj(const char* data, std::size_t size) {
   return ObjParser().parse(text, std::move(report));
 }
 
-std::string write_obj(const Mesh& mesh) {
+namespace {
+
+void append_uv_rows(std::string& out, const Eigen::MatrixX2d& uv) {
+  for (Eigen::Index i = 0; i < uv.rows(); ++i) {
+    out += "vt ";
+    append_number(out, uv(i, 0));
+    out += ' ';
+    append_number(out, uv(i, 1));
+    out += '\n';
+  }
+}
+
+// "f v/vt v/vt v/vt", 1-based.
+void append_textured_triangles(std::string& out, const Triangles& F, const Triangles& uv_faces) {
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    out += 'f';
+    for (int k = 0; k < 3; ++k) {
+      out += ' ';
+      append_number(out, static_cast<long long>(F(f, k)) + 1);
+      out += '/';
+      append_number(out, static_cast<long long>(uv_faces(f, k)) + 1);
+    }
+    out += '\n';
+  }
+}
+
+}  // namespace
+
+std::string write_obj(const Mesh& mesh, const CornerTexture* texture) {
+  const bool textured = texture != nullptr && !texture->empty();
+  if (textured) {
+    if (texture->faces.rows() != mesh.F.rows()) {
+      fail(ErrorCode::BadParameter, "texture coordinates for " + std::to_string(texture->faces.rows()) +
+                                        " triangles, but the mesh has " + std::to_string(mesh.F.rows()));
+    }
+    for (Eigen::Index f = 0; f < texture->faces.rows(); ++f) {
+      for (int k = 0; k < 3; ++k) {
+        const int index = texture->faces(f, k);
+        if (index < 0 || index >= texture->uv.rows()) {
+          fail(ErrorCode::BadParameter, "triangle " + std::to_string(f) + " names texture coordinate " +
+                                            std::to_string(index) + ", but there are " +
+                                            std::to_string(texture->uv.rows()));
+        }
+      }
+    }
+  }
   std::string out = "# written by anisoform\n";
   out.reserve(static_cast<std::size_t>(mesh.V.rows()) * 40 + static_cast<std::size_t>(mesh.F.rows()) * 24);
   append_position_rows(out, mesh.V, "v ");
-  append_triangle_rows(out, mesh.F, "f", 1);
+  if (textured) {
+    append_uv_rows(out, texture->uv);
+    append_textured_triangles(out, mesh.F, texture->faces);
+  } else {
+    append_triangle_rows(out, mesh.F, "f", 1);
+  }
   return out;
 }
 
@@ -210,24 +330,8 @@ std::string write_obj_with_uv(const Mesh& mesh, const Eigen::MatrixX2d& uv) {
   io::require_valid_indices(mesh);
   std::string out = "# written by anisoform: positions and their flattened uv\n";
   io::append_position_rows(out, mesh.V, "v ");
-  for (Eigen::Index i = 0; i < uv.rows(); ++i) {
-    out += "vt ";
-    io::append_number(out, uv(i, 0));
-    out += ' ';
-    io::append_number(out, uv(i, 1));
-    out += '\n';
-  }
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-    out += 'f';
-    for (int k = 0; k < 3; ++k) {
-      const long long index = static_cast<long long>(mesh.F(f, k)) + 1;
-      out += ' ';
-      io::append_number(out, index);
-      out += '/';
-      io::append_number(out, index);
-    }
-    out += '\n';
-  }
+  io::append_uv_rows(out, uv);
+  io::append_textured_triangles(out, mesh.F, mesh.F);
   return out;
 }
 

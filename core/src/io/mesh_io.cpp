@@ -88,7 +88,7 @@ ReadResult read_mesh(const std::string& path) {
 std::string write_mesh_to_memory(const Mesh& mesh, MeshFormat format, const WriteOptions& options) {
   io::require_valid_indices(mesh);
   switch (format) {
-    case MeshFormat::Obj: return io::write_obj(mesh);
+    case MeshFormat::Obj: return io::write_obj(mesh, options.texture);
     case MeshFormat::Off: return io::write_off(mesh);
     case MeshFormat::Ply: return io::write_ply(mesh, options.binary);
     case MeshFormat::Stl: return io::write_stl(mesh, options.binary);
@@ -256,18 +256,36 @@ ReadResult assemble_mesh(const PolygonMesh& polygons, ReadReport report) {
   for (int p = 0; p < num_polygons; ++p) num_triangles += polygons.offsets[p + 1] - polygons.offsets[p] - 2;
   result.mesh.F.resize(static_cast<Eigen::Index>(num_triangles), 3);
 
+  const bool textured = !polygons.corner_uv.empty();
+  if (textured) {
+    result.texture.uv = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>>(
+        polygons.uv.data(), static_cast<Eigen::Index>(polygons.uv.size() / 2), 2);
+    result.texture.faces.resize(result.mesh.F.rows(), 3);
+  }
   Eigen::Index row = 0;
   std::vector<int> polygon;
   for (int p = 0; p < num_polygons; ++p) {
     const int begin = polygons.offsets[p];
     const int end = polygons.offsets[p + 1];
     if (end - begin == 3) {
+      if (textured) {
+        result.texture.faces.row(row) << polygons.corner_uv[begin], polygons.corner_uv[begin + 1],
+            polygons.corner_uv[begin + 2];
+      }
       result.mesh.F.row(row++) << polygons.corners[begin], polygons.corners[begin + 1],
           polygons.corners[begin + 2];
       continue;
     }
     polygon.assign(polygons.corners.begin() + begin, polygons.corners.begin() + end);
     for (const auto& triangle : triangulate_polygon(result.mesh.V, polygon)) {
+      if (textured) {
+        // The triangle's corners are the polygon's vertices: each takes the
+        // texture coordinate of its (first) corner in the polygon.
+        for (int k = 0; k < 3; ++k) {
+          const auto corner = std::find(polygon.begin(), polygon.end(), triangle[k]) - polygon.begin();
+          result.texture.faces(row, k) = polygons.corner_uv[begin + corner];
+        }
+      }
       result.mesh.F.row(row++) << triangle[0], triangle[1], triangle[2];
     }
     ++report.polygons_triangulated;
