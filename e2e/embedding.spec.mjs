@@ -2,7 +2,8 @@
 // two modellers are independent, and dispose() leaves nothing running
 // (workers, observers, listeners and animation frames counted from outside by
 // resource-census.mjs).
-import { expect, test } from './support.mjs';
+import { spotSceneGlb } from './gltf-scene.mjs';
+import { expect, meshPath, test } from './support.mjs';
 import { installResourceCensus } from './resource-census.mjs';
 
 const census = (page) => page.evaluate(() => window.__census());
@@ -553,5 +554,50 @@ test('<anisoform-modeller edits> that cannot be opened: the mesh is shown withou
   }
   expect(outcomes.missing.errors).toEqual([expect.stringMatching(/edits were not opened.*missing-edits\.json could not be fetched \(HTTP 404\)/)]);
   expect(outcomes.failing.errors).toEqual([expect.stringMatching(/document\.ops\[1\] \(id 'thick'\).*thickness/)]);
+  expect(pageErrors).toEqual([]);
+});
+
+test('materials (option, setMaterials, the element\'s attribute) draws a glTF mesh with its own materials', async ({ page }) => {
+  const pageErrors = await openExample(page);
+  const glb = [...await spotSceneGlb(meshPath('closed/spot_triangulated.obj'))];
+  const outcome = await page.evaluate(async (bytes) => {
+    const { createModeller } = window.anisoformExample;
+    const surfaceOf = (root) => root.querySelector('[data-testid=viewport]').dataset.surface;
+    const host = Object.assign(document.createElement('div'), { style: 'height: 200px' });
+    document.body.append(host);
+    let refused = 'accepted';
+    try {
+      createModeller(host, { materials: 'yes' });
+    } catch (error) {
+      refused = `${error.code}: ${error.message}`;
+    }
+    const modeller = createModeller(host, { ui: 'none', mesh: new Uint8Array(bytes), meshName: 'spot-scene.glb', materials: true });
+    await modeller.api.ready;
+    const option = surfaceOf(host);
+    modeller.setMaterials(false);
+    const off = surfaceOf(host);
+    modeller.dispose();
+    host.remove();
+
+    const element = document.createElement('anisoform-modeller');
+    element.setAttribute('ui', 'none');
+    element.setAttribute('materials', '');
+    element.style.height = '200px';
+    document.body.append(element);
+    await element.api.ready;
+    await element.api.load(new Uint8Array(bytes), 'spot-scene.glb');
+    const attribute = surfaceOf(element);
+    element.removeAttribute('materials');
+    const removed = surfaceOf(element);
+    element.remove();
+    return { refused, option, off, attribute, removed };
+  }, glb);
+  expect(outcome).toEqual({
+    refused: 'bad-parameter: createModeller: materials must be true or false, got "yes"',
+    option: 'materials',
+    off: 'editing',
+    attribute: 'materials',
+    removed: 'editing',
+  });
   expect(pageErrors).toEqual([]);
 });

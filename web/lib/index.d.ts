@@ -39,6 +39,11 @@ export interface ModellerOptions {
    * when no request is in flight.
    */
   solvers?: SolverPool;
+  /**
+   * Draw a mesh opened from glTF with its own materials, textures and vertex colours, in the
+   * edited shape (default false: the editing surface, which shows the selection and heat maps).
+   */
+  materials?: boolean;
 }
 
 export interface SolverPoolOptions {
@@ -74,6 +79,8 @@ export interface Modeller {
    * (like api.open, which takes no URLs); failures are also 'error' events, and the work is kept.
    */
   open(document: unknown, mesh?: MeshSource, name?: string): Promise<void>;
+  /** A glTF mesh drawn with its own materials (true) or the editing surface (false), as the option `materials`. */
+  setMaterials(on: boolean): void;
   /** Cancels the pending frame, stops the ResizeObservers, the worker (and its WASM session; an idle worker goes back to the `solvers` pool) and removes every listener and element it added. */
   dispose(): void;
   /** Listeners and clean-up steps the modeller still holds (0 after dispose). */
@@ -85,7 +92,8 @@ export function createModeller(container: HTMLElement, options?: ModellerOptions
 /**
  * <anisoform-modeller src="part.glb" edits="part-edits.json" ui="none">: attributes src (mesh URL,
  * loaded when set or changed), edits (saved edits' URL, opened on src when set or changed; src and
- * edits changed together open the new edits on the new mesh) and ui ('full' | 'none'); CustomEvents
+ * edits changed together open the new edits on the new mesh), ui ('full' | 'none') and materials
+ * (present: a glTF mesh drawn with its own materials, as the option); CustomEvents
  * 'change', 'error', 'progress' with the api's payload as `detail`; `.api`
  * while connected; disposed when disconnected. Registered on import.
  */

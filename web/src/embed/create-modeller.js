@@ -18,6 +18,7 @@ import { createTools } from '../tools/tool-registry.js';
 import { AxisGizmo } from '../viewer/axis-gizmo.js';
 import { HeatmapDisplay } from '../viewer/heatmap-display.js';
 import { DirectionDisplay } from '../viewer/direction-display.js';
+import { GltfDisplay } from '../viewer/gltf-display.js';
 import { MeshView } from '../viewer/mesh-view.js';
 import { Viewer } from '../viewer/viewer.js';
 import { SolverClient } from '../worker/solver-client.js';
@@ -28,7 +29,7 @@ import { Lifetime } from './lifetime.js';
 import { resolveDocumentSource, resolveMeshSource } from './mesh-source.js';
 import { UI_MODES, buildLayout } from './modeller-layout.js';
 
-const OPTIONS = ['ui', 'mesh', 'meshName', 'document', 'keyboard', 'autosave', 'workerUrl', 'wasmUrl', 'solvers'];
+const OPTIONS = ['ui', 'mesh', 'meshName', 'document', 'keyboard', 'autosave', 'workerUrl', 'wasmUrl', 'solvers', 'materials'];
 
 /**
  * @param {HTMLElement} container
@@ -48,9 +49,12 @@ const OPTIONS = ['ui', 'mesh', 'meshName', 'document', 'keyboard', 'autosave', '
  *       bundler or server moved them from beside this module
  *   solvers: a pool (createSolverPool) to take a warm solver worker from,
  *       and to give it back to at dispose() (worker/solver-pool.js)
+ *   materials: draw a mesh opened from glTF with its own materials,
+ *       textures and vertex colours (default false: the editing surface,
+ *       which shows the selection and heat maps); setMaterials() later
  */
 export function createModeller(container, options = {}) {
-  const { ui = 'full', mesh, meshName, document: editDocument, keyboard = 'focus', autosave = false, workerUrl, wasmUrl, solvers } = checkOptions(container, options);
+  const { ui = 'full', mesh, meshName, document: editDocument, keyboard = 'focus', autosave = false, workerUrl, wasmUrl, solvers, materials = false } = checkOptions(container, options);
 
   const lifetime = new Lifetime();
   const client = new SolverClient({ workerUrl, wasmUrl, pool: solvers });
@@ -62,6 +66,7 @@ export function createModeller(container, options = {}) {
   const layout = buildLayout(container, ui);
   lifetime.defer(() => layout.root.remove());
   const settings = new Settings();
+  settings.values.display.materials = materials;
   const viewer = new Viewer(layout.viewport, lifetime);
   // The light drawing of a moving mesh on a CPU rasteriser is made in the
   // worker, once it has prepared the mesh or the mesh first moves: a select
@@ -72,6 +77,8 @@ export function createModeller(container, options = {}) {
     startAfter: () => editor.whenPrepared(),
   });
   lifetime.defer(() => meshView.proxy.dispose());
+  const gltfDisplay = new GltfDisplay(viewer, meshView);
+  gltfDisplay.setWanted(materials);
   new AxisGizmo(viewer, lifetime);
   const picker = new Picker(viewer, meshView);
   viewer.setBoundsSource(() => editor.document?.bounds() ?? null);
@@ -80,11 +87,13 @@ export function createModeller(container, options = {}) {
   // The normals and the picking BVH come from the worker (worker/mesh-display.js).
   editor.on('mesh', (loaded) => {
     meshView.setMesh(loaded.positions, loaded.triangles, loaded.display.normals);
+    gltfDisplay.setSource(loaded.gltf, loaded.positions, loaded.triangles);
     picker.attach(loaded.display.bvh);
     viewer.frame({ defaultDirection: true });
   });
   editor.on('positions', ({ positions, live }) => {
     meshView.showPositions(positions, { live });
+    gltfDisplay.showPositions(positions, { live });
     picker.markStale();
   });
   editor.on('selection', ({ weights }) => meshView.showSelection(weights));
@@ -94,6 +103,7 @@ export function createModeller(container, options = {}) {
     meshView.setSelectionVisible(display.selection);
     meshView.setFlatShading(display.flatShading);
     meshView.setWireframe(display.wireframe);
+    gltfDisplay.setWanted(display.materials);
   });
 
   // Errors the editor has reported already are not shown twice.
@@ -230,6 +240,11 @@ export function createModeller(container, options = {}) {
     api,
     load,
     open,
+    /** Draws a glTF mesh with its own materials (true) or the editing surface (false). */
+    setMaterials: (on) => {
+      if (typeof on !== 'boolean') throw badParameter(`setMaterials: expected true or false, got ${JSON.stringify(on)}`);
+      settings.update('display', { materials: on });
+    },
     /** Stops everything this modeller started; the container is left as it was. */
     dispose: () => lifetime.dispose(),
     /** Listeners and clean-up steps still held (0 after dispose): for tests. */
@@ -253,6 +268,9 @@ function checkOptions(container, options) {
   }
   if (options.solvers !== undefined && !(options.solvers instanceof SolverPool)) {
     throw badParameter('createModeller: solvers must be a pool made by createSolverPool()');
+  }
+  if (options.materials !== undefined && typeof options.materials !== 'boolean') {
+    throw badParameter(`createModeller: materials must be true or false, got ${JSON.stringify(options.materials)}`);
   }
   if (options.keyboard !== undefined && !['focus', 'page'].includes(options.keyboard)) {
     throw badParameter(`createModeller: keyboard must be 'focus' or 'page', got '${options.keyboard}'`);

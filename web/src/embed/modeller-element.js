@@ -17,7 +17,7 @@ import { SolverPool } from '../worker/solver-pool.js';
 const RELAYED_EVENTS = ['change', 'error', 'progress'];
 
 export class AnisoformModellerElement extends HTMLElement {
-  static observedAttributes = ['src', 'edits', 'ui'];
+  static observedAttributes = ['src', 'edits', 'ui', 'materials'];
   #modeller = null;
   #offs = [];
   /** The embedder's pool (the `solvers` property), or null. */
@@ -61,6 +61,8 @@ export class AnisoformModellerElement extends HTMLElement {
     if (name === 'ui') {
       this.#teardown();
       this.#build();
+    } else if (name === 'materials') {
+      this.#modeller.setMaterials(value !== null);
     } else {
       // src and edits set one after the other (a configurator switching
       // products) load once: the new mesh with the new edits.
@@ -94,6 +96,7 @@ export class AnisoformModellerElement extends HTMLElement {
     const edits = this.getAttribute('edits');
     this.#modeller = createModeller(this, {
       ui: this.getAttribute('ui') ?? 'full',
+      materials: this.hasAttribute('materials'),
       ...(src ? { mesh: src } : {}),
       ...(src && edits ? { document: edits } : {}),
       solvers: this.#sharedSolvers ?? this.#ownSolvers,

@@ -1,6 +1,8 @@
 // A loaded glTF scene kept beside the mesh the solver edits, so that a GLB
-// export writes the edited shape into the file's own scene: its nodes and
-// their transforms, materials, textures, UVs and vertex colours. The solver's
+// export writes the edited shape into the file's own scene (its nodes and
+// their transforms, materials, textures, UVs and vertex colours), and the
+// view can draw the shape with the file's materials (viewer/gltf-display.js).
+// The solver's
 // mesh is every triangle primitive in world coordinates, merged and welded
 // (import-gltf.js, Session.setMesh): `vertexMap` (Session.inputVertexMap)
 // takes each primitive's vertices to the solver's.
@@ -40,7 +42,17 @@ export class GltfSource {
    * @returns {Promise<ArrayBuffer>}
    */
   async exportGlb(positions, triangles) {
-    const welded = weldedNormals(positions, triangles);
+    this.writeShape(positions, triangles);
+    return new GLTFExporter().parseAsync(this.scene, { binary: true });
+  }
+
+  /**
+   * Writes `positions` (the solver's) into the scene's primitives, their
+   * normals recomputed unless `normals` is false (a live preview frame: the
+   * positions alone cost a fifth as much).
+   */
+  writeShape(positions, triangles, { normals = true } = {}) {
+    const welded = normals ? weldedNormals(positions, triangles) : null;
     const world = new Vector3();
     const toLocal = new Matrix4();
     const normalToLocal = new Matrix3();
@@ -57,11 +69,10 @@ export class GltfSource {
       // Tangents follow the old shape; without them three.js and other
       // viewers derive them from the UVs.
       geometry.deleteAttribute('tangent');
-      if (geometry.getAttribute('normal')) this.#writeNormals(mesh, offset, welded, normalToLocal);
+      if (normals && geometry.getAttribute('normal')) this.#writeNormals(mesh, offset, welded, normalToLocal);
       geometry.computeBoundingBox();
       geometry.computeBoundingSphere();
     }
-    return new GLTFExporter().parseAsync(this.scene, { binary: true });
   }
 
   #writeNormals(mesh, offset, welded, normalToLocal) {

@@ -26,7 +26,11 @@ export function defaultSettings() {
     // weighted centroid); 'point': the axis line through `point` (typed, or a click on the mesh).
     twist: { axis: 'y', custom: [0, 1, 0], degreesPerUnit: 90, origin: 'centroid', point: [0, 0, 0] },
     // heatRange: 'adaptive' (95th percentile of the values shown) or 'fixed' (heat-palettes.js).
-    display: { selection: true, glyphs: true, heatMap: 'off', heatRange: 'adaptive', flatShading: false, wireframe: false },
+    // materials: a glTF mesh drawn with its own materials instead of the editing surface.
+    display: {
+      selection: true, glyphs: true, heatMap: 'off', heatRange: 'adaptive', flatShading: false, wireframe: false,
+      materials: false,
+    },
     // Flattening: the patch, the wanted stretch along / across the direction
     // (0.8 = 20 % shrinkage), the garment-CAD baseline, the pattern files' scale:
     // the mesh's unit ('guess': the core's guess from the mesh's size; m, cm, mm,

@@ -24,5 +24,8 @@ export function displayPanel({ settings }) {
     }),
     checkboxField(settings, 'display', { key: 'flatShading', label: 'Flat shading' }),
     checkboxField(settings, 'display', { key: 'wireframe', label: 'Wireframe' }),
+    // The file's look: its materials, textures and vertex colours, in the
+    // edited shape (the selection and heat maps are then not drawn).
+    checkboxField(settings, 'display', { key: 'materials', label: "File's materials (glTF)" }),
   );
 }

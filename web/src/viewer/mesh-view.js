@@ -60,6 +60,13 @@ export class MeshView {
     this.viewer.requestRender();
   }
 
+  /** false: the file's look is drawn instead (gltf-display.js); the surface stays for picking. */
+  setSurfaceVisible(visible) {
+    if (this.material.visible === visible) return;
+    this.material.visible = visible;
+    this.viewer.requestRender();
+  }
+
   setWireframe(visible) {
     this.wireframeMaterial.visible = visible;
     this.#syncDataset();
