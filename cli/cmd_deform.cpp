@@ -265,9 +265,8 @@ int run_deform(const DeformArguments& args) {
                        ") before the energy settled: raise --iterations for a closer result");
   }
 
-  WriteOptions write = plan.write;
-  write.texture = &session.texture();  // an OBJ keeps the input OBJ's texture coordinates
-  write_mesh(args.output, Mesh{session.positions(), mesh.F}, write);
+  // An OBJ keeps the input OBJ's texture coordinates, a PLY the input PLY's vertex properties.
+  write_mesh(args.output, Mesh{session.positions(), mesh.F}, session.write_options(plan.write.binary));
   std::string direction = plan.direction_description;
   if (direction.empty()) {
     direction = edit.direction_given ? op_direction_description(edit.request.direction)

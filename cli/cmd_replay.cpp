@@ -42,10 +42,7 @@ int run_replay(const ReplayArguments& args) {
   session.load_mesh(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(), mesh_path);
   const ReplaySummary summary = replay_document(session, document);
 
-  WriteOptions write;
-  write.binary = !args.ascii;
-  write.texture = &session.texture();
-  write_mesh(args.output, Mesh{session.positions(), session.rest().F}, write);
+  write_mesh(args.output, Mesh{session.positions(), session.rest().F}, session.write_options(!args.ascii));
   Json result = {{"document", args.document},
                  {"mesh", mesh_path},
                  {"output", args.output},

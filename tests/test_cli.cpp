@@ -256,6 +256,35 @@ TEST_CASE("cli: deform keeps an OBJ's texture coordinates", "[cli]") {
   CHECK(aniso::read_mesh(ply).mesh.V == deformed.mesh.V);
 }
 
+// A scan's colours stay on their vertices: the input PLY's vertex properties
+// come out in the output PLY, in their types (Spot given a colour per vertex).
+TEST_CASE("cli: deform keeps a PLY's vertex colours", "[cli]") {
+  aniso::Mesh spot = aniso::read_mesh(mesh("formats/spot_lowres_binary.ply")).mesh;
+  aniso::VertexProperties colours = {{"red", "uchar", {}}, {"green", "uchar", {}}, {"blue", "uchar", {}}};
+  for (Eigen::Index i = 0; i < spot.V.rows(); ++i) {
+    for (int k = 0; k < 3; ++k) colours[k].values.push_back(static_cast<double>((i * (k + 3)) % 256));
+  }
+  aniso::WriteOptions options;
+  options.vertex_properties = &colours;
+  const std::string in = temp_path("coloured.ply");
+  aniso::write_mesh(in, spot, options);
+  for (const char* ascii : {"", "--ascii"}) {
+    INFO(ascii);
+    const std::string out = temp_path("coloured_out.ply");
+    std::vector<std::string> args{"deform", in, out, "--scale", "1.3", "--select", "sphere:0,0.5,0.6,0.4"};
+    if (*ascii) args.push_back(ascii);
+    run_expecting(args, 0);
+    const aniso::ReadResult deformed = aniso::read_mesh(out);
+    REQUIRE(deformed.vertex_properties.size() == 3);
+    for (int k = 0; k < 3; ++k) {
+      CHECK(deformed.vertex_properties[k].name == colours[k].name);
+      CHECK(deformed.vertex_properties[k].type == "uchar");
+      CHECK(deformed.vertex_properties[k].values == colours[k].values);
+    }
+    CHECK((deformed.mesh.V - spot.V).cwiseAbs().maxCoeff() > 0.05);
+  }
+}
+
 TEST_CASE("cli: deform welds a triangle soup and says so", "[cli]") {
   const std::string out = temp_path("welded.obj");
   const json result = stdout_json(run_expecting(

@@ -22,6 +22,7 @@
 #include "anisoform/error.h"
 #include "anisoform/mesh_check.h"
 #include "anisoform/mesh_io.h"
+#include "geometry/frames.h"
 #include "test_support.h"
 
 using aniso::Mesh;
@@ -410,6 +411,74 @@ TEST_CASE("mesh_io: texture coordinates that are malformed or missing somewhere 
     REQUIRE(dropped.report.notes.size() == 1);
     CHECK(dropped.report.notes[0] == "texture coordinates ignored (" + c.why + ")");
   }
+}
+
+// Spot (a real scan-like PLY) with the properties a coloured scan has: a
+// colour per vertex (uchar, from its position), a quality (float) and
+// normals (here deliberately wrong: a writer computes them for the shape).
+aniso::VertexProperties scan_properties(const Mesh& mesh) {
+  aniso::VertexProperties properties = {{"red", "uchar", {}}, {"green", "uint8", {}}, {"blue", "uchar", {}},
+                                        {"quality", "float", {}}, {"nx", "float", {}}, {"ny", "float", {}},
+                                        {"nz", "float", {}}, {"label", "int", {}}};
+  for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
+    for (int k = 0; k < 3; ++k) properties[k].values.push_back(std::floor(127.5 * (1.0 + std::tanh(mesh.V(i, k)))));
+    properties[3].values.push_back(static_cast<float>(0.25 * static_cast<double>(i % 7)));
+    for (int k = 4; k < 7; ++k) properties[k].values.push_back(1.0);
+    properties[7].values.push_back(-static_cast<double>(i));
+  }
+  return properties;
+}
+
+TEST_CASE("mesh_io: a PLY's other vertex properties are read and written again in their types", "[io]") {
+  const Mesh spot = aniso::read_mesh(mesh_path("formats/spot_lowres_binary.ply")).mesh;
+  const aniso::VertexProperties given = scan_properties(spot);
+  for (const bool binary : {true, false}) {
+    INFO("binary " << binary);
+    aniso::WriteOptions options;
+    options.binary = binary;
+    options.vertex_properties = &given;
+    const std::string written = aniso::write_mesh_to_memory(spot, MeshFormat::Ply, options);
+    CHECK_THAT(written, Catch::Contains("property uchar red\nproperty uint8 green") &&
+                            Catch::Contains("property int label\nelement face"));
+    const ReadResult back = read_text(written, MeshFormat::Ply);
+    CHECK(back.mesh.V == spot.V);
+    CHECK(back.mesh.F == spot.F);
+    REQUIRE(back.vertex_properties.size() == given.size());
+    const aniso::Positions normals = aniso::vertex_normals(spot);
+    for (std::size_t p = 0; p < given.size(); ++p) {
+      INFO(given[p].name);
+      CHECK(back.vertex_properties[p].name == given[p].name);
+      CHECK(back.vertex_properties[p].type == given[p].type);
+      if (p >= 4 && p < 7) {
+        // The shape's normals, not the ones given.
+        for (Eigen::Index i = 0; i < spot.V.rows(); ++i) {
+          CHECK(back.vertex_properties[p].values[i] == Approx(normals(i, p - 4)).margin(1e-6));
+        }
+      } else {
+        CHECK(back.vertex_properties[p].values == given[p].values);
+      }
+    }
+  }
+  // A plain PLY has none.
+  CHECK(aniso::read_mesh(mesh_path("formats/spot_lowres_ascii.ply")).vertex_properties.empty());
+}
+
+TEST_CASE("mesh_io: a PLY with more than 16 other vertex properties keeps the first 16 and says so", "[io]") {
+  std::string text = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+  for (int p = 0; p < 18; ++p) text += "property uchar p" + std::to_string(p) + "\n";
+  text += "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  for (int v = 0; v < 3; ++v) {
+    text += std::to_string(v % 2) + " " + std::to_string(v / 2) + " 0";
+    for (int p = 0; p < 18; ++p) text += " " + std::to_string(p + v);
+    text += "\n";
+  }
+  text += "3 0 1 2\n";
+  const ReadResult read = read_text(text, MeshFormat::Ply);
+  REQUIRE(read.vertex_properties.size() == 16);
+  CHECK(read.vertex_properties[15].name == "p15");
+  CHECK(read.vertex_properties[15].values == std::vector<double>{15, 16, 17});
+  REQUIRE(read.report.notes.size() == 1);
+  CHECK(read.report.notes[0] == "kept the first 16 vertex properties besides x, y, z; dropped 2 more");
 }
 
 TEST_CASE("mesh_io: format_from_path maps extensions and leaves GLB to the browser app", "[io]") {

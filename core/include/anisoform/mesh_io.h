@@ -43,10 +43,22 @@ struct CornerTexture {
   bool empty() const { return faces.rows() == 0; }
 };
 
+// A PLY's vertex properties besides x, y, z (colours, quality, normals...),
+// by name and declared type, one value per vertex. An edit moves positions
+// only, so a PLY written with them carries them again; normals (nx, ny, nz)
+// are computed again for the shape written.
+struct VertexProperty {
+  std::string name;
+  std::string type;            // the PLY type as declared: "uchar", "float", ...
+  std::vector<double> values;  // one per vertex (every PLY type is exact as a double)
+};
+using VertexProperties = std::vector<VertexProperty>;
+
 struct ReadResult {
   Mesh mesh;
   ReadReport report;
-  CornerTexture texture;  // OBJ only
+  CornerTexture texture;                // OBJ only
+  VertexProperties vertex_properties;  // PLY only
 };
 
 // Reads from a file / from bytes in memory. Errors: Error(BadFile) with a
@@ -63,6 +75,8 @@ struct WriteOptions {
   // OBJ: written as `vt` and `f v/vt` when given and its faces match the
   // mesh's; the other formats have no per-corner coordinates.
   const CornerTexture* texture = nullptr;
+  // PLY: written after x, y, z when given and one value per vertex each.
+  const VertexProperties* vertex_properties = nullptr;
 };
 
 // Writes to a file (format from the extension; atomically, see

@@ -130,11 +130,17 @@ class Session {
   // Same from a mesh already read (the CLI reads files itself, for its own
   // error texts): the one preparation every host's mesh goes through. `notes`
   // are kept in info().notes, after which the session adds its own.
-  // `texture`: the file's texture coordinates per corner (mesh_io.h), which
-  // an OBJ export writes again; kept while the faces stay as read.
-  const SessionMeshInfo& adopt_mesh(Mesh mesh, std::vector<std::string> notes, CornerTexture texture = {});
-  // The texture coordinates of the mesh loaded (empty: none).
+  // `texture`: the file's texture coordinates per corner, which an OBJ
+  // export writes again; `properties`: a PLY's other vertex properties,
+  // which a PLY export writes again (mesh_io.h). Kept while the faces and
+  // vertices stay as read.
+  const SessionMeshInfo& adopt_mesh(Mesh mesh, std::vector<std::string> notes, CornerTexture texture = {},
+                                    VertexProperties properties = {});
+  // The texture coordinates and vertex properties of the mesh loaded (empty: none).
   const CornerTexture& texture() const { return texture_; }
+  const VertexProperties& vertex_properties() const { return vertex_properties_; }
+  // How a mesh file written from this session keeps them (PLY: binary or not).
+  WriteOptions write_options(bool binary = true) const;
 
   // The most vertices a mesh may have in this host (0, the default: no
   // limit), and why, for the refusal: "more than the N <why>". The WASM
@@ -277,6 +283,7 @@ class Session {
   std::vector<float> weights_f32_;
   std::vector<std::uint32_t> input_vertex_map_;  // set_mesh's, see input_vertex_map()
   CornerTexture texture_;
+  VertexProperties vertex_properties_;
 };
 
 }  // namespace aniso

@@ -210,7 +210,7 @@ ReadResult read_stl(const char* data, std::size_t size);
 
 std::string write_obj(const Mesh& mesh, const CornerTexture* texture = nullptr);
 std::string write_off(const Mesh& mesh);
-std::string write_ply(const Mesh& mesh, bool binary);
+std::string write_ply(const Mesh& mesh, bool binary, const VertexProperties* properties = nullptr);
 std::string write_stl(const Mesh& mesh, bool binary);
 
 }  // namespace aniso::io

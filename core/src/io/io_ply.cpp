@@ -1,12 +1,19 @@
 // Stanford PLY: reading ASCII and binary (either byte order) files with any
 // element layout: the `vertex` element's x, y, z of any numeric type, the
 // `face` element's `vertex_indices` (or `vertex_index`) list of any count and
-// index types; every other property and element is skipped by its type.
-// Writing: binary little endian (double coordinates, exact) or ASCII.
+// index types, and the vertex element's other scalar properties (colours,
+// quality, normals: kept to be written again, mesh_io.h VertexProperties);
+// every other property and element is skipped by its type.
+// Writing: binary little endian (double coordinates, exact) or ASCII, with
+// the kept vertex properties in their declared types.
 #include <algorithm>
 #include <climits>
+#include <cstdint>
+
+#include <optional>
 
 #include "anisoform/mesh_io.h"
+#include "geometry/frames.h"
 #include "io/io_common.h"
 
 namespace aniso {
@@ -14,12 +21,17 @@ namespace io {
 
 namespace {
 
+// The most vertex properties besides x, y, z kept (in declaration order);
+// more are read and dropped with a note. Each costs 8 bytes a vertex.
+constexpr std::size_t kMaxKeptVertexProperties = 16;
+
 enum class PlyType { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
 enum class PlyEncoding { Ascii, BinaryLittleEndian, BinaryBigEndian };
 
 struct PlyProperty {
   std::string name;
   PlyType type = PlyType::Float32;  // the item type, for a list
+  std::string type_name = "float";  // as declared ("uchar", "uint8", ...)
   bool is_list = false;
   PlyType count_type = PlyType::UInt8;
 };
@@ -109,6 +121,7 @@ PlyHeader parse_header(const char* data, std::size_t size) {
         type = next_token(rest);
       }
       property.type = parse_type(type, number);
+      property.type_name = std::string(type);
       property.name = std::string(next_token(rest));
       if (property.name.empty()) fail_file("a PLY property has no name" + at);
       if (is_index_list(property) && !is_integer_type(property.type)) {
@@ -228,6 +241,22 @@ class PlyBodyReader {
     if (axis_of[0] < 0 || axis_of[1] < 0 || axis_of[2] < 0) {
       fail_file("the PLY vertex element lacks an x, y or z property");
     }
+    // The other scalar properties: which column each goes to (-1: not kept).
+    std::vector<int> column_of(element.properties.size(), -1);
+    for (std::size_t p = 0; p < element.properties.size(); ++p) {
+      const PlyProperty& property = element.properties[p];
+      const bool axis = static_cast<int>(p) == axis_of[0] || static_cast<int>(p) == axis_of[1] ||
+                        static_cast<int>(p) == axis_of[2];
+      if (axis || property.is_list) continue;
+      if (kept_.size() == kMaxKeptVertexProperties) {
+        ++dropped_properties_;
+        continue;
+      }
+      column_of[p] = static_cast<int>(kept_.size());
+      kept_.push_back({property.name, property.type_name, {}});
+      // The count is the header's, checked against the body's size already.
+      kept_.back().values.reserve(static_cast<std::size_t>(element.count));
+    }
     for (long long v = 0; v < element.count; ++v) {
       double xyz[3] = {0, 0, 0};
       for (std::size_t p = 0; p < element.properties.size(); ++p) {
@@ -241,6 +270,7 @@ class PlyBodyReader {
           for (int axis = 0; axis < 3; ++axis) {
             if (axis_of[axis] == static_cast<int>(p)) xyz[axis] = value;
           }
+          if (complete && column_of[p] >= 0) kept_[column_of[p]].values.push_back(value);
         }
         if (!complete) fail_file(truncated_message(v, element.count, "vertices"));
       }
@@ -320,6 +350,10 @@ class PlyBodyReader {
   Values& values_;
   PolygonMesh& polygons_;
   long long num_vertices_;
+
+ public:
+  VertexProperties kept_;       // the vertex element's other scalar properties
+  int dropped_properties_ = 0;  // beyond kMaxKeptVertexProperties
 };
 
 template <class Values>
@@ -356,10 +390,18 @@ ReadResult read_body(Values& values, const PlyHeader& header, std::size_t body_b
                    "'" + element.name + "' elements");
     }
   }
-  return assemble_mesh(polygons, std::move(report));
+  if (reader.dropped_properties_ > 0) {
+    report.notes.push_back("kept the first " + std::to_string(kMaxKeptVertexProperties) +
+                           " vertex properties besides x, y, z; dropped " +
+                           std::to_string(reader.dropped_properties_) + " more");
+  }
+  ReadResult result = assemble_mesh(polygons, std::move(report));
+  result.vertex_properties = std::move(reader.kept_);
+  return result;
 }
 
-void append_header(std::string& out, const Mesh& mesh, const char* format, const char* coordinate_type) {
+void append_header(std::string& out, const Mesh& mesh, const char* format, const char* coordinate_type,
+                   const VertexProperties& properties) {
   out += "ply\nformat ";
   out += format;
   out += " 1.0\ncomment written by anisoform\nelement vertex ";
@@ -369,6 +411,9 @@ void append_header(std::string& out, const Mesh& mesh, const char* format, const
     out += coordinate_type;
     out += ' ';
     out += axis;
+  }
+  for (const VertexProperty& property : properties) {
+    out += "\nproperty " + property.type + ' ' + property.name;
   }
   out += "\nelement face ";
   out += std::to_string(mesh.F.rows());
@@ -418,14 +463,56 @@ ReadResult read_ply(const char* data, std::size_t size) {
   return read_body(values, header, body_bytes);
 }
 
-std::string write_ply(const Mesh& mesh, bool binary) {
+namespace {
+
+// The properties to write: given ones that fit the mesh (one value per
+// vertex, a PLY type), with normals (nx, ny, nz) those of the shape written.
+VertexProperties properties_to_write(const Mesh& mesh, const VertexProperties* given) {
+  if (given == nullptr || given->empty()) return {};
+  VertexProperties out = *given;
+  std::optional<Positions> normals;
+  for (VertexProperty& property : out) {
+    if (property.values.size() != static_cast<std::size_t>(mesh.V.rows())) {
+      fail(ErrorCode::BadParameter, "vertex property '" + property.name + "' has " +
+                                        std::to_string(property.values.size()) + " values for " +
+                                        std::to_string(mesh.V.rows()) + " vertices");
+    }
+    parse_type(property.type, 0);  // a PLY type, or Error naming it
+    const int axis = property.name == "nx" ? 0 : property.name == "ny" ? 1 : property.name == "nz" ? 2 : -1;
+    if (axis < 0) continue;
+    if (!normals) normals = vertex_normals(mesh);
+    for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) property.values[i] = (*normals)(i, axis);
+  }
+  return out;
+}
+
+void append_binary_value(std::string& out, PlyType type, double value) {
+  switch (type) {
+    case PlyType::Int8: append_little_endian<std::int8_t>(out, static_cast<std::int8_t>(value)); return;
+    case PlyType::UInt8: append_little_endian<std::uint8_t>(out, static_cast<std::uint8_t>(value)); return;
+    case PlyType::Int16: append_little_endian<std::int16_t>(out, static_cast<std::int16_t>(value)); return;
+    case PlyType::UInt16: append_little_endian<std::uint16_t>(out, static_cast<std::uint16_t>(value)); return;
+    case PlyType::Int32: append_little_endian<std::int32_t>(out, static_cast<std::int32_t>(value)); return;
+    case PlyType::UInt32: append_little_endian<std::uint32_t>(out, static_cast<std::uint32_t>(value)); return;
+    case PlyType::Float32: append_little_endian<float>(out, static_cast<float>(value)); return;
+    case PlyType::Float64: append_little_endian<double>(out, value); return;
+  }
+}
+
+}  // namespace
+
+std::string write_ply(const Mesh& mesh, bool binary, const VertexProperties* given) {
+  const VertexProperties properties = properties_to_write(mesh, given);
+  std::vector<PlyType> types;
+  for (const VertexProperty& property : properties) types.push_back(parse_type(property.type, 0));
   std::string out;
   if (binary) {
-    append_header(out, mesh, "binary_little_endian", "double");
-    out.reserve(out.size() + static_cast<std::size_t>(mesh.V.rows()) * 24 +
+    append_header(out, mesh, "binary_little_endian", "double", properties);
+    out.reserve(out.size() + static_cast<std::size_t>(mesh.V.rows()) * (24 + 8 * properties.size()) +
                 static_cast<std::size_t>(mesh.F.rows()) * 13);
     for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
       for (int k = 0; k < 3; ++k) append_little_endian<double>(out, mesh.V(i, k));
+      for (std::size_t p = 0; p < properties.size(); ++p) append_binary_value(out, types[p], properties[p].values[i]);
     }
     for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
       append_little_endian<std::uint8_t>(out, 3);
@@ -433,8 +520,22 @@ std::string write_ply(const Mesh& mesh, bool binary) {
     }
     return out;
   }
-  append_header(out, mesh, "ascii", "double");
-  append_position_rows(out, mesh.V, "");
+  append_header(out, mesh, "ascii", "double", properties);
+  if (properties.empty()) {
+    append_position_rows(out, mesh.V, "");
+  } else {
+    for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
+      for (int k = 0; k < 3; ++k) {
+        if (k > 0) out += ' ';
+        append_number(out, mesh.V(i, k));
+      }
+      for (const VertexProperty& property : properties) {
+        out += ' ';
+        append_number(out, property.values[i]);
+      }
+      out += '\n';
+    }
+  }
   append_triangle_rows(out, mesh.F, "3", 0);
   return out;
 }

@@ -90,7 +90,7 @@ std::string write_mesh_to_memory(const Mesh& mesh, MeshFormat format, const Writ
   switch (format) {
     case MeshFormat::Obj: return io::write_obj(mesh, options.texture);
     case MeshFormat::Off: return io::write_off(mesh);
-    case MeshFormat::Ply: return io::write_ply(mesh, options.binary);
+    case MeshFormat::Ply: return io::write_ply(mesh, options.binary, options.vertex_properties);
     case MeshFormat::Stl: return io::write_stl(mesh, options.binary);
   }
   fail(ErrorCode::BadParameter, "unknown mesh format");
