@@ -41,14 +41,18 @@ const OPS = [
   { id: 'thicken', region: 'everything', op: { method: 'andefgrad', transform: { scale: [1, 1.2] } } },
 ];
 
+// A region's select steps, from an empty selection, as the page runs them.
+function selectRegion(session, rule) {
+  session.setSelection(new Float32Array(session.info().vertices));
+  for (const step of rule.steps) session.select(step.region, { falloff: step.falloff, mode: step.mode });
+}
+
 // As the page does: select, resolve the op on the rest pose, solve, commit.
 function recordDocument() {
   const session = sessionWith(wasm, MESH);
   try {
     const ops = OPS.map(({ id, region, op }) => {
-      const rule = REGIONS.find((r) => r.name === region);
-      session.setSelection(new Float32Array(session.info().vertices));
-      for (const step of rule.steps) session.select(step.region, { falloff: step.falloff, mode: step.mode });
+      selectRegion(session, REGIONS.find((r) => r.name === region));
       const resolved = session.resolveOp(op);
       session.deform(resolved);
       session.commit();
@@ -177,9 +181,7 @@ test('documents the core writes pass docs/document.schema.json, whose iteration 
   const session = sessionWith(wasm, MESH);
   try {
     const ops = VARIED_OPS.map(({ id, region, op }) => {
-      const rule = VARIED_REGIONS.find((r) => r.name === region);
-      session.setSelection(new Float32Array(session.info().vertices));
-      for (const step of rule.steps) session.select(step.region, { falloff: step.falloff, mode: step.mode });
+      selectRegion(session, VARIED_REGIONS.find((r) => r.name === region));
       return { id, label: id, enabled: true, region, op: session.resolveOp(op) };
     });
     const info = session.info();
