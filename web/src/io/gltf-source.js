@@ -70,8 +70,12 @@ export class GltfSource {
       // viewers derive them from the UVs.
       geometry.deleteAttribute('tangent');
       if (normals && geometry.getAttribute('normal')) this.#writeNormals(mesh, offset, welded, normalToLocal);
-      geometry.computeBoundingBox();
-      geometry.computeBoundingSphere();
+      // Bounds with the normals: a live frame keeps the last ones (two more
+      // passes over the vertices; the view only culls by them).
+      if (normals) {
+        geometry.computeBoundingBox();
+        geometry.computeBoundingSphere();
+      }
     }
   }
 
