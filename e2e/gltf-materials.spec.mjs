@@ -32,8 +32,13 @@ test("File's materials draws a glTF mesh with its material and texture, in the e
   await expect.poll(() => redPixels(page)).toBeLessThan(300); // the axis gizmo's x arrow is red
 
   const materials = page.getByLabel("File's materials (glTF)");
+  await page.locator('#display-heatMap').selectOption('stretch');
+  await expect(page.getByTestId('heatmap-legend')).toBeVisible();
   await materials.check();
   await expect(canvas).toHaveAttribute('data-surface', 'materials');
+  // The heat map is the editing surface's: not drawn over the file's look, nor its legend.
+  await expect(page.getByTestId('heatmap-legend')).toBeHidden();
+  await page.locator('#display-heatMap').selectOption('off');
   await expect.poll(() => redPixels(page)).toBeGreaterThan(2000);
   const before = await redPixels(page);
 

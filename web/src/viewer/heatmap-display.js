@@ -18,11 +18,13 @@ const DISTORTION_KINDS = ['area', 'stretch'];
 export class HeatmapDisplay {
   #latest = 0; // the newest refresh: older worker answers are dropped
 
-  constructor({ editor, settings, meshView, viewport, reportError }) {
+  /** fileLook: () => whether the file's own materials are drawn instead of the surface (gltf-display.js). */
+  constructor({ editor, settings, meshView, viewport, reportError, fileLook = () => false }) {
     this.editor = editor;
     this.settings = settings;
     this.meshView = meshView;
     this.reportError = reportError;
+    this.fileLook = fileLook;
     this.legend = new HeatmapLegend(viewport);
     settings.on('change', ({ section }) => section === 'display' && this.refresh());
     editor.on('mesh', () => this.refresh());
@@ -32,7 +34,8 @@ export class HeatmapDisplay {
 
   /** `distortion`: the core's values for the positions just shown, when an edit brought them. */
   refresh(distortion) {
-    const kind = this.settings.values.display.heatMap;
+    // Over the file's materials no heat map is drawn: neither its legend nor its values.
+    const kind = this.fileLook() ? 'off' : this.settings.values.display.heatMap;
     const document = this.editor.document;
     const refresh = ++this.#latest;
     this.editor.heatMapKind = DISTORTION_KINDS.includes(kind) ? kind : null;
