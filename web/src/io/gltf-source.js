@@ -2,16 +2,15 @@
 // export writes the edited shape into the file's own scene (its nodes and
 // their transforms, materials, textures, UVs and vertex colours), and the
 // view can draw the shape with the file's materials (viewer/gltf-display.js).
-// The solver's
-// mesh is every triangle primitive in world coordinates, merged and welded
-// (import-gltf.js, Session.setMesh): `vertexMap` (Session.inputVertexMap)
-// takes each primitive's vertices to the solver's.
+// The solver's mesh is every triangle primitive in world coordinates, merged
+// and welded (import-gltf.js, Session.setMesh): `vertexMap`
+// (Session.inputVertexMap) takes each primitive's vertices to the solver's.
 import { Matrix3, Matrix4, Vector3 } from 'three';
 import { GLTFExporter } from 'three/addons/exporters/GLTFExporter.js';
 
 // Two copies of a welded vertex whose normals in the file agree this closely
-// lay on a smooth surface split for its UVs or colours: they get the welded
-// vertex's one normal. Copies that differ lay on a hard edge and keep a
+// lie on a smooth surface split for its UVs or colours: they get the welded
+// vertex's one normal. Copies that differ lie on a hard edge and keep a
 // normal of their own side (as computeVertexNormals gives it).
 const SAME_NORMAL_COS = 0.9999;
 

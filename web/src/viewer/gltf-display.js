@@ -31,7 +31,7 @@ export class GltfDisplay {
   /** The loaded mesh's glTF scene, or null (other formats). */
   setSource(source, positions, triangles) {
     if (this.#source) this.viewer.scene.remove(this.#source.scene);
-    this.#source = source;
+    this.#source = source ?? null;
     this.#triangles = triangles;
     this.#positions = positions;
     this.#written = null;
