@@ -208,7 +208,7 @@ std::vector<DirectionConstraint> read_direction_field(const std::string& path) {
 ReadReport load_into_session(Session& session, const std::string& path) {
   ReadResult read = read_input_mesh(path);
   try {
-    session.adopt_mesh(std::move(read.mesh), {}, std::move(read.texture), std::move(read.vertex_properties));
+    session.adopt_mesh(std::move(read.mesh), {}, std::move(read.attributes));
   } catch (const Error& e) {
     throw Error(e.code(), path + ": " + e.what());
   }

@@ -237,19 +237,25 @@ TEST_CASE("cli: deform on every malformed file repairs, warns or refuses by name
 }
 
 // The shape changes, the texture mapping does not: an OBJ written by deform
-// has the input OBJ's vt list and per-corner indices, as read (replay writes
-// through the same Session::texture()).
-TEST_CASE("cli: deform keeps an OBJ's texture coordinates", "[cli]") {
+// has the input OBJ's vt list and per-corner indices, and its materials, as
+// read (replay writes through the same Session::attributes()).
+TEST_CASE("cli: deform keeps an OBJ's texture coordinates and materials", "[cli]") {
   const std::string in = mesh("closed/spot_triangulated.obj");
   const aniso::ReadResult input = aniso::read_mesh(in);
-  REQUIRE(input.texture.uv.rows() == 3225);
+  REQUIRE(input.attributes.texture.uv.rows() == 3225);
   const std::string out = temp_path("textured.obj");
   run_expecting({"deform", in, out, "--scale", "1.3", "--select", "sphere:0,0.5,0.6,0.4"}, 0);
   const aniso::ReadResult deformed = aniso::read_mesh(out);
-  CHECK(deformed.texture.uv == input.texture.uv);
-  CHECK(deformed.texture.faces == input.texture.faces);
+  CHECK(deformed.attributes.texture.uv == input.attributes.texture.uv);
+  CHECK(deformed.attributes.texture.faces == input.attributes.texture.faces);
   CHECK(deformed.mesh.F == input.mesh.F);
   CHECK((deformed.mesh.V - input.mesh.V).cwiseAbs().maxCoeff() > 0.05);
+  // And its materials (a LightWave export's mtllib and usemtl).
+  const std::string concave = temp_path("concave.obj");
+  run_expecting({"deform", mesh("formats/concave_polygon.obj"), concave, "--scale", "1.3"}, 0);
+  CHECK(aniso::read_mesh(concave).attributes.materials.runs ==
+        aniso::read_mesh(mesh("formats/concave_polygon.obj")).attributes.materials.runs);
+  CHECK(aniso::read_mesh(concave).attributes.materials.libraries == std::vector<std::string>{"concave_polygon.mtl"});
   // Other formats have no per-corner coordinates: the shape alone.
   const std::string ply = temp_path("textured.ply");
   run_expecting({"deform", in, ply, "--scale", "1.3", "--select", "sphere:0,0.5,0.6,0.4"}, 0);
@@ -264,8 +270,10 @@ TEST_CASE("cli: deform keeps a PLY's vertex colours", "[cli]") {
   for (Eigen::Index i = 0; i < spot.V.rows(); ++i) {
     for (int k = 0; k < 3; ++k) colours[k].values.push_back(static_cast<double>((i * (k + 3)) % 256));
   }
+  aniso::SurfaceAttributes attributes;
+  attributes.vertex_properties = colours;
   aniso::WriteOptions options;
-  options.vertex_properties = &colours;
+  options.attributes = &attributes;
   const std::string in = temp_path("coloured.ply");
   aniso::write_mesh(in, spot, options);
   for (const char* ascii : {"", "--ascii"}) {
@@ -275,11 +283,11 @@ TEST_CASE("cli: deform keeps a PLY's vertex colours", "[cli]") {
     if (*ascii) args.push_back(ascii);
     run_expecting(args, 0);
     const aniso::ReadResult deformed = aniso::read_mesh(out);
-    REQUIRE(deformed.vertex_properties.size() == 3);
+    REQUIRE(deformed.attributes.vertex_properties.size() == 3);
     for (int k = 0; k < 3; ++k) {
-      CHECK(deformed.vertex_properties[k].name == colours[k].name);
-      CHECK(deformed.vertex_properties[k].type == "uchar");
-      CHECK(deformed.vertex_properties[k].values == colours[k].values);
+      CHECK(deformed.attributes.vertex_properties[k].name == colours[k].name);
+      CHECK(deformed.attributes.vertex_properties[k].type == "uchar");
+      CHECK(deformed.attributes.vertex_properties[k].values == colours[k].values);
     }
     CHECK((deformed.mesh.V - spot.V).cwiseAbs().maxCoeff() > 0.05);
   }

@@ -362,36 +362,66 @@ TEST_CASE("mesh_io: an OBJ's texture coordinates are read per corner and written
     const std::string text = file_bytes(file);
     const ReadResult read = read_text(text, MeshFormat::Obj);
     // Spot's UV seams: 3225 coordinates for 2930 vertices.
-    REQUIRE(read.texture.uv.rows() == 3225);
-    REQUIRE(read.texture.faces.rows() == read.mesh.F.rows());
+    REQUIRE(read.attributes.texture.uv.rows() == 3225);
+    REQUIRE(read.attributes.texture.faces.rows() == read.mesh.F.rows());
     // Every triangle corner pairs its vertex with a coordinate the file pairs
     // it with (the quads' triangles too), and all of the file's pairs are used.
     std::set<std::pair<int, int>> pairs;
     for (Eigen::Index f = 0; f < read.mesh.F.rows(); ++f)
-      for (int k = 0; k < 3; ++k) pairs.emplace(read.mesh.F(f, k), read.texture.faces(f, k));
+      for (int k = 0; k < 3; ++k) pairs.emplace(read.mesh.F(f, k), read.attributes.texture.faces(f, k));
     CHECK(pairs == obj_corner_pairs(text));
 
     // Written with them and read again: the same mesh and texture, bitwise.
     aniso::WriteOptions options;
-    options.texture = &read.texture;
+    options.attributes = &read.attributes;
     const std::string written = aniso::write_mesh_to_memory(read.mesh, MeshFormat::Obj, options);
     const ReadResult back = read_text(written, MeshFormat::Obj);
     CHECK(back.mesh.V == read.mesh.V);
     CHECK(back.mesh.F == read.mesh.F);
-    CHECK(back.texture.uv == read.texture.uv);
-    CHECK(back.texture.faces == read.texture.faces);
+    CHECK(back.attributes.texture.uv == read.attributes.texture.uv);
+    CHECK(back.attributes.texture.faces == read.attributes.texture.faces);
     // Without them: positions and faces only, as before.
-    CHECK(read_text(aniso::write_mesh_to_memory(read.mesh, MeshFormat::Obj), MeshFormat::Obj).texture.empty());
+    CHECK(read_text(aniso::write_mesh_to_memory(read.mesh, MeshFormat::Obj), MeshFormat::Obj).attributes.texture.empty());
   }
+}
+
+TEST_CASE("mesh_io: an OBJ's mtllib and usemtl statements are read and written again", "[io]") {
+  // A LightWave export: one library, one material for its one (66-gon) face.
+  const ReadResult concave = aniso::read_mesh(mesh_path("formats/concave_polygon.obj"));
+  CHECK(concave.attributes.materials.libraries == std::vector<std::string>{"concave_polygon.mtl"});
+  REQUIRE(concave.attributes.materials.runs.size() == 1);
+  CHECK(concave.attributes.materials.runs[0] == std::make_pair(0, std::string("test")));
+  // Two usemtl before the same face: the second holds.
+  CHECK(aniso::read_mesh(mesh_path("malformed/testmixed.obj")).attributes.materials.runs ==
+        std::vector<std::pair<int, std::string>>{{0, "Default"}});
+
+  // Runs start at their polygon's first triangle; a quad is two.
+  const std::string text =
+      "mtllib shop.mtl  # the library\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n"
+      "usemtl wood\nf 1 2 3 4\nusemtl steel\nf 2 5 6 3\nf 1 2 3\n";
+  const ReadResult read = read_text(text, MeshFormat::Obj);
+  CHECK(read.attributes.materials.libraries == std::vector<std::string>{"shop.mtl"});
+  CHECK(read.attributes.materials.runs == std::vector<std::pair<int, std::string>>{{0, "wood"}, {2, "steel"}});
+  aniso::WriteOptions options;
+  options.attributes = &read.attributes;
+  const std::string written = aniso::write_mesh_to_memory(read.mesh, MeshFormat::Obj, options);
+  CHECK_THAT(written, Catch::StartsWith("# written by anisoform\nmtllib shop.mtl\nv "));
+  // (each before its first triangle: wood before the first, steel before the third)
+  CHECK(written.find("usemtl wood\nf ") < written.find("\nf "));
+  CHECK(written.find("usemtl steel\nf ") > written.find("\nf ", written.find("\nf ") + 1));
+  const ReadResult back = read_text(written, MeshFormat::Obj);
+  CHECK(back.attributes.materials.libraries == read.attributes.materials.libraries);
+  CHECK(back.attributes.materials.runs == read.attributes.materials.runs);
+  CHECK(back.mesh.F == read.mesh.F);
 }
 
 TEST_CASE("mesh_io: texture coordinates that are malformed or missing somewhere are dropped, the mesh kept", "[io]") {
   const std::string square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
   const auto read = [&](const std::string& rest) { return read_text(square + rest, MeshFormat::Obj); };
   const ReadResult whole = read("vt 0 0\nvt 1 0 0.5\nvt 1 1\nvt 0.5\nf 1/1 2/2 3/3\nf 1/-4 3/-2 4/-1\n");
-  REQUIRE(whole.texture.faces.rows() == 2);
-  CHECK(whole.texture.faces.row(1) == Eigen::RowVector3i(0, 2, 3));
-  CHECK(whole.texture.uv.row(3) == Eigen::RowVector2d(0.5, 0.0));  // v defaults to 0
+  REQUIRE(whole.attributes.texture.faces.rows() == 2);
+  CHECK(whole.attributes.texture.faces.row(1) == Eigen::RowVector3i(0, 2, 3));
+  CHECK(whole.attributes.texture.uv.row(3) == Eigen::RowVector2d(0.5, 0.0));  // v defaults to 0
   CHECK(whole.report.notes.empty());
   const struct {
     std::string rest;
@@ -406,7 +436,7 @@ TEST_CASE("mesh_io: texture coordinates that are malformed or missing somewhere 
   for (const auto& c : cases) {
     INFO(c.rest);
     const ReadResult dropped = read(c.rest);
-    CHECK(dropped.texture.empty());
+    CHECK(dropped.attributes.texture.empty());
     CHECK(dropped.mesh.num_triangles() >= 1);
     REQUIRE(dropped.report.notes.size() == 1);
     CHECK(dropped.report.notes[0] == "texture coordinates ignored (" + c.why + ")");
@@ -434,33 +464,35 @@ TEST_CASE("mesh_io: a PLY's other vertex properties are read and written again i
   const aniso::VertexProperties given = scan_properties(spot);
   for (const bool binary : {true, false}) {
     INFO("binary " << binary);
+    aniso::SurfaceAttributes attributes;
+    attributes.vertex_properties = given;
     aniso::WriteOptions options;
     options.binary = binary;
-    options.vertex_properties = &given;
+    options.attributes = &attributes;
     const std::string written = aniso::write_mesh_to_memory(spot, MeshFormat::Ply, options);
     CHECK_THAT(written, Catch::Contains("property uchar red\nproperty uint8 green") &&
                             Catch::Contains("property int label\nelement face"));
     const ReadResult back = read_text(written, MeshFormat::Ply);
     CHECK(back.mesh.V == spot.V);
     CHECK(back.mesh.F == spot.F);
-    REQUIRE(back.vertex_properties.size() == given.size());
+    REQUIRE(back.attributes.vertex_properties.size() == given.size());
     const aniso::Positions normals = aniso::vertex_normals(spot);
     for (std::size_t p = 0; p < given.size(); ++p) {
       INFO(given[p].name);
-      CHECK(back.vertex_properties[p].name == given[p].name);
-      CHECK(back.vertex_properties[p].type == given[p].type);
+      CHECK(back.attributes.vertex_properties[p].name == given[p].name);
+      CHECK(back.attributes.vertex_properties[p].type == given[p].type);
       if (p >= 4 && p < 7) {
         // The shape's normals, not the ones given.
         for (Eigen::Index i = 0; i < spot.V.rows(); ++i) {
-          CHECK(back.vertex_properties[p].values[i] == Approx(normals(i, p - 4)).margin(1e-6));
+          CHECK(back.attributes.vertex_properties[p].values[i] == Approx(normals(i, p - 4)).margin(1e-6));
         }
       } else {
-        CHECK(back.vertex_properties[p].values == given[p].values);
+        CHECK(back.attributes.vertex_properties[p].values == given[p].values);
       }
     }
   }
   // A plain PLY has none.
-  CHECK(aniso::read_mesh(mesh_path("formats/spot_lowres_ascii.ply")).vertex_properties.empty());
+  CHECK(aniso::read_mesh(mesh_path("formats/spot_lowres_ascii.ply")).attributes.vertex_properties.empty());
 }
 
 TEST_CASE("mesh_io: a PLY with more than 16 other vertex properties keeps the first 16 and says so", "[io]") {
@@ -474,9 +506,9 @@ TEST_CASE("mesh_io: a PLY with more than 16 other vertex properties keeps the fi
   }
   text += "3 0 1 2\n";
   const ReadResult read = read_text(text, MeshFormat::Ply);
-  REQUIRE(read.vertex_properties.size() == 16);
-  CHECK(read.vertex_properties[15].name == "p15");
-  CHECK(read.vertex_properties[15].values == std::vector<double>{15, 16, 17});
+  REQUIRE(read.attributes.vertex_properties.size() == 16);
+  CHECK(read.attributes.vertex_properties[15].name == "p15");
+  CHECK(read.attributes.vertex_properties[15].values == std::vector<double>{15, 16, 17});
   REQUIRE(read.report.notes.size() == 1);
   CHECK(read.report.notes[0] == "kept the first 16 vertex properties besides x, y, z; dropped 2 more");
 }

@@ -54,11 +54,27 @@ struct VertexProperty {
 };
 using VertexProperties = std::vector<VertexProperty>;
 
+// An OBJ's materials: its `mtllib` statements, and where each `usemtl`
+// starts (the first triangle it applies to, in the mesh's F order).
+struct ObjMaterials {
+  std::vector<std::string> libraries;             // each mtllib statement's text, in order
+  std::vector<std::pair<int, std::string>> runs;  // (first triangle, material name), ascending
+  bool empty() const { return libraries.empty() && runs.empty(); }
+};
+
+// What a file carries besides positions and triangles, which an edit leaves
+// as it is: written again in the same format (WriteOptions), so that a
+// texture, a material or a scan's colours survive the edit.
+struct SurfaceAttributes {
+  CornerTexture texture;               // OBJ
+  ObjMaterials materials;              // OBJ
+  VertexProperties vertex_properties;  // PLY
+};
+
 struct ReadResult {
   Mesh mesh;
   ReadReport report;
-  CornerTexture texture;                // OBJ only
-  VertexProperties vertex_properties;  // PLY only
+  SurfaceAttributes attributes;
 };
 
 // Reads from a file / from bytes in memory. Errors: Error(BadFile) with a
@@ -72,11 +88,10 @@ ReadResult read_mesh_from_memory(const char* data, std::size_t size, MeshFormat 
 
 struct WriteOptions {
   bool binary = true;  // PLY and STL: binary (little endian) or ASCII
-  // OBJ: written as `vt` and `f v/vt` when given and its faces match the
-  // mesh's; the other formats have no per-corner coordinates.
-  const CornerTexture* texture = nullptr;
-  // PLY: written after x, y, z when given and one value per vertex each.
-  const VertexProperties* vertex_properties = nullptr;
+  // Written where the format has them: OBJ the texture (`vt`, `f v/vt`; its
+  // faces must match the mesh's) and materials (`mtllib`, `usemtl`), PLY the
+  // vertex properties (after x, y, z; one value per vertex each).
+  const SurfaceAttributes* attributes = nullptr;
 };
 
 // Writes to a file (format from the extension; atomically, see

@@ -130,15 +130,13 @@ class Session {
   // Same from a mesh already read (the CLI reads files itself, for its own
   // error texts): the one preparation every host's mesh goes through. `notes`
   // are kept in info().notes, after which the session adds its own.
-  // `texture`: the file's texture coordinates per corner, which an OBJ
-  // export writes again; `properties`: a PLY's other vertex properties,
-  // which a PLY export writes again (mesh_io.h). Kept while the faces and
-  // vertices stay as read.
-  const SessionMeshInfo& adopt_mesh(Mesh mesh, std::vector<std::string> notes, CornerTexture texture = {},
-                                    VertexProperties properties = {});
-  // The texture coordinates and vertex properties of the mesh loaded (empty: none).
-  const CornerTexture& texture() const { return texture_; }
-  const VertexProperties& vertex_properties() const { return vertex_properties_; }
+  // `attributes`: what the file carries besides positions and triangles
+  // (mesh_io.h: an OBJ's texture coordinates and materials, a PLY's vertex
+  // properties), which an export in its format writes again; kept while the
+  // faces and vertices stay as read.
+  const SessionMeshInfo& adopt_mesh(Mesh mesh, std::vector<std::string> notes, SurfaceAttributes attributes = {});
+  // Those of the mesh loaded (empty: none).
+  const SurfaceAttributes& attributes() const { return attributes_; }
   // How a mesh file written from this session keeps them (PLY: binary or not).
   WriteOptions write_options(bool binary = true) const;
 
@@ -282,8 +280,7 @@ class Session {
   std::vector<std::uint32_t> triangles_u32_;
   std::vector<float> weights_f32_;
   std::vector<std::uint32_t> input_vertex_map_;  // set_mesh's, see input_vertex_map()
-  CornerTexture texture_;
-  VertexProperties vertex_properties_;
+  SurfaceAttributes attributes_;
 };
 
 }  // namespace aniso

@@ -178,6 +178,9 @@ struct PolygonMesh {
   // corner_uv stays empty unless every corner has one.
   std::vector<double> uv;
   std::vector<int> corner_uv;
+  // OBJ materials: mtllib statements, and (first polygon, name) per usemtl.
+  std::vector<std::string> material_libraries;
+  std::vector<std::pair<int, std::string>> material_runs;
 
   int num_vertices() const { return static_cast<int>(xyz.size() / 3); }
   int num_polygons() const { return static_cast<int>(offsets.size()) - 1; }
@@ -208,7 +211,7 @@ ReadResult read_off(const char* data, std::size_t size);
 ReadResult read_ply(const char* data, std::size_t size);
 ReadResult read_stl(const char* data, std::size_t size);
 
-std::string write_obj(const Mesh& mesh, const CornerTexture* texture = nullptr);
+std::string write_obj(const Mesh& mesh, const SurfaceAttributes* attributes = nullptr);
 std::string write_off(const Mesh& mesh);
 std::string write_ply(const Mesh& mesh, bool binary, const VertexProperties* properties = nullptr);
 std::string write_stl(const Mesh& mesh, bool binary);

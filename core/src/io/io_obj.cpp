@@ -1,6 +1,7 @@
 // Wavefront OBJ: reading `v`, `vt` and `f` (all corner forms, negative
-// relative indices, polygons), skipping everything else; writing positions
-// and faces, optionally with texture coordinates. Texture coordinates are
+// relative indices, polygons) and the materials (`mtllib`, `usemtl`),
+// skipping everything else; writing positions and faces, optionally with
+// texture coordinates and the materials. Texture coordinates are
 // kept only when every face corner has a valid one; otherwise they are
 // dropped with a note and the mesh reads as before (they never made a file
 // unreadable).
@@ -21,7 +22,7 @@ namespace {
 // materials, free-form surface data. They are ignored without a note.
 bool is_ignored_statement(std::string_view keyword) {
   static constexpr std::string_view kIgnored[] = {
-      "vn",   "vp",    "o",      "g",    "s",     "usemtl",   "mtllib",
+      "vn",   "vp",    "o",      "g",    "s",
       "usemap", "maplib", "lod", "shadow_obj", "trace_obj", "bevel", "c_interp", "d_interp",
       "cstype", "deg", "bmat", "step", "parm", "trim", "hole", "scrv",
       "sp",   "end",   "con",   "mg",     "ctech", "stech", "call", "csh"};
@@ -51,6 +52,14 @@ class ObjParser {
         parse_vertex(rest);
       } else if (keyword == "vt") {
         parse_texture_coordinate(rest);
+      } else if (keyword == "mtllib") {
+        if (const std::string_view text = statement_text(rest); !text.empty()) {
+          polygons_.material_libraries.emplace_back(text);
+        }
+      } else if (keyword == "usemtl") {
+        if (const std::string_view name = statement_text(rest); !name.empty()) {
+          polygons_.material_runs.emplace_back(polygons_.num_polygons(), std::string(name));
+        }
       } else if (keyword == "f" || keyword == "fo") {
         parse_face(rest);
       } else if (is_skipped_element(keyword)) {
@@ -91,6 +100,15 @@ class ObjParser {
       if (++extra > 4) fail_file("a vertex has more than 7 values" + at_line(line_));
     }
     polygons_.add_vertex(xyz[0], xyz[1], xyz[2]);
+  }
+
+  // A statement's text after its keyword, blanks and a trailing comment cut.
+  static std::string_view statement_text(std::string_view rest) {
+    const std::size_t comment = rest.find('#');
+    if (comment != std::string_view::npos) rest = rest.substr(0, comment);
+    const std::size_t first = rest.find_first_not_of(" \t\r");
+    if (first == std::string_view::npos) return {};
+    return rest.substr(first, rest.find_last_not_of(" \t\r") - first + 1);
   }
 
   // "vt u [v [w]]": u and v kept (v defaults to 0), w unused. A malformed
@@ -273,15 +291,21 @@ void append_uv_rows(std::string& out, const Eigen::MatrixX2d& uv) {
   }
 }
 
-// "f v/vt v/vt v/vt", 1-based.
-void append_textured_triangles(std::string& out, const Triangles& F, const Triangles& uv_faces) {
+// The faces, 1-based: "f v/vt v/vt v/vt" with `uv_faces`, else "f v v v";
+// each material run's "usemtl NAME" before its first triangle.
+void append_faces(std::string& out, const Triangles& F, const Triangles* uv_faces,
+                  const std::vector<std::pair<int, std::string>>& runs) {
+  std::size_t run = 0;
   for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    for (; run < runs.size() && runs[run].first <= f; ++run) out += "usemtl " + runs[run].second + '\n';
     out += 'f';
     for (int k = 0; k < 3; ++k) {
       out += ' ';
       append_number(out, static_cast<long long>(F(f, k)) + 1);
-      out += '/';
-      append_number(out, static_cast<long long>(uv_faces(f, k)) + 1);
+      if (uv_faces) {
+        out += '/';
+        append_number(out, static_cast<long long>((*uv_faces)(f, k)) + 1);
+      }
     }
     out += '\n';
   }
@@ -289,7 +313,8 @@ void append_textured_triangles(std::string& out, const Triangles& F, const Trian
 
 }  // namespace
 
-std::string write_obj(const Mesh& mesh, const CornerTexture* texture) {
+std::string write_obj(const Mesh& mesh, const SurfaceAttributes* attributes) {
+  const CornerTexture* texture = attributes ? &attributes->texture : nullptr;
   const bool textured = texture != nullptr && !texture->empty();
   if (textured) {
     if (texture->faces.rows() != mesh.F.rows()) {
@@ -307,15 +332,14 @@ std::string write_obj(const Mesh& mesh, const CornerTexture* texture) {
       }
     }
   }
+  static const ObjMaterials kNone;
+  const ObjMaterials& materials = attributes ? attributes->materials : kNone;
   std::string out = "# written by anisoform\n";
   out.reserve(static_cast<std::size_t>(mesh.V.rows()) * 40 + static_cast<std::size_t>(mesh.F.rows()) * 24);
+  for (const std::string& library : materials.libraries) out += "mtllib " + library + '\n';
   append_position_rows(out, mesh.V, "v ");
-  if (textured) {
-    append_uv_rows(out, texture->uv);
-    append_textured_triangles(out, mesh.F, texture->faces);
-  } else {
-    append_triangle_rows(out, mesh.F, "f", 1);
-  }
+  if (textured) append_uv_rows(out, texture->uv);
+  append_faces(out, mesh.F, textured ? &texture->faces : nullptr, materials.runs);
   return out;
 }
 
@@ -331,7 +355,7 @@ std::string write_obj_with_uv(const Mesh& mesh, const Eigen::MatrixX2d& uv) {
   std::string out = "# written by anisoform: positions and their flattened uv\n";
   io::append_position_rows(out, mesh.V, "v ");
   io::append_uv_rows(out, uv);
-  io::append_textured_triangles(out, mesh.F, mesh.F);
+  io::append_faces(out, mesh.F, &mesh.F, {});
   return out;
 }
 

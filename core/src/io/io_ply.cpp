@@ -396,7 +396,7 @@ ReadResult read_body(Values& values, const PlyHeader& header, std::size_t body_b
                            std::to_string(reader.dropped_properties_) + " more");
   }
   ReadResult result = assemble_mesh(polygons, std::move(report));
-  result.vertex_properties = std::move(reader.kept_);
+  result.attributes.vertex_properties = std::move(reader.kept_);
   return result;
 }
 

@@ -88,9 +88,10 @@ ReadResult read_mesh(const std::string& path) {
 std::string write_mesh_to_memory(const Mesh& mesh, MeshFormat format, const WriteOptions& options) {
   io::require_valid_indices(mesh);
   switch (format) {
-    case MeshFormat::Obj: return io::write_obj(mesh, options.texture);
+    case MeshFormat::Obj: return io::write_obj(mesh, options.attributes);
     case MeshFormat::Off: return io::write_off(mesh);
-    case MeshFormat::Ply: return io::write_ply(mesh, options.binary, options.vertex_properties);
+    case MeshFormat::Ply:
+      return io::write_ply(mesh, options.binary, options.attributes ? &options.attributes->vertex_properties : nullptr);
     case MeshFormat::Stl: return io::write_stl(mesh, options.binary);
   }
   fail(ErrorCode::BadParameter, "unknown mesh format");
@@ -256,20 +257,30 @@ ReadResult assemble_mesh(const PolygonMesh& polygons, ReadReport report) {
   for (int p = 0; p < num_polygons; ++p) num_triangles += polygons.offsets[p + 1] - polygons.offsets[p] - 2;
   result.mesh.F.resize(static_cast<Eigen::Index>(num_triangles), 3);
 
+  CornerTexture& texture = result.attributes.texture;
   const bool textured = !polygons.corner_uv.empty();
   if (textured) {
-    result.texture.uv = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>>(
+    texture.uv = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>>(
         polygons.uv.data(), static_cast<Eigen::Index>(polygons.uv.size() / 2), 2);
-    result.texture.faces.resize(result.mesh.F.rows(), 3);
+    texture.faces.resize(result.mesh.F.rows(), 3);
   }
+  result.attributes.materials.libraries = polygons.material_libraries;
+  std::size_t next_run = 0;  // the next material run, by its first polygon
   Eigen::Index row = 0;
   std::vector<int> polygon;
   for (int p = 0; p < num_polygons; ++p) {
     const int begin = polygons.offsets[p];
     const int end = polygons.offsets[p + 1];
+    // A usemtl before polygon p starts at its first triangle (the last of
+    // several before the same polygon wins, as in the file).
+    for (; next_run < polygons.material_runs.size() && polygons.material_runs[next_run].first <= p; ++next_run) {
+      auto& runs = result.attributes.materials.runs;
+      if (!runs.empty() && runs.back().first == static_cast<int>(row)) runs.pop_back();
+      runs.emplace_back(static_cast<int>(row), polygons.material_runs[next_run].second);
+    }
     if (end - begin == 3) {
       if (textured) {
-        result.texture.faces.row(row) << polygons.corner_uv[begin], polygons.corner_uv[begin + 1],
+        texture.faces.row(row) << polygons.corner_uv[begin], polygons.corner_uv[begin + 1],
             polygons.corner_uv[begin + 2];
       }
       result.mesh.F.row(row++) << polygons.corners[begin], polygons.corners[begin + 1],
@@ -283,7 +294,7 @@ ReadResult assemble_mesh(const PolygonMesh& polygons, ReadReport report) {
         // texture coordinate of its (first) corner in the polygon.
         for (int k = 0; k < 3; ++k) {
           const auto corner = std::find(polygon.begin(), polygon.end(), triangle[k]) - polygon.begin();
-          result.texture.faces(row, k) = polygons.corner_uv[begin + corner];
+          texture.faces(row, k) = polygons.corner_uv[begin + corner];
         }
       }
       result.mesh.F.row(row++) << triangle[0], triangle[1], triangle[2];

@@ -101,8 +101,7 @@ const SessionMeshInfo& Session::load_mesh(const std::uint8_t* data, std::size_t 
   // the Laplacian (adopt_mesh).
   report(ProgressStage::Load, 0.05);
   try {
-    return adopt_mesh(std::move(read.mesh), std::move(read.report.notes), std::move(read.texture),
-                      std::move(read.vertex_properties));
+    return adopt_mesh(std::move(read.mesh), std::move(read.report.notes), std::move(read.attributes));
   } catch (const Error& error) {
     fail_with_name(error, name);
   }
@@ -161,18 +160,20 @@ void Session::set_vertex_limit(int max_vertices, std::string why) {
   vertex_limit_why_ = std::move(why);
 }
 
-const SessionMeshInfo& Session::adopt_mesh(Mesh mesh, std::vector<std::string> notes, CornerTexture texture,
-                                           VertexProperties properties) {
+const SessionMeshInfo& Session::adopt_mesh(Mesh mesh, std::vector<std::string> notes, SurfaceAttributes attributes) {
   // A soup has no shared vertices, so no edit could spread over it: weld it,
   // as the CLI does, and say so.
   if (is_triangle_soup(mesh)) {
     const int before = mesh.num_vertices();
     const int faces_before = mesh.num_triangles();
     mesh = weld_vertices(mesh);
-    // Texture rows follow the faces; a face welding collapsed is gone. The
-    // vertices are others now.
-    if (mesh.num_triangles() != faces_before) texture = CornerTexture();
-    properties.clear();
+    // Texture rows and material runs follow the faces: a face welding
+    // collapsed shifts them. The vertices are others now.
+    if (mesh.num_triangles() != faces_before) {
+      attributes.texture = CornerTexture();
+      attributes.materials.runs.clear();
+    }
+    attributes.vertex_properties.clear();
     notes.push_back("the file is a triangle soup (no shared vertices): welded by exact position, " +
                     std::to_string(before) + " -> " + std::to_string(mesh.num_vertices()) +
                     " vertices");
@@ -216,8 +217,7 @@ const SessionMeshInfo& Session::adopt_mesh(Mesh mesh, std::vector<std::string> n
   loaded_ = std::move(loaded);
   triangles_u32_ = std::move(triangles_u32);
   input_vertex_map_.clear();
-  texture_ = std::move(texture);
-  vertex_properties_ = std::move(properties);
+  attributes_ = std::move(attributes);
   set_current(std::move(current));
   weights_ = std::move(weights);
   weights_f32_ = std::move(weights_f32);
@@ -478,8 +478,7 @@ std::string Session::export_mesh(MeshFormat format) const {
 WriteOptions Session::write_options(bool binary) const {
   WriteOptions options;
   options.binary = binary;
-  options.texture = &texture_;  // OBJ: the file's texture coordinates, as read
-  options.vertex_properties = &vertex_properties_;  // PLY: its other vertex properties
+  options.attributes = &attributes_;  // the file's texture, materials or vertex properties, as read
   return options;
 }
 
