@@ -237,9 +237,9 @@ TEST_CASE("cli: deform on every malformed file repairs, warns or refuses by name
 }
 
 // The shape changes, the texture mapping does not: an OBJ written by deform
-// has the input OBJ's vt list and per-corner indices, and its materials, as
-// read (replay writes through the same Session::attributes()).
-TEST_CASE("cli: deform keeps an OBJ's texture coordinates and materials", "[cli]") {
+// has the input OBJ's vt list and per-corner indices, its materials and
+// vertex colours, as read (replay writes through the same Session::attributes()).
+TEST_CASE("cli: deform keeps an OBJ's texture coordinates, materials and vertex colours", "[cli]") {
   const std::string in = mesh("closed/spot_triangulated.obj");
   const aniso::ReadResult input = aniso::read_mesh(in);
   REQUIRE(input.attributes.texture.uv.rows() == 3225);
@@ -256,6 +256,16 @@ TEST_CASE("cli: deform keeps an OBJ's texture coordinates and materials", "[cli]
   CHECK(aniso::read_mesh(concave).attributes.materials.runs ==
         aniso::read_mesh(mesh("formats/concave_polygon.obj")).attributes.materials.runs);
   CHECK(aniso::read_mesh(concave).attributes.materials.libraries == std::vector<std::string>{"concave_polygon.mtl"});
+  // And its vertex colours (Spot written with a colour per vertex).
+  aniso::SurfaceAttributes coloured;
+  coloured.vertex_colors = (input.mesh.V.array().tanh() * 0.25 + 0.5).matrix();
+  aniso::WriteOptions with_colours;
+  with_colours.attributes = &coloured;
+  const std::string colours_in = temp_path("coloured.obj");
+  aniso::write_mesh(colours_in, input.mesh, with_colours);
+  const std::string colours_out = temp_path("coloured_out.obj");
+  run_expecting({"deform", colours_in, colours_out, "--scale", "1.3", "--select", "sphere:0,0.5,0.6,0.4"}, 0);
+  CHECK(aniso::read_mesh(colours_out).attributes.vertex_colors == coloured.vertex_colors);
   // Other formats have no per-corner coordinates: the shape alone.
   const std::string ply = temp_path("textured.ply");
   run_expecting({"deform", in, ply, "--scale", "1.3", "--select", "sphere:0,0.5,0.6,0.4"}, 0);

@@ -385,6 +385,32 @@ TEST_CASE("mesh_io: an OBJ's texture coordinates are read per corner and written
   }
 }
 
+TEST_CASE("mesh_io: an OBJ's vertex colours (v x y z r g b) are kept when every vertex has them", "[io]") {
+  // Spot with a colour per vertex, from its position.
+  const Mesh spot = load("formats/spot_lowres.obj");
+  std::string text;
+  for (Eigen::Index i = 0; i < spot.V.rows(); ++i) {
+    text += "v " + std::to_string(spot.V(i, 0)) + " " + std::to_string(spot.V(i, 1)) + " " + std::to_string(spot.V(i, 2));
+    for (int k = 0; k < 3; ++k) text += " " + std::to_string(0.5 + 0.25 * std::tanh(spot.V(i, k)));
+    text += "\n";
+  }
+  for (Eigen::Index f = 0; f < spot.F.rows(); ++f) {
+    text += "f " + std::to_string(spot.F(f, 0) + 1) + " " + std::to_string(spot.F(f, 1) + 1) + " " +
+            std::to_string(spot.F(f, 2) + 1) + "\n";
+  }
+  const ReadResult read = read_text(text, MeshFormat::Obj);
+  REQUIRE(read.attributes.vertex_colors.rows() == spot.V.rows());
+  CHECK(read.attributes.vertex_colors(3, 1) == Approx(0.5 + 0.25 * std::tanh(spot.V(3, 1))).margin(1e-6));
+  aniso::WriteOptions options;
+  options.attributes = &read.attributes;
+  const ReadResult back = read_text(aniso::write_mesh_to_memory(read.mesh, MeshFormat::Obj, options), MeshFormat::Obj);
+  CHECK(back.attributes.vertex_colors == read.attributes.vertex_colors);
+  CHECK(back.mesh.V == read.mesh.V);
+  // Not every vertex coloured, or a w instead: none kept, the mesh read as before.
+  CHECK(read_text("v 0 0 0 1 0 0\nv 1 0 0\nv 0 1 0 0 0 1\nf 1 2 3\n", MeshFormat::Obj).attributes.vertex_colors.rows() == 0);
+  CHECK(read_text("v 0 0 0 1\nv 1 0 0 1\nv 0 1 0 1\nf 1 2 3\n", MeshFormat::Obj).attributes.vertex_colors.rows() == 0);
+}
+
 TEST_CASE("mesh_io: an OBJ's mtllib and usemtl statements are read and written again", "[io]") {
   // A LightWave export: one library, one material for its one (66-gon) face.
   const ReadResult concave = aniso::read_mesh(mesh_path("formats/concave_polygon.obj"));

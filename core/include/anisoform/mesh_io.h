@@ -68,6 +68,7 @@ struct ObjMaterials {
 struct SurfaceAttributes {
   CornerTexture texture;               // OBJ
   ObjMaterials materials;              // OBJ
+  Eigen::MatrixX3d vertex_colors;      // OBJ: `v x y z r g b` on every vertex line (#V rows), or none
   VertexProperties vertex_properties;  // PLY
 };
 

@@ -178,6 +178,9 @@ struct PolygonMesh {
   // corner_uv stays empty unless every corner has one.
   std::vector<double> uv;
   std::vector<int> corner_uv;
+  // OBJ vertex colours (r g b after x y z), 3 per vertex while every vertex has them.
+  std::vector<double> colors;
+  bool all_colored = true;
   // OBJ materials: mtllib statements, and (first polygon, name) per usemtl.
   std::vector<std::string> material_libraries;
   std::vector<std::pair<int, std::string>> material_runs;

@@ -89,15 +89,23 @@ class ObjParser {
         fail_file(number_problem(token, problem) + at_line(line_));
       }
     }
-    // Optional w, or r g b [a] vertex colours: checked to be numbers, then unused.
+    // Optional w, or r g b [a] vertex colours: checked to be numbers; r g b
+    // kept when every vertex has exactly them (then written again).
     int extra = 0;
+    double values[4];
     for (std::string_view token = next_token(rest); !token.empty(); token = next_token(rest)) {
-      double unused;
       if (token[0] == '#') break;
-      if (const char* problem = parse_coordinate(token, unused)) {
+      if (extra == 4) fail_file("a vertex has more than 7 values" + at_line(line_));
+      if (const char* problem = parse_coordinate(token, values[extra])) {
         fail_file(number_problem(token, problem) + at_line(line_));
       }
-      if (++extra > 4) fail_file("a vertex has more than 7 values" + at_line(line_));
+      ++extra;
+    }
+    if (extra == 3 && polygons_.all_colored) {
+      polygons_.colors.insert(polygons_.colors.end(), values, values + 3);
+    } else {
+      polygons_.all_colored = false;
+      polygons_.colors.clear();
     }
     polygons_.add_vertex(xyz[0], xyz[1], xyz[2]);
   }
@@ -337,7 +345,18 @@ std::string write_obj(const Mesh& mesh, const SurfaceAttributes* attributes) {
   std::string out = "# written by anisoform\n";
   out.reserve(static_cast<std::size_t>(mesh.V.rows()) * 40 + static_cast<std::size_t>(mesh.F.rows()) * 24);
   for (const std::string& library : materials.libraries) out += "mtllib " + library + '\n';
-  append_position_rows(out, mesh.V, "v ");
+  if (attributes && attributes->vertex_colors.rows() == mesh.V.rows() && mesh.V.rows() > 0) {
+    for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {  // "v x y z r g b"
+      out += 'v';
+      for (int k = 0; k < 6; ++k) {
+        out += ' ';
+        append_number(out, k < 3 ? mesh.V(i, k) : attributes->vertex_colors(i, k - 3));
+      }
+      out += '\n';
+    }
+  } else {
+    append_position_rows(out, mesh.V, "v ");
+  }
   if (textured) append_uv_rows(out, texture->uv);
   append_faces(out, mesh.F, textured ? &texture->faces : nullptr, materials.runs);
   return out;

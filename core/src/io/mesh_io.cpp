@@ -265,6 +265,10 @@ ReadResult assemble_mesh(const PolygonMesh& polygons, ReadReport report) {
     texture.faces.resize(result.mesh.F.rows(), 3);
   }
   result.attributes.materials.libraries = polygons.material_libraries;
+  if (polygons.all_colored && num_vertices > 0 && polygons.colors.size() == 3 * static_cast<std::size_t>(num_vertices)) {
+    result.attributes.vertex_colors =
+        Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(polygons.colors.data(), num_vertices, 3);
+  }
   std::size_t next_run = 0;  // the next material run, by its first polygon
   Eigen::Index row = 0;
   std::vector<int> polygon;

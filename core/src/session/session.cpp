@@ -174,6 +174,7 @@ const SessionMeshInfo& Session::adopt_mesh(Mesh mesh, std::vector<std::string> n
       attributes.materials.runs.clear();
     }
     attributes.vertex_properties.clear();
+    attributes.vertex_colors.resize(0, 3);
     notes.push_back("the file is a triangle soup (no shared vertices): welded by exact position, " +
                     std::to_string(before) + " -> " + std::to_string(mesh.num_vertices()) +
                     " vertices");
