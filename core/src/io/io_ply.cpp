@@ -248,14 +248,14 @@ class PlyBodyReader {
       const bool axis = static_cast<int>(p) == axis_of[0] || static_cast<int>(p) == axis_of[1] ||
                         static_cast<int>(p) == axis_of[2];
       if (axis || property.is_list) continue;
-      if (kept_.size() == kMaxKeptVertexProperties) {
-        ++dropped_properties_;
+      if (kept.size() == kMaxKeptVertexProperties) {
+        ++dropped_properties;
         continue;
       }
-      column_of[p] = static_cast<int>(kept_.size());
-      kept_.push_back({property.name, property.type_name, {}});
+      column_of[p] = static_cast<int>(kept.size());
+      kept.push_back({property.name, property.type_name, {}});
       // The count is the header's, checked against the body's size already.
-      kept_.back().values.reserve(static_cast<std::size_t>(element.count));
+      kept.back().values.reserve(static_cast<std::size_t>(element.count));
     }
     for (long long v = 0; v < element.count; ++v) {
       double xyz[3] = {0, 0, 0};
@@ -270,7 +270,7 @@ class PlyBodyReader {
           for (int axis = 0; axis < 3; ++axis) {
             if (axis_of[axis] == static_cast<int>(p)) xyz[axis] = value;
           }
-          if (complete && column_of[p] >= 0) kept_[column_of[p]].values.push_back(value);
+          if (complete && column_of[p] >= 0) kept[column_of[p]].values.push_back(value);
         }
         if (!complete) fail_file(truncated_message(v, element.count, "vertices"));
       }
@@ -352,8 +352,8 @@ class PlyBodyReader {
   long long num_vertices_;
 
  public:
-  VertexProperties kept_;       // the vertex element's other scalar properties
-  int dropped_properties_ = 0;  // beyond kMaxKeptVertexProperties
+  VertexProperties kept;       // the vertex element's other scalar properties
+  int dropped_properties = 0;   // beyond kMaxKeptVertexProperties
 };
 
 template <class Values>
@@ -390,13 +390,13 @@ ReadResult read_body(Values& values, const PlyHeader& header, std::size_t body_b
                    "'" + element.name + "' elements");
     }
   }
-  if (reader.dropped_properties_ > 0) {
+  if (reader.dropped_properties > 0) {
     report.notes.push_back("kept the first " + std::to_string(kMaxKeptVertexProperties) +
                            " vertex properties besides x, y, z; dropped " +
-                           std::to_string(reader.dropped_properties_) + " more");
+                           std::to_string(reader.dropped_properties) + " more");
   }
   ReadResult result = assemble_mesh(polygons, std::move(report));
-  result.attributes.vertex_properties = std::move(reader.kept_);
+  result.attributes.vertex_properties = std::move(reader.kept);
   return result;
 }
 
