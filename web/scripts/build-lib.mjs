@@ -4,6 +4,7 @@
 //   solver-worker.js   the solver worker with the WASM loader bundled in
 //   anisoform.wasm     the solver
 //   style.css          the full UI's styles (ui: 'full')
+//   meshopt_decoder.js the meshopt decoder, imported when a GLB needs it
 //   index.d.ts, api.d.ts (the api object: src/api/anisoform.d.ts) with the module's
 //   anisoform-wasm.d.ts it imports, package.json, README.md
 // The worker and the WASM are separate files, found from anisoform.js through
@@ -11,7 +12,7 @@
 // emits them too and a plain static server serves them; nothing is inlined.
 // Two Vite builds: the worker first (Vite's library mode would inline its
 // WASM as base64), then the library with the worker left as a URL.
-import { copyFile, mkdir, readFile, rm, writeFile } from 'node:fs/promises';
+import { copyFile, mkdir, readdir, readFile, rm, writeFile } from 'node:fs/promises';
 import { fileURLToPath } from 'node:url';
 import { build } from 'vite';
 
@@ -54,7 +55,9 @@ const keepWorkerUrl = {
     if (!code.includes(WORKER_URL)) this.error(`solver-client.js no longer has ${WORKER_URL}`);
     return code.replace(WORKER_URL, IGNORED_WORKER_URL);
   },
-  renderChunk(code) {
+  renderChunk(code, chunk) {
+    // The chunks loaded on demand (the glTF decoders) have no worker.
+    if (!chunk.isEntry) return null;
     const plain = code.replace(/new URL\(\s*\/\* @vite-ignore \*\/\s*/g, 'new URL(');
     if (!/new Worker\(new URL\(["']\.\/solver-worker\.js["'],\s*import\.meta\.url\s*\)/.test(plain)) {
       this.error(`the library lost its literal worker URL: ${(plain.match(/new Worker\([^;]{0,120}/) ?? ["none"])[0]}`);
@@ -75,7 +78,9 @@ await build({
     target: 'es2022',
     assetsInlineLimit: 0,
     lib: { entry: `${web}src/embed/index.js`, formats: ['es'], fileName: () => 'anisoform.js', cssFileName: 'style' },
-    rollupOptions: { external: isThree },
+    // The chunks imported on demand (the meshopt decoder, for compressed
+    // GLBs) by fixed names, beside anisoform.js.
+    rollupOptions: { external: isThree, output: { chunkFileNames: '[name].js' } },
   },
 });
 
@@ -106,7 +111,8 @@ const manifest = {
     './anisoform.wasm': './anisoform.wasm',
     './package.json': './package.json',
   },
-  files: ['anisoform.js', 'solver-worker.js', 'anisoform.wasm', 'style.css', 'index.d.ts', 'api.d.ts', 'anisoform-wasm.d.ts', 'README.md'],
+  // Every file built here (the on-demand chunks too), but this manifest.
+  files: (await readdir(outDir)).filter((file) => file !== 'package.json').sort(),
   sideEffects: ['./anisoform.js', './style.css'],
   dependencies: { three: app.dependencies.three, 'three-mesh-bvh': app.dependencies['three-mesh-bvh'] },
 };

@@ -5,7 +5,7 @@
 // The solver's mesh is every triangle primitive in world coordinates, merged
 // and welded (import-gltf.js, Session.setMesh): `vertexMap`
 // (Session.inputVertexMap) takes each primitive's vertices to the solver's.
-import { Matrix3, Matrix4, Vector3 } from 'three';
+import { BufferAttribute, Matrix3, Matrix4, Vector3 } from 'three';
 import { GLTFExporter } from 'three/addons/exporters/GLTFExporter.js';
 
 // Two copies of a welded vertex whose normals in the file agree this closely
@@ -57,7 +57,7 @@ export class GltfSource {
     const normalToLocal = new Matrix3();
     for (const { mesh, offset } of this.parts) {
       const geometry = mesh.geometry;
-      const position = geometry.getAttribute('position');
+      const position = floatAttribute(geometry, 'position');
       toLocal.copy(mesh.matrixWorld).invert();
       for (let i = 0; i < position.count; i++) {
         const v = this.vertexMap[offset + i];
@@ -80,6 +80,7 @@ export class GltfSource {
 
   #writeNormals(mesh, offset, welded, normalToLocal) {
     const geometry = mesh.geometry;
+    floatAttribute(geometry, 'normal');
     geometry.computeVertexNormals(); // each side of a hard edge its own
     const normal = geometry.getAttribute('normal');
     // A world normal n comes back into the node's frame as M^T n (normalised):
@@ -124,6 +125,21 @@ export class GltfSource {
     }
     return smooth;
   }
+}
+
+// The geometry's attribute `name` as 32-bit floats, replaced by a float copy
+// where the file quantized it (KHR_mesh_quantization, meshopt): an edited
+// shape leaves the quantization's range (normalized values clamp at 1), and
+// the normals are summed in place before they are normalized.
+function floatAttribute(geometry, name) {
+  const attribute = geometry.getAttribute(name);
+  if (attribute.array instanceof Float32Array) return attribute;
+  const copy = new BufferAttribute(new Float32Array(attribute.count * attribute.itemSize), attribute.itemSize);
+  for (let i = 0; i < attribute.count; i++) {
+    for (let c = 0; c < attribute.itemSize; c++) copy.setComponent(i, c, attribute.getComponent(i, c));
+  }
+  geometry.setAttribute(name, copy);
+  return copy;
 }
 
 // Area-weighted vertex normals of the solver's mesh (xyz per vertex, unnormalised is fine).

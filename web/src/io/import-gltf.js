@@ -6,6 +6,7 @@
 import { Matrix4, Scene, TextureLoader, Vector3 } from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 
+import { prepareDecoders } from './gltf-decoders.js';
 import { GltfSource } from './gltf-source.js';
 
 export class GltfImportError extends Error {
@@ -18,20 +19,26 @@ export class GltfImportError extends Error {
 
 /** @returns {Promise<{positions: Float32Array, triangles: Uint32Array, notes: string[], source: GltfSource}>} */
 export async function importGltf(bytes, name) {
+  const json = gltfJson(bytes);
   // Geometry in other files cannot be read from a file opened in the page:
   // said as such, before GLTFLoader asks the page's server for them.
-  const external = externalBufferUris(bytes);
+  const external = externalBufferUris(json);
   if (external.length > 0) {
     throw new GltfImportError(
       `${name} keeps its geometry in other files (${external.join(', ')}), which the page cannot read: ` +
         'open a .glb, or a .gltf with its buffers embedded (data: URIs).',
     );
   }
+  const loader = new GLTFLoader().register(texturesAsImages);
   let gltf;
+  let decoders = null;
   try {
-    gltf = await new GLTFLoader().register(texturesAsImages).parseAsync(bytes, '');
+    decoders = await prepareDecoders(loader, json);
+    gltf = await loader.parseAsync(bytes, '');
   } catch (error) {
     throw new GltfImportError(`${name}: not a readable glTF file: ${error?.message ?? error}`);
+  } finally {
+    decoders?.dispose();
   }
   // GLTFLoader's scene is a Group, which GLTFExporter would write as a node
   // of a new scene: one more wrapper node at every round trip.
@@ -43,8 +50,10 @@ export async function importGltf(bytes, name) {
   let skipped = 0;
   scene.traverse((object) => {
     // Skinned meshes would need their pose evaluated; points and lines have no surface.
-    if (object.isMesh && !object.isSkinnedMesh && object.geometry.getAttribute('position')) parts.push(object);
-    else if (object.isLine || object.isPoints || object.isSkinnedMesh) skipped++;
+    // Instances share one geometry placed many times: an edit has no one place to go.
+    const posed = object.isSkinnedMesh || object.isInstancedMesh;
+    if (object.isMesh && !posed && object.geometry.getAttribute('position')) parts.push(object);
+    else if (object.isLine || object.isPoints || posed) skipped++;
   });
   if (parts.length === 0) throw new GltfImportError(`${name}: the glTF scene contains no triangle mesh.`);
 
@@ -94,7 +103,16 @@ export async function importGltf(bytes, name) {
 
   const notes = [];
   if (parts.length > 1) notes.push(`${parts.length} meshes of the glTF scene were merged into one.`);
-  if (skipped > 0) notes.push(`${skipped} point, line or skinned objects were skipped.`);
+  if (skipped > 0) notes.push(`${skipped} point, line, skinned or instanced objects were skipped.`);
+  if (decoders.compressed.length > 0) {
+    notes.push(`The file's geometry is ${decoders.compressed.join(' and ')}-compressed: a GLB export writes it uncompressed.`);
+  }
+  if (decoders.unread.length > 0) {
+    notes.push(
+      `The file uses glTF extensions this app does not read (${decoders.unread.join(', ')}): ` +
+        'what they add is not shown, and a GLB export leaves it out.',
+    );
+  }
   return { positions, triangles, notes, source: new GltfSource(scene, sourceParts) };
 }
 
@@ -107,10 +125,9 @@ function texturesAsImages(parser) {
   return { name: 'anisoform_textures_as_images' };
 }
 
-// The buffer URIs of a glTF (JSON) or GLB (its JSON chunk) that name other
-// files rather than data: URIs or the GLB's own binary chunk; [] for what
-// does not parse (GLTFLoader says what is wrong with it).
-function externalBufferUris(bytes) {
+// The glTF JSON of a .gltf or of a .glb's JSON chunk; null for what does
+// not parse (GLTFLoader says what is wrong with it).
+function gltfJson(bytes) {
   const view = new Uint8Array(bytes.buffer ?? bytes, bytes.byteOffset ?? 0, bytes.byteLength);
   let text = null;
   const isGlb = view.length >= 20 && String.fromCharCode(...view.subarray(0, 4)) === 'glTF';
@@ -124,10 +141,17 @@ function externalBufferUris(bytes) {
     text = new TextDecoder().decode(view);
   }
   try {
-    const buffers = JSON.parse(text)?.buffers;
-    if (!Array.isArray(buffers)) return [];
-    return buffers.map((buffer) => buffer?.uri).filter((uri) => typeof uri === 'string' && !uri.startsWith('data:'));
+    const json = JSON.parse(text);
+    return json && typeof json === 'object' ? json : null;
   } catch {
-    return [];
+    return null;
   }
+}
+
+// The buffer URIs of a glTF's JSON that name other files rather than data:
+// URIs or the GLB's own binary chunk.
+function externalBufferUris(json) {
+  const buffers = json?.buffers;
+  if (!Array.isArray(buffers)) return [];
+  return buffers.map((buffer) => buffer?.uri).filter((uri) => typeof uri === 'string' && !uri.startsWith('data:'));
 }

@@ -1,0 +1,84 @@
+// Compressed and quantized versions of a GLB, made in Node with the tools
+// product models are prepared with (glTF-Transform, Google's Draco encoder,
+// meshoptimizer): the end-to-end tests open them in the app and compare the
+// shape with the uncompressed file's.
+import { NodeIO } from '../web/node_modules/@gltf-transform/core/dist/index.js';
+import {
+  EXTMeshoptCompression, KHRDracoMeshCompression, KHRMeshQuantization, KHRONOS_EXTENSIONS,
+} from '../web/node_modules/@gltf-transform/extensions/dist/index.js';
+import draco3d from '../web/node_modules/draco3dgltf/draco3dgltf.js';
+import { MeshoptDecoder, MeshoptEncoder } from '../web/node_modules/meshoptimizer/index.js';
+
+async function io() {
+  await Promise.all([MeshoptEncoder.ready, MeshoptDecoder.ready]);
+  return new NodeIO()
+    .registerExtensions([...KHRONOS_EXTENSIONS, EXTMeshoptCompression])
+    .registerDependencies({
+      'draco3d.encoder': await draco3d.createEncoderModule(),
+      'draco3d.decoder': await draco3d.createDecoderModule(),
+      'meshopt.encoder': MeshoptEncoder,
+      'meshopt.decoder': MeshoptDecoder,
+    });
+}
+
+/** `glb` with its geometry Draco-compressed (KHR_draco_mesh_compression, required; 14-bit positions). */
+export async function dracoGlb(glb) {
+  const files = await io();
+  const document = await files.readBinary(new Uint8Array(glb));
+  document.createExtension(KHRDracoMeshCompression).setRequired(true)
+    .setEncoderOptions({ method: KHRDracoMeshCompression.EncoderMethod.EDGEBREAKER, quantizePosition: 14 });
+  return Buffer.from(await files.writeBinary(document));
+}
+
+/**
+ * `glb` with its positions quantized to 16-bit normalized integers
+ * (KHR_mesh_quantization, required): each mesh's positions in its own box,
+ * mapped to [-1, 1] and back by the node's scale and translation, as
+ * gltfpack and glTF-Transform's quantize() write them.
+ */
+export async function quantizedGlb(glb) {
+  const files = await io();
+  const document = await files.readBinary(new Uint8Array(glb));
+  document.createExtension(KHRMeshQuantization).setRequired(true);
+  for (const node of document.getRoot().listNodes()) {
+    const mesh = node.getMesh();
+    if (!mesh) continue;
+    if (node.listChildren().length > 0) throw new Error('quantizedGlb: a mesh node with children');
+    const positions = mesh.listPrimitives().map((primitive) => primitive.getAttribute('POSITION'));
+    const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+    for (const accessor of positions) {
+      const min = accessor.getMin([]), max = accessor.getMax([]);
+      for (let c = 0; c < 3; c++) {
+        lo[c] = Math.min(lo[c], min[c]);
+        hi[c] = Math.max(hi[c], max[c]);
+      }
+    }
+    const center = lo.map((value, c) => (value + hi[c]) / 2);
+    const half = Math.max(...lo.map((value, c) => (hi[c] - value) / 2));
+    for (const accessor of new Set(positions)) {
+      const source = accessor.getArray();
+      const quantized = new Int16Array(source.length);
+      for (let i = 0; i < source.length; i++) quantized[i] = Math.round(((source[i] - center[i % 3]) / half) * 32767);
+      accessor.setArray(quantized).setNormalized(true);
+    }
+    // node = T R S; the dequantization (scale by half, then move by the
+    // centre) goes under the node's own scale.
+    const [sx, sy, sz] = node.getScale();
+    if (node.getRotation().some((value, c) => value !== [0, 0, 0, 1][c])) {
+      throw new Error('quantizedGlb: a rotated mesh node');
+    }
+    const [tx, ty, tz] = node.getTranslation();
+    node.setScale([sx * half, sy * half, sz * half])
+      .setTranslation([tx + sx * center[0], ty + sy * center[1], tz + sz * center[2]]);
+  }
+  return Buffer.from(await files.writeBinary(document));
+}
+
+/** `glb` with its buffers meshopt-compressed (EXT_meshopt_compression, required). */
+export async function meshoptGlb(glb) {
+  const files = await io();
+  const document = await files.readBinary(new Uint8Array(glb));
+  document.createExtension(EXTMeshoptCompression).setRequired(true)
+    .setEncoderOptions({ method: EXTMeshoptCompression.EncoderMethod.QUANTIZE });
+  return Buffer.from(await files.writeBinary(document));
+}

@@ -1,0 +1,162 @@
+// Compressed and quantized GLBs, as product models are shipped (Draco,
+// meshopt, KHR_mesh_quantization), open as the shape their uncompressed file
+// has, and an edit exports as a shape the file's quantization could not hold.
+import { readFileSync, writeFileSync } from 'node:fs';
+
+import { dracoGlb, meshoptGlb, quantizedGlb } from './compressed-gltf.mjs';
+import { glbChunks, meshesByName, parseGlb, spotSceneGlb, worldPositions } from './gltf-scene.mjs';
+import { expect, meshPath, openApp, test, uploadFile } from './support.mjs';
+
+const SPOT = meshPath('formats/spot_lowres.glb');
+
+// Opens `bytes` as `name` in the app; the load's outcome, the solver's
+// positions and the notice shown ('' for none).
+async function open(page, bytes, name) {
+  const path = test.info().outputPath(name);
+  writeFileSync(path, bytes);
+  const loaded = await uploadFile(page, path);
+  const { positions, notice } = await page.evaluate(() => {
+    const shown = document.querySelector('[data-testid="notice"]');
+    return { positions: Array.from(window.anisoform.positions()), notice: shown.hidden ? '' : shown.textContent };
+  });
+  return { ...loaded, positions, notice };
+}
+
+// The largest distance from a point of `points` to the nearest of `to` (xyz runs).
+function farthestFrom(points, to) {
+  let worst = 0;
+  for (let i = 0; i < points.length; i += 3) {
+    let nearest = Infinity;
+    for (let j = 0; j < to.length; j += 3) {
+      const d = (points[i] - to[j]) ** 2 + (points[i + 1] - to[j + 1]) ** 2 + (points[i + 2] - to[j + 2]) ** 2;
+      if (d < nearest) nearest = d;
+    }
+    worst = Math.max(worst, Math.sqrt(nearest));
+  }
+  return worst;
+}
+
+function extent(positions, axis) {
+  let lo = Infinity, hi = -Infinity;
+  for (let i = axis; i < positions.length; i += 3) {
+    lo = Math.min(lo, positions[i]);
+    hi = Math.max(hi, positions[i]);
+  }
+  return { lo, hi };
+}
+
+// Stretches what lies above the middle of y by 1.5 along y and exports a GLB.
+async function stretchTopAndExport(page) {
+  return page.evaluate(async () => {
+    const api = window.anisoform;
+    const rest = api.positions();
+    const min = [Infinity, Infinity, Infinity], max = [-Infinity, -Infinity, -Infinity];
+    rest.forEach((value, k) => {
+      min[k % 3] = Math.min(min[k % 3], value);
+      max[k % 3] = Math.max(max[k % 3], value);
+    });
+    const middle = (min[1] + max[1]) / 2;
+    await api.select({ box: { min: [min[0] - 1, middle, min[2] - 1], max: [max[0] + 1, max[1] + 1, max[2] + 1] } });
+    await api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.5, 1] } });
+    return { positions: Array.from(api.positions()), bytes: Array.from(new Uint8Array(await api.export('glb'))) };
+  }).then(({ positions, bytes }) => ({ positions, bytes: Buffer.from(bytes) }));
+}
+
+// Every exported vertex (world coordinates) on a solver vertex.
+async function exportedWorld(bytes) {
+  return Object.values(meshesByName(await parseGlb(bytes))).map((mesh) => ({ mesh, world: worldPositions(mesh) }));
+}
+
+test('Draco, meshopt and quantized GLBs of a real model open as the shape of its uncompressed file', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const glb = readFileSync(SPOT);
+  const plain = await open(page, glb, 'spot.glb');
+  expect(plain.ok).toBe(true);
+  const { lo, hi } = extent(plain.positions, 1);
+  const variants = [
+    { name: 'spot-draco.glb', bytes: await dracoGlb(glb), note: 'is Draco-compressed', bits: 14 },
+    { name: 'spot-quantized.glb', bytes: await quantizedGlb(glb), note: null, bits: 16 },
+    { name: 'spot-meshopt.glb', bytes: await meshoptGlb(await quantizedGlb(glb)), note: 'is meshopt-compressed', bits: 16 },
+  ];
+  for (const variant of variants) {
+    expect(variant.bytes.length, variant.name).toBeLessThan(glb.length);
+    const loaded = await open(page, variant.bytes, variant.name);
+    expect(loaded.ok, `${variant.name}: ${loaded.message}`).toBe(true);
+    expect(loaded.info.vertices, variant.name).toBe(plain.info.vertices);
+    expect(loaded.info.triangles, variant.name).toBe(plain.info.triangles);
+    // Within the quantization's step (the largest extent over 2^bits), both ways.
+    const step = (2 * (hi - lo)) / 2 ** variant.bits;
+    expect(farthestFrom(loaded.positions, plain.positions), variant.name).toBeLessThan(step);
+    expect(farthestFrom(plain.positions, loaded.positions), variant.name).toBeLessThan(step);
+    if (variant.note) expect(loaded.notice).toContain(`The file's geometry ${variant.note}: a GLB export writes it uncompressed.`);
+    else expect(loaded.notice).not.toContain('compressed');
+  }
+  expect(pageErrors).toEqual([]);
+});
+
+test('an edit of a quantized, meshopt-compressed GLB exports past the box its quantization covered', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const packed = await meshoptGlb(await quantizedGlb(readFileSync(SPOT)));
+  const loaded = await open(page, packed, 'spot-meshopt.glb');
+  expect(loaded.ok).toBe(true);
+  const edit = await stretchTopAndExport(page);
+  const before = extent(loaded.positions, 1);
+  const after = extent(edit.positions, 1);
+  // The stretch reaches well above the file's top, where a 16-bit normalized
+  // position written back in place would clamp at 1.
+  expect(after.hi - before.hi).toBeGreaterThan(0.2 * (before.hi - before.lo));
+  const [{ mesh, world }] = await exportedWorld(edit.bytes);
+  expect(farthestFrom(world, edit.positions)).toBeLessThan(1e-5);
+  expect(extent(world, 1).hi).toBeCloseTo(after.hi, 5);
+  expect(mesh.geometry.getAttribute('position').array).toBeInstanceOf(Float32Array);
+  expect(glbChunks(edit.bytes).json.extensionsUsed ?? []).not.toContain('KHR_mesh_quantization');
+  expect(pageErrors).toEqual([]);
+});
+
+test('a Draco-compressed product scene exports with its nodes, material and normals, in the edited shape', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const scene = await spotSceneGlb(meshPath('closed/spot_triangulated.obj'));
+  const loaded = await open(page, await dracoGlb(scene), 'product-draco.glb');
+  expect(loaded.ok, loaded.message).toBe(true);
+  expect(loaded.notice).toContain("The file's geometry is Draco-compressed");
+  const edit = await stretchTopAndExport(page);
+  expect(glbChunks(edit.bytes).json.nodes.map((node) => node.name)).toEqual(glbChunks(scene).json.nodes.map((node) => node.name));
+  const parts = await exportedWorld(edit.bytes);
+  expect(parts.map(({ mesh }) => mesh.name).sort()).toEqual(['body', 'copy', 'crate']);
+  let moved = 0;
+  const original = meshesByName(await parseGlb(scene));
+  for (const { mesh, world } of parts) {
+    expect(mesh.material.name, mesh.name).toBe(original[mesh.name].material.name);
+    expect(farthestFrom(world, edit.positions), mesh.name).toBeLessThan(1e-5);
+    moved = Math.max(moved, farthestFrom(world, loaded.positions));
+    const normal = mesh.geometry.getAttribute('normal');
+    for (let i = 0; i < normal.count; i++) {
+      expect(Math.hypot(normal.getX(i), normal.getY(i), normal.getZ(i))).toBeCloseTo(1, 4);
+    }
+  }
+  expect(moved).toBeGreaterThan(0.1);
+  expect(pageErrors).toEqual([]);
+});
+
+test('a GLB using an extension the app does not read says which, and still opens', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const glb = readFileSync(SPOT);
+  const { json, bin } = glbChunks(glb);
+  json.extensionsUsed = ['KHR_texture_basisu', 'KHR_materials_unlit'];
+  const text = Buffer.from(JSON.stringify(json).padEnd(Math.ceil(JSON.stringify(json).length / 4) * 4, ' '));
+  const header = Buffer.alloc(20);
+  header.write('glTF', 0);
+  header.writeUInt32LE(2, 4);
+  header.writeUInt32LE(20 + text.length + 8 + bin.length, 8);
+  header.writeUInt32LE(text.length, 12);
+  header.writeUInt32LE(0x4e4f534a, 16);
+  const chunk = Buffer.alloc(8);
+  chunk.writeUInt32LE(bin.length, 0);
+  chunk.writeUInt32LE(0x004e4942, 4);
+  const loaded = await open(page, Buffer.concat([header, text, chunk, bin]), 'spot-basisu.glb');
+  expect(loaded.ok).toBe(true);
+  expect(loaded.notice).toContain(
+    'The file uses glTF extensions this app does not read (KHR_texture_basisu): what they add is not shown, and a GLB export leaves it out.',
+  );
+  expect(pageErrors).toEqual([]);
+});
