@@ -4,7 +4,7 @@
 // shape with the uncompressed file's.
 import { NodeIO } from '../web/node_modules/@gltf-transform/core/dist/index.js';
 import {
-  EXTMeshoptCompression, KHRDracoMeshCompression, KHRMeshQuantization, KHRONOS_EXTENSIONS,
+  EXTMeshGPUInstancing, EXTMeshoptCompression, KHRDracoMeshCompression, KHRMeshQuantization, KHRONOS_EXTENSIONS,
 } from '../web/node_modules/@gltf-transform/extensions/dist/index.js';
 import draco3d from '../web/node_modules/draco3dgltf/draco3dgltf.js';
 import { MeshoptDecoder, MeshoptEncoder } from '../web/node_modules/meshoptimizer/index.js';
@@ -12,7 +12,7 @@ import { MeshoptDecoder, MeshoptEncoder } from '../web/node_modules/meshoptimize
 async function io() {
   await Promise.all([MeshoptEncoder.ready, MeshoptDecoder.ready]);
   return new NodeIO()
-    .registerExtensions([...KHRONOS_EXTENSIONS, EXTMeshoptCompression])
+    .registerExtensions([...KHRONOS_EXTENSIONS, EXTMeshoptCompression, EXTMeshGPUInstancing])
     .registerDependencies({
       'draco3d.encoder': await draco3d.createEncoderModule(),
       'draco3d.decoder': await draco3d.createDecoderModule(),
@@ -80,5 +80,22 @@ export async function meshoptGlb(glb) {
   const document = await files.readBinary(new Uint8Array(glb));
   document.createExtension(EXTMeshoptCompression).setRequired(true)
     .setEncoderOptions({ method: EXTMeshoptCompression.EncoderMethod.QUANTIZE });
+  return Buffer.from(await files.writeBinary(document));
+}
+
+/**
+ * `glb` with its first mesh node drawn at `offsets` instead (each an [x, y, z]
+ * translation; EXT_mesh_gpu_instancing, required), as scattered parts of a
+ * product are shipped.
+ */
+export async function instancedGlb(glb, offsets) {
+  const files = await io();
+  const document = await files.readBinary(new Uint8Array(glb));
+  const node = document.getRoot().listNodes().find((candidate) => candidate.getMesh());
+  const translation = document.createAccessor().setType('VEC3').setArray(new Float32Array(offsets.flat()))
+    .setBuffer(document.getRoot().listBuffers()[0]);
+  const batch = document.createExtension(EXTMeshGPUInstancing).setRequired(true).createInstancedMesh()
+    .setAttribute('TRANSLATION', translation);
+  node.setExtension('EXT_mesh_gpu_instancing', batch);
   return Buffer.from(await files.writeBinary(document));
 }

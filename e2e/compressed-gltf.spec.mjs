@@ -3,7 +3,7 @@
 // has, and an edit exports as a shape the file's quantization could not hold.
 import { readFileSync, writeFileSync } from 'node:fs';
 
-import { dracoGlb, meshoptGlb, quantizedGlb } from './compressed-gltf.mjs';
+import { dracoGlb, instancedGlb, meshoptGlb, quantizedGlb } from './compressed-gltf.mjs';
 import { glbChunks, meshesByName, parseGlb, spotSceneGlb, worldPositions } from './gltf-scene.mjs';
 import { expect, meshPath, openApp, test, uploadFile } from './support.mjs';
 
@@ -135,6 +135,29 @@ test('a Draco-compressed product scene exports with its nodes, material and norm
     }
   }
   expect(moved).toBeGreaterThan(0.1);
+  expect(pageErrors).toEqual([]);
+});
+
+test('each instance of an instanced GLB mesh is edited where it lies and exports as a mesh of its own', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const glb = readFileSync(SPOT);
+  const plain = await open(page, glb, 'spot.glb');
+  const offsets = [[0, 0, 0], [3, 0, 0], [0, 0, -3]];
+  const loaded = await open(page, await instancedGlb(glb, offsets), 'spot-instanced.glb');
+  expect(loaded.ok, loaded.message).toBe(true);
+  expect(loaded.notice).toContain('3 instances (EXT_mesh_gpu_instancing) became meshes of their own, and export as such.');
+  expect(loaded.info.vertices).toBe(3 * plain.info.vertices);
+  // Each instance where the file places it: Spot moved by its offset.
+  for (const [k, [dx, dy, dz]] of offsets.entries()) {
+    const instance = loaded.positions.slice(3 * k * plain.info.vertices, 3 * (k + 1) * plain.info.vertices);
+    const moved = plain.positions.map((value, i) => value + [dx, dy, dz][i % 3]);
+    expect(farthestFrom(instance, moved), `instance ${k}`).toBeLessThan(1e-5);
+  }
+  const edit = await stretchTopAndExport(page);
+  const parts = await exportedWorld(edit.bytes);
+  expect(parts).toHaveLength(3);
+  for (const { world } of parts) expect(farthestFrom(world, edit.positions)).toBeLessThan(1e-5);
+  expect(glbChunks(edit.bytes).json.extensionsUsed ?? []).not.toContain('EXT_mesh_gpu_instancing');
   expect(pageErrors).toEqual([]);
 });
 

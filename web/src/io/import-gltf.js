@@ -3,7 +3,7 @@
 // Points and lines are skipped (and counted), as the core's OBJ reader does.
 // The scene itself is kept (GltfSource), for a GLB export with its materials,
 // UVs and nodes.
-import { Matrix4, Scene, TextureLoader, Vector3 } from 'three';
+import { Group, Matrix4, Mesh, Scene, TextureLoader, Vector3 } from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 
 import { prepareDecoders } from './gltf-decoders.js';
@@ -44,16 +44,15 @@ export async function importGltf(bytes, name) {
   // of a new scene: one more wrapper node at every round trip.
   const scene = Object.assign(new Scene(), { name: gltf.scene.name });
   scene.add(...gltf.scene.children);
+  const instances = separateInstances(scene);
   scene.updateMatrixWorld(true);
 
   const parts = [];
   let skipped = 0;
   scene.traverse((object) => {
     // Skinned meshes would need their pose evaluated; points and lines have no surface.
-    // Instances share one geometry placed many times: an edit has no one place to go.
-    const posed = object.isSkinnedMesh || object.isInstancedMesh;
-    if (object.isMesh && !posed && object.geometry.getAttribute('position')) parts.push(object);
-    else if (object.isLine || object.isPoints || posed) skipped++;
+    if (object.isMesh && !object.isSkinnedMesh && object.geometry.getAttribute('position')) parts.push(object);
+    else if (object.isLine || object.isPoints || object.isSkinnedMesh) skipped++;
   });
   if (parts.length === 0) throw new GltfImportError(`${name}: the glTF scene contains no triangle mesh.`);
 
@@ -103,7 +102,10 @@ export async function importGltf(bytes, name) {
 
   const notes = [];
   if (parts.length > 1) notes.push(`${parts.length} meshes of the glTF scene were merged into one.`);
-  if (skipped > 0) notes.push(`${skipped} point, line, skinned or instanced objects were skipped.`);
+  if (skipped > 0) notes.push(`${skipped} point, line or skinned objects were skipped.`);
+  if (instances > 0) {
+    notes.push(`${instances} instances (EXT_mesh_gpu_instancing) became meshes of their own, and export as such.`);
+  }
   if (decoders.compressed.length > 0) {
     notes.push(`The file's geometry is ${decoders.compressed.join(' and ')}-compressed: a GLB export writes it uncompressed.`);
   }
@@ -114,6 +116,37 @@ export async function importGltf(bytes, name) {
     );
   }
   return { positions, triangles, notes, source: new GltfSource(scene, sourceParts) };
+}
+
+// Each instance of an instanced mesh (EXT_mesh_gpu_instancing) as a mesh of
+// its own, at its place under the same parent: instances share one geometry
+// placed many times, and an edit moves each where it lies. Returns how many.
+function separateInstances(scene) {
+  const instanced = [];
+  scene.traverse((object) => {
+    if (object.isInstancedMesh) instanced.push(object);
+  });
+  let count = 0;
+  for (const object of instanced) {
+    const group = new Group();
+    group.name = object.name;
+    group.matrix.copy(object.matrix);
+    group.matrix.decompose(group.position, group.quaternion, group.scale);
+    for (let i = 0; i < object.count; i++) {
+      const mesh = new Mesh(object.geometry, object.material);
+      mesh.name = `${object.name || 'instance'}.${i}`;
+      object.getMatrixAt(i, mesh.matrix);
+      mesh.matrix.decompose(mesh.position, mesh.quaternion, mesh.scale);
+      group.add(mesh);
+    }
+    count += object.count;
+    // In the instanced mesh's place among its parent's children (the export's node order).
+    const parent = object.parent;
+    parent.children[parent.children.indexOf(object)] = group;
+    group.parent = parent;
+    object.parent = null;
+  }
+  return count;
 }
 
 // Embedded textures decoded as <img> from their blob: URL (CSP img-src), not
