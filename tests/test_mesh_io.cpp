@@ -521,6 +521,42 @@ TEST_CASE("mesh_io: a PLY's other vertex properties are read and written again i
   CHECK(aniso::read_mesh(mesh_path("formats/spot_lowres_ascii.ply")).attributes.vertex_properties.empty());
 }
 
+TEST_CASE("mesh_io: vertex colours go from a PLY to an OBJ and from an OBJ to a PLY", "[io]") {
+  const Mesh spot = aniso::read_mesh(mesh_path("formats/spot_lowres_binary.ply")).mesh;
+  const int n = static_cast<int>(spot.V.rows());
+  aniso::SurfaceAttributes scan;
+  scan.vertex_properties = scan_properties(spot);  // red, green (uint8), blue, quality, normals, label
+  aniso::WriteOptions options;
+  options.attributes = &scan;
+  // The scan's colours, as an OBJ's v x y z r g b in [0, 1].
+  const ReadResult obj = read_text(aniso::write_mesh_to_memory(spot, MeshFormat::Obj, options), MeshFormat::Obj);
+  REQUIRE(obj.attributes.vertex_colors.rows() == n);
+  for (int i = 0; i < n; ++i) {
+    for (int k = 0; k < 3; ++k) CHECK(obj.attributes.vertex_colors(i, k) == Approx(scan.vertex_properties[k].values[i] / 255.0).margin(1e-6));
+  }
+  CHECK(aniso::vertex_colors(scan, n) == aniso::vertex_colors(obj.attributes, n));
+  // ...and back into a PLY as red, green, blue uchar: the scan's bytes again.
+  options.attributes = &obj.attributes;
+  const std::string ply = aniso::write_mesh_to_memory(spot, MeshFormat::Ply, options);
+  CHECK_THAT(ply, Catch::Contains("property uchar red\nproperty uchar green\nproperty uchar blue\nelement face"));
+  const ReadResult back = read_text(ply, MeshFormat::Ply);
+  REQUIRE(back.attributes.vertex_properties.size() == 3);
+  for (int k = 0; k < 3; ++k) CHECK(back.attributes.vertex_properties[k].values == scan.vertex_properties[k].values);
+  // A PLY's own properties win over the conversion; 16-bit and float channels scale to [0, 1].
+  aniso::SurfaceAttributes wide;
+  wide.vertex_properties = {{"red", "ushort", std::vector<double>(n, 65535.0)}, {"green", "float", std::vector<double>(n, 0.25)},
+                            {"blue", "uchar", std::vector<double>(n, 0.0)}};
+  const Eigen::MatrixX3d colors = aniso::vertex_colors(wide, n);
+  REQUIRE(colors.rows() == n);
+  CHECK(colors(0, 0) == 1.0);
+  CHECK(colors(0, 1) == 0.25);
+  CHECK(colors(0, 2) == 0.0);
+  // A channel missing: no colours.
+  wide.vertex_properties.pop_back();
+  CHECK(aniso::vertex_colors(wide, n).rows() == 0);
+  CHECK(aniso::vertex_colors(aniso::SurfaceAttributes{}, n).rows() == 0);
+}
+
 TEST_CASE("mesh_io: a PLY with more than 16 other vertex properties keeps the first 16 and says so", "[io]") {
   std::string text = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
   for (int p = 0; p < 18; ++p) text += "property uchar p" + std::to_string(p) + "\n";

@@ -101,6 +101,49 @@ val input_vertex_map(Session& s) {
   });
 }
 
+// What the loaded file carried besides positions and triangles, in the forms
+// a GLB export takes (the core writes OBJ and PLY with them itself): texture
+// coordinates per triangle corner (u, v for corners 0, 1, 2 of each
+// triangle), colours in [0, 1] per vertex (mesh_io.h vertex_colors) and the
+// OBJ's material runs ({name, first}: the first triangle of each); null or
+// empty for what the file had not.
+val surface_attributes(Session& s) {
+  return guarded([&] {
+    const int n = static_cast<int>(s.positions().rows());
+    const SurfaceAttributes& attributes = s.attributes();
+    val out = val::object();
+    out.set("cornerUv", val::null());
+    const CornerTexture& texture = attributes.texture;
+    if (!texture.empty()) {
+      std::vector<float> corners(static_cast<std::size_t>(texture.faces.rows()) * 6);
+      for (Eigen::Index t = 0; t < texture.faces.rows(); ++t) {
+        for (int k = 0; k < 3; ++k) {
+          for (int c = 0; c < 2; ++c) corners[6 * t + 2 * k + c] = static_cast<float>(texture.uv(texture.faces(t, k), c));
+        }
+      }
+      out.set("cornerUv", copy_to_js(corners.data(), corners.size()));
+    }
+    out.set("colors", val::null());
+    const Eigen::MatrixX3d colors = vertex_colors(attributes, n);
+    if (colors.rows() > 0) {
+      std::vector<float> rgb(static_cast<std::size_t>(colors.size()));
+      for (Eigen::Index i = 0; i < colors.rows(); ++i) {
+        for (int k = 0; k < 3; ++k) rgb[3 * i + k] = static_cast<float>(colors(i, k));
+      }
+      out.set("colors", copy_to_js(rgb.data(), rgb.size()));
+    }
+    val runs = val::array();
+    for (const auto& [first, name] : attributes.materials.runs) {
+      val run = val::object();
+      run.set("name", name);
+      run.set("first", first);
+      runs.call<void>("push", run);
+    }
+    out.set("materials", runs);
+    return out;
+  });
+}
+
 val info(Session& s) {
   return guarded([&] { return to_js(to_json(s.info())); });
 }
@@ -299,6 +342,7 @@ EMSCRIPTEN_BINDINGS(anisoform) {
       .function("setMesh", &set_mesh)
       .function("info", &info)
       .function("inputVertexMap", &input_vertex_map)
+      .function("surfaceAttributes", &surface_attributes)
       .function("positions", &positions_view)
       .function("triangles", &triangles_view)
       .function("select", &select)

@@ -409,6 +409,16 @@ export interface ReplaySummary {
   last: DeformResult | null;
 }
 
+/** Session.surfaceAttributes. */
+export interface SurfaceAttributes {
+  /** An OBJ's texture coordinates per triangle corner: u, v of corners 0, 1, 2 (6 numbers a triangle). */
+  cornerUv: Float32Array | null;
+  /** Vertex colours in [0, 1], r, g, b per vertex: an OBJ's `v x y z r g b` or a PLY's red, green, blue. */
+  colors: Float32Array | null;
+  /** An OBJ's materials (usemtl): each run's name and first triangle, ascending. */
+  materials: { name: string; first: number }[];
+}
+
 /** One editing session on the WASM heap. Call delete() when done. */
 export interface Session {
   /** Replaces the mesh; the format comes from `name`'s extension (.obj .off .ply .stl). On failure the session keeps its mesh. */
@@ -420,6 +430,11 @@ export interface Session {
    * vertices; else the identity). Empty after loadMesh. A copy.
    */
   inputVertexMap(): Uint32Array;
+  /**
+   * What the loaded file carried besides positions and triangles, for a GLB export (OBJ and PLY
+   * exports carry it themselves): copies, null or empty where the file had none.
+   */
+  surfaceAttributes(): SurfaceAttributes;
   info(): MeshInfo;
   /** VIEW on the WASM heap (xyz per vertex): fetch again after every call, copy to keep. */
   positions(): Float32Array;

@@ -148,6 +148,8 @@ export async function instantiateAnisoform(factory, options = {}) {
 
     inputVertexMap() { return this.#call('inputVertexMap'); }
 
+    surfaceAttributes() { return this.#call('surfaceAttributes'); }
+
     info() { return this.#call('info'); }
 
     positions() { return this.#call('positions'); }

@@ -186,6 +186,33 @@ test('setMesh takes flat arrays, welds on request and refuses out-of-range indic
   }
 });
 
+test("surfaceAttributes gives a file's texture per corner, its colours in [0, 1] and its materials", () => {
+  const session = new wasm.Session();
+  try {
+    const spot = session.loadMesh(meshBytes('closed/spot_triangulated.obj'), 'spot_triangulated.obj');
+    const textured = session.surfaceAttributes();
+    assert.equal(textured.cornerUv.length, 6 * spot.triangles);
+    // Corner 0 of triangle 0 is the file's first face's first vt ("f 739/1 ..."), as float32.
+    const text = new TextDecoder().decode(meshBytes('closed/spot_triangulated.obj'));
+    const vt1 = /\nvt ([^\n]+)/.exec(text)[1].trim().split(/\s+/).slice(0, 2).map(Number);
+    assert.deepEqual(Array.from(textured.cornerUv.subarray(0, 2)), vt1.map(Math.fround));
+    assert.equal(textured.colors, null);
+    assert.deepEqual(textured.materials, []);
+    session.loadMesh(meshBytes('formats/concave_polygon.obj'), 'concave_polygon.obj');
+    assert.deepEqual(session.surfaceAttributes().materials, [{ name: 'test', first: 0 }]);
+    // A PLY's red, green, blue bytes as colours in [0, 1].
+    const ply = 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n' +
+      'property uchar red\nproperty uchar green\nproperty uchar blue\nelement face 1\nproperty list uchar int vertex_indices\n' +
+      'end_header\n0 0 0 255 0 51\n1 0 0 0 255 0\n0 1 0 0 0 255\n3 0 1 2\n';
+    session.loadMesh(new TextEncoder().encode(ply), 'colored.ply');
+    const colored = session.surfaceAttributes();
+    assert.deepEqual(Array.from(colored.colors), [1, 0, 0.2, 0, 1, 0, 0, 0, 1].map(Math.fround));
+    assert.equal(colored.cornerUv, null);
+  } finally {
+    session.delete();
+  }
+});
+
 test('calls before any mesh is loaded fail with bad-parameter', () => {
   const session = new wasm.Session();
   try {

@@ -72,6 +72,16 @@ struct SurfaceAttributes {
   VertexProperties vertex_properties;  // PLY
 };
 
+// The vertex colours in [0, 1], #V rows, whichever format carried them: an
+// OBJ's `v x y z r g b`, or a PLY's red, green and blue properties (integer
+// types scaled by their largest value); 0 rows when there are none.
+Eigen::MatrixX3d vertex_colors(const SurfaceAttributes& attributes, int vertex_count);
+
+// `attributes` as a file of `format` can carry them: the vertex colours of
+// one format given to another that has a place for them (OBJ `v x y z r g
+// b`; PLY red, green, blue as uchar when it has no properties of its own).
+SurfaceAttributes attributes_for_format(const SurfaceAttributes& attributes, MeshFormat format, int vertex_count);
+
 struct ReadResult {
   Mesh mesh;
   ReadReport report;

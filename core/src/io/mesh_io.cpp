@@ -87,11 +87,13 @@ ReadResult read_mesh(const std::string& path) {
 
 std::string write_mesh_to_memory(const Mesh& mesh, MeshFormat format, const WriteOptions& options) {
   io::require_valid_indices(mesh);
+  const SurfaceAttributes attributes =
+      options.attributes ? attributes_for_format(*options.attributes, format, static_cast<int>(mesh.V.rows()))
+                         : SurfaceAttributes{};
   switch (format) {
-    case MeshFormat::Obj: return io::write_obj(mesh, options.attributes);
+    case MeshFormat::Obj: return io::write_obj(mesh, &attributes);
     case MeshFormat::Off: return io::write_off(mesh);
-    case MeshFormat::Ply:
-      return io::write_ply(mesh, options.binary, options.attributes ? &options.attributes->vertex_properties : nullptr);
+    case MeshFormat::Ply: return io::write_ply(mesh, options.binary, &attributes.vertex_properties);
     case MeshFormat::Stl: return io::write_stl(mesh, options.binary);
   }
   fail(ErrorCode::BadParameter, "unknown mesh format");

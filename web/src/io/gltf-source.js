@@ -8,6 +8,8 @@
 import { BufferAttribute, Matrix3, Matrix4, Vector3 } from 'three';
 import { GLTFExporter } from 'three/addons/exporters/GLTFExporter.js';
 
+import { weldedNormals } from './welded-normals.js';
+
 // Two copies of a welded vertex whose normals in the file agree this closely
 // lie on a smooth surface split for its UVs or colours: they get the welded
 // vertex's one normal. Copies that differ lie on a hard edge and keep a
@@ -140,21 +142,4 @@ function floatAttribute(geometry, name) {
   }
   geometry.setAttribute(name, copy);
   return copy;
-}
-
-// Area-weighted vertex normals of the solver's mesh (xyz per vertex, unnormalised is fine).
-function weldedNormals(positions, triangles) {
-  const normals = new Float32Array(positions.length);
-  for (let t = 0; t < triangles.length; t += 3) {
-    const a = 3 * triangles[t], b = 3 * triangles[t + 1], c = 3 * triangles[t + 2];
-    const ux = positions[b] - positions[a], uy = positions[b + 1] - positions[a + 1], uz = positions[b + 2] - positions[a + 2];
-    const vx = positions[c] - positions[a], vy = positions[c + 1] - positions[a + 1], vz = positions[c + 2] - positions[a + 2];
-    const nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
-    for (const corner of [a, b, c]) {
-      normals[corner] += nx;
-      normals[corner + 1] += ny;
-      normals[corner + 2] += nz;
-    }
-  }
-  return normals;
 }

@@ -61,6 +61,8 @@ export const Request = Object.freeze({
   directionField: 'directionField',
   /** {format: 'obj'|'off'|'ply'|'stl'} -> {bytes: Uint8Array}: the current positions as a mesh file (the core's writers). */
   exportMesh: 'exportMesh',
+  /** {} -> Session.surfaceAttributes (the file's texture, colours, materials): for a GLB export by the page. */
+  surfaceAttributes: 'surfaceAttributes',
   /** {options} -> FlattenPayload: a garment pattern of the current positions. */
   flatten: 'flatten',
   /** {format: 'svg'|'dxf', mmPerUnit} -> {bytes: Uint8Array}: the last flattening as a pattern file. */

@@ -37,6 +37,7 @@ export class SessionHost {
       [Request.setPositions]: (payload) => this.setPositions(payload),
       [Request.directionField]: (payload) => this.directionField(payload),
       [Request.exportMesh]: (payload) => this.exportMesh(payload),
+      [Request.surfaceAttributes]: () => this.surfaceAttributes(),
       [Request.flatten]: (payload) => this.flatten(payload),
       [Request.exportPattern]: (payload) => this.exportPattern(payload),
       [Request.resolveOp]: ({ op }) => ({ result: { op: this.session.resolveOp(op) }, transfer: [] }),
@@ -218,6 +219,12 @@ export class SessionHost {
   exportMesh({ format }) {
     const bytes = this.session.exportMesh(format);
     return { result: { bytes }, transfer: [bytes.buffer] };
+  }
+
+  surfaceAttributes() {
+    const attributes = this.session.surfaceAttributes();
+    const transfer = [attributes.cornerUv, attributes.colors].filter(Boolean).map((array) => array.buffer);
+    return { result: attributes, transfer };
   }
 
   flatten({ options }) {
