@@ -183,3 +183,24 @@ test('a GLB using an extension the app does not read says which, and still opens
   );
   expect(pageErrors).toEqual([]);
 });
+
+test('a damaged Draco or meshopt GLB is refused, saying what failed, and the mesh stays', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const glb = readFileSync(SPOT);
+  const before = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  const cases = [
+    ['spot-draco.glb', await dracoGlb(glb), /not a readable glTF file: Draco geometry: .*Decoding failed/],
+    ['spot-meshopt.glb', await meshoptGlb(await quantizedGlb(glb)), /not a readable glTF file: Malformed buffer data/],
+  ];
+  for (const [name, bytes, message] of cases) {
+    // Every 7th byte of the binary chunk's payload flipped.
+    const damaged = Buffer.from(bytes);
+    for (let i = 36 + bytes.readUInt32LE(12); i < damaged.length; i += 7) damaged[i] ^= 0x5a;
+    const outcome = await open(page, damaged, name);
+    expect(outcome.ok, name).toBe(false);
+    expect(outcome.message).toMatch(message);
+    expect(outcome.message).toContain('The current mesh (spot_triangulated.obj) is unchanged.');
+    expect(outcome.positions).toEqual(before);
+  }
+  expect(pageErrors).toEqual([]);
+});

@@ -36,7 +36,9 @@ export async function importGltf(bytes, name) {
     decoders = await prepareDecoders(loader, json);
     gltf = await loader.parseAsync(bytes, '');
   } catch (error) {
-    throw new GltfImportError(`${name}: not a readable glTF file: ${error?.message ?? error}`);
+    // DRACOLoader's workers reject with their message ({type: 'error', error}), not an Error.
+    const reason = error?.message ?? (typeof error?.error === 'string' ? `Draco geometry: ${error.error}` : String(error));
+    throw new GltfImportError(`${name}: not a readable glTF file: ${reason}`);
   } finally {
     decoders?.dispose();
   }
