@@ -659,3 +659,49 @@ test('open keeps the states between the ops for undo; a document failing at its 
   expect(bitwise(await again(), edited)).toBe(true);
   expect(pageErrors).toEqual([]);
 });
+
+test('document() lists an edit once it is solved: not while its commit or a re-run solves, not after a cancel', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  // Polls document() every few ms while `start()` runs; what it showed before the end, and after.
+  const watch = (start) => page.evaluate(async (code) => {
+    const api = window.anisoform;
+    const seen = new Set();
+    let done = false;
+    const calls = {
+      commit: () => api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.3, 1] } }),
+      rerun: () => api.setParameter(api.document().ops[0].id, { transform: { scale: [1.6, 1] } }),
+    };
+    const running = calls[code]().then(() => 'solved', (error) => error.code);
+    running.finally(() => { done = true; });
+    while (!done) {
+      const { ops } = api.document();
+      seen.add(JSON.stringify(ops.map((op) => op.op.transform.scale)));
+      await new Promise((resolve) => setTimeout(resolve, 2));
+    }
+    return { outcome: await running, seen: [...seen], after: api.document().ops.map((op) => op.op.transform.scale) };
+  }, start);
+  await page.evaluate(() => window.anisoform.select({ box: { min: [-2, 0.3, -2], max: [2, 2, 2] } }, { falloff: 0.1 }));
+  const commit = await watch('commit');
+  expect(commit.outcome).toBe('solved');
+  expect(commit.seen).toEqual(['[]']);
+  expect(commit.after).toEqual([[1.3, 1]]);
+  const rerun = await watch('rerun');
+  expect(rerun.outcome).toBe('solved');
+  expect(rerun.seen).toEqual(['[[1.3,1]]']);
+  expect(rerun.after).toEqual([[1.6, 1]]);
+  expect(pageErrors).toEqual([]);
+});
+
+test('a Thicken edit is listed and saved as Thicken', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  await page.getByTestId('select-all').click();
+  await page.locator('#direction-source').selectOption('global');
+  await page.getByTestId('tool-thicken').click();
+  await page.getByTestId('apply-thicken').click();
+  await expect.poll(() => page.evaluate(() => window.anisoform.document().ops.length)).toBe(1);
+  const [op] = await page.evaluate(() => window.anisoform.document().ops);
+  expect(op.op.transform.scale[0]).toBe(1);
+  expect(op.label).toBe('Thicken (AnARAP)');
+  await expect(page.getByTestId(`op-select-${op.id}`)).toHaveText('Thicken (AnARAP)');
+  expect(pageErrors).toEqual([]);
+});

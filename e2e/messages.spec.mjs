@@ -99,3 +99,21 @@ test('a refused selection reaches the banner and rejects with the core code, the
   expect(outcome.message).toContain('radius');
   await expect(page.getByTestId('error')).toContainText('The selection was not changed');
 });
+
+test('an edit refused stays on the banner until a later edit is solved', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  await page.getByTestId('select-all').click();
+  await page.locator('#direction-source').selectOption('screen');
+  await page.getByTestId('tool-stretch').click();
+  await page.getByTestId('apply-stretch').click();
+  const error = page.getByTestId('error');
+  await expect(error).toContainText('screen');
+  // A selection leaves it up; a solved edit clears it.
+  await page.getByTestId('select-all').click();
+  await expect(error).toBeVisible();
+  await page.locator('#direction-source').selectOption('global');
+  await page.getByTestId('apply-stretch').click();
+  await expect.poll(() => page.evaluate(() => window.anisoform.document().ops.length)).toBe(1);
+  await expect(error).toBeHidden();
+  expect(pageErrors).toEqual([]);
+});

@@ -156,6 +156,15 @@ test('390 px: a long warning shows three lines and More, which opens the rest an
   const more = warning.getByTestId('message-more');
   await expect(more).toHaveText('More');
   await expect(more).toHaveAttribute('aria-expanded', 'false');
+  // More is shown whole in the 240 px Flatten view, and a tap at its centre
+  // reaches it (it was cut off below the messages' box, the view under it).
+  const reachable = () => more.evaluate((button) => {
+    const box = button.getBoundingClientRect();
+    const clip = button.closest('.viewport-messages').getBoundingClientRect();
+    const hit = document.elementFromPoint(box.x + box.width / 2, box.y + box.height / 2);
+    return { inside: box.top >= clip.top && box.bottom <= clip.bottom, hit: button.contains(hit) };
+  });
+  expect(await reachable()).toEqual({ inside: true, hit: true });
   await expectTidy(page, 'a long warning, folded');
   await more.tap();
   await expect(more).toHaveText('Less');

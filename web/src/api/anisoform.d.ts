@@ -117,7 +117,12 @@ export interface ErrorEvent {
   message: string;
 }
 export interface ProgressEvent {
-  stage: 'init' | 'read' | 'parse' | 'factorize' | 'flatten' | 'done';
+  /**
+   * 'init' the solver loading; 'read' a file being read, 'parse' and 'load' its mesh checked and
+   * kept; 'factorize' the solver prepared for a shape; 'solve' an edit solved; 'flatten' a
+   * flattening; 'restart' the solver started again after a cancel; 'done' nothing running.
+   */
+  stage: 'init' | 'read' | 'parse' | 'load' | 'factorize' | 'solve' | 'flatten' | 'restart' | 'done';
   message: string;
   /** In [0, 1] when known. */
   fraction?: number;

@@ -48,6 +48,9 @@ export class OpStack {
   #persistence;
   /** @type {EditDocument|null} */
   document = null;
+  // The document as it was before a change still being solved (a commit's
+  // new op, a re-run's new value): what toJSON() gives meanwhile.
+  #settled = null;
 
   constructor({ editor, client, dropPattern }) {
     this.#editor = editor;
@@ -99,9 +102,24 @@ export class OpStack {
     return restart((post) => this.#runner.seed(post));
   }
 
-  /** The document as JSON (api.document()). */
+  /**
+   * The document as JSON (api.document()): the ops done so far. An op being
+   * committed, or a change being re-run, is in it once solved: a cancel or a
+   * failure leaves the document as it was.
+   */
   toJSON() {
-    return this.#requireDocument().toJSON();
+    return this.#settled ?? this.#requireDocument().toJSON();
+  }
+
+  // Runs work(), which changes the document and solves the change, with
+  // toJSON() giving the document before the change until it settles.
+  async #solving(work) {
+    this.#settled = this.document.toJSON();
+    try {
+      return await work();
+    } finally {
+      this.#settled = null;
+    }
   }
 
   // ---- committing, undo, redo, reset ---------------------------------------
@@ -115,15 +133,16 @@ export class OpStack {
       const { op } = await this.#client.request(Request.resolveOp, { op: solverOp });
       const index = this.document.ops.length;
       const undone = [...this.document.undone];
-      const entry = this.document.append({ label, steps, op });
-      let result;
-      try {
-        result = await this.#runner.replay(index, index + 1);
-      } catch (error) {
-        this.document.dropLast(entry);
-        this.document.undone = undone;
-        throw error;
-      }
+      const result = await this.#solving(async () => {
+        const entry = this.document.append({ label, steps, op });
+        try {
+          return await this.#runner.replay(index, index + 1);
+        } catch (error) {
+          this.document.dropLast(entry);
+          this.document.undone = undone;
+          throw error;
+        }
+      });
       this.#runner.cache.dropAfter(index);
       this.#runner.show(index + 1, result);
       // The committed shape is the worker's new rest pose: it is factorized
@@ -335,15 +354,16 @@ export class OpStack {
   // re-run; on failure revert() takes the change back and the document's
   // last state is put back in the worker.
   async #rerunAfter(index, apply, revert) {
-    apply();
-    let stats;
-    try {
-      stats = await this.#runner.rerunFrom(index);
-    } catch (error) {
-      revert();
-      await this.#runner.restore(this.document.ops.length).catch(() => {});
-      throw error;
-    }
+    const stats = await this.#solving(async () => {
+      apply();
+      try {
+        return await this.#runner.rerunFrom(index);
+      } catch (error) {
+        revert();
+        await this.#runner.restore(this.document.ops.length).catch(() => {});
+        throw error;
+      }
+    });
     this.#persistence.changed();
     this.#reportSolved(stats);
   }

@@ -9,7 +9,10 @@ export function describeEdit(op) {
   if (typeof op !== 'object' || op === null) return 'The edit';
   if (op.method === 'arap' && op.move) return 'Move (ARAP)';
   const kind = Object.keys(op.transform ?? {}).find((key) => key in TRANSFORM_NAMES) ?? 'scale';
-  return `${TRANSFORM_NAMES[kind]} (${METHOD_NAMES[op.method] ?? op.method})`;
+  // The Thicken tool's op is a scale across the direction only: [1, sv].
+  const scale = op.transform?.scale;
+  const across = kind === 'scale' && Array.isArray(scale) && scale.length === 2 && scale[0] === 1 && scale[1] !== 1;
+  return `${across ? 'Thicken' : TRANSFORM_NAMES[kind]} (${METHOD_NAMES[op.method] ?? op.method})`;
 }
 
 export function foldOverWarning(count) {

@@ -109,7 +109,7 @@ export function createModeller(container, options = {}) {
   // Errors the editor has reported already are not shown twice.
   const reportError = (error, context) => editor.report(error, context);
   const directionDisplay = new DirectionDisplay({ editor, settings, viewer, meshView, lifetime });
-  new HeatmapDisplay({ editor, settings, meshView, viewport: layout.viewport, reportError, fileLook: () => gltfDisplay.active });
+  new HeatmapDisplay({ editor, settings, meshView, viewport: layout.viewport, lifetime, reportError, fileLook: () => gltfDisplay.active });
   const tools = createTools({
     editor,
     viewer,

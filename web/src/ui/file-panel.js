@@ -54,13 +54,17 @@ export function filePanel({ api, editor, reportError }) {
   const resetButton = h('button', {
     className: 'button',
     'data-testid': 'reset',
-    title: 'Back to the mesh as loaded (undoable)',
     onclick: () => api.reset(),
   }, 'Reset');
   const fileName = h('p', { className: 'file-name' });
   editor.on('mesh', (document) => (fileName.textContent = document.name));
-  // Nothing to save until an edit is made.
-  const syncSave = () => (saveButton.disabled = !(editor.ops.document?.ops.length > 0));
+  // Nothing to save, and nothing to reset, until an edit is made.
+  const syncSave = () => {
+    const edited = editor.ops.document?.ops.length > 0;
+    saveButton.disabled = !edited;
+    resetButton.disabled = !edited;
+    resetButton.title = edited ? 'Back to the mesh as loaded (undoable)' : 'No edits to reset: this is the mesh as loaded';
+  };
   syncSave();
   editor.on('document', syncSave);
   editor.on('mesh', syncSave);

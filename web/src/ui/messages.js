@@ -2,7 +2,8 @@
 // plain words what went wrong and what to do (a load error also says the
 // current mesh was kept); notices say what a load repaired or found, with the
 // full list on demand, or that the user stopped a solve, until the positions
-// or the pattern change; warnings say that the last edit (or the live
+// or the pattern change; errors stay until an edit is committed after them;
+// warnings say that the last edit (or the live
 // preview) folded triangles over, until the positions change again, or that
 // the last flattening is not usable as one piece, until the pattern changes.
 // All can be dismissed. On a narrow screen a long one shows three lines and a More
@@ -77,6 +78,9 @@ export function installMessages(root, { editor, lifetime }) {
   editor.on('warning', ({ message, source = 'edit' }) => warn(message, source));
   // The live preview warns while it folds; the commit's own warning follows its 'change'.
   editor.on('stats', ({ live, inverted }) => {
+    // An edit solved and committed: an error of an earlier action (an edit
+    // refused, a failed export) is behind the user now.
+    if (!live) error.hidden = true;
     if (!live) return;
     if (inverted > 0) warn(foldOverWarning(inverted), 'preview');
     else clearWarning('preview');

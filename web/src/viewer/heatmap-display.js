@@ -19,13 +19,13 @@ export class HeatmapDisplay {
   #latest = 0; // the newest refresh: older worker answers are dropped
 
   /** fileLook: () => whether the file's own materials are drawn instead of the surface (gltf-display.js). */
-  constructor({ editor, settings, meshView, viewport, reportError, fileLook = () => false }) {
+  constructor({ editor, settings, meshView, viewport, lifetime, reportError, fileLook = () => false }) {
     this.editor = editor;
     this.settings = settings;
     this.meshView = meshView;
     this.reportError = reportError;
     this.fileLook = fileLook;
-    this.legend = new HeatmapLegend(viewport);
+    this.legend = new HeatmapLegend(viewport, lifetime);
     settings.on('change', ({ section }) => section === 'display' && this.refresh());
     editor.on('mesh', () => this.refresh());
     editor.on('positions', ({ distortion }) => this.refresh(distortion));

@@ -7,9 +7,11 @@ import { ADAPTIVE_PERCENTILE, paletteColor } from './heat-palettes.js';
 import { rgb } from './pattern-colors.js';
 
 const BAR_STOPS = 9;
+// Views shorter than this show the legend beside the Frame button, without its range line.
+const SHORT_VIEW_PX = 360;
 
 export class HeatmapLegend {
-  constructor(viewport) {
+  constructor(viewport, lifetime) {
     const text = (testId) => {
       const span = document.createElement('span');
       span.dataset.testid = testId;
@@ -26,13 +28,19 @@ export class HeatmapLegend {
     this.element.dataset.testid = 'heatmap-legend';
     this.element.setAttribute('role', 'img');
     Object.assign(this.element.style, {
-      position: 'absolute', bottom: '52px', right: '10px', width: '200px', padding: '6px 8px',
+      position: 'absolute', width: '200px', padding: '6px 8px',
       background: '#111419e6', color: '#e6e8eb', font: '12px system-ui, sans-serif', borderRadius: '4px',
       display: 'flex', flexDirection: 'column', pointerEvents: 'none',
     });
     this.element.append(this.title, this.bar, this.ends, this.range);
     this.viewport = viewport;
     viewport.append(this.element);
+    // Placed again when the view's height changes (#place).
+    this.resized = new ResizeObserver(() => {
+      if (!this.element.hidden) this.setShown(true);
+    });
+    this.resized.observe(viewport);
+    lifetime.defer(() => this.resized.disconnect());
     this.hide();
   }
 
@@ -71,7 +79,19 @@ export class HeatmapLegend {
   setShown(shown) {
     this.element.hidden = !shown;
     this.element.style.display = shown ? 'flex' : 'none';
+    if (shown) this.#place();
     const space = shown ? this.viewport.clientHeight - this.element.offsetTop + 6 : 0;
     this.viewport.style.setProperty('--legend-space', `${space}px`);
+  }
+
+  // Above the full UI's Frame button in a tall view; in a short one (a
+  // phone's Flatten view, 240 px) beside it and without the range's line,
+  // so that a message at the top keeps the room for its first lines and More.
+  #place() {
+    const frame = this.viewport.querySelector('.viewport-frame');
+    const short = this.viewport.clientHeight < SHORT_VIEW_PX;
+    this.range.style.display = short ? 'none' : '';
+    this.element.style.bottom = frame && !short ? '52px' : '10px';
+    this.element.style.right = frame && short ? `${18 + frame.offsetWidth}px` : '10px';
   }
 }
