@@ -99,3 +99,40 @@ export async function instancedGlb(glb, offsets) {
   node.setExtension('EXT_mesh_gpu_instancing', batch);
   return Buffer.from(await files.writeBinary(document));
 }
+
+/**
+ * `glb` with its first mesh rigged as a character is (a skin of two joints
+ * under a root, every vertex bound half to each, in its rest pose):
+ * JOINTS_0, WEIGHTS_0 and inverse bind matrices as exporters write them.
+ */
+export async function skinnedGlb(glb) {
+  const files = await io();
+  const document = await files.readBinary(new Uint8Array(glb));
+  const root = document.getRoot();
+  const buffer = root.listBuffers()[0];
+  const node = root.listNodes().find((candidate) => candidate.getMesh());
+  const hips = document.createNode('hips').setTranslation([0, 0.2, 0]);
+  const spine = document.createNode('spine').setTranslation([0, 0.3, 0]);
+  hips.addChild(spine);
+  root.listScenes()[0].addChild(hips);
+  // Each joint's inverse bind matrix: the inverse of its world matrix at rest (translations).
+  const inverseBind = new Float32Array([
+    1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -0.2, 0, 1,
+    1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -0.5, 0, 1,
+  ]);
+  const skin = document.createSkin('rig').setSkeleton(hips).addJoint(hips).addJoint(spine)
+    .setInverseBindMatrices(document.createAccessor().setType('MAT4').setArray(inverseBind).setBuffer(buffer));
+  node.setSkin(skin);
+  for (const primitive of node.getMesh().listPrimitives()) {
+    const count = primitive.getAttribute('POSITION').getCount();
+    const joints = new Uint16Array(4 * count);
+    const weights = new Float32Array(4 * count);
+    for (let i = 0; i < count; i++) {
+      joints.set([0, 1, 0, 0], 4 * i);
+      weights.set([0.5, 0.5, 0, 0], 4 * i);
+    }
+    primitive.setAttribute('JOINTS_0', document.createAccessor().setType('VEC4').setArray(joints).setBuffer(buffer));
+    primitive.setAttribute('WEIGHTS_0', document.createAccessor().setType('VEC4').setArray(weights).setBuffer(buffer));
+  }
+  return Buffer.from(await files.writeBinary(document));
+}

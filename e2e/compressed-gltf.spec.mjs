@@ -3,7 +3,7 @@
 // has, and an edit exports as a shape the file's quantization could not hold.
 import { readFileSync, writeFileSync } from 'node:fs';
 
-import { dracoGlb, instancedGlb, meshoptGlb, quantizedGlb } from './compressed-gltf.mjs';
+import { dracoGlb, instancedGlb, meshoptGlb, quantizedGlb, skinnedGlb } from './compressed-gltf.mjs';
 import { glbChunks, meshesByName, parseGlb, spotSceneGlb, worldPositions } from './gltf-scene.mjs';
 import { expect, meshPath, openApp, test, uploadFile } from './support.mjs';
 
@@ -158,6 +158,31 @@ test('each instance of an instanced GLB mesh is edited where it lies and exports
   expect(parts).toHaveLength(3);
   for (const { world } of parts) expect(farthestFrom(world, edit.positions)).toBeLessThan(1e-5);
   expect(glbChunks(edit.bytes).json.extensionsUsed ?? []).not.toContain('EXT_mesh_gpu_instancing');
+  expect(pageErrors).toEqual([]);
+});
+
+test('a skinned (rigged) GLB mesh is edited in its rest pose and exports with its skin', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const glb = readFileSync(SPOT);
+  const plain = await open(page, glb, 'spot.glb');
+  const rigged = await skinnedGlb(glb);
+  const loaded = await open(page, rigged, 'spot-rigged.glb');
+  expect(loaded.ok, loaded.message).toBe(true);
+  expect(loaded.notice).toContain('1 skinned (rigged) mesh is edited in the rest pose; the skin is kept.');
+  expect(loaded.positions).toEqual(plain.positions);
+  const edit = await stretchTopAndExport(page);
+  const [{ mesh, world }] = await exportedWorld(edit.bytes);
+  expect(mesh.isSkinnedMesh).toBe(true);
+  expect(mesh.skeleton.bones.map((bone) => bone.name)).toEqual(['hips', 'spine']);
+  expect(farthestFrom(world, edit.positions)).toBeLessThan(1e-5);
+  expect(farthestFrom(world, plain.positions)).toBeGreaterThan(0.1);
+  // Each vertex keeps its joints and weights.
+  const joints = mesh.geometry.getAttribute('skinIndex');
+  const weights = mesh.geometry.getAttribute('skinWeight');
+  for (let i = 0; i < joints.count; i++) {
+    expect([joints.getX(i), joints.getY(i)]).toEqual([0, 1]);
+    expect([weights.getX(i), weights.getY(i)]).toEqual([0.5, 0.5]);
+  }
   expect(pageErrors).toEqual([]);
 });
 

@@ -76,6 +76,11 @@ export class GltfSource {
       if (normals) {
         geometry.computeBoundingBox();
         geometry.computeBoundingSphere();
+        // A skinned mesh is culled by bounds of its own (the skinned shape's), computed once.
+        if (mesh.isSkinnedMesh) {
+          mesh.computeBoundingBox();
+          mesh.computeBoundingSphere();
+        }
       }
     }
   }

@@ -51,10 +51,18 @@ export async function importGltf(bytes, name) {
 
   const parts = [];
   let skipped = 0;
+  let skinned = 0;
   scene.traverse((object) => {
-    // Skinned meshes would need their pose evaluated; points and lines have no surface.
-    if (object.isMesh && !object.isSkinnedMesh && object.geometry.getAttribute('position')) parts.push(object);
-    else if (object.isLine || object.isPoints || object.isSkinnedMesh) skipped++;
+    // A skinned (rigged) mesh is edited in its rest pose, as the file
+    // stores it: its skin (joints, weights, bind matrices) is kept, so the
+    // edited shape follows the rig as the old one did. Points and lines
+    // have no surface.
+    if (object.isMesh && object.geometry.getAttribute('position')) {
+      parts.push(object);
+      if (object.isSkinnedMesh) skinned++;
+    } else if (object.isLine || object.isPoints) {
+      skipped++;
+    }
   });
   if (parts.length === 0) throw new GltfImportError(`${name}: the glTF scene contains no triangle mesh.`);
 
@@ -104,7 +112,10 @@ export async function importGltf(bytes, name) {
 
   const notes = [];
   if (parts.length > 1) notes.push(`${parts.length} meshes of the glTF scene were merged into one.`);
-  if (skipped > 0) notes.push(`${skipped} point, line or skinned objects were skipped.`);
+  if (skipped > 0) notes.push(`${skipped} point or line objects were skipped.`);
+  if (skinned > 0) {
+    notes.push(`${skinned} skinned (rigged) mesh${skinned === 1 ? ' is' : 'es are'} edited in the rest pose; the skin is kept.`);
+  }
   if (instances > 0) {
     notes.push(`${instances} instances (EXT_mesh_gpu_instancing) became meshes of their own, and export as such.`);
   }
