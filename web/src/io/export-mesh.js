@@ -21,7 +21,7 @@ import { weldedNormals } from './welded-normals.js';
  */
 export async function exportGlb(positions, triangles, name = 'anisoform', surface = null) {
   const geometry = surfaceGeometry(positions, triangles, surface);
-  const materials = materialGroups(geometry, triangles.length / 3, surface?.materials ?? [], Boolean(surface?.colors));
+  const materials = materialGroups(geometry, triangles.length / 3, surface?.materials ?? [], geometry.hasAttribute('color'));
   const mesh = new Mesh(geometry, materials.length === 1 ? materials[0] : materials);
   mesh.name = name;
   try {
@@ -44,8 +44,9 @@ function surfaceGeometry(positions, triangles, surface) {
     normals[i + 1] /= length;
     normals[i + 2] /= length;
   }
-  const colors = surface?.colors ? linearColors(surface.colors) : null;
-  const cornerUv = surface?.cornerUv ?? null;
+  // (Sizes checked: attributes of another mesh than this one are left out.)
+  const colors = surface?.colors?.length === positions.length ? linearColors(surface.colors) : null;
+  const cornerUv = surface?.cornerUv?.length === 2 * triangles.length ? surface.cornerUv : null;
   // Which solver vertex each file vertex is, and its (u, v): file vertex i
   // is solver vertex i with its first corner's (u, v) (so the file keeps the
   // solver's vertex order, and reads back welded as it was), then one more

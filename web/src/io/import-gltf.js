@@ -1,8 +1,10 @@
 // GLB / glTF import with three.js's GLTFLoader: every triangle primitive of
 // the scene, in world coordinates, merged into one indexed triangle list.
-// Points and lines are skipped (and counted), as the core's OBJ reader does.
-// The scene itself is kept (GltfSource), for a GLB export with its materials,
-// UVs and nodes.
+// Points and lines are skipped (and counted), as the core's OBJ reader does;
+// skinned meshes are taken in their rest pose, instances as meshes of their
+// own, and compressed geometry is decoded (gltf-decoders.js). The scene
+// itself is kept (GltfSource), for a GLB export with its materials, UVs and
+// nodes.
 import { Group, Matrix4, Mesh, Scene, TextureLoader, Vector3 } from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 
