@@ -143,7 +143,10 @@ DeformOp edit_from_flags(const DeformArguments& args, DeformPlan& plan) {
     fail(ErrorCode::BadParameter, "--handle: handles are for --method arap (the anisotropic methods need none)");
   }
   if (!args.move.empty()) {
-    if (args.handle.empty()) fail(ErrorCode::BadParameter, "--move: needs --handle (the vertices to move)");
+    // Without --handle, the handles are the fully selected vertices (resolve_edit), as for an op's `move`.
+    if (request.method != Method::Arap) {
+      fail(ErrorCode::BadParameter, "--move: moves ARAP's handles: give --method arap");
+    }
     request.handle_offset = parse_vector3(args.move, "--move");
   }
   if (!args.iterations.empty()) {

@@ -2,6 +2,7 @@
 // with CLI11, runs the chosen subcommand, and maps every failure to the exit
 // statuses of the contract (commands.h). Nothing escapes main: scripts rely on
 // a status, never a signal.
+#include <csignal>
 #include <cstdlib>  // defines __GLIBC__ on glibc
 #if defined(__GLIBC__)
 #include <malloc.h>
@@ -54,6 +55,12 @@ int main(int argc, char** argv) {
   // the benchmarks.
   mallopt(M_MMAP_MAX, 0);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
+#endif
+#if defined(SIGXFSZ)
+  // A write past the file size limit (ulimit -f) fails with EFBIG, reported
+  // as any failed write (exit 3, the temporary file removed, an existing
+  // OUT untouched), instead of the signal killing the process mid-write.
+  std::signal(SIGXFSZ, SIG_IGN);
 #endif
   return aniso::cli::run_reporting_errors("", [&] { return parse_and_run(argc, argv); });
 }

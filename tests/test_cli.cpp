@@ -361,7 +361,7 @@ TEST_CASE("cli: bad command lines and parameters exit with status 2", "[cli]") {
       {"deform", in, out, "--direction", "field:/nonexistent/field.txt"},
       {"deform", in, out, "--direction", "north"},
       {"deform", in, out, "--handle", "all", "--move", "0,0,1"},  // not arap
-      {"deform", in, out, "--method", "arap", "--move", "0,0,1"},  // no handle
+      {"deform", in, out, "--method", "andefgrad", "--move", "0,0,1"},  // moves ARAP's handles only
       {"deform", in, out, "--method", "arap", "--handle", "all", "--move", "0,1"},
       {"deform", in, out, "--pin", "box:10,10,10,11,11,11"},  // holds no vertex
       {"deform", in, out, "--falloff", "-1"},
@@ -532,6 +532,28 @@ TEST_CASE("cli: pinned vertices stay and arap handles move by the offset", "[cli
   }
   CHECK(result["handles"] == handles);
   CHECK(result["pins"] == pins);
+}
+
+TEST_CASE("cli: arap --move without --handle moves the fully selected vertices and pins the rest", "[cli]") {
+  const std::string in = mesh("formats/spot_lowres.obj");
+  const std::string out = temp_path("selection_handles.obj");
+  const json result = stdout_json(
+      run_expecting({"deform", in, out, "--method", "arap", "--select", "box:-1,-1,0.9,1,2,2", "--move", "0,0.1,0"}, 0));
+  const aniso::Mesh rest = aniso::read_mesh(in).mesh;
+  const aniso::Mesh deformed = aniso::read_mesh(out).mesh;
+  int selected = 0;
+  for (int i = 0; i < rest.num_vertices(); ++i) {
+    const Eigen::RowVector3d moved = deformed.V.row(i) - rest.V.row(i);
+    if (rest.V(i, 2) >= 0.9) {
+      ++selected;
+      CHECK((moved - Eigen::RowVector3d(0, 0.1, 0)).norm() < 1e-5);
+    } else {
+      CHECK(moved.norm() < 1e-5);  // no falloff: everything else is pinned
+    }
+  }
+  CHECK(selected > 0);
+  CHECK(result["handles"] == selected);
+  CHECK(result["pins"] == rest.num_vertices() - selected);
 }
 
 TEST_CASE("cli: deform runs every method and direction source", "[cli]") {

@@ -50,14 +50,16 @@ class CliScratch {
   std::string path_;
 };
 
-// SIGXFSZ ignored, so that writing past the limit fails with EFBIG instead of
-// killing the process; `blocks` in the shell's ulimit units (512 or 1024 bytes).
-const std::string kFileSizeLimit = "trap '' XFSZ; ulimit -f ";
+// A file-size limit as a user's shell sets one, SIGXFSZ left at its default
+// (the CLI ignores it itself, so that writing past the limit fails with
+// EFBIG instead of killing it); `blocks` in the shell's ulimit units (512 or
+// 1024 bytes).
+const std::string kFileSizeLimit = "trap - XFSZ; ulimit -f ";
 
 CliRun run_under_file_size_limit(int blocks, const std::vector<std::string>& args) {
   const CliRun run = aniso::test::run_cli_after_shell(kFileSizeLimit + std::to_string(blocks), args);
   INFO(describe(args, run));
-  // Not signaled: the ignored SIGXFSZ was inherited through exec.
+  // Not killed by SIGXFSZ.
   REQUIRE_FALSE(run.signaled);
   REQUIRE_FALSE(run.timed_out);
   return run;

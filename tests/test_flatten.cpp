@@ -618,6 +618,12 @@ TEST_CASE("flatten CLI: pattern files, JSON keys and exit statuses", "[flatten][
     CHECK(run.out.empty());
   }
 
+  SECTION("a patch whose zero-area triangles leave no conformal start says which") {
+    const CliRun run = run_cli({"flatten", test::mesh_path("malformed/degtri_sliding.off"), temp_file("degenerate.svg")});
+    CHECK(run.exit_status == 3);
+    CHECK(run.err.find("(LSCM): the patch has 4 zero-area triangle(s) (faces 2, 3, 4 ...)") != std::string::npos);
+  }
+
   SECTION("bad parameters exit 2") {
     const std::string out = temp_file("bad.svg");
     const std::vector<std::vector<std::string>> bad = {
@@ -625,6 +631,8 @@ TEST_CASE("flatten CLI: pattern files, JSON keys and exit statuses", "[flatten][
         {"flatten", torso, out, "--compress", "0.8,0.9,1"},
         {"flatten", torso, out, "--baseline", "scaled"},
         {"flatten", torso, out, "--mm-per-unit", "-1"},
+        {"flatten", torso, out, "--mm-per-unit", "1e200"},
+        {"flatten", torso, out, "--mm-per-unit", "1e-9"},
         {"flatten", torso, out, "--direction", "curvature:min"},
         {"flatten", torso, temp_file("bad.ply")},
         {"flatten", torso, out, "--select", "box:1,1,1,2,2,2"},

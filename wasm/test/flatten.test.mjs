@@ -197,7 +197,13 @@ test('bad options name the field', () => withSession('open/plane.off', (session)
   expectError(() => session.flatten(null), 'bad-parameter', /flatten: options must be an object/);
   session.flatten();
   expectError(() => session.exportPattern('pdf'), 'bad-parameter', /pattern format must be svg or dxf, got 'pdf'/);
-  expectError(() => session.exportPattern('svg', { mmPerUnit: 0 }), 'bad-parameter', /millimetres per unit must be a positive number/);
+  expectError(() => session.exportPattern('svg', { mmPerUnit: 0 }), 'bad-parameter', /millimetres per unit must be a number from 0.001 to 1000000, got 0/);
+  expectError(() => session.exportPattern('dxf', { mmPerUnit: 1e200 }), 'bad-parameter', /from 0.001 to 1000000, got 1e\+200/);
+  // At the largest scale every number is written whole (a fixed 64-character buffer cut them short).
+  // (The width is the pattern's plus two 10 mm margins.)
+  const patternWidth = (mmPerUnit) => Number(/width="([0-9.]+)mm"/.exec(new TextDecoder().decode(session.exportPattern('svg', { mmPerUnit })))[1]) - 20;
+  const ratio = patternWidth(1e6) / patternWidth(1e3);
+  assert.ok(Math.abs(ratio - 1e3) < 1e-3, `pattern widths at 1e6 and 1e3 mm per unit: ratio ${ratio}`);
   expectError(() => session.exportPattern('svg', { scale: 2 }), 'bad-parameter', /unknown field 'scale'/);
   // A core check: a constraint outside the patch keeps the core's code and message.
   session.select({ box: { min: [-1, -1, -1], max: [0, 1, 1] } });

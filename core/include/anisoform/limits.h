@@ -49,6 +49,11 @@ constexpr double kMaxCoordinate = 1e150;
 // tolerance 0 from holding the solver for hours: 10000 iterations of a 200k
 // mesh are about ten minutes natively.
 constexpr int kMaxIterations = 10000;
+// A pattern file's scale, millimetres per model unit: a micrometre to a
+// kilometre. Beyond, the outlines are zeros to the file's micrometre
+// precision, or no cutter's size.
+constexpr double kMinMmPerUnit = 1e-3;
+constexpr double kMaxMmPerUnit = 1e6;
 
 }  // namespace limits
 

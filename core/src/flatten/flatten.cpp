@@ -91,8 +91,26 @@ Flattener::Flattener(const Mesh& mesh, const std::vector<char>& vertex_mask)
   im.patch = extract_flatten_patch(mesh, vertex_mask);
   im.charts = triangle_charts(im.patch.mesh);
   im.arap = std::make_unique<ArapFlattening>(im.patch, im.charts);
-  lscm_free_boundary(im.patch, im.charts, im.conformal_start);
-  im.non_manifold_edges = check_mesh(im.patch.mesh).non_manifold_edges;
+  const MeshReport report = check_mesh(im.patch.mesh);
+  im.non_manifold_edges = report.non_manifold_edges;
+  try {
+    lscm_free_boundary(im.patch, im.charts, im.conformal_start);
+  } catch (const Error& error) {
+    // Zero-area triangles are what leaves the conformal map's system
+    // singular (a deformation solves through them): say which.
+    if (error.code() != ErrorCode::Numerical || report.degenerate_triangles == 0) throw;
+    std::string faces;
+    int named = 0;
+    for (const Problem& problem : report.problems) {
+      const bool zero_area = problem.kind == ProblemKind::ZeroAreaTriangle || problem.kind == ProblemKind::RepeatedCorner;
+      if (!zero_area || named == 3) continue;
+      faces += (named++ > 0 ? ", " : "") + std::to_string(im.patch.input_face[problem.element]);
+    }
+    fail(ErrorCode::Numerical, std::string(error.what()) + ": the patch has " +
+                                   std::to_string(report.degenerate_triangles) + " zero-area triangle(s) (faces " +
+                                   faces + (report.degenerate_triangles > 3 ? " ..." : "") +
+                                   "): remove them, or flatten a selection without them");
+  }
 }
 
 Flattener::~Flattener() = default;

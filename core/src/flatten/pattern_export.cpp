@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "anisoform/error.h"
+#include "anisoform/limits.h"
 
 namespace aniso {
 
@@ -29,16 +30,19 @@ struct Box {
 };
 
 void require_scale(const PatternExportOptions& options) {
-  if (!(std::isfinite(options.mm_per_unit) && options.mm_per_unit > 0.0)) {
-    fail(ErrorCode::BadParameter, "millimetres per unit must be a positive number, got " +
-                                      std::to_string(options.mm_per_unit));
+  if (!(options.mm_per_unit >= limits::kMinMmPerUnit && options.mm_per_unit <= limits::kMaxMmPerUnit)) {
+    char given[32];
+    std::snprintf(given, sizeof given, "%g", options.mm_per_unit);
+    fail(ErrorCode::BadParameter, "millimetres per unit must be a number from 0.001 to 1000000, got " +
+                                      std::string(given));
   }
 }
 
 // Millimetres to three decimals (micrometres): plenty for a cutter, and
-// independent of the C++ locale.
+// independent of the C++ locale. Room for any double's digits (DBL_MAX
+// has 309): a coordinate is never cut short.
 std::string number(double value) {
-  char text[64];
+  char text[400];
   std::snprintf(text, sizeof text, "%.3f", value);
   return text;
 }
