@@ -202,6 +202,8 @@ test('an op deleted or moved in the Edits list: the later ops re-run, as a repla
     .toMatch(/index must be an integer from 0 to 2, got 3/);
   expect(await page.evaluate((json) => window.anisoform.removeOp('op-99').catch((error) => error.message)))
     .toMatch(/no op 'op-99'/);
+  expect(await page.evaluate(() => window.anisoform.moveOp('op-99', 0).catch((error) => error.message)))
+    .toMatch(/no op 'op-99'/);
   expect(pageErrors).toEqual([]);
 });
 

@@ -125,7 +125,21 @@ test('dispose stops the worker, the frames, the observers and every listener', a
   // view changes.
   await expect.poll(() => framesDuring(page, 400), { timeout: 10_000 }).toBe(0);
   expect(await framesDuring(page, 300, () => resizeThirdHost(page, '320px'))).toBeGreaterThan(0);
+  // The embedder's listeners are gone with it: calls made after dispose fire no events.
+  await page.evaluate(() => {
+    window.thirdEvents = [];
+    for (const event of ['error', 'change', 'progress', 'document']) {
+      window.third.api.on(event, (payload) => window.thirdEvents.push(`${event}: ${payload?.message ?? payload?.reason ?? ''}`));
+    }
+  });
   await page.evaluate(() => window.third.dispose());
+  const afterDispose = await page.evaluate(async () => {
+    const api = window.third.api;
+    const deform = await api.deform({ transform: { scale: [1.2, 1] } }).then(() => 'resolved', (error) => error.message);
+    return { deform, undo: api.undo(), redo: api.redo(), events: window.thirdEvents };
+  });
+  expect(afterDispose).toEqual({ deform: expect.stringMatching(/disposed/), undo: false, redo: false, events: [] });
+  expect(afterDispose.deform).not.toContain('undefined');
   expect(await census(page)).toMatchObject({ workers: 0, observers: 0, listeners: none.listeners });
   expect(await page.evaluate(() => window.third.held)).toBe(0);
   await expect(page.getByTestId('host-third')).toBeEmpty();
@@ -468,19 +482,23 @@ test('<anisoform-modeller edits>: saved edits open with src, alone on the mesh l
   await expect.poll(async () => (await state()).ops).toBe(2);
   expect(bitwise((await state()).positions, made.two.positions)).toBe(true);
 
-  // Not JSON, or edits of another mesh given with it: refused, naming why; the spool and its two ops stay.
+  // Not JSON: refused, naming why; the spool and its two ops stay.
   let failed = nextError();
   await page.evaluate(() => window.element.setAttribute('edits', '../broken.json'));
   expect(await failed).toMatch(/broken\.json is not JSON/);
+  now = await state();
+  expect([now.vertices, now.ops]).toEqual([649, 2]);
+  expect(bitwise(now.positions, made.two.positions)).toBe(true);
+  // A new src with edits of another mesh: refused, naming why, and the new
+  // src shown without them (as the element's src says), not the spool.
   failed = nextError();
   await page.evaluate(() => {
     window.element.setAttribute('src', '../spot_triangulated.obj');
     window.element.setAttribute('edits', '../spool-one.json');
   });
   expect(await failed).toMatch(/does not match the loaded mesh/);
-  now = await state();
-  expect([now.vertices, now.ops]).toEqual([649, 2]);
-  expect(bitwise(now.positions, made.two.positions)).toBe(true);
+  await expect.poll(async () => (await state()).vertices).toBe(2930);
+  expect((await state()).ops).toBe(0);
 
   // src and edits changed together: one load, of the new mesh with the new edits.
   const loadsBefore = await page.evaluate(() => window.loads);

@@ -309,6 +309,12 @@ export class OpStack {
   /** Moves op `opId` to place `to` (0-based) in the list: the ops from the first place that changed re-run; a step of the history. */
   moveOp(opId, to) {
     const count = this.document?.ops.length ?? 0;
+    // The op first: with no such op, the index has no range to be in.
+    try {
+      this.#requireDocument().indexOf(opId);
+    } catch (error) {
+      return Promise.reject(error);
+    }
     if (!Number.isInteger(to) || to < 0 || to >= count) {
       return Promise.reject(badParameter(`moveOp(opId, index): index must be an integer from 0 to ${count - 1}, got ${JSON.stringify(to)}`));
     }

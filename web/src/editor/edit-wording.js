@@ -12,7 +12,9 @@ export function describeEdit(op) {
   // The Thicken tool's op is a scale across the direction only: [1, sv].
   const scale = op.transform?.scale;
   const across = kind === 'scale' && Array.isArray(scale) && scale.length === 2 && scale[0] === 1 && scale[1] !== 1;
-  return `${across ? 'Thicken' : TRANSFORM_NAMES[kind]} (${METHOD_NAMES[op.method] ?? op.method})`;
+  const name = across ? 'Thicken' : TRANSFORM_NAMES[kind];
+  // An op not resolved yet may leave its method to the core's default: no method named then.
+  return op.method ? `${name} (${METHOD_NAMES[op.method] ?? op.method})` : name;
 }
 
 export function foldOverWarning(count) {

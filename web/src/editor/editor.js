@@ -341,12 +341,12 @@ export class Editor extends EventEmitter {
   // ---- history -------------------------------------------------------------
 
   undo() {
-    if (this.gestureActive || this.#refusedWhileBusy('Undo')) return false;
+    if (this.#client.disposed || this.gestureActive || this.#refusedWhileBusy('Undo')) return false;
     return this.history.undo();
   }
 
   redo() {
-    if (this.gestureActive || this.#refusedWhileBusy('Redo')) return false;
+    if (this.#client.disposed || this.gestureActive || this.#refusedWhileBusy('Redo')) return false;
     return this.history.redo();
   }
 

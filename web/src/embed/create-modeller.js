@@ -60,6 +60,9 @@ export function createModeller(container, options = {}) {
   const client = new SolverClient({ workerUrl, wasmUrl, pool: solvers });
   lifetime.defer(() => client.dispose());
   const editor = new Editor(client);
+  // At dispose (before the worker ends): the page's and the embedder's listeners go, so a
+  // call made after dispose (or one it cut off) rejects without an event.
+  lifetime.defer(() => editor.clearListeners());
   // Milestones for the page's timing (app.spec): the first modeller's count.
   const starting = editor.start().then(() => performance.mark('anisoform:solver-ready'));
 

@@ -1,7 +1,8 @@
 // <anisoform-modeller src="part.glb" edits="part-edits.json" ui="none">: a
 // modeller as an HTML element. Attributes: src (a mesh URL, loaded when set
 // or changed), edits (the URL of saved edits, opened on src when set or
-// changed: both changed together open the edits on the new mesh), ui
+// changed: both changed together open the edits on the new mesh, or show it
+// without them when they cannot be opened), ui
 // ('full', the default, or 'none'; a change rebuilds the modeller). The api's
 // events come out as DOM CustomEvents ('change', 'error', 'progress', with the
 // api's payload as `detail`); `.api` is the modeller's api while connected.
@@ -81,8 +82,16 @@ export class AnisoformModellerElement extends HTMLElement {
     this.#srcChanged = false;
     if (!this.#modeller) return;
     const done = () => {}; // the 'error' event has told
-    if (edits) this.#modeller.open(edits, srcChanged && src ? src : undefined).catch(done);
-    else if (srcChanged && src) this.#modeller.load(src).catch(done);
+    const modeller = this.#modeller;
+    if (edits && srcChanged && src) {
+      // A new product whose edits cannot be opened is shown without them (as
+      // at the start), not the product before: open() put that one back.
+      modeller.open(edits, src).catch(() => modeller === this.#modeller && modeller.load(src).catch(done));
+    } else if (edits) {
+      modeller.open(edits).catch(done);
+    } else if (srcChanged && src) {
+      modeller.load(src).catch(done);
+    }
   }
 
   #build() {

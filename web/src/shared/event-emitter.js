@@ -9,6 +9,11 @@ export class EventEmitter {
     return () => this.#listeners.get(event)?.delete(callback);
   }
 
+  /** Forgets every listener (a disposed modeller tells no one anything more). */
+  clearListeners() {
+    this.#listeners.clear();
+  }
+
   emit(event, payload) {
     const listeners = this.#listeners.get(event);
     if (!listeners) return;
