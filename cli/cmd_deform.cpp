@@ -267,6 +267,11 @@ int run_deform(const DeformArguments& args) {
     warnings.push_back("stopped at the iteration cap (" + std::to_string(result.iterations) +
                        ") before the energy settled: raise --iterations for a closer result");
   }
+  // As the app's warning (edit-wording.js foldOverWarning).
+  if (result.inverted > 0) {
+    warnings.push_back(std::to_string(result.inverted) +
+                       " triangle(s) folded over: reduce the amount or the falloff");
+  }
 
   // An OBJ keeps the input OBJ's texture coordinates, a PLY the input PLY's vertex properties.
   write_mesh(args.output, Mesh{session.positions(), mesh.F}, session.write_options(plan.write.binary));

@@ -556,6 +556,19 @@ TEST_CASE("cli: arap --move without --handle moves the fully selected vertices a
   CHECK(result["pins"] == rest.num_vertices() - selected);
 }
 
+TEST_CASE("cli: an edit that folds triangles over says so in its warnings", "[cli]") {
+  const json result = stdout_json(run_expecting({"deform", mesh("formats/spot_lowres.obj"), temp_path("folded.obj"),
+                                                 "--method", "linear", "--scale", "3", "--select", "sphere:0,0.5,0.5,0.4"},
+                                                0));
+  REQUIRE(result["inverted"].get<int>() > 0);
+  bool warned = false;
+  for (const auto& warning : result["warnings"]) {
+    warned |= warning.get<std::string>() == std::to_string(result["inverted"].get<int>()) +
+                                                " triangle(s) folded over: reduce the amount or the falloff";
+  }
+  CHECK(warned);
+}
+
 TEST_CASE("cli: deform runs every method and direction source", "[cli]") {
   const std::string in = mesh("formats/spot_lowres.obj");
   const std::string field = write_temp_text("field.txt", "# two arrows\n0 1 0 0\n400 0 1 0\n");
