@@ -207,11 +207,14 @@ std::vector<DirectionConstraint> read_direction_field(const std::string& path) {
 
 ReadReport load_into_session(Session& session, const std::string& path) {
   ReadResult read = read_input_mesh(path);
+  const int read_vertices = read.mesh.num_vertices();
   try {
     session.adopt_mesh(std::move(read.mesh), {}, std::move(read.attributes));
   } catch (const Error& e) {
     throw Error(e.code(), path + ": " + e.what());
   }
+  // The session welds a triangle soup: the report counts those vertices too.
+  read.report.vertices_welded += read_vertices - session.info().report.vertices;
   return std::move(read.report);
 }
 
