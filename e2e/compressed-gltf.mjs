@@ -9,7 +9,14 @@ import {
 import draco3d from '../web/node_modules/draco3dgltf/draco3dgltf.js';
 import { MeshoptDecoder, MeshoptEncoder } from '../web/node_modules/meshoptimizer/index.js';
 
-async function io() {
+// One reader/writer for every file made (the Draco modules are compiled once).
+let made = null;
+function io() {
+  made ??= makeIo();
+  return made;
+}
+
+async function makeIo() {
   await Promise.all([MeshoptEncoder.ready, MeshoptDecoder.ready]);
   return new NodeIO()
     .registerExtensions([...KHRONOS_EXTENSIONS, EXTMeshoptCompression, EXTMeshGPUInstancing])
@@ -40,10 +47,14 @@ export async function quantizedGlb(glb) {
   const files = await io();
   const document = await files.readBinary(new Uint8Array(glb));
   document.createExtension(KHRMeshQuantization).setRequired(true);
+  const quantized = new Set();
   for (const node of document.getRoot().listNodes()) {
     const mesh = node.getMesh();
     if (!mesh) continue;
     if (node.listChildren().length > 0) throw new Error('quantizedGlb: a mesh node with children');
+    // Its dequantization goes into this node: another node could not share it.
+    if (quantized.has(mesh)) throw new Error('quantizedGlb: a mesh used by two nodes');
+    quantized.add(mesh);
     const positions = mesh.listPrimitives().map((primitive) => primitive.getAttribute('POSITION'));
     const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
     for (const accessor of positions) {
@@ -57,9 +68,9 @@ export async function quantizedGlb(glb) {
     const half = Math.max(...lo.map((value, c) => (hi[c] - value) / 2));
     for (const accessor of new Set(positions)) {
       const source = accessor.getArray();
-      const quantized = new Int16Array(source.length);
-      for (let i = 0; i < source.length; i++) quantized[i] = Math.round(((source[i] - center[i % 3]) / half) * 32767);
-      accessor.setArray(quantized).setNormalized(true);
+      const values = new Int16Array(source.length);
+      for (let i = 0; i < source.length; i++) values[i] = Math.round(((source[i] - center[i % 3]) / half) * 32767);
+      accessor.setArray(values).setNormalized(true);
     }
     // node = T R S; the dequantization (scale by half, then move by the
     // centre) goes under the node's own scale.

@@ -5,7 +5,7 @@ import { readFileSync, writeFileSync } from 'node:fs';
 
 import { dracoGlb, instancedGlb, meshoptGlb, quantizedGlb, skinnedGlb } from './compressed-gltf.mjs';
 import { glbChunks, meshesByName, parseGlb, spotSceneGlb, worldPositions } from './gltf-scene.mjs';
-import { expect, meshPath, openApp, test, uploadFile } from './support.mjs';
+import { expect, meshPath, openApp, rangeAlong, stretchUpperHalfAndExport, test, uploadFile } from './support.mjs';
 
 const SPOT = meshPath('formats/spot_lowres.glb');
 
@@ -36,31 +36,7 @@ function farthestFrom(points, to) {
   return worst;
 }
 
-function extent(positions, axis) {
-  let lo = Infinity, hi = -Infinity;
-  for (let i = axis; i < positions.length; i += 3) {
-    lo = Math.min(lo, positions[i]);
-    hi = Math.max(hi, positions[i]);
-  }
-  return { lo, hi };
-}
-
-// Stretches what lies above the middle of y by 1.5 along y and exports a GLB.
-async function stretchTopAndExport(page) {
-  return page.evaluate(async () => {
-    const api = window.anisoform;
-    const rest = api.positions();
-    const min = [Infinity, Infinity, Infinity], max = [-Infinity, -Infinity, -Infinity];
-    rest.forEach((value, k) => {
-      min[k % 3] = Math.min(min[k % 3], value);
-      max[k % 3] = Math.max(max[k % 3], value);
-    });
-    const middle = (min[1] + max[1]) / 2;
-    await api.select({ box: { min: [min[0] - 1, middle, min[2] - 1], max: [max[0] + 1, max[1] + 1, max[2] + 1] } });
-    await api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.5, 1] } });
-    return { positions: Array.from(api.positions()), bytes: Array.from(new Uint8Array(await api.export('glb'))) };
-  }).then(({ positions, bytes }) => ({ positions, bytes: Buffer.from(bytes) }));
-}
+const heightRange = (positions) => rangeAlong(positions, [0, 1, 0]);
 
 // Every exported vertex (world coordinates) on a solver vertex.
 async function exportedWorld(bytes) {
@@ -72,7 +48,7 @@ test('Draco, meshopt and quantized GLBs of a real model open as the shape of its
   const glb = readFileSync(SPOT);
   const plain = await open(page, glb, 'spot.glb');
   expect(plain.ok).toBe(true);
-  const { lo, hi } = extent(plain.positions, 1);
+  const { min: lo, max: hi } = heightRange(plain.positions);
   const variants = [
     { name: 'spot-draco.glb', bytes: await dracoGlb(glb), note: 'is Draco-compressed', bits: 14 },
     { name: 'spot-quantized.glb', bytes: await quantizedGlb(glb), note: null, bits: 16 },
@@ -99,15 +75,15 @@ test('an edit of a quantized, meshopt-compressed GLB exports past the box its qu
   const packed = await meshoptGlb(await quantizedGlb(readFileSync(SPOT)));
   const loaded = await open(page, packed, 'spot-meshopt.glb');
   expect(loaded.ok).toBe(true);
-  const edit = await stretchTopAndExport(page);
-  const before = extent(loaded.positions, 1);
-  const after = extent(edit.positions, 1);
+  const edit = await stretchUpperHalfAndExport(page, 'glb');
+  const before = heightRange(loaded.positions);
+  const after = heightRange(edit.positions);
   // The stretch reaches well above the file's top, where a 16-bit normalized
   // position written back in place would clamp at 1.
-  expect(after.hi - before.hi).toBeGreaterThan(0.2 * (before.hi - before.lo));
+  expect(after.max - before.max).toBeGreaterThan(0.2 * (before.max - before.min));
   const [{ mesh, world }] = await exportedWorld(edit.bytes);
   expect(farthestFrom(world, edit.positions)).toBeLessThan(1e-5);
-  expect(extent(world, 1).hi).toBeCloseTo(after.hi, 5);
+  expect(heightRange(world).max).toBeCloseTo(after.max, 5);
   expect(mesh.geometry.getAttribute('position').array).toBeInstanceOf(Float32Array);
   expect(glbChunks(edit.bytes).json.extensionsUsed ?? []).not.toContain('KHR_mesh_quantization');
   expect(pageErrors).toEqual([]);
@@ -119,7 +95,7 @@ test('a Draco-compressed product scene exports with its nodes, material and norm
   const loaded = await open(page, await dracoGlb(scene), 'product-draco.glb');
   expect(loaded.ok, loaded.message).toBe(true);
   expect(loaded.notice).toContain("The file's geometry is Draco-compressed");
-  const edit = await stretchTopAndExport(page);
+  const edit = await stretchUpperHalfAndExport(page, 'glb');
   expect(glbChunks(edit.bytes).json.nodes.map((node) => node.name)).toEqual(glbChunks(scene).json.nodes.map((node) => node.name));
   const parts = await exportedWorld(edit.bytes);
   expect(parts.map(({ mesh }) => mesh.name).sort()).toEqual(['body', 'copy', 'crate']);
@@ -153,7 +129,7 @@ test('each instance of an instanced GLB mesh is edited where it lies and exports
     const moved = plain.positions.map((value, i) => value + [dx, dy, dz][i % 3]);
     expect(farthestFrom(instance, moved), `instance ${k}`).toBeLessThan(1e-5);
   }
-  const edit = await stretchTopAndExport(page);
+  const edit = await stretchUpperHalfAndExport(page, 'glb');
   const parts = await exportedWorld(edit.bytes);
   expect(parts).toHaveLength(3);
   for (const { world } of parts) expect(farthestFrom(world, edit.positions)).toBeLessThan(1e-5);
@@ -170,7 +146,7 @@ test('a skinned (rigged) GLB mesh is edited in its rest pose and exports with it
   expect(loaded.ok, loaded.message).toBe(true);
   expect(loaded.notice).toContain('1 skinned (rigged) mesh is edited in the rest pose; the skin is kept.');
   expect(loaded.positions).toEqual(plain.positions);
-  const edit = await stretchTopAndExport(page);
+  const edit = await stretchUpperHalfAndExport(page, 'glb');
   const [{ mesh, world }] = await exportedWorld(edit.bytes);
   expect(mesh.isSkinnedMesh).toBe(true);
   expect(mesh.skeleton.bones.map((bone) => bone.name)).toEqual(['hips', 'spine']);

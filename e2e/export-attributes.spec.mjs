@@ -6,24 +6,7 @@
 import { readFileSync, writeFileSync } from 'node:fs';
 
 import { meshesByName, parseGlb } from './gltf-scene.mjs';
-import { expect, meshPath, openApp, test, uploadFile } from './support.mjs';
-
-// Stretches the upper half of what is loaded along y; the solver's positions and the export's bytes.
-async function stretchAndExport(page, format) {
-  const { positions, bytes } = await page.evaluate(async (as) => {
-    const api = window.anisoform;
-    const rest = api.positions();
-    let lo = Infinity, hi = -Infinity;
-    for (let i = 1; i < rest.length; i += 3) {
-      lo = Math.min(lo, rest[i]);
-      hi = Math.max(hi, rest[i]);
-    }
-    await api.select({ box: { min: [-1e3, (lo + hi) / 2, -1e3], max: [1e3, 1e3, 1e3] } }, { falloff: 0.1 });
-    await api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.4, 1] } });
-    return { positions: Array.from(api.positions()), bytes: Array.from(new Uint8Array(await api.export(as))) };
-  }, format);
-  return { positions, bytes: Buffer.from(bytes) };
-}
+import { expect, meshPath, openApp, stretchUpperHalfAndExport, test, uploadFile } from './support.mjs';
 
 // The solver vertex at each position of `points` (exactly, in float32), or -1.
 function solverVertices(points, positions) {
@@ -39,7 +22,7 @@ test("an OBJ's texture coordinates go into its GLB export, split at the seams, n
   const pageErrors = await openApp(page);
   const path = meshPath('closed/spot_triangulated.obj');
   expect((await uploadFile(page, path)).ok).toBe(true);
-  const edit = await stretchAndExport(page, 'glb');
+  const edit = await stretchUpperHalfAndExport(page, 'glb', { scale: 1.4, falloff: 0.1 });
   const [mesh] = Object.values(meshesByName(await parseGlb(edit.bytes)));
   const position = mesh.geometry.getAttribute('position');
   const uv = mesh.geometry.getAttribute('uv');
@@ -86,7 +69,7 @@ test("an OBJ's texture coordinates go into its GLB export, split at the seams, n
 test("an OBJ's material name is its GLB export's material", async ({ page }) => {
   await openApp(page);
   expect((await uploadFile(page, meshPath('formats/concave_polygon.obj'))).ok).toBe(true);
-  const edit = await stretchAndExport(page, 'glb');
+  const edit = await stretchUpperHalfAndExport(page, 'glb', { scale: 1.4, falloff: 0.1 });
   const [mesh] = Object.values(meshesByName(await parseGlb(edit.bytes)));
   expect(mesh.material.name).toBe('test');
 });
@@ -111,7 +94,7 @@ test("a PLY's vertex colours go into its GLB (linear) and OBJ (v x y z r g b) ex
   writeFileSync(path, colored);
   expect((await uploadFile(page, path)).ok).toBe(true);
 
-  const glb = await stretchAndExport(page, 'glb');
+  const glb = await stretchUpperHalfAndExport(page, 'glb', { scale: 1.4, falloff: 0.1 });
   const [mesh] = Object.values(meshesByName(await parseGlb(glb.bytes)));
   const color = mesh.geometry.getAttribute('color');
   expect(color).toBeDefined();

@@ -142,8 +142,8 @@ export async function canvasCentre(page) {
   };
 }
 
-/** Extent (max - min) of positions along a unit vector. */
-export function extentAlong(positions, unit) {
+/** The lowest and highest of positions (xyz runs) along a unit vector. */
+export function rangeAlong(positions, unit) {
   let min = Infinity;
   let max = -Infinity;
   for (let i = 0; i < positions.length; i += 3) {
@@ -151,19 +151,41 @@ export function extentAlong(positions, unit) {
     min = Math.min(min, value);
     max = Math.max(max, value);
   }
+  return { min, max };
+}
+
+/** Extent (max - min) of positions along a unit vector. */
+export function extentAlong(positions, unit) {
+  const { min, max } = rangeAlong(positions, unit);
   return max - min;
 }
 
 /** The loaded mesh's lowest and highest y, and its height (the difference). */
 export async function verticalRange(page) {
   const positions = await page.evaluate(() => Array.from(window.anisoform.positions()));
-  let low = Infinity;
-  let high = -Infinity;
-  for (let i = 1; i < positions.length; i += 3) {
-    low = Math.min(low, positions[i]);
-    high = Math.max(high, positions[i]);
-  }
+  const { min: low, max: high } = rangeAlong(positions, [0, 1, 0]);
   return { low, high, height: high - low };
+}
+
+/**
+ * Stretches what lies above the middle height (y) of the loaded mesh by
+ * `scale` along y (AnARAP, the selection's border soft over `falloff`) and
+ * exports it as `format`: the solver's positions and the file's bytes.
+ */
+export async function stretchUpperHalfAndExport(page, format, { scale = 1.5, falloff = 0 } = {}) {
+  const { positions, bytes } = await page.evaluate(async ([as, amount, width]) => {
+    const api = window.anisoform;
+    const rest = api.positions();
+    let low = Infinity, high = -Infinity;
+    for (let i = 1; i < rest.length; i += 3) {
+      low = Math.min(low, rest[i]);
+      high = Math.max(high, rest[i]);
+    }
+    await api.select({ box: { min: [-1e30, (low + high) / 2, -1e30], max: [1e30, 1e30, 1e30] } }, { falloff: width });
+    await api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [amount, 1] } });
+    return { positions: Array.from(api.positions()), bytes: Array.from(new Uint8Array(await api.export(as))) };
+  }, [format, scale, falloff]);
+  return { positions, bytes: Buffer.from(bytes) };
 }
 
 /** Saves a screenshot of the page for review as e2e/artifacts/NAME.png (git-ignored; CI keeps it). */

@@ -31,10 +31,11 @@ struct Box {
 
 void require_scale(const PatternExportOptions& options) {
   if (!(options.mm_per_unit >= limits::kMinMmPerUnit && options.mm_per_unit <= limits::kMaxMmPerUnit)) {
-    char given[32];
-    std::snprintf(given, sizeof given, "%g", options.mm_per_unit);
-    fail(ErrorCode::BadParameter, "millimetres per unit must be a number from 0.001 to 1000000, got " +
-                                      std::string(given));
+    // %.15g: 0.001 and 1000000 as written, not 1e-03 and 1e+06.
+    char text[96];
+    std::snprintf(text, sizeof text, "millimetres per unit must be a number from %.15g to %.15g, got %g",
+                  limits::kMinMmPerUnit, limits::kMaxMmPerUnit, options.mm_per_unit);
+    fail(ErrorCode::BadParameter, text);
   }
 }
 
