@@ -234,6 +234,20 @@ double max_displacement(const Positions& rest, const Positions& deformed) {
   return (deformed - rest).rowwise().norm().maxCoeff();
 }
 
+// The surface methods move only selected vertices (weight > 0); with all of
+// them held, the edit has nothing to move. (ARAP's handles move although
+// pinned: its own rule.)
+bool every_selected_vertex_pinned(const Eigen::VectorXd& weights, const std::vector<int>& pins) {
+  std::vector<char> pinned(weights.size(), 0);
+  for (const int p : pins) {
+    if (p >= 0 && p < weights.size()) pinned[p] = 1;  // an --op's bad index is refused by the solve
+  }
+  for (Eigen::Index i = 0; i < weights.size(); ++i) {
+    if (weights[i] > 0.0 && !pinned[i]) return false;
+  }
+  return true;
+}
+
 int run_deform(const DeformArguments& args) {
   DeformPlan plan = plan_deform(args);
   check_output_path(args.output);
@@ -261,6 +275,10 @@ int run_deform(const DeformArguments& args) {
                 [&] { validate_twist(edit.request.transform, info.report.bbox.diagonal()); });
   // What the session will solve, for the counts echoed below.
   const DeformRequest resolved = resolve_edit(edit, mesh.V, info.report.bbox, session.selection());
+  if (selected > 0 && resolved.method != Method::Arap &&
+      every_selected_vertex_pinned(session.selection(), resolved.pins)) {
+    warnings.push_back("every selected vertex is pinned: the mesh is left unchanged");
+  }
   const DeformOpResult result = session.deform(edit);
   // As the app's status line: a cut-off solve is not the edit's converged shape.
   if (!result.converged) {

@@ -659,3 +659,27 @@ TEST_CASE("cli: --acceleration lbfgs, anderson and none reach the same shape, th
   // The moved part did move: the comparison is not of three copies of the input.
   CHECK((lbfgs.mesh.V - rest.V).rowwise().norm().maxCoeff() >= 0.05 * diagonal);
 }
+
+TEST_CASE("cli: an edit whose selected vertices are all pinned warns that nothing moves", "[cli]") {
+  const std::string in = mesh("formats/spot_lowres.obj");
+  const std::string out = temp_path("all_pinned.obj");
+  const std::string warning = "every selected vertex is pinned: the mesh is left unchanged";
+  const auto warned = [&](const json& result) {
+    bool found = false;
+    for (const auto& w : result["warnings"]) found |= w.get<std::string>() == warning;
+    return found;
+  };
+  const aniso::Mesh rest = aniso::read_mesh(in).mesh;
+  for (const char* method : {"anarap", "andefgrad", "linear"}) {
+    const json result = stdout_json(run_expecting(
+        {"deform", in, out, "--method", method, "--scale", "2", "--select", "box:-1,-1,0.9,1,2,2", "--pin", "all"}, 0));
+    CHECK(warned(result));
+    CHECK((aniso::read_mesh(out).mesh.V - rest.V).cwiseAbs().maxCoeff() == 0.0);
+  }
+  // A selected vertex left free moves, and no warning says otherwise.
+  const json free = stdout_json(run_expecting({"deform", in, out, "--scale", "2", "--select", "box:-1,-1,0.9,1,2,2",
+                                               "--pin", "box:-1,-1,1.0,1,2,2"},
+                                              0));
+  CHECK_FALSE(warned(free));
+  CHECK((aniso::read_mesh(out).mesh.V - rest.V).cwiseAbs().maxCoeff() > 1e-3);
+}
