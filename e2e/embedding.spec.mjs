@@ -496,7 +496,8 @@ test('<anisoform-modeller edits>: saved edits open with src, alone on the mesh l
     window.element.setAttribute('src', '../spot_triangulated.obj');
     window.element.setAttribute('edits', '../spool-one.json');
   });
-  expect(await failed).toMatch(/does not match the loaded mesh/);
+  // The refusal names the mesh the edits were made on, as they name it.
+  expect(await failed).toMatch(/\('spool\.off', 649 vertices, \d+ triangles\) does not match the loaded mesh/);
   await expect.poll(async () => (await state()).vertices).toBe(2930);
   expect((await state()).ops).toBe(0);
 

@@ -80,6 +80,12 @@ test('Save edits, then Open… them on the mesh loaded, or drop them with their 
   expect(await page.evaluate(() => window.anisoform.info().vertices)).toBe(rest.length / 3);
   expect(await opCount(page)).toBe(1);
   expect(await positions(page)).toEqual(edited);
+  // Dropped with the same mesh under another file name, the edits take that name.
+  const renamed = testInfo.outputPath('spot-copy.obj');
+  writeFileSync(renamed, readFileSync(meshPath('closed/spot_triangulated.obj')));
+  await dropFiles(page, [saved, renamed]);
+  expect(await positions(page)).toEqual(edited);
+  expect(await page.evaluate(() => window.anisoform.document().mesh.name)).toBe('spot-copy.obj');
 
   // And they can be undone as edits made here.
   await page.getByTestId('undo').click();
@@ -112,8 +118,12 @@ test('saved edits on another mesh, a file that is not saved edits, two meshes: r
   await page.getByTestId('file-input').setInputFiles([meshPath('open/hemisphere.obj'), meshPath('closed/torus.obj')]);
   await expect(banner).toContainText('hemisphere.obj, torus.obj');
 
+  // Opened with another mesh file, the edits are refused naming the mesh they were made on.
+  await page.getByTestId('file-input').setInputFiles([saved, meshPath('closed/torus.obj')]);
+  await expect(banner).toContainText("('spot_triangulated.obj', 2930 vertices, 5856 triangles) does not match the loaded mesh");
+
   const messages = await page.evaluate(() => window.__errors);
-  expect(messages).toHaveLength(3);
+  expect(messages).toHaveLength(4);
   expect(messages[1]).toContain('Nothing was opened');
   expect(await positions(page)).toEqual(kept);
   expect(await opCount(page)).toBe(1);

@@ -162,11 +162,13 @@ export interface Anisoform {
   /** The edit document (a copy): the ops done so far. */
   document(): EditDocument;
   /**
-   * Replays a document on the current mesh, or on `meshBytes` (named document.mesh.name). Any error
-   * (version, region, amounts, a mesh whose hash differs, bad JSON) rejects with its code, naming the
-   * op or field, and the current work is kept.
+   * Replays a document on the current mesh, or on `meshBytes`: the file `meshName` (its extension
+   * says the format; default document.mesh.name), whose name the opened document then records. Any
+   * error (version, region, amounts, a mesh whose hash differs, bad JSON) rejects with its code,
+   * naming the op or field (a mesh refused by its hash is named as the document names it), and the
+   * current work is kept.
    */
-  open(document: EditDocument, meshBytes?: ArrayBuffer | Uint8Array): Promise<void>;
+  open(document: EditDocument, meshBytes?: ArrayBuffer | Uint8Array, meshName?: string): Promise<void>;
   /**
    * Merges `transform` into op `opId`'s (and replaces its `method`, `direction` and `move`, if given) and
    * re-solves from that op's input, re-running the later ops.

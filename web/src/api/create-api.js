@@ -50,7 +50,8 @@ export function createAnisoformApi({ editor, viewer, picker, ready }) {
 
     // The edit document (document/op-stack.js): the page's source of truth.
     document: () => editor.ops.toJSON(),
-    open: (json, meshBytes) => reported(editor.ops.open(json, meshBytes), 'The document was not opened'),
+    open: (json, meshBytes, meshName) =>
+      reported(editor.ops.open(json, meshBytes, meshName), 'The document was not opened'),
     setParameter: (opId, patch, options) =>
       reported(editor.ops.setParameter(opId, patch, options), 'The parameter was not applied'),
     setOpEnabled: (opId, enabled) => reported(editor.ops.setEnabled(opId, enabled), 'The op was not changed'),

@@ -2,7 +2,7 @@
 // the current mesh or on given mesh bytes) and makes it the stack's; after
 // every change the document is announced ('document') and autosaved with the
 // mesh bytes (autosave.js), and a reload restores that work.
-import { EditDocument } from './edit-document.js';
+import { EditDocument, withMeshFileName } from './edit-document.js';
 import { Autosave } from './autosave.js';
 import { badParameter } from '../shared/errors.js';
 
@@ -31,14 +31,19 @@ export class DocumentPersistence {
     this.#historyEntry = historyEntry;
   }
 
-  /** Replays `json` on the current mesh, or on `meshBytes` (named json.mesh.name); on failure the current work stays. */
-  open(json, meshBytes) {
+  /**
+   * Replays `json` on the current mesh, or on `meshBytes`, read as the file
+   * `meshName` (default json.mesh.name); on failure the current work stays.
+   * The document's own name of its mesh is what a refusal quotes (the file
+   * it was made on); once opened, it takes the file's name.
+   */
+  open(json, meshBytes, meshName) {
     const editor = this.#editor;
     return this.#run(async () => {
       if (!json || typeof json !== 'object') throw badParameter('open() needs an edit document object');
       const current = this.#stack.document;
       const previous = current && { json: current.toJSON(), mesh: this.mesh };
-      if (meshBytes !== undefined) await editor.load(meshBytes, json.mesh?.name);
+      if (meshBytes !== undefined) await editor.load(meshBytes, meshName ?? json.mesh?.name);
       else if (!this.#stack.document) throw badParameter('no mesh is loaded yet');
       let replayed;
       try {
@@ -52,7 +57,7 @@ export class DocumentPersistence {
         else if (this.#stack.document) await this.#runner.restore(this.#stack.document.ops.length).catch(() => {});
         throw error;
       }
-      this.#adopt(json, replayed);
+      this.#adopt(meshBytes !== undefined ? withMeshFileName(json, meshName) : json, replayed);
     });
   }
 

@@ -106,10 +106,9 @@ export class EditDocument {
 }
 
 /**
- * `json` with its base mesh named `meshName` when it is opened with a mesh
- * file of that name: the file's own name says its format (the document
- * keeps the name the mesh was loaded under). Anything else is returned as
- * it is, for open() to refuse.
+ * `json` with its base mesh named `meshName`, once it is opened on a mesh
+ * file of that name (the document keeps the name the mesh was loaded
+ * under). Without a name, or anything but a document, `json` as it is.
  */
 export function withMeshFileName(json, meshName) {
   if (!json || typeof json !== 'object' || !json.mesh || typeof json.mesh !== 'object' || !meshName) return json;

@@ -395,8 +395,8 @@ export class OpStack {
   // ---- opening and autosave (document-persistence.js) ----------------------
 
   /** Replays `json` on the current mesh, or on `meshBytes` (named json.mesh.name); on failure the current work stays. */
-  open(json, meshBytes) {
-    return this.#persistence.open(json, meshBytes);
+  open(json, meshBytes, meshName) {
+    return this.#persistence.open(json, meshBytes, meshName);
   }
 
   /** From now on the work is autosaved (the standalone site; createModeller's `autosave`). */

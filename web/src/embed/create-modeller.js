@@ -5,7 +5,6 @@
 // pending frame, the ResizeObservers, the worker (and with it the WASM session)
 // and every listener it added; several modellers on a page are independent.
 import { createAnisoformApi } from '../api/create-api.js';
-import { withMeshFileName } from '../document/edit-document.js';
 import { Editor } from '../editor/editor.js';
 import { BrushCursor } from '../interaction/brush-cursor.js';
 import { DragReadout } from '../interaction/drag-readout.js';
@@ -179,7 +178,7 @@ export function createModeller(container, options = {}) {
     } else {
       if (typeof api.open !== 'function') throw badParameter('createModeller: this build cannot open edit documents (no api.open)');
       try {
-        await api.open(withMeshFileName(await documentSource, source.name), source.data);
+        await api.open(await documentSource, source.data, source.name);
       } catch (error) {
         // Edits that cannot be opened (not found, not JSON, made on another
         // mesh, an op the core refuses) leave the mesh shown without them,
@@ -236,7 +235,7 @@ export function createModeller(container, options = {}) {
     } catch (error) {
       throw reportError(error, 'Could not open the edits');
     }
-    return resolved ? api.open(withMeshFileName(json, resolved.name), resolved.data) : api.open(json);
+    return resolved ? api.open(json, resolved.data, resolved.name) : api.open(json);
   }
 
   return Object.freeze({

@@ -3,7 +3,6 @@
 // writes it, .json) are replayed on the mesh loaded, or on the mesh file
 // opened with them, through the same api.load and api.open as embedders use.
 import { badParameter } from '../shared/errors.js';
-import { withMeshFileName } from '../document/edit-document.js';
 import { ACCEPT_ATTRIBUTE } from './mesh-formats.js';
 
 export const SAVED_EDITS_EXTENSION = '.json';
@@ -34,7 +33,7 @@ export async function openFiles(api, files) {
   if (edits.length === 0) return api.load(meshes[0], meshes[0].name);
   const document = parseSavedEdits(edits[0].name, await edits[0].text());
   if (meshes.length === 0) return api.open(document);
-  return api.open(withMeshFileName(document, meshes[0].name), new Uint8Array(await meshes[0].arrayBuffer()));
+  return api.open(document, new Uint8Array(await meshes[0].arrayBuffer()), meshes[0].name);
 }
 
 function parseSavedEdits(fileName, text) {
