@@ -707,3 +707,39 @@ test('a Thicken edit is listed and saved as Thicken', async ({ page }) => {
   await expect(page.getByTestId(`op-select-${op.id}`)).toHaveText('Thicken (AnARAP)');
   expect(pageErrors).toEqual([]);
 });
+
+test("cancel() drops a setParameter preview left uncommitted, of the last op or an earlier one: the document's shape shows again", async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const outcome = await page.evaluate(async () => {
+    const api = window.anisoform;
+    const nextPositions = (live) => new Promise((resolve) => {
+      const off = api.on('positions', (event) => {
+        if (event.live !== live) return;
+        off();
+        resolve(Array.from(event.positions));
+      });
+    });
+    await api.select({ box: { min: [-9, 0.5, -9], max: [9, 9, 9] } });
+    await api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.3, 1] } });
+    await api.select({ box: { min: [-9, -9, -9], max: [9, 0, 9] } });
+    await api.deform({ method: 'anarap', direction: { type: 'global', vector: [1, 0, 0] }, transform: { scale: [1.2, 1] } });
+    const committed = Array.from(api.positions());
+    const history = api.document().ops.map((entry) => JSON.stringify(entry.op));
+    const differs = (a, b) => a.some((value, i) => value !== b[i]);
+    const results = [];
+    for (const entry of api.document().ops) {
+      const previewed = nextPositions(true);
+      api.setParameter(entry.id, { transform: { scale: [1.8, 1] } }, { preview: true });
+      const shown = await previewed;
+      const restored = nextPositions(false);
+      const cancelled = api.cancel();
+      const back = await restored;
+      results.push({ previewDiffers: differs(shown, committed), cancelled, back: !differs(back, committed),
+        positions: !differs(Array.from(api.positions()), committed) });
+    }
+    return { results, opsKept: JSON.stringify(api.document().ops.map((entry) => JSON.stringify(entry.op))) === JSON.stringify(history) };
+  });
+  const each = { previewDiffers: true, cancelled: true, back: true, positions: true };
+  expect(outcome).toEqual({ results: [each, each], opsKept: true });
+  expect(pageErrors).toEqual([]);
+});

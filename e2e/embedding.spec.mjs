@@ -201,8 +201,8 @@ test('<anisoform-modeller>: src loads, events come out as DOM events, .api works
   });
   expect(edited).toEqual(['selection', 'positions', 'document']); // a committed edit is a new op in the document
 
-  // A new ui rebuilds the modeller (loading src again) on the same solver
-  // worker, once it is idle.
+  // A new ui rebuilds the modeller on the same solver worker, once it is
+  // idle, with the work it held: the mesh loaded and its edits, bitwise.
   const rebuilt = await page.evaluate(async () => {
     const loaded = new Promise((resolve) => {
       window.element.addEventListener('change', resolve, { once: true });
@@ -210,20 +210,43 @@ test('<anisoform-modeller>: src loads, events come out as DOM events, .api works
     window.element.setAttribute('src', '../spot_triangulated.obj');
     await loaded;
     const created = window.__census().workersCreated;
-    await window.element.api.select({ all: true }); // after the load's background factorization
+    const rest = Array.from(window.element.api.positions());
+    await window.element.api.select({ box: { min: [-1, 0.5, -1], max: [1, 2, 2] } });
+    await window.element.api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.3, 1] } });
+    const edited = Array.from(window.element.api.positions());
     const changed = new Promise((resolve) => {
       window.element.addEventListener('change', (event) => resolve(event.detail), { once: true });
     });
     window.element.setAttribute('ui', 'full');
     await window.element.api.ready;
+    const positions = window.element.api.positions();
     return {
       newWorkers: window.__census().workersCreated - created,
       panel: window.element.querySelectorAll('.side-panel').length,
       vertices: window.element.api.info().vertices,
+      ops: window.element.api.document().ops.length,
+      kept: positions.length === edited.length && edited.every((value, i) => Object.is(value, positions[i])),
+      moved: edited.some((value, i) => value !== rest[i]),
       change: await changed,
     };
   });
-  expect(rebuilt).toEqual({ newWorkers: 0, panel: 1, vertices: 2930, change: { reason: 'load' } });
+  expect(rebuilt).toEqual({ newWorkers: 0, panel: 1, vertices: 2930, ops: 1, kept: true, moved: true, change: { reason: 'load' } });
+
+  // A ui not known: an 'error' event naming it, and the modeller kept with its work; a known one then rebuilds.
+  const refusedUi = await page.evaluate(async () => {
+    const api = window.element.api;
+    const failed = new Promise((resolve) => {
+      window.element.addEventListener('error', (event) => resolve(event.detail), { once: true });
+    });
+    window.element.setAttribute('ui', 'bogus');
+    const error = await failed;
+    const kept = window.element.api === api && window.element.querySelectorAll('.side-panel').length === 1;
+    window.element.setAttribute('ui', 'none');
+    await window.element.api.ready;
+    return { error, kept, panel: window.element.querySelectorAll('.side-panel').length, ops: window.element.api.document().ops.length };
+  });
+  expect(refusedUi).toEqual({ error: { code: 'bad-parameter', message: "anisoform-modeller: ui must be 'full' or 'none', got 'bogus'" },
+    kept: true, panel: 0, ops: 1 });
 
   // Removed from the page: disposed.
   const afterRemoval = await page.evaluate(() => {
@@ -618,5 +641,45 @@ test('materials (option, setMaterials, the element\'s attribute) draws a glTF me
     attribute: 'materials',
     removed: 'editing',
   });
+  expect(pageErrors).toEqual([]);
+});
+
+test("an event's positions and document are the listener's own: changing them changes nothing of the modeller's", async ({ page }) => {
+  const pageErrors = await openExample(page);
+  const outcome = await page.evaluate(async () => {
+    const host = document.createElement('div');
+    host.style.height = '200px';
+    document.body.append(host);
+    const modeller = window.anisoformExample.createModeller(host, { ui: 'none', mesh: '../spool.off' });
+    const { api } = modeller;
+    await api.ready;
+    const seen = {};
+    api.on('positions', (event) => {
+      seen.positions = event.positions;
+      event.positions.fill(0);
+    });
+    api.on('document', (json) => {
+      seen.document = json;
+      json.ops.length = 0;
+    });
+    await api.select({ box: { min: [-1, 0.2, -1], max: [1, 1, 1] } });
+    await api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.3, 1] } });
+    const positions = api.positions();
+    const exported = new TextDecoder().decode(await api.export('obj'));
+    const firstVertex = exported.split('\n').find((line) => line.startsWith('v ')).split(/\s+/).slice(1).map(Number);
+    const result = {
+      listenerZeroed: seen.positions.every((value) => value === 0),
+      positionsKept: positions.some((value) => value !== 0),
+      firstVertexAgrees: firstVertex.every((value, k) => Math.abs(value - positions[k]) < 1e-5),
+      listenerDocumentEmptied: seen.document.ops.length === 0,
+      opsKept: api.document().ops.length,
+      undo: api.undo(),
+    };
+    modeller.dispose();
+    host.remove();
+    return result;
+  });
+  expect(outcome).toEqual({ listenerZeroed: true, positionsKept: true, firstVertexAgrees: true, listenerDocumentEmptied: true,
+    opsKept: 1, undo: true });
   expect(pageErrors).toEqual([]);
 });

@@ -3,8 +3,8 @@
 // declaration that stops describing the API as the specs use it fails to
 // compile. Each call mirrors one the e2e specs make on window.anisoform, or
 // (switchProduct) on the package's createModeller and createSolverPool.
-import type { Anisoform, DeformOp, FlattenOptions, Region } from '../../web/src/api/anisoform';
-import { createModeller, createSolverPool } from '../../web/dist-lib/index';
+import type { Anisoform, AnisoformError, DeformOp, EditDocument, FlattenOptions, Region } from '../../web/src/api/anisoform';
+import { AnisoformModellerElement, createModeller, createSolverPool } from '../../web/dist-lib/index';
 
 export async function usage(api: Anisoform): Promise<number> {
   await api.ready;
@@ -21,7 +21,22 @@ export async function usage(api: Anisoform): Promise<number> {
   const { metrics, uv } = await api.flatten(options);
   await api.exportPattern('svg', { mmPerUnit: 10 });
   api.on('error', ({ code, message }) => console.log(code, message));
+  api.on('document', (document: EditDocument) => console.log(document.ops.length));
+  api.on('positions', ({ positions, live, distortion }) => console.log(positions.length, live, distortion?.length));
+  try {
+    await api.deform(stretch);
+  } catch (error) {
+    if ((error as AnisoformError).code === 'cancelled') return 0;
+  }
   return count + metrics.compressionErrorMax + uv.length;
+}
+
+// The element's events as the package README listens to them.
+export function listen(element: AnisoformModellerElement): void {
+  element.addEventListener('change', (event) => console.log(event.detail.reason));
+  element.addEventListener('error', (event) => console.log(event.detail.code, event.detail.message));
+  element.addEventListener('progress', (event) => console.log(event.detail.stage));
+  element.addEventListener('click', () => console.log('a DOM event still types as before'));
 }
 
 // A configurator switching products: the second modeller takes the first one's warm worker.

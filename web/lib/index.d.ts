@@ -1,7 +1,7 @@
 // The anisoform package: createModeller, createSolverPool and <anisoform-modeller>.
 // The api object's types (the same as window.anisoform on the standalone
 // site) are in api.d.ts beside this file.
-import type { Anisoform } from './api.js';
+import type { Anisoform, ChangeEvent, ErrorEvent, ProgressEvent } from './api.js';
 
 export * from './api.js';
 
@@ -99,12 +99,27 @@ export function createModeller(container: HTMLElement, options?: ModellerOptions
  */
 export class AnisoformModellerElement extends HTMLElement {
   readonly api: Anisoform | null;
+  addEventListener<K extends keyof AnisoformModellerEventMap>(type: K,
+    listener: (this: AnisoformModellerElement, event: AnisoformModellerEventMap[K]) => unknown,
+    options?: boolean | AddEventListenerOptions): void;
+  addEventListener(type: string, listener: EventListenerOrEventListenerObject, options?: boolean | AddEventListenerOptions): void;
+  removeEventListener<K extends keyof AnisoformModellerEventMap>(type: K,
+    listener: (this: AnisoformModellerElement, event: AnisoformModellerEventMap[K]) => unknown,
+    options?: boolean | EventListenerOptions): void;
+  removeEventListener(type: string, listener: EventListenerOrEventListenerObject, options?: boolean | EventListenerOptions): void;
   /**
    * A pool (createSolverPool) to take the solver worker from and give it back to on disconnect,
    * shared with other elements and modellers; used from the next connection or `ui` change.
    * Without one, a `ui` change still rebuilds on the same worker, and disconnecting ends it.
    */
   solvers: SolverPool | null;
+}
+
+/** The element's events: the api's, as CustomEvents with the api's payload as `detail`. */
+export interface AnisoformModellerEventMap {
+  change: CustomEvent<ChangeEvent>;
+  error: CustomEvent<ErrorEvent>;
+  progress: CustomEvent<ProgressEvent>;
 }
 
 /** Registers the element under `name` (default 'anisoform-modeller') if not yet registered. */

@@ -94,10 +94,13 @@ export interface CameraState {
 export interface ChangeEvent {
   reason: 'load' | 'positions' | 'selection' | 'document';
 }
-/** Positions shown: committed (live false) or a live preview (a drag, a slider). */
+/** A copy of the positions shown (and of the heat map's values, when it is on): the listener's own. */
 export interface PositionsEvent {
   positions: Float32Array;
+  /** True for a preview (a drag, a slider, a typed amount) not yet committed. */
   live: boolean;
+  /** The heat map's distortion per vertex against the mesh as loaded, when the heat map is on. */
+  distortion?: Float32Array;
 }
 /**
  * The edit document (docs/document.schema.json; wasm/js/anisoform-wasm.d.ts
@@ -115,6 +118,13 @@ export interface ErrorEvent {
   /** 'storage': an autosave failed (the work in the page is kept). */
   code: 'bad-parameter' | 'bad-mesh' | 'bad-file' | 'numerical' | 'internal' | 'out-of-memory' | 'storage';
   message: string;
+}
+/**
+ * What a rejected promise of the api holds: an Error with the code of its 'error' event, or
+ * 'cancelled' for a solve stopped by cancel() (which is no failure: no 'error' event).
+ */
+export interface AnisoformError extends Error {
+  code: ErrorEvent['code'] | 'cancelled';
 }
 export interface ProgressEvent {
   /**
@@ -151,7 +161,8 @@ export interface Anisoform {
    * Stops the solve in progress at once (a committed edit, a re-run of the
    * document, a flattening; the UI's Cancel and Esc): its promise rejects with
    * code 'cancelled', and the mesh, the document and the history stay as they
-   * were before it. False when nothing is being solved.
+   * were before it. With no solve, it drops a preview of setParameter (`{preview: true}`) that was
+   * not committed: the document's shape shows again. False when there was neither.
    */
   cancel(): boolean;
   /** Undo/redo move over the document's ops (and selection steps). */
@@ -203,7 +214,8 @@ export interface Anisoform {
   on(event: 'error', callback: (event: ErrorEvent) => void): () => void;
   on(event: 'progress', callback: (event: ProgressEvent) => void): () => void;
   on(event: 'positions', callback: (event: PositionsEvent) => void): () => void;
-  on(event: 'document', callback: (document: unknown) => void): () => void;
+  /** A copy of the edit document, as document() gives, whenever it changes. */
+  on(event: 'document', callback: (document: EditDocument) => void): () => void;
   /** The surface under a canvas pixel, or null. */
   pick(pixel: Pixel): Hit | null;
   camera(): CameraState;

@@ -8,6 +8,18 @@ import { badParameter } from '../shared/errors.js';
 
 const EVENTS = ['change', 'error', 'progress', 'positions', 'document'];
 
+// The events whose payload is the page's own state (the positions shown, the
+// edit document): a listener gets a copy, as positions() and document()
+// give, so that changing it changes nothing of the modeller's.
+const PAYLOAD_COPIES = {
+  positions: ({ positions, live, distortion }) => ({
+    positions: positions.slice(),
+    live,
+    ...(distortion ? { distortion: distortion.slice() } : {}),
+  }),
+  document: (document) => document?.toJSON() ?? null,
+};
+
 export function createAnisoformApi({ editor, viewer, picker, ready }) {
   const document = () => {
     if (!editor.document) throw badParameter('no mesh is loaded yet: await anisoform.ready');
@@ -59,7 +71,7 @@ export function createAnisoformApi({ editor, viewer, picker, ready }) {
     moveOp: (opId, index) => reported(editor.ops.moveOp(opId, index), 'The op was not moved'),
     setRegion: (opId, steps) => reported(editor.ops.setRegion(opId, steps), 'The region was not changed'),
 
-    cancel: () => editor.cancelSolve(),
+    cancel: () => editor.cancelSolve() || editor.ops.dropPreview(),
     undo: () => editor.undo(),
     redo: () => editor.redo(),
     reset: () => editor.reset(),
@@ -90,7 +102,7 @@ export function createAnisoformApi({ editor, viewer, picker, ready }) {
       if (typeof callback !== 'function') {
         throw badParameter('on() needs a callback function');
       }
-      return editor.on(event, callback);
+      return editor.on(event, PAYLOAD_COPIES[event] ? (payload) => callback(PAYLOAD_COPIES[event](payload)) : callback);
     },
 
     pick([x, y]) {

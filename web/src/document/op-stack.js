@@ -77,6 +77,11 @@ export class OpStack {
     return this.#runner.restVersion;
   }
 
+  /** The base mesh as loaded, {name, bytes: a Blob of the file}, or null. */
+  get baseMesh() {
+    return this.#persistence.mesh;
+  }
+
   /** A new mesh: an empty document whose state 0 is the mesh as loaded. */
   adoptMesh({ info, positions, exact, hash, sourceBytes }, name) {
     this.#live.leave();
@@ -246,6 +251,17 @@ export class OpStack {
     if (preview && this.document.ops[index].enabled) return this.#live.preview(opId, index, op);
     const what = Object.keys(patch).map((key) => PATCH_WORDS[key]).join(' and ');
     return this.#changeOp(opId, 'op', op, (label) => `Change the ${what} of ${label}`);
+  }
+
+  /**
+   * Drops a preview of setParameter not committed (a value typed, then
+   * abandoned): the document's state shows again. False when none is shown.
+   */
+  dropPreview() {
+    if (!this.#live.leave()) return false;
+    this.#runner.run(() => this.#runner.restore(this.document.ops.length))
+      .catch((error) => this.#editor.report(error, 'The preview was not dropped'));
+    return true;
   }
 
   /** The weights of op `opId`'s region on its input (where the op evaluates it), to show them. */

@@ -28,6 +28,17 @@ import { Lifetime } from './lifetime.js';
 import { resolveDocumentSource, resolveMeshSource } from './mesh-source.js';
 import { UI_MODES, buildLayout } from './modeller-layout.js';
 
+// The work of each modeller made here, for the element's rebuild (modellerWork).
+const works = new WeakMap();
+
+/**
+ * What `modeller` holds, to build another on: {mesh: {name, bytes}, document}
+ * (the document only when it has ops), or null before a mesh is loaded.
+ */
+export function modellerWork(modeller) {
+  return works.get(modeller)?.() ?? null;
+}
+
 const OPTIONS = ['ui', 'mesh', 'meshName', 'document', 'keyboard', 'autosave', 'workerUrl', 'wasmUrl', 'solvers', 'materials'];
 
 /**
@@ -199,7 +210,7 @@ export function createModeller(container, options = {}) {
   installKeyboardShortcuts(keyTarget, lifetime, {
     undo: () => api.undo(),
     redo: () => api.redo(),
-    cancel: () => gestures.cancel() || editor.cancelGesture() || editor.cancelSolve(),
+    cancel: () => gestures.cancel() || editor.cancelGesture() || editor.cancelSolve() || editor.ops.dropPreview(),
     frame: () => api.frame(),
   });
   // The panel's own form events stay inside: outside, 'change' is the api's
@@ -238,7 +249,7 @@ export function createModeller(container, options = {}) {
     return resolved ? api.open(json, resolved.data, resolved.name) : api.open(json);
   }
 
-  return Object.freeze({
+  const modeller = Object.freeze({
     api,
     load,
     open,
@@ -254,6 +265,12 @@ export function createModeller(container, options = {}) {
       return lifetime.size;
     },
   });
+  works.set(modeller, () => {
+    const base = editor.ops.baseMesh;
+    if (!base) return null;
+    return { mesh: base, document: editor.ops.document?.ops.length ? api.document() : undefined };
+  });
+  return modeller;
 }
 
 function checkOptions(container, options) {

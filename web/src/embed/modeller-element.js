@@ -3,7 +3,9 @@
 // or changed), edits (the URL of saved edits, opened on src when set or
 // changed: both changed together open the edits on the new mesh, or show it
 // without them when they cannot be opened), ui
-// ('full', the default, or 'none'; a change rebuilds the modeller). The api's
+// ('full', the default, or 'none'; a change rebuilds the modeller with the
+// work it holds: the mesh loaded and its edits; a value not known is
+// reported and the modeller kept). The api's
 // events come out as DOM CustomEvents ('change', 'error', 'progress', with the
 // api's payload as `detail`); `.api` is the modeller's api while connected.
 // Disconnecting disposes the modeller; connecting again builds a new one.
@@ -11,7 +13,8 @@
 // element's own pool, ended on disconnect); `.solvers`, a pool from
 // createSolverPool, shares workers with other elements and modellers: the
 // worker then goes back to it on disconnect.
-import { createModeller } from './create-modeller.js';
+import { createModeller, modellerWork } from './create-modeller.js';
+import { UI_MODES } from './modeller-layout.js';
 import { badParameter } from '../shared/errors.js';
 import { SolverPool } from '../worker/solver-pool.js';
 
@@ -28,6 +31,8 @@ export class AnisoformModellerElement extends HTMLElement {
   /** Whether src changed since the last load (a change of edits alone opens them on the mesh loaded). */
   #srcChanged = false;
   #reconciling = false;
+  /** The ui the modeller was built with. */
+  #ui = 'full';
 
   /** A pool (createSolverPool) to take the solver worker from and give it back to; used from the next connection or ui change. */
   get solvers() {
@@ -60,8 +65,7 @@ export class AnisoformModellerElement extends HTMLElement {
   attributeChangedCallback(name, previous, value) {
     if (!this.#modeller || previous === value) return;
     if (name === 'ui') {
-      this.#teardown();
-      this.#build();
+      this.#rebuildFor(value ?? 'full');
     } else if (name === 'materials') {
       this.#modeller.setMaterials(value !== null);
     } else {
@@ -94,7 +98,23 @@ export class AnisoformModellerElement extends HTMLElement {
     }
   }
 
-  #build() {
+  // A new ui: the work (the mesh loaded, its edits replayed) goes on in the
+  // new modeller; an unknown value is refused as the option is, as an
+  // 'error' event, and the modeller stays as it is.
+  #rebuildFor(ui) {
+    if (!UI_MODES.includes(ui)) {
+      const message = `anisoform-modeller: ui must be ${UI_MODES.map((m) => `'${m}'`).join(' or ')}, got '${ui}'`;
+      this.dispatchEvent(new CustomEvent('error', { detail: { code: 'bad-parameter', message } }));
+      return;
+    }
+    if (ui === this.#ui) return;
+    const work = modellerWork(this.#modeller);
+    this.#teardown();
+    this.#build(work);
+  }
+
+  // The modeller from the attributes, or on `work` (modellerWork) when a ui change rebuilds it.
+  #build(work = null) {
     const src = this.getAttribute('src');
     if (this.#sharedSolvers) {
       this.#ownSolvers?.dispose();
@@ -103,16 +123,21 @@ export class AnisoformModellerElement extends HTMLElement {
       this.#ownSolvers ??= new SolverPool();
     }
     const edits = this.getAttribute('edits');
+    const ui = this.getAttribute('ui') ?? 'full';
+    // A ui not known at connection builds the default one (and says so), as a change to it keeps the last.
+    this.#ui = UI_MODES.includes(ui) ? ui : 'full';
+    let start = { ...(src ? { mesh: src } : {}), ...(src && edits ? { document: edits } : {}) };
+    if (work) start = { mesh: work.mesh.bytes, meshName: work.mesh.name, ...(work.document ? { document: work.document } : {}) };
     this.#modeller = createModeller(this, {
-      ui: this.getAttribute('ui') ?? 'full',
+      ui: this.#ui,
       materials: this.hasAttribute('materials'),
-      ...(src ? { mesh: src } : {}),
-      ...(src && edits ? { document: edits } : {}),
+      ...start,
       solvers: this.#sharedSolvers ?? this.#ownSolvers,
     });
     const { api } = this.#modeller;
     this.#offs = RELAYED_EVENTS.map((type) => api.on(type, (detail) => this.dispatchEvent(new CustomEvent(type, { detail }))));
     api.ready.catch(() => {}); // reported as an 'error' event
+    if (ui !== this.#ui) this.#rebuildFor(ui);
   }
 
   #teardown() {
