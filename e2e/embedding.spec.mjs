@@ -320,11 +320,26 @@ test('workerUrl and wasmUrl say where the solver is loaded from', async ({ page 
       moved: await attempt({ workerUrl: `${worker}?copy`, wasmUrl: `${wasm}?copy` }),
       missingWasm: await attempt({ wasmUrl: new URL('no-such.wasm', worker).href }),
       missingWorker: await attempt({ workerUrl: new URL('no-such-worker.js', worker).href }),
+      notWasm: await attempt({ wasmUrl: `${worker}?as-wasm` }),
+      otherOrigin: (() => {
+        try {
+          window.anisoformExample.createModeller(document.body, { ui: 'none', workerUrl: 'https://example.invalid/solver.js' });
+          return 'created';
+        } catch (error) {
+          return { code: error.code, message: error.message, children: document.body.querySelectorAll('.anisoform-root, canvas').length };
+        }
+      })(),
+      children: document.body.querySelectorAll('canvas').length,
     };
   });
   expect(outcome.moved).toEqual({ vertices: 649 });
-  expect(outcome.missingWasm.error).toMatch(/WASM/);
-  expect(outcome.missingWorker.error).toMatch(/solver stopped/);
+  // Each failure names the URL and why it failed, not only the browser's "magic word" or "could not start".
+  expect(outcome.missingWasm.error).toMatch(/cannot load the WASM module from .*no-such\.wasm: HTTP 404/);
+  expect(outcome.notWasm.error).toMatch(/cannot load the WASM module from .*solver-worker[^ ]*\?as-wasm: it is not WebAssembly \(it begins "/);
+  expect(outcome.missingWorker.error).toMatch(/The solver stopped: the worker could not start from .*no-such-worker\.js: HTTP 404/);
+  expect(outcome.otherOrigin.code).toBe('bad-parameter');
+  expect(outcome.otherOrigin.message).toMatch(/^the solver worker cannot start from https:\/\/example\.invalid\/solver\.js: /);
+  expect(outcome.otherOrigin.children).toBe(outcome.children);
   expect(pageErrors).toEqual([]);
 });
 
@@ -681,5 +696,26 @@ test("an event's positions and document are the listener's own: changing them ch
   });
   expect(outcome).toEqual({ listenerZeroed: true, positionsKept: true, firstVertexAgrees: true, listenerDocumentEmptied: true,
     opsKept: 1, undo: true });
+  expect(pageErrors).toEqual([]);
+});
+
+test('a mesh that is neither a URL nor bytes is refused by its type, not for a missing file name', async ({ page }) => {
+  const pageErrors = await openExample(page);
+  const refusals = await page.evaluate(async () => {
+    const host = Object.assign(document.createElement('div'), { style: 'height: 200px' });
+    document.body.append(host);
+    const modeller = window.anisoformExample.createModeller(host, { ui: 'none', mesh: 42 });
+    const messages = [await modeller.api.ready.then(() => 'ready', (error) => `${error.code}: ${error.message}`)];
+    for (const source of [null, [1, 2, 3], { name: 'part.obj' }]) {
+      messages.push(await modeller.load(source, 'part.obj').then(() => 'loaded', (error) => `${error.code}: ${error.message}`));
+    }
+    modeller.dispose();
+    host.remove();
+    return messages;
+  });
+  const expected = (what) => `load() takes a File, Blob, ArrayBuffer or typed array (or, in a modeller, a URL); got ${what}.`;
+  expect(refusals[0]).toBe(`bad-parameter: Could not load the file: ${expected('a number')}`);
+  expect(refusals.slice(1)).toEqual(['null', 'an array', 'an object'].map((what) =>
+    `bad-parameter: Could not load part.obj: ${expected(what)}`));
   expect(pageErrors).toEqual([]);
 });

@@ -39,8 +39,14 @@ export async function readMesh(client, source, name, emitProgress) {
   return { ...payload, sourceBytes, gltf: scene };
 }
 
-/** The file name load() was given, or the File's own; refused when there is none. */
+const isBytes = (source) => source instanceof Blob || source instanceof ArrayBuffer || ArrayBuffer.isView(source);
+
+/** The file name load() was given, or the File's own; refused when there is none, or nothing to read. */
 export function fileNameOf(source, name) {
+  if (!isBytes(source)) {
+    const what = source === null ? 'null' : Array.isArray(source) ? 'an array' : `${typeof source === 'object' ? 'an' : 'a'} ${typeof source}`;
+    throw badParameter(`load() takes a File, Blob, ArrayBuffer or typed array (or, in a modeller, a URL); got ${what}`);
+  }
   if (typeof name === 'string' && name) return name;
   name = source?.name ?? '';
   if (!name) throw badParameter('load() needs a file name with its extension, e.g. "part.stl"');
@@ -50,8 +56,7 @@ export function fileNameOf(source, name) {
 // The bytes of an ArrayBuffer or typed array source, copied: the caller keeps theirs.
 function copyOf(source) {
   if (source instanceof ArrayBuffer) return source.slice(0);
-  if (ArrayBuffer.isView(source)) return source.buffer.slice(source.byteOffset, source.byteOffset + source.byteLength);
-  throw badParameter('load() takes a File, Blob or ArrayBuffer');
+  return source.buffer.slice(source.byteOffset, source.byteOffset + source.byteLength); // a typed array (fileNameOf checked)
 }
 
 // Shows the read at 0 % at once; the worker (or the page, for a GLB) moves it.

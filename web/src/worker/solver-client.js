@@ -5,7 +5,9 @@
 // preview replaces the waiting one (whose promise resolves with null), so
 // while the pointer moves faster than the solver, the worker only ever solves
 // the latest position, never a backlog of stale ones.
+import { badParameter } from '../shared/errors.js';
 import { EventEmitter } from '../shared/event-emitter.js';
+import { urlProblem } from '../shared/url-problem.js';
 import { PROGRESS, Request } from './protocol.js';
 
 // Iterations per live preview (a drag's pointer move, a slider's value): one,
@@ -69,18 +71,30 @@ export class SolverClient extends EventEmitter {
 
   /** Listens to `kept` (an idle worker from the pool: its init starts a new session), else to a new worker. */
   #spawn(kept = null) {
-    const worker = kept ?? (this.#workerUrl === undefined
-      ? new Worker(new URL('./solver-worker.js', import.meta.url), { type: 'module' })
-      : new Worker(this.#workerUrl, { type: 'module' }));
+    const url = this.#workerUrl;
+    let worker = kept;
+    try {
+      // The default's literal form is what bundlers find the worker by.
+      worker ??= url === undefined
+        ? new Worker(new URL('./solver-worker.js', import.meta.url), { type: 'module' })
+        : new Worker(url, { type: 'module' });
+    } catch (error) {
+      // workerUrl of another origin, or not a URL: thrown at once, as a DOMException.
+      throw badParameter(`the solver worker cannot start from ${url}: ${error.message}`);
+    }
     worker.onmessage = (event) => this.#receive(event.data);
     worker.onerror = (event) => {
       this.#tainted = true;
-      const failure = new SolverError({
-        code: 'internal',
-        message: `The solver stopped: ${event.message || 'the worker could not start'}`,
-      });
-      this.#rejectAll(failure);
-      this.#sendQueuedPreview();
+      const fail = (reason) => {
+        this.#rejectAll(new SolverError({ code: 'internal', message: `The solver stopped: ${reason}` }));
+        this.#sendQueuedPreview();
+      };
+      if (event.message || url === undefined) {
+        fail(event.message || 'the worker could not start');
+        return;
+      }
+      // The embedder's script that did not load says nothing of why: the URL is asked.
+      urlProblem(url).then((problem) => fail(`the worker could not start from ${url}${problem ? `: ${problem}` : ''}`));
     };
     return worker;
   }

@@ -4,6 +4,7 @@
 import { createAnisoformWasm } from '../wasm/anisoform-wasm.mjs';
 import { PROGRESS, Request } from './protocol.js';
 import { SessionHost } from './session-host.js';
+import { urlProblem } from '../shared/url-problem.js';
 
 let host = null;
 /** The WASM module, instantiated once: a worker kept in a SolverPool serves modeller after modeller. */
@@ -23,9 +24,16 @@ async function initialize({ wasmUrl }) {
   // wasmUrl: the embedder's override (SolverClient); by default the loader
   // finds the WASM beside itself. A pool hands a worker only to a modeller
   // with the same URLs.
-  wasm ??= await createAnisoformWasm(
-    wasmUrl === undefined ? {} : { locateFile: (path) => (path.endsWith('.wasm') ? wasmUrl : path) },
-  );
+  try {
+    wasm ??= await createAnisoformWasm(
+      wasmUrl === undefined ? {} : { locateFile: (path) => (path.endsWith('.wasm') ? wasmUrl : path) },
+    );
+  } catch (error) {
+    // The compiler's "expected magic word" names neither the file nor why: the URL is asked.
+    const problem = wasmUrl === undefined ? null : await urlProblem(wasmUrl, { wasm: true });
+    if (problem) throw Object.assign(new Error(`cannot load the WASM module from ${wasmUrl}: ${problem}`), { code: 'bad-parameter' });
+    throw error;
+  }
   host = new SessionHost(wasm, reportProgress);
   return { result: {}, transfer: [] };
 }
