@@ -142,10 +142,16 @@ std::vector<char> selection_mask(const Mesh& mesh, const Region& region) {
   return mask;
 }
 
+// A wanted amount: one number, or [min, max] when a field's amounts vary.
+nlohmann::json amount_json(double low, double high) {
+  return low == high ? nlohmann::json(low) : nlohmann::json::array({low, high});
+}
+
 nlohmann::json result_json(const FlattenArguments& args, const FlattenPlan& plan,
                            const std::string& direction, const std::vector<std::string>& warnings,
                            const FlattenResult& result) {
   const FlattenMetrics& m = result.metrics;
+  const WantedAmounts wanted = wanted_amounts(plan.request);
   nlohmann::json grainlines = nlohmann::json::array();
   for (const Eigen::Vector2d& g : result.grainline) grainlines.push_back({g.x(), g.y()});
   nlohmann::json suggested_cuts = nlohmann::json::array();
@@ -165,8 +171,9 @@ nlohmann::json result_json(const FlattenArguments& args, const FlattenPlan& plan
       {"components", m.components},
       {"boundary_loops", m.boundary_loops},
       {"flipped", m.flipped},
-      {"su", plan.request.su},
-      {"sv", plan.request.sv},
+      {"su", amount_json(wanted.su_min, wanted.su_max)},
+      {"sv", amount_json(wanted.sv_min, wanted.sv_max)},
+      {"amounts", wanted.from_field ? "field" : "compress"},
       {"direction", direction},
       {"compression_error_mean", m.compression_error_mean},
       {"compression_error_max", m.compression_error_max},
@@ -231,7 +238,9 @@ constexpr const char* kFlattenHelp =
     "(free-boundary anisotropic ARAP, LSCM start) and write OUT: .obj (3D positions, vt = pattern "
     "coordinates in model units, faces v/vt; the patch only), .svg or .dxf (outlines in mm, "
     "grainline, scale note). Prints one JSON object: method, triangles, vertices, components, "
-    "boundary_loops, flipped, su, sv, direction, compression_error_mean, compression_error_max "
+    "boundary_loops, flipped, su, sv (the wanted amounts: --compress's, or those of the field file, "
+    "which replace them: [min, max] when they vary), amounts (compress | field), direction, "
+    "compression_error_mean, compression_error_max "
     "(|achieved along / su - 1| per triangle: area-weighted mean, max), cross_error_mean, "
     "cross_error_max (the same across, with sv), area_distortion_mean, iterations, converged, "
     "energy, initialization, directions_filled, grainline, mm_per_unit, seconds, suggested_cuts "

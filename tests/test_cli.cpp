@@ -683,3 +683,29 @@ TEST_CASE("cli: an edit whose selected vertices are all pinned warns that nothin
   CHECK_FALSE(warned(free));
   CHECK((aniso::read_mesh(out).mesh.V - rest.V).cwiseAbs().maxCoeff() > 1e-3);
 }
+
+TEST_CASE("cli: flatten with a field file's amounts reports and labels those amounts, not --compress's", "[cli]") {
+  const std::string in = mesh("open/plane.off");
+  const std::string svg = temp_path("field_amounts.svg");
+  // The plane's two opposite corners along x, both asking 0.7 along x: the pattern is 0.7 as wide.
+  const std::string uniform = write_temp_text("field_07.txt", "0 1 0 0 0.7 1\n800 1 0 0 0.7 1\n");
+  json result = stdout_json(run_expecting({"flatten", in, svg, "--direction", "field:" + uniform, "--compress", "0.9",
+                                           "--mm-per-unit", "100"},
+                                          0));
+  CHECK(result["su"] == 0.7);
+  CHECK(result["sv"] == 1.0);
+  CHECK(result["amounts"] == "field");
+  CHECK(contains(slurp(svg), "su 0.7 sv 1 (the field's)"));
+  CHECK_FALSE(contains(slurp(svg), "su 0.9"));
+  // Amounts that vary: their range.
+  const std::string varying = write_temp_text("field_07_09.txt", "0 1 0 0 0.7 1\n800 1 0 0 0.9 1\n");
+  result = stdout_json(run_expecting({"flatten", in, svg, "--direction", "field:" + varying}, 0));
+  CHECK(result["su"] == json::array({0.7, 0.9}));
+  CHECK(contains(slurp(svg), "su 0.7-0.9 sv 1 (the field's)"));
+  // Without amounts in the field, --compress's.
+  const std::string arrows = write_temp_text("field_arrows.txt", "0 1 0 0\n800 1 0 0\n");
+  result = stdout_json(run_expecting({"flatten", in, svg, "--direction", "field:" + arrows, "--compress", "0.9"}, 0));
+  CHECK(result["su"] == 0.9);
+  CHECK(result["amounts"] == "compress");
+  CHECK(contains(slurp(svg), "su 0.9 sv 1,"));
+}

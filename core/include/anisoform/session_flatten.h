@@ -34,6 +34,15 @@ struct SessionFlatten {
 // the CLI's one-shot flatten alike.
 FlattenOptions flatten_options(const SessionFlatten& request);
 
+// The amounts a request wants: its su and sv, or, when the field's
+// constraints carry amounts (which then replace them), their range over
+// those constraints (the propagated amounts lie within it).
+struct WantedAmounts {
+  double su_min = 1.0, su_max = 1.0, sv_min = 1.0, sv_max = 1.0;
+  bool from_field = false;
+};
+WantedAmounts wanted_amounts(const SessionFlatten& request);
+
 // The pattern file's scale note for a request: the method, su and sv, where
 // the direction came from (`direction`, e.g. "global:0,0,1" or "field
 // (3 constraints)") and how the grainline is chosen. One wording for the

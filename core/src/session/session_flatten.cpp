@@ -159,9 +159,33 @@ std::string describe_directions(const FlattenDirections& directions) {
   return "field (" + std::to_string(directions.constraints.size()) + " constraints)";
 }
 
+WantedAmounts wanted_amounts(const SessionFlatten& request) {
+  WantedAmounts out{request.su, request.su, request.sv, request.sv, false};
+  if (request.directions.kind != FlattenDirections::Kind::Constraints) return out;
+  for (const DirectionConstraint& c : request.directions.constraints) {
+    if (!c.has_amounts) continue;
+    if (!out.from_field) out = {c.su, c.su, c.sv, c.sv, true};
+    out.su_min = std::min(out.su_min, c.su);
+    out.su_max = std::max(out.su_max, c.su);
+    out.sv_min = std::min(out.sv_min, c.sv);
+    out.sv_max = std::max(out.sv_max, c.sv);
+  }
+  return out;
+}
+
+namespace {
+
+std::string amount_range(double low, double high) {
+  return low == high ? short_number(low) : short_number(low) + "-" + short_number(high);
+}
+
+}  // namespace
+
 std::string pattern_note(const SessionFlatten& request, const std::string& direction) {
   std::string note = request.method == FlattenMethod::UniformBaseline ? "uniform baseline" : "anisotropic";
-  note += ", su " + short_number(request.su) + " sv " + short_number(request.sv);
+  const WantedAmounts wanted = wanted_amounts(request);
+  note += ", su " + amount_range(wanted.su_min, wanted.su_max) + " sv " + amount_range(wanted.sv_min, wanted.sv_max);
+  if (wanted.from_field) note += " (the field's)";
   return note + ", direction " + direction + "; grainline = mean compression direction";
 }
 
