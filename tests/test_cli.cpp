@@ -709,3 +709,21 @@ TEST_CASE("cli: flatten with a field file's amounts reports and labels those amo
   CHECK(result["amounts"] == "compress");
   CHECK(contains(slurp(svg), "su 0.9 sv 1,"));
 }
+
+TEST_CASE("cli: a direction that gives none along the surface is refused, not replaced by an arbitrary one", "[cli]") {
+  // plane.off lies in y = 0: y is its normal everywhere, and it is flat (no principal directions).
+  const std::string in = mesh("open/plane.off");
+  for (const char* direction : {"global:0,1,0", "curvature:min", "curvature:max"}) {
+    const CliRun run = run_expecting({"deform", in, temp_path("no_direction.obj"), "--direction", direction,
+                                      "--scale", "1.5"},
+                                     2);
+    CHECK(contains(run.err, std::string(direction) == "global:0,1,0" ? "parallel to the surface normal everywhere"
+                                                                      : "no principal curvature directions"));
+  }
+  const CliRun flatten = run_expecting({"flatten", in, temp_path("no_direction.svg"), "--direction", "global:0,1,0",
+                                        "--compress", "0.8"},
+                                       2);
+  CHECK(contains(flatten.err, "parallel to the surface normal everywhere"));
+  // Along the surface, the edit is made.
+  run_expecting({"deform", in, temp_path("along.obj"), "--direction", "global:1,0,0", "--scale", "1.5"}, 0);
+}

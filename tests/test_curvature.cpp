@@ -193,13 +193,23 @@ TEST_CASE("curvature: curvatures scale with 1/size and directions do not change"
   }
 }
 
-TEST_CASE("curvature: a flat mesh has zero curvature and still unit tangent directions", "[curvature]") {
+TEST_CASE("curvature: a flat mesh has zero curvature, and no principal direction field to give", "[curvature]") {
   const aniso::Mesh mesh = aniso::test::load("open/plane.off");
   const aniso::PrincipalCurvature pc = aniso::principal_curvature(mesh);
   CHECK(pc.k_min.cwiseAbs().maxCoeff() < 1e-12);
   CHECK(pc.k_max.cwiseAbs().maxCoeff() < 1e-12);
   check_unit_tangent(mesh, pc.min_direction);
-  check_unit_tangent(mesh, aniso::curvature_direction_field(mesh, aniso::CurvatureDirection::Max, 5));
+  // Its "principal directions" are the eigen-solver's arbitrary choice: an
+  // edit along them would silently go some way; it is refused instead.
+  for (const aniso::CurvatureDirection which : {aniso::CurvatureDirection::Min, aniso::CurvatureDirection::Max}) {
+    for (const int steps : {0, 5}) {
+      CHECK_THROWS_WITH(aniso::curvature_direction_field(mesh, which, steps),
+                        Catch::Contains("the surface has no principal curvature directions"));
+    }
+  }
+  // Flat faces meeting at curved edges: the edges give the field its directions.
+  const aniso::Mesh box = aniso::test::load("open/cube_no_bottom.obj");
+  check_unit_tangent(box, aniso::curvature_direction_field(box, aniso::CurvatureDirection::Max, 5));
 }
 
 TEST_CASE("curvature: on a knotted tube the smoothed min direction runs along the tube", "[curvature]") {

@@ -129,14 +129,16 @@ test('arap with handles moves the handles by the offset and keeps the pins', () 
   }
 }));
 
-test('directionField gives unit tangent directions: a global x on the plane y = 0 is x everywhere', () => withSession('open/plane.off', (session) => {
+test('directionField gives unit tangent directions: a global x on the plane y = 0 is x everywhere; y and curvature give none and are refused', () => withSession('open/plane.off', (session) => {
   const field = session.directionField({ type: 'global', vector: [2, 0, 0] });
   assert.equal(field.length, session.positions().length);
   for (let i = 0; i < field.length; i += 3) {
     assert.ok(Math.abs(Math.abs(field[i]) - 1) < 1e-6 && Math.abs(field[i + 1]) < 1e-6 && Math.abs(field[i + 2]) < 1e-6);
   }
-  const curvature = session.directionField({ type: 'curvature', which: 'max' });
-  assert.equal(curvature.length, field.length);
+  assert.throws(() => session.directionField({ type: 'global', vector: [0, 1, 0] }),
+    (error) => error.code === 'bad-parameter' && /parallel to the surface normal everywhere/.test(error.message));
+  assert.throws(() => session.directionField({ type: 'curvature', which: 'max' }),
+    (error) => error.code === 'bad-parameter' && /no principal curvature directions/.test(error.message));
 }));
 
 test('distortion: 1 for the identity; area ratio and stretch su after a plane stretch in the plane', () => withSession('open/plane.off', (session) => {

@@ -199,6 +199,25 @@ PrincipalCurvature principal_curvature_in(const Mesh& mesh, const Positions& nor
   return result;
 }
 
+// A surface curved alike in every direction at every vertex (a plane, a
+// sphere made exactly) has no principal direction: its "directions" would be
+// the eigen-solver's arbitrary choice. The gap k_max - k_min is measured
+// against the mesh's size (curvature is 1 / length).
+void refuse_without_principal_directions(const Mesh& mesh, const PrincipalCurvature& curvature) {
+  const Eigen::Index n = curvature.k_max.size();
+  if (n == 0) return;
+  const double size = (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm();
+  double largest_gap = 0.0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double gap = curvature.k_max[i] - curvature.k_min[i];
+    if (std::isfinite(gap)) largest_gap = std::max(largest_gap, gap);
+  }
+  if (largest_gap * size > 1e-6) return;
+  fail(ErrorCode::BadParameter,
+       "the surface has no principal curvature directions: it is curved alike in every direction at every vertex "
+       "(flat, or a sphere), so curvature gives no direction; use an axis, a screen drag or a painted field");
+}
+
 }  // namespace
 
 PrincipalCurvature principal_curvature(const Mesh& mesh) {
@@ -221,6 +240,7 @@ Positions curvature_direction_field(const Mesh& mesh, CurvatureDirection which, 
   const Positions normals = vertex_normals(mesh);
   const std::vector<field::TangentBasis> bases = vertex_bases(normals);
   const PrincipalCurvature curvature = principal_curvature_in(mesh, normals, bases);
+  refuse_without_principal_directions(mesh, curvature);
   const Positions& raw = which == CurvatureDirection::Min ? curvature.min_direction : curvature.max_direction;
   if (smoothing_steps == 0) return raw;
 

@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 
+#include "anisoform/error.h"
 #include "mesh/topology.h"
 
 namespace aniso {
@@ -111,6 +112,13 @@ Frames build_frames(const Positions& normals, const Positions& directions, const
     } else {
       ++frames.filled;
     }
+  }
+  if (count > 0 && frames.filled == count) {
+    // Nothing to fill from: any direction chosen here would be arbitrary,
+    // and the edit or the pattern would silently go another way.
+    fail(ErrorCode::BadParameter,
+         "the direction is (nearly) parallel to the surface normal everywhere: it gives no direction along the "
+         "surface to stretch along; pick a direction that runs along the surface, e.g. another axis");
   }
   if (frames.filled > 0) {
     const VertexAdjacency& adjacency = neighbors_of();

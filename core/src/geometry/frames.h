@@ -38,7 +38,7 @@ struct Frames {
 // below). It is called once, and only when some element needs filling, which
 // is rare: building a large mesh's adjacency costs more than its frames. With
 // no usable direction at all in a component, an arbitrary tangent is used and
-// still counted as filled.
+// still counted as filled; with none in any, Error(BadParameter).
 using NeighborsOf = std::function<const VertexAdjacency&()>;
 Frames build_frames(const Positions& normals, const Positions& directions, const NeighborsOf& neighbors_of,
                     double degenerate_fraction = 1e-3);
