@@ -108,13 +108,10 @@ Eigen::Vector3d parse_vector3(const std::string& text, const std::string& option
 
 Eigen::Vector3d parse_unit_vector3(const std::string& text, const std::string& option) {
   const Eigen::Vector3d vector = parse_vector3(text, option);
-  const double length = vector.norm();
-  // A tiny but non-zero vector still names a direction; only zero (or an
-  // overflow to infinity in the norm) does not.
-  if (!(length > 0.0) || !std::isfinite(length)) {
-    fail_value(option, "the vector '" + text + "' has no direction");
-  }
-  return vector / length;
+  // Any non-zero vector names a direction, however large or small
+  // (stableNormalized: the plain norm overflows past 1e154).
+  if (vector.isZero(0.0)) fail_value(option, "the vector '" + text + "' has no direction");
+  return vector.stableNormalized();
 }
 
 Prefixed split_prefixed(const std::string& text, const std::string& option,

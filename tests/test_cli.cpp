@@ -727,3 +727,21 @@ TEST_CASE("cli: a direction that gives none along the surface is refused, not re
   // Along the surface, the edit is made.
   run_expecting({"deform", in, temp_path("along.obj"), "--direction", "global:1,0,0", "--scale", "1.5"}, 0);
 }
+
+TEST_CASE("cli: any non-zero finite direction means its unit vector, however large or small", "[cli]") {
+  const std::string in = mesh("formats/spot_lowres.obj");
+  const auto deformed = [&](const std::string& direction) {
+    const std::string out = temp_path("scaled_direction.obj");
+    run_expecting({"deform", in, out, "--direction", direction, "--scale", "1.4", "--select", "box:-1,-1,0.5,1,2,2"}, 0);
+    return aniso::read_mesh(out).mesh.V;
+  };
+  const aniso::Positions unit = deformed("global:0,0,1");
+  CHECK((unit - aniso::read_mesh(in).mesh.V).cwiseAbs().maxCoeff() > 0.05);  // the edit moves the part
+  // Past 1e154 the plain norm overflowed (the edit barely moved); below 1e-154 it underflowed.
+  for (const char* direction : {"global:0,0,1e200", "global:0,0,1e-160", "global:0,0,1e300"}) {
+    INFO(direction);
+    CHECK((deformed(direction) - unit).cwiseAbs().maxCoeff() == 0.0);
+  }
+  CHECK(contains(run_expecting({"deform", in, temp_path("zero.obj"), "--direction", "global:0,0,0"}, 2).err,
+                 "has no direction"));
+}

@@ -64,10 +64,12 @@ void TargetContext::vertex_directions(const DirectionSource& source, Positions& 
       const Eigen::Vector3d d = source.kind == DirectionSource::Kind::Global
                                     ? source.vector
                                     : screen_drag_to_world(source.screen);
-      if (!d.allFinite() || d.norm() == 0.0) {
+      if (!d.allFinite() || d.isZero(0.0)) {
         fail(ErrorCode::BadParameter, "the direction must be a non-zero finite vector");
       }
-      directions = d.normalized().transpose().replicate(n, 1);
+      // Any non-zero finite vector means its unit vector: stableNormalized,
+      // as the plain norm overflows past 1e154 and underflows below 1e-154.
+      directions = d.stableNormalized().transpose().replicate(n, 1);
       return;
     }
     case DirectionSource::Kind::CurvatureMin:

@@ -78,7 +78,7 @@ void validate(const TransformSpec& spec) {
                    "rotation angle (degrees)");
   require_finite(spec.twist_degrees_per_unit, "twist rate");  // its range depends on the mesh (validate_twist)
   if (spec.twist) {
-    if (!spec.twist_axis.allFinite() || spec.twist_axis.norm() < 1e-12) {
+    if (!spec.twist_axis.allFinite() || spec.twist_axis.isZero(0.0)) {
       fail(ErrorCode::BadParameter, "twist axis must be a non-zero finite vector");
     }
     if (!spec.twist_origin.allFinite()) fail(ErrorCode::BadParameter, "twist origin must be finite");
@@ -143,14 +143,14 @@ Eigen::Matrix3d element_transform(const TransformSpec& spec, const Eigen::Vector
 
 Eigen::Matrix3d twist_rotation(const TransformSpec& spec, double weight, const Eigen::Vector3d& position) noexcept {
   if (!spec.twist || weight <= 0.0) return Eigen::Matrix3d::Identity();
-  const Eigen::Vector3d axis = spec.twist_axis.normalized();
+  const Eigen::Vector3d axis = spec.twist_axis.stableNormalized();
   const double rate = weight * spec.twist_degrees_per_unit * kDegToRad;
   return Eigen::AngleAxisd(rate * (position - spec.twist_origin).dot(axis), axis).toRotationMatrix();
 }
 
 Eigen::Matrix3d twist_jacobian(const TransformSpec& spec, double weight, const Eigen::Vector3d& position) noexcept {
   if (!spec.twist || weight <= 0.0) return Eigen::Matrix3d::Identity();
-  const Eigen::Vector3d axis = spec.twist_axis.normalized();
+  const Eigen::Vector3d axis = spec.twist_axis.stableNormalized();
   const double rate = weight * spec.twist_degrees_per_unit * kDegToRad;
   const Eigen::Vector3d r = position - spec.twist_origin;
   // d/dp [Rot(rate * r.a) r] = Rot (I + rate (a x r) a^T).
@@ -175,7 +175,7 @@ Eigen::Matrix3d polar_positive_part(const Eigen::Matrix3d& T) {
 
 Eigen::Vector3d default_twist_origin(const Positions& V, const Eigen::VectorXd& weights,
                                      const Eigen::Vector3d& axis) {
-  const Eigen::Vector3d a = axis.normalized();
+  const Eigen::Vector3d a = axis.stableNormalized();
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   double total = 0.0;
   double lowest = 0.0;

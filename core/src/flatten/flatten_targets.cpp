@@ -76,10 +76,10 @@ FlattenTargets flatten_targets(const Mesh& input, const FlattenPatch& patch,
   Positions triangle_directions(m, 3);
 
   if (directions.kind == FlattenDirections::Kind::Global) {
-    if (!(directions.global.allFinite() && directions.global.norm() > 0.0)) {
+    if (!directions.global.allFinite() || directions.global.isZero(0.0)) {
       fail(ErrorCode::BadParameter, "the global direction must be a finite non-zero vector");
     }
-    triangle_directions.rowwise() = directions.global.normalized().transpose();
+    triangle_directions.rowwise() = directions.global.stableNormalized().transpose();
     directions_into_charts(patch, charts, neighbours, triangle_directions, targets);
     return targets;
   }

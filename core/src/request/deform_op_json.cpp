@@ -45,7 +45,7 @@ TransformSpec transform_from_json(const Json& t, bool* origin_given) {
     const Json& twist = object(t["twist"], where);
     reject_unknown_keys(twist, op_keys::kTwist, where);
     spec.twist = true;
-    spec.twist_axis = non_zero_vector3(member(twist, "axis", where + ".axis"), where + ".axis").normalized();
+    spec.twist_axis = non_zero_vector3(member(twist, "axis", where + ".axis"), where + ".axis").stableNormalized();
     spec.twist_degrees_per_unit =
         finite_number(member(twist, "degreesPerUnit", where + ".degreesPerUnit"), where + ".degreesPerUnit");
     *origin_given = has(twist, "origin");
