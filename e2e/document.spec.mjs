@@ -353,6 +353,74 @@ test('an amount typed in the last edit previews live; leaving the field commits 
   expect(pageErrors).toEqual([]);
 });
 
+test('the Edits list by keyboard: Esc takes a typed amount back, a decimal comma is a point, and the focus stays where it was', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const { afterThree, document } = await editSpot(page);
+  const [first, second, third] = document.ops;
+  const shear = () => page.evaluate(() => window.anisoform.document().ops.at(-1).op.transform.shear);
+  const focused = () => page.evaluate(() => window.document.activeElement?.getAttribute('data-testid') ?? window.document.activeElement?.tagName);
+  await page.evaluate(() => {
+    window.anisoform.on('positions', ({ live, positions }) => {
+      window.__shown = { live, positions: Array.from(positions) };
+    });
+  });
+
+  // Enter on an op's name opens it, and the focus stays on the name.
+  await page.getByTestId(`op-select-${third.id}`).focus();
+  await page.keyboard.press('Enter');
+  const amount = page.getByTestId(`op-amount-${third.id}-Shear`);
+  await expect(amount).toHaveValue('0.3');
+  expect(await focused()).toBe(`op-select-${third.id}`);
+  // (Opening the op shows its region as the selection: once that is done, the history is still.)
+  await expect(page.getByTestId('undo')).toHaveAttribute('title', 'Undo Select the region of Shear (AnDefGrad) (Ctrl+Z)');
+  const undoTitle = await page.getByTestId('undo').getAttribute('title');
+
+  // Typed 0.9 (previewed live), then Esc: the field shows 0.3 and the committed shape is back, bitwise; leaving commits nothing.
+  await amount.focus();
+  await amount.press('Control+a');
+  await page.keyboard.type('0.9');
+  await expect.poll(() => page.evaluate(() => window.__shown?.live)).toBe(true);
+  await page.keyboard.press('Escape');
+  await expect(amount).toHaveValue('0.3');
+  await expect.poll(() => page.evaluate(() => window.__shown.live)).toBe(false);
+  expect(bitwise(await page.evaluate(() => window.__shown.positions), afterThree)).toBe(true);
+  await amount.blur();
+  await page.waitForTimeout(300);
+  expect(await shear()).toBe(0.3);
+  expect(await page.getByTestId('undo').getAttribute('title')).toBe(undoTitle);
+
+  // "0,45" typed (a decimal comma) and Enter: 0.45, not 45; the focus stays in the field.
+  await amount.focus();
+  await amount.press('Control+a');
+  await page.keyboard.type('0,45');
+  const committed = await armChange(page, 'document');
+  await page.keyboard.press('Enter');
+  await committed();
+  expect(await shear()).toBe(0.45);
+  expect(await focused()).toBe(`op-amount-${third.id}-Shear`);
+
+  // Move down by keyboard on the first op: the focus stays on its Move down button; at the bottom, on its name.
+  await page.getByTestId(`op-select-${first.id}`).click();
+  await page.getByTestId(`op-down-${first.id}`).focus();
+  let moved = await armChange(page, 'document');
+  await page.keyboard.press('Enter');
+  await moved();
+  expect(await focused()).toBe(`op-down-${first.id}`);
+  moved = await armChange(page, 'document');
+  await page.keyboard.press('Enter');
+  await moved();
+  expect(await page.evaluate(() => window.anisoform.document().ops.map((entry) => entry.id))).toEqual([second.id, third.id, first.id]);
+  expect(await focused()).toBe(`op-select-${first.id}`);
+
+  // Delete on the name of the middle op: the focus goes to the name now in its place.
+  await page.getByTestId(`op-select-${third.id}`).focus();
+  const deleted = await armChange(page, 'document');
+  await page.keyboard.press('Delete');
+  await deleted();
+  expect(await focused()).toBe(`op-select-${first.id}`);
+  expect(pageErrors).toEqual([]);
+});
+
 test("an op's region shows on the mesh and the current selection replaces it; the result replays bitwise", async ({ page, browser }) => {
   const pageErrors = await openApp(page);
   // The first op's region as the core selects it on the mesh as loaded (its input).

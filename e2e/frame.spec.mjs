@@ -61,7 +61,7 @@ test('F, Home, the Frame button and anisoform.frame() fit the mesh again after a
   // Not while typing in a field: F belongs to the field there.
   await zoomIn(page);
   const zoomed = await distance(page);
-  await page.locator('input[type="number"]').first().focus();
+  await page.locator('input[inputmode="decimal"]').first().focus();
   await page.keyboard.press('f');
   await page.keyboard.press('Home');
   expect(await distance(page)).toBeCloseTo(zoomed, 6);

@@ -12,7 +12,7 @@ test.use({ viewport: { width: 390, height: HEIGHT }, hasTouch: true, isMobile: t
 
 // What a finger taps: buttons, fields, the label of the hidden file input,
 // whole checkbox rows, the op list's checkboxes (their labels), a notice's Details.
-const CONTROLS = 'button, select, input[type="number"], label.button, .field-checkbox, summary, .op-toggle';
+const CONTROLS = 'button, select, input[inputmode="decimal"], label.button, .field-checkbox, summary, .op-toggle';
 
 /** Everything that is wrong with the layout now (empty when fine), and the view sizes. */
 const audit = (page) => page.evaluate((controlsSelector) => {

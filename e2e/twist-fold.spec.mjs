@@ -15,7 +15,7 @@ test('a click with the twist tool sets the origin to the clicked point', async (
   await page.mouse.click(...centre.page);
   await expect(origin).toHaveValue('point');
   for (const [axis, value] of hit.point.entries()) {
-    const field = page.getByRole('spinbutton', { name: `Origin point ${'xyz'[axis]}` });
+    const field = page.getByRole('textbox', { name: `Origin point ${'xyz'[axis]}` });
     expect(Number(await field.inputValue())).toBeCloseTo(value, 5);
   }
   // A click is not an edit.

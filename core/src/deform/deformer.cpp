@@ -402,12 +402,17 @@ double Deformer::prepare_step() {
     // Only time is at stake: without the memory for it (a mesh near the
     // vertex limit), it is left to the first preview, and no memory is
     // released for it (Session's retry would release this factorization).
+    // The frames along the mesh's longest axis, which runs along the surface
+    // somewhere even on a flat mesh (a fixed x is a flat mesh's normal when
+    // it lies in a plane x = c, whose frames are refused).
     try {
       workspace_->inversions.build_adjacency(rest_);
-      DirectionSource along_x;
-      along_x.kind = DirectionSource::Kind::Global;
-      along_x.vector = Eigen::Vector3d::UnitX();
-      const SideFrames frames = side_frames(workspace_->targets, along_x);
+      DirectionSource along_longest;
+      along_longest.kind = DirectionSource::Kind::Global;
+      Eigen::Index axis = 0;
+      (rest_.V.colwise().maxCoeff() - rest_.V.colwise().minCoeff()).maxCoeff(&axis);
+      along_longest.vector = Eigen::Vector3d::Unit(axis);
+      const SideFrames frames = side_frames(workspace_->targets, along_longest);
       iterations->warm_up(*solvers_.at(pins), frames.frames.u, frames.frames.v);
     } catch (const std::bad_alloc&) {
       iterations->reset_rotations();

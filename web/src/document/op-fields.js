@@ -5,6 +5,7 @@
 // soft border (api.setRegion). A field left empty, or not a number, is no
 // value: the op's own shows again.
 import { h } from '../ui/dom.js';
+import { decimalInput, parseDecimal } from '../ui/decimal-input.js';
 import { METHOD_NAMES } from '../editor/edit-wording.js';
 import { transformUsesDirection } from '../tools/direction-source.js';
 
@@ -22,14 +23,14 @@ const AMOUNTS = [
 // a region (ARAP with handles moves a dragged part instead).
 const SWITCHABLE = ['anarap', 'andefgrad', 'linear'];
 
-const numberOf = (text) => (text.trim() === '' ? NaN : Number(text));
 
 /**
  * The selected op's fields. change(patch) sends {transform}, {method},
  * {direction} or {move} to setParameter; preview(patch) shows it live (a
- * number being typed); redraw() shows the op's values again.
+ * number being typed); dropPreview() takes that back; redraw() shows the
+ * op's values again.
  */
-export function opFields(entry, { change, preview, redraw }) {
+export function opFields(entry, { change, preview, dropPreview, redraw }) {
   const op = entry.op;
   const transform = op.transform ?? {};
   // write(value, send) builds the patch for `value` and hands it to send:
@@ -47,19 +48,27 @@ export function opFields(entry, { change, preview, redraw }) {
       else if (wasPreviewed) write(value, change);
     };
     return h('label', { className: 'field op-amount' }, label,
-      h('input', {
-        type: 'number',
-        step: 'any',
+      decimalInput({
         value: String(value),
         'data-testid': testId,
+        // Esc takes the typed value back: the field shows the op's, and a preview of it is dropped.
+        onkeydown: (event) => {
+          if (event.key !== 'Escape') return;
+          event.target.value = String(value);
+          if (!previewed) return; // nothing shown: Esc goes on to the modeller (a solve's cancel)
+          // Handled here: the modeller's Esc would take the drop's own restore for a solve to cancel.
+          event.stopPropagation();
+          dropPreview();
+          previewed = false;
+        },
         oninput: (event) => {
-          const typed = numberOf(event.target.value);
+          const typed = parseDecimal(event.target.value);
           if (!Number.isFinite(typed)) return;
           previewed = true;
           write(typed, preview);
         },
         onchange: (event) => {
-          const typed = numberOf(event.target.value);
+          const typed = parseDecimal(event.target.value);
           settle(typed);
           if (!Number.isFinite(typed)) redraw();
         },
@@ -120,14 +129,11 @@ function directionFields(entry, xyz, change) {
 export function falloffField(entry, steps, { setRegion, redraw }) {
   return h('label', { className: 'field op-amount', title: "The width of the soft border around the edit's region, in model units along the surface" },
     'Soft border',
-    h('input', {
-      type: 'number',
-      min: 0,
-      step: 'any',
+    decimalInput({
       value: String(steps[0]?.falloff ?? 0),
       'data-testid': `op-falloff-${entry.id}`,
       onchange: (event) => {
-        const width = numberOf(event.target.value);
+        const width = parseDecimal(event.target.value);
         if (Number.isFinite(width)) setRegion(steps.map((step) => ({ ...step, falloff: width })));
         else redraw();
       },

@@ -9,6 +9,29 @@
 import { h, section } from '../ui/dom.js';
 import { falloffField, opFields } from './op-fields.js';
 
+// The rows are drawn anew on every change: the control that had the focus
+// (an op's name, an amount, Move up, the toggle) gets it back in the new
+// rows; when it is gone or disabled (Move up at the top), its op's name; when
+// the op is gone (deleted), the name of the op now in its place: a keyboard
+// user carries on where they were.
+function focusWithin(list) {
+  const focused = list.contains(globalThis.document.activeElement) ? globalThis.document.activeElement : null;
+  if (!focused) return { restore: () => {} };
+  const find = (testId) => (testId ? list.querySelector(`[data-testid="${CSS.escape(testId)}"]`) : null);
+  const testId = focused.getAttribute('data-testid');
+  const row = focused.closest('li');
+  const rowIndex = [...list.children].indexOf(row);
+  return {
+    restore: () => {
+      const same = find(testId);
+      const target = same && !same.disabled ? same
+        : find(row?.dataset.op && `op-select-${row.dataset.op}`)
+          ?? list.querySelectorAll('.op-label')[Math.min(rowIndex, list.children.length - 1)];
+      target?.focus();
+    },
+  };
+}
+
 export function opsPanel({ api, editor }) {
   const list = h('ol', { className: 'op-list', 'data-testid': 'op-list' });
   const empty = h('p', { className: 'op-empty' }, 'No edits yet: each committed edit appears here.');
@@ -97,6 +120,7 @@ export function opsPanel({ api, editor }) {
           // A value being typed may be half-written ("0."): its preview's refusal says nothing.
           preview: (patch) => entry.enabled && index === ops.length - 1
             && editor.ops.setParameter(entry.id, patch, { preview: true }).catch(() => {}),
+          dropPreview: () => editor.ops.dropPreview(),
           redraw: render,
         }),
         regionControls(entry),
@@ -107,8 +131,10 @@ export function opsPanel({ api, editor }) {
     const document = editor.ops.document;
     const ops = document?.ops ?? [];
     if (!ops.some((entry) => entry.id === selected)) selected = null;
+    const focus = focusWithin(list);
     list.replaceChildren(...ops.map(row));
     empty.hidden = ops.length > 0;
+    focus.restore();
   }
   editor.on('document', render);
   editor.on('mesh', render);

@@ -9,14 +9,15 @@
 // the twist rate) get none here: the core refuses an out-of-range value with
 // a message naming the field and its range, and the field keeps showing it.
 import { h } from './dom.js';
+import { decimalInput, parseDecimal } from './decimal-input.js';
 
-export function numberField(settings, sectionName, { key, label, min, max, step }) {
-  const input = h('input', { type: 'number', min, max, step, id: `${sectionName}-${key}` });
+export function numberField(settings, sectionName, { key, label, min, max }) {
+  const input = decimalInput({ id: `${sectionName}-${key}` });
   const sync = () => {
     if (document.activeElement !== input) input.value = settings.values[sectionName][key];
   };
   input.addEventListener('change', () => {
-    const value = Number(input.value);
+    const value = parseDecimal(input.value);
     if (Number.isFinite(value)) settings.update(sectionName, { [key]: clamp(value, min, max) });
     input.value = settings.values[sectionName][key];
   });
@@ -52,7 +53,7 @@ export function checkboxField(settings, sectionName, { key, label }) {
 /** xyz fields; a direction (the default) must be non-zero, a point (`point: true`) need not. */
 export function vectorField(settings, sectionName, { key, label, point = false }) {
   const inputs = [0, 1, 2].map((axis) =>
-    h('input', { type: 'number', step: 0.1, 'aria-label': `${label} ${'xyz'[axis]}` }),
+    decimalInput({ 'aria-label': `${label} ${'xyz'[axis]}` }),
   );
   const sync = () => {
     const vector = settings.values[sectionName][key];
@@ -60,7 +61,7 @@ export function vectorField(settings, sectionName, { key, label, point = false }
   };
   for (const input of inputs) {
     input.addEventListener('change', () => {
-      const vector = inputs.map((field) => Number(field.value));
+      const vector = inputs.map((field) => parseDecimal(field.value));
       if (vector.every(Number.isFinite) && (point || Math.hypot(...vector) > 0)) {
         settings.update(sectionName, { [key]: vector });
       }

@@ -7,6 +7,7 @@
 import { downloadBytes } from '../io/download.js';
 import { flattenDirectionFromSettings } from '../tools/direction-source.js';
 import { formatPercent } from '../viewer/pattern-view.js';
+import { decimalInput, parseDecimal } from './decimal-input.js';
 import { h, section } from './dom.js';
 import { mmPerUnitOf, patternScale } from './pattern-scale.js';
 import { checkboxField, numberField, selectField, showWhen, vectorField } from './fields.js';
@@ -100,13 +101,13 @@ function arrowList(settings) {
   const list = h('div', { className: 'arrow-list', 'data-testid': 'arrow-list' });
   const amountInput = (index, key, label) => {
     const arrow = settings.values.arrows[index];
-    const input = h('input', {
-      type: 'number', step: 0.01, placeholder: 'panel', value: arrow[key] ?? '',
+    const input = decimalInput({
+      placeholder: 'panel', value: arrow[key] ?? '',
       'aria-label': `Arrow ${index + 1} ${label}`,
     });
     input.addEventListener('change', () => {
       const arrows = settings.values.arrows.map((a) => ({ ...a }));
-      const value = Number(input.value);
+      const value = parseDecimal(input.value);
       if (input.value === '' || !(value > 0)) delete arrows[index][key];
       else arrows[index][key] = value;
       settings.update('arrows', arrows);
