@@ -7,7 +7,7 @@
 import { readFileSync, writeFileSync } from 'node:fs';
 import { basename } from 'node:path';
 import { schemaErrors } from '../docs/document-schema.mjs';
-import { armChange, expect, meshPath, openApp, selectUpperHalf, test, uploadFile } from './support.mjs';
+import { armChange, expect, meshPath, openApp, replaceWorkIfAsked, selectUpperHalf, test, uploadFile } from './support.mjs';
 
 async function recordErrors(page) {
   await page.evaluate(() => {
@@ -43,6 +43,7 @@ async function dropFiles(page, paths) {
   }, files);
   const opened = await armChange(page, 'document');
   await page.dispatchEvent('main.viewport', 'drop', { dataTransfer });
+  await replaceWorkIfAsked(page);
   await opened();
 }
 
@@ -106,6 +107,7 @@ test('saved edits on another mesh, a file that is not saved edits, two meshes: r
   const banner = page.getByTestId('error');
 
   await page.getByTestId('file-input').setInputFiles(saved);
+  await replaceWorkIfAsked(page);
   await expect(banner).toContainText('The document was not opened');
   await expect(banner).toContainText("'spot_triangulated.obj', 2930 vertices");
   await expect(banner).toContainText('does not match the loaded mesh');
@@ -120,6 +122,7 @@ test('saved edits on another mesh, a file that is not saved edits, two meshes: r
 
   // Opened with another mesh file, the edits are refused naming the mesh they were made on.
   await page.getByTestId('file-input').setInputFiles([saved, meshPath('closed/torus.obj')]);
+  await replaceWorkIfAsked(page);
   await expect(banner).toContainText("('spot_triangulated.obj', 2930 vertices, 5856 triangles) does not match the loaded mesh");
 
   const messages = await page.evaluate(() => window.__errors);
@@ -127,5 +130,45 @@ test('saved edits on another mesh, a file that is not saved edits, two meshes: r
   expect(messages[1]).toContain('Nothing was opened');
   expect(await positions(page)).toEqual(kept);
   expect(await opCount(page)).toBe(1);
+  expect(pageErrors).toEqual([]);
+});
+
+test('opening a mesh or saved edits over edits made asks first: keep working, save them first, or open without saving', async ({ page }, testInfo) => {
+  const pageErrors = await openApp(page);
+  await twistUpperHalf(page);
+  const edited = await positions(page);
+  const dialog = page.getByTestId('replace-dialog');
+  const pick = () => page.getByTestId('file-input').setInputFiles(meshPath('open/hemisphere.obj'));
+
+  // Keep working (the focused answer), and Esc: nothing is opened, the edit stays.
+  await pick();
+  await expect(dialog).toBeVisible();
+  await expect(dialog).toContainText('Opening hemisphere.obj replaces the 1 edit of spot_triangulated.obj: Undo cannot bring it back.');
+  await expect(page.getByTestId('replace-cancel')).toBeFocused();
+  await page.keyboard.press('Enter');
+  await expect(dialog).toBeHidden();
+  await pick();
+  await expect(dialog).toBeVisible();
+  await page.keyboard.press('Escape');
+  await expect(dialog).toBeHidden();
+  await page.waitForTimeout(300);
+  expect(await page.evaluate(() => window.anisoform.info().vertices)).toBe(2930);
+  expect(await opCount(page)).toBe(1);
+  expect(await positions(page)).toEqual(edited);
+
+  // Save edits, then open: the edits are downloaded as Save edits gives them, then the mesh opens.
+  await pick();
+  const [download] = await Promise.all([page.waitForEvent('download'), page.getByTestId('replace-save').click()]);
+  expect(download.suggestedFilename()).toBe('spot_triangulated-edits.json');
+  const saved = testInfo.outputPath('saved-before-open.json');
+  await download.saveAs(saved);
+  expect(JSON.parse(readFileSync(saved, 'utf8')).ops).toHaveLength(1);
+  await expect.poll(() => page.evaluate(() => window.anisoform.info().vertices)).not.toBe(2930);
+  expect(await opCount(page)).toBe(0);
+
+  // With no edits, nothing is asked: the saved edits and their mesh open at once, the edit back.
+  await openInPicker(page, [saved, meshPath('closed/spot_triangulated.obj')]);
+  await expect(dialog).toBeHidden();
+  expect(await positions(page)).toEqual(edited);
   expect(pageErrors).toEqual([]);
 });

@@ -65,7 +65,18 @@ export async function uploadFile(page, path) {
     });
   });
   await page.getByTestId('file-input').setInputFiles(path);
+  await replaceWorkIfAsked(page);
   return page.evaluate(() => window.__nextLoad);
+}
+
+/**
+ * With edits made, opening files asks first (ui/replace-dialog.js): answers
+ * 'Open without saving'. Call it after files that open (not ones refused
+ * outright, as two meshes at once) were given to the picker or dropped.
+ */
+export async function replaceWorkIfAsked(page) {
+  const made = await page.evaluate(() => window.anisoform.document().ops.length).catch(() => 0);
+  if (made > 0) await page.getByTestId('replace-open').click();
 }
 
 /** Selects the vertices above the middle of the mesh's height (y), by the API's box region. */

@@ -25,6 +25,7 @@ import { modeSwitch } from '../ui/mode-switch.js';
 import { panelSheetToggle } from '../ui/panel-sheet.js';
 import { patternPane } from '../ui/pattern-pane.js';
 import { selectionPanel } from '../ui/selection-panel.js';
+import { replaceDialog } from '../ui/replace-dialog.js';
 import { shortcutDialog } from '../ui/shortcut-dialog.js';
 import { statusBar } from '../ui/status-bar.js';
 import { toolPanel } from '../ui/tool-panel.js';
@@ -34,7 +35,7 @@ export function installFullUi(layout, { api, editor, settings, tools, viewer, pi
   // api.select reports a refusal itself (the banner and the 'error' event); the rejection needs no second word.
   const selectRegion = (options) => selectRegionAtViewCentre({ api, editor, viewer, picker, settings }, options)?.catch(() => {});
   const inMode = (mode, element) => showWhen(settings, 'mode', element, (current) => current === mode);
-  const files = filePanel({ api, editor, reportError });
+  const files = filePanel({ api, editor, reportError, askToReplace: replaceDialog(layout.root).ask });
   layout.sidePanel.append(
     modeSwitch({ settings, app: layout.root }),
     files.element,
@@ -51,7 +52,7 @@ export function installFullUi(layout, { api, editor, settings, tools, viewer, pi
   patternPane(layout.patternPane, { editor, settings, lifetime });
   statusBar(layout.statusBar, { editor, viewer, lifetime });
   installMessages(layout.viewport, { editor, lifetime });
-  installDropZone(layout.root, layout.dropOverlay, { api, reportError, lifetime });
+  installDropZone(layout.root, layout.dropOverlay, { api, reportError, lifetime, mayReplace: files.mayReplace });
   frameButton(layout.viewport, { api });
   const dialog = shortcutDialog(layout.root, { tools });
   installEditingKeys(keyTarget, lifetime, { settings, dialog, selectRegion, files });

@@ -18,6 +18,8 @@ export function installEditingKeys(target, lifetime, { settings, dialog, selectR
   const toolOfKey = new Map(Object.entries(TOOL_KEYS).map(([id, key]) => [key, id]));
   const fileActions = { o: files.open, s: files.save };
   lifetime.listen(target, 'keydown', (event) => {
+    // A dialog's keys are its own (the replace dialog's buttons, Esc).
+    if (event.target instanceof Element && event.target.closest('dialog[open]')) return;
     const fileAction = fileActions[event.key.toLowerCase()];
     if (!dialog.open && fileAction && (event.ctrlKey || event.metaKey) && !event.altKey && !event.shiftKey) {
       event.preventDefault();

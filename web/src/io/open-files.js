@@ -20,8 +20,10 @@ export function savedEditsName(meshName) {
  * Loads or replays `files` (an array of File). Rejects when nothing could be
  * opened: api.load's and api.open's errors are reported already, the others
  * (a wrong set of files, a file that is not JSON) are the caller's to report.
+ * `mayReplace(names)` is asked first (the page asks the user when there are
+ * edits, and may save them): it resolves false to open nothing.
  */
-export async function openFiles(api, files) {
+export async function openFiles(api, files, { mayReplace = async () => true } = {}) {
   const edits = files.filter(isSavedEdits);
   const meshes = files.filter((file) => !isSavedEdits(file));
   if (files.length === 0 || edits.length > 1 || meshes.length > 1) {
@@ -30,8 +32,10 @@ export async function openFiles(api, files) {
         `got ${files.length === 0 ? 'no file' : files.map((file) => file.name).join(', ')}`,
     );
   }
-  if (edits.length === 0) return api.load(meshes[0], meshes[0].name);
-  const document = parseSavedEdits(edits[0].name, await edits[0].text());
+  // A file that is not saved edits is refused before the user is asked.
+  const document = edits.length === 0 ? null : parseSavedEdits(edits[0].name, await edits[0].text());
+  if (!(await mayReplace(files.map((file) => file.name).join(' and ')))) return;
+  if (!document) return api.load(meshes[0], meshes[0].name);
   if (meshes.length === 0) return api.open(document);
   return api.open(document, new Uint8Array(await meshes[0].arrayBuffer()), meshes[0].name);
 }

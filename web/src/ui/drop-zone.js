@@ -4,7 +4,7 @@
 // with or without their mesh: io/open-files.js).
 import { openFiles } from '../io/open-files.js';
 
-export function installDropZone(target, overlay, { api, reportError, lifetime }) {
+export function installDropZone(target, overlay, { api, reportError, lifetime, mayReplace }) {
   let depth = 0; // dragenter/dragleave fire for every child element
   const hasFiles = (event) => [...(event.dataTransfer?.types ?? [])].includes('Files');
   lifetime.listen(target, 'dragenter', (event) => {
@@ -25,6 +25,6 @@ export function installDropZone(target, overlay, { api, reportError, lifetime })
     depth = 0;
     overlay.hidden = true;
     const files = [...event.dataTransfer.files];
-    if (files.length > 0) openFiles(api, files).catch((error) => reportError(error, 'Nothing was opened'));
+    if (files.length > 0) openFiles(api, files, { mayReplace }).catch((error) => reportError(error, 'Nothing was opened'));
   });
 }

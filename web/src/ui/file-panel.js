@@ -6,7 +6,29 @@ import { EXPORT_FORMATS } from '../io/mesh-formats.js';
 import { OPEN_ACCEPT_ATTRIBUTE, openFiles, savedEditsName } from '../io/open-files.js';
 import { h, section } from './dom.js';
 
-export function filePanel({ api, editor, reportError }) {
+/**
+ * askToReplace(message) -> Promise<'save'|'open'|'cancel'> (replace-dialog.js)
+ * is asked before an open replaces edits made.
+ */
+export function filePanel({ api, editor, reportError, askToReplace }) {
+  const saveEdits = () => {
+    try {
+      const json = `${JSON.stringify(api.document(), null, 1)}\n`;
+      downloadBytes(new TextEncoder().encode(json), savedEditsName(editor.document.name), 'application/json');
+    } catch (error) {
+      reportError(error, 'The edits were not saved');
+    }
+  };
+  // Opening a mesh or saved edits starts new work, which Undo cannot take
+  // back: with edits made, the user chooses (saving them first, or not).
+  const mayReplace = async (names) => {
+    const count = editor.ops.document?.ops.length ?? 0;
+    if (count === 0) return true;
+    const answer = await askToReplace(`Opening ${names} replaces the ${count} edit${count === 1 ? '' : 's'} of ` +
+      `${editor.document.name}: Undo cannot bring ${count === 1 ? 'it' : 'them'} back.`);
+    if (answer === 'save') saveEdits();
+    return answer !== 'cancel';
+  };
   const input = h('input', {
     type: 'file',
     id: 'file-input',
@@ -17,7 +39,7 @@ export function filePanel({ api, editor, reportError }) {
     onchange: () => {
       const files = [...(input.files ?? [])];
       input.value = ''; // choosing the same file again still opens it
-      if (files.length > 0) openFiles(api, files).catch((error) => reportError(error, 'Nothing was opened'));
+      if (files.length > 0) openFiles(api, files, { mayReplace }).catch((error) => reportError(error, 'Nothing was opened'));
     },
   });
   const format = h(
@@ -42,14 +64,7 @@ export function filePanel({ api, editor, reportError }) {
     className: 'button',
     'data-testid': 'save-edits',
     title: 'The edits as a file (JSON) to open again later with the mesh: Open… both, or drop both on the view',
-    onclick: () => {
-      try {
-        const json = `${JSON.stringify(api.document(), null, 1)}\n`;
-        downloadBytes(new TextEncoder().encode(json), savedEditsName(editor.document.name), 'application/json');
-      } catch (error) {
-        reportError(error, 'The edits were not saved');
-      }
-    },
+    onclick: saveEdits,
   }, 'Save edits');
   const resetButton = h('button', {
     className: 'button',
@@ -79,6 +94,8 @@ export function filePanel({ api, editor, reportError }) {
     ),
     // The keys' actions (Ctrl+O, Ctrl+S: editing-keys.js), as the buttons do them.
     open: () => input.click(),
+    /** Whether files dropped may replace the work (drop-zone.js): as the picker asks. */
+    mayReplace,
     // Before the first edit the button is disabled; the key says why instead of nothing.
     save: () => {
       if (!saveButton.disabled) saveButton.click();

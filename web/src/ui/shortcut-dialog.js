@@ -6,7 +6,7 @@ import { h } from './dom.js';
 
 export function shortcutDialog(root, { tools }) {
   const close = h('button', { className: 'button', type: 'button', onclick: () => dialog.close() }, 'Close');
-  const dialog = h('dialog', { className: 'shortcut-dialog', 'data-testid': 'shortcut-dialog', 'aria-label': 'Keyboard shortcuts' },
+  const dialog = h('dialog', { className: 'modal-dialog shortcut-dialog', 'data-testid': 'shortcut-dialog', 'aria-label': 'Keyboard shortcuts' },
     h('h2', {}, 'Keyboard shortcuts'),
     h('table', {},
       h('tbody', {}, shortcutRows(tools).map(([keys, action]) => h('tr', {}, h('th', { scope: 'row' }, keys), h('td', {}, action))))),
