@@ -745,3 +745,24 @@ TEST_CASE("cli: any non-zero finite direction means its unit vector, however lar
   CHECK(contains(run_expecting({"deform", in, temp_path("zero.obj"), "--direction", "global:0,0,0"}, 2).err,
                  "has no direction"));
 }
+
+TEST_CASE("cli: a flattening stopped by its iteration cap says to raise it, and a tolerance of 0 runs to round-off", "[cli]") {
+  const std::vector<std::string> torso{"flatten", mesh("open/human_woman_torso_front_patch.obj"),
+                                       temp_path("capped.obj"), "--compress", "0.8", "--direction", "global:0,1,0"};
+  const auto with = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = torso;
+    args.insert(args.end(), extra.begin(), extra.end());
+    return stdout_json(run_expecting(args, 0));
+  };
+  const json capped = with({"--iterations", "5"});
+  CHECK(capped["converged"] == false);
+  REQUIRE(capped["warnings"].size() == 1);
+  // Not the patch's fault: the advice to cut it along a seam would be wrong.
+  CHECK(capped["warnings"][0] ==
+        "the flattening stopped at the iteration cap (5) before it settled: raise the iterations for the finished pattern");
+  // Iterated until no step lowers the energy: converged, no warning, within the cap it was given.
+  const json exact = with({"--iterations", "10000", "--tolerance", "0"});
+  CHECK(exact["converged"] == true);
+  CHECK(exact["warnings"].empty());
+  CHECK(exact["compression_error_mean"].get<double>() < with({})["compression_error_mean"].get<double>() + 1e-6);
+}

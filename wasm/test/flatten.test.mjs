@@ -214,10 +214,10 @@ test('bad options name the field', () => withSession('open/plane.off', (session)
 test('a patch that cannot be one piece says why and what to do; a garment panel has no problem; the unit is guessed', () => {
   withSession('open/hand_lowres.obj', (session) => {
     // The hand converges (in about 125 iterations), its area far off; cut
-    // short, it says so first.
+    // short by the cap, it says to raise the cap first (not to cut the patch).
     const cut = session.flatten({ compress: [0.8, 1], maxIterations: 40 }).metrics;
     assert.equal(cut.converged, false);
-    assert.match(cut.problem, /^the patch does not flatten as one piece \(the solver did not converge in 40 iterations\): cut it along a seam or add darts/);
+    assert.equal(cut.problem, 'the flattening stopped at the iteration cap (40) before it settled: raise the iterations for the finished pattern');
     const { metrics } = session.flatten({ compress: [0.8, 1] });
     assert.equal(metrics.converged, true);
     assert.ok(metrics.areaDistortionMean > 0.25, String(metrics.areaDistortionMean));

@@ -144,6 +144,7 @@ struct FlattenMetrics {
   int iterations = 0;
   double energy = 0.0;
   bool converged = false;
+  bool capped = false;                   // stopped unconverged at the iteration cap (raise it, not cut)
   double seconds = 0.0;                  // wall time of the flatten call
   int filled_directions = 0;
   std::string initialization;            // "lscm" or "tutte"

@@ -196,6 +196,7 @@ FlattenResult Flattener::flatten(const FlattenOptions& options) {
   metrics.iterations = solved.iterations;
   metrics.energy = solved.report.energy;
   metrics.converged = converged;
+  metrics.capped = !converged && solved.iterations >= options.solver.max_iterations;
   metrics.filled_directions = result.targets.filled_directions;
   metrics.initialization = solved.initialization;
   metrics.method = baseline ? "uniform-baseline" : "anisotropic";

@@ -97,6 +97,11 @@ std::string flatten_problem(const FlattenMetrics& metrics) {
              " % on average";
   }
   if (reason.empty()) return "";
+  // The cap alone: the pattern is not finished, which says nothing of the patch.
+  if (metrics.capped && metrics.flipped == 0 && metrics.non_manifold_edges == 0) {
+    return "the flattening stopped at the iteration cap (" + std::to_string(metrics.iterations) +
+           ") before it settled: raise the iterations for the finished pattern";
+  }
   const std::string advice =
       metrics.non_manifold_edges > 0
           ? "select the faces on one side of each such edge (the mesh check names them) and flatten the "

@@ -168,6 +168,9 @@ constexpr double kMaxStretch = 8.0;
 constexpr double kPivotFloor = 1e-14;
 constexpr double kFirstShift = 1e-12;
 constexpr double kShiftGrowth = 100.0;
+// A predicted decrease, relative to the energy, that a step cannot show: the
+// energy's sum over the triangles resolves about 1e-13 of itself.
+constexpr double kRoundOffDecrease = 1e-11;
 constexpr double kMaxShift = 1e-2;
 
 // rho(r) = sqrt(r^2 + d^2) - d, with its derivatives.
@@ -651,8 +654,13 @@ class NewtonStage {
           step = longer;
         }
       }
-      // No step lowers the energy along a descent direction.
-      if (!(candidate_energy < energy)) return StageEnd::Stalled;
+      // No step lowers the energy along a descent direction: at the minimum,
+      // to round-off, when the predicted decrease is below what double
+      // precision resolves in the energy (a tolerance of 0 ends here); else
+      // something (a near-degenerate triangle) blocks the descent.
+      if (!(candidate_energy < energy)) {
+        return -0.5 * slope <= kRoundOffDecrease * energy ? StageEnd::Converged : StageEnd::Stalled;
+      }
       // Majorized steps until the predicted decrease is small (near a
       // minimum, where Newton's own curvature is the right one), and back to
       // them when a Newton step falls short (halved, or stopped by the fold
