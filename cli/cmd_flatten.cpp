@@ -7,9 +7,11 @@
 // unsolvable, or closed, since a closed surface has no boundary to flatten
 // to), then what needs both (a field naming a vertex outside the patch: exit
 // 2), and only then the solve and the output file.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <numeric>
 #include <optional>
 
 #include "anisoform/direction_field.h"
@@ -142,6 +144,28 @@ std::vector<char> selection_mask(const Mesh& mesh, const Region& region) {
   return mask;
 }
 
+// The patch as an OBJ with its pattern as vt, its vertices in the input's
+// order (the patch numbers them as its faces meet them): a whole mesh comes
+// out numbered as it went in, so the JSON's vertex indices (suggested_cuts)
+// name the same vertices in both files; a selection keeps the input's order.
+std::string patch_obj_in_input_order(const FlattenPatch& patch, const Eigen::MatrixX2d& uv) {
+  const int n = static_cast<int>(patch.input_vertex.size());
+  std::vector<int> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return patch.input_vertex[a] < patch.input_vertex[b]; });
+  std::vector<int> rank(n);
+  Mesh mesh;
+  mesh.V.resize(n, 3);
+  Eigen::MatrixX2d sorted_uv(n, 2);
+  for (int k = 0; k < n; ++k) {
+    rank[order[k]] = k;
+    mesh.V.row(k) = patch.mesh.V.row(order[k]);
+    sorted_uv.row(k) = uv.row(order[k]);
+  }
+  mesh.F = patch.mesh.F.unaryExpr([&](int v) { return rank[v]; });
+  return write_obj_with_uv(mesh, sorted_uv);
+}
+
 // A wanted amount: one number, or [min, max] when a field's amounts vary.
 nlohmann::json amount_json(double low, double high) {
   return low == high ? nlohmann::json(low) : nlohmann::json::array({low, high});
@@ -171,6 +195,7 @@ nlohmann::json result_json(const FlattenArguments& args, const FlattenPlan& plan
       {"components", m.components},
       {"boundary_loops", m.boundary_loops},
       {"flipped", m.flipped},
+      {"outline_crossings", m.outline_crossings},
       {"su", amount_json(wanted.su_min, wanted.su_max)},
       {"sv", amount_json(wanted.sv_min, wanted.sv_max)},
       {"amounts", wanted.from_field ? "field" : "compress"},
@@ -216,7 +241,7 @@ int run_flatten(const FlattenArguments& args) {
   pattern_options.note = pattern_note(plan.request, direction);
   switch (plan.format) {
     case PatternFormat::Obj:
-      write_file_atomically(args.output, write_obj_with_uv(flattened.patch.mesh, flattened.result.uv));
+      write_file_atomically(args.output, patch_obj_in_input_order(flattened.patch, flattened.result.uv));
       break;
     case PatternFormat::Svg:
       write_file_atomically(args.output,
@@ -236,9 +261,10 @@ int run_flatten(const FlattenArguments& args) {
 constexpr const char* kFlattenHelp =
     "Flatten an open patch of IN into a garment pattern with the wanted compression built in "
     "(free-boundary anisotropic ARAP, LSCM start) and write OUT: .obj (3D positions, vt = pattern "
-    "coordinates in model units, faces v/vt; the patch only), .svg or .dxf (outlines in mm, "
+    "coordinates in model units, faces v/vt; the patch only, its vertices in the input's order: a whole mesh keeps "
+    "its numbering), .svg or .dxf (outlines in mm, "
     "grainline, scale note). Prints one JSON object: method, triangles, vertices, components, "
-    "boundary_loops, flipped, su, sv (the wanted amounts: --compress's, or those of the field file, "
+    "boundary_loops, flipped, outline_crossings (the pattern's outline crossing itself: it overlaps itself), su, sv (the wanted amounts: --compress's, or those of the field file, "
     "which replace them: [min, max] when they vary), amounts (compress | field), direction, "
     "compression_error_mean, compression_error_max "
     "(|achieved along / su - 1| per triangle: area-weighted mean, max), cross_error_mean, "

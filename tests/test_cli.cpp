@@ -766,3 +766,18 @@ TEST_CASE("cli: a flattening stopped by its iteration cap says to raise it, and 
   CHECK(exact["warnings"].empty());
   CHECK(exact["compression_error_mean"].get<double>() < with({})["compression_error_mean"].get<double>() + 1e-6);
 }
+
+TEST_CASE("cli: a whole mesh flattened to OBJ keeps its vertex numbering, so the JSON's indices name the same vertices", "[cli]") {
+  const std::string in = mesh("open/human_woman_torso_front_patch.obj");
+  const std::string out = temp_path("torso_pattern.obj");
+  const json result = stdout_json(run_expecting({"flatten", in, out, "--compress", "0.8"}, 0));
+  const aniso::Mesh input = aniso::read_mesh(in).mesh;
+  const aniso::Mesh pattern = aniso::read_mesh(out).mesh;
+  REQUIRE(pattern.num_vertices() == input.num_vertices());
+  CHECK((pattern.V - input.V).cwiseAbs().maxCoeff() < 1e-5);  // the OBJ's printed precision
+  CHECK(pattern.F == input.F);
+  for (const auto& cut : result["suggested_cuts"]) {
+    const int v = cut["vertex"].get<int>();
+    CHECK((pattern.V.row(v) - input.V.row(v)).norm() < 1e-5);
+  }
+}

@@ -414,3 +414,36 @@ TEST_CASE("flatten: the fold-free start reweighted by stretch opens up what the 
     CHECK(area2d == Approx(charts.area.sum()).epsilon(1e-9));
   }
 }
+
+TEST_CASE("flatten: a pattern overlapping itself without a fold is told by its outline crossing itself", "[flatten]") {
+  const Mesh plane = aniso::test::load("open/plane.off");  // a square grid in y = 0
+  Flattener flattener(plane, std::vector<char>(plane.num_vertices(), 1));
+  const FlattenPatch& patch = flattener.patch();
+  // The square as it lies: its outline is simple.
+  Eigen::MatrixX2d uv(patch.mesh.num_vertices(), 2);
+  uv.col(0) = patch.mesh.V.col(0);
+  uv.col(1) = patch.mesh.V.col(2);
+  CHECK(count_outline_crossings(patch, uv) == 0);
+  // Its flattening, as flatten() lays it: simple too.
+  FlattenOptions options;
+  options.directions.global = Eigen::Vector3d::UnitX();
+  CHECK(flattener.flatten(options).metrics.outline_crossings == 0);
+  // One boundary corner pulled across the opposite side: its two boundary edges cross that side.
+  const std::vector<int>& loop = patch.boundary_loops.at(0);
+  int corner = loop[0];
+  for (const int v : loop) {
+    if (uv(v, 0) + uv(v, 1) < uv(corner, 0) + uv(corner, 1)) corner = v;
+  }
+  const double far = uv.col(0).maxCoeff() - uv.col(0).minCoeff();
+  uv(corner, 0) += 1.5 * far;
+  uv(corner, 1) += 0.5 * far;
+  CHECK(count_outline_crossings(patch, uv) >= 2);
+  // And the problem says so, and to cut.
+  FlattenMetrics metrics;
+  metrics.converged = true;
+  metrics.outline_crossings = 3;
+  CHECK(flatten_problem(metrics) ==
+        "the patch does not flatten as one piece (it overlaps itself (its outline crosses itself 3 time(s))): cut it "
+        "along a seam or add darts where it curves most (select part of it and flatten the Selection), then flatten "
+        "each piece");
+}

@@ -279,6 +279,8 @@ export interface FlattenMetrics {
   boundaryLoops: number;
   /** Folded-over triangles. */
   flipped: number;
+  /** How many times the pattern's outline crosses itself (it overlaps itself, with no triangle folded): 0 when it lies flat. */
+  outlineCrossings: number;
   /** |achieved along / su - 1|: area-weighted mean and max over the patch. */
   compressionErrorMean: number;
   compressionErrorMax: number;

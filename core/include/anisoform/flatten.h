@@ -145,6 +145,7 @@ struct FlattenMetrics {
   double energy = 0.0;
   bool converged = false;
   bool capped = false;                   // stopped unconverged at the iteration cap (raise it, not cut)
+  int outline_crossings = 0;             // the outline crosses itself: the pattern overlaps itself
   double seconds = 0.0;                  // wall time of the flatten call
   int filled_directions = 0;
   std::string initialization;            // "lscm" or "tutte"

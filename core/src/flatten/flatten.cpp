@@ -192,6 +192,7 @@ FlattenResult Flattener::flatten(const FlattenOptions& options) {
   metrics.components = patch.num_components;
   metrics.boundary_loops = static_cast<int>(patch.boundary_loops.size());
   metrics.flipped = count_folded(F, im.charts, result.uv);
+  metrics.outline_crossings = count_outline_crossings(patch, result.uv);
   metrics.non_manifold_edges = im.non_manifold_edges;
   metrics.iterations = solved.iterations;
   metrics.energy = solved.report.energy;

@@ -82,6 +82,11 @@ std::string flatten_problem(const FlattenMetrics& metrics) {
   // also stops unconverged).
   std::string reason;
   if (metrics.flipped > 0) reason = std::to_string(metrics.flipped) + " triangle(s) folded over";
+  // Overlapping without a fold: no piece of cloth can be cut so either.
+  if (metrics.outline_crossings > 0) {
+    reason += (reason.empty() ? "" : " and ") + std::string("it overlaps itself (its outline crosses itself ") +
+              std::to_string(metrics.outline_crossings) + " time(s))";
+  }
   if (!metrics.converged) {
     reason += (reason.empty() ? "" : " and ") + std::string("the solver did not converge in ") +
               std::to_string(metrics.iterations) + " iterations";

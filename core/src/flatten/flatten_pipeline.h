@@ -234,6 +234,11 @@ double uv_signed_area(const Triangles& F, const Eigen::MatrixX2d& uv, int t);
 // Triangles (non-degenerate in 3D) whose signed area in uv is <= 0.
 int count_folded(const Triangles& F, const TriangleCharts& charts, const Eigen::MatrixX2d& uv);
 
+// How many times the pattern's outline (the boundary loops at uv) crosses
+// itself: 0 for a pattern that lies flat without overlapping itself
+// (flatten_overlap.cpp).
+int count_outline_crossings(const FlattenPatch& patch, const Eigen::MatrixX2d& uv);
+
 // The error part of the metrics (the counts and timings are the caller's).
 void summarize_stretch(const TriangleCharts& charts, const FlattenTargets& targets,
                        const TriangleStretch& stretch, FlattenMetrics& metrics);

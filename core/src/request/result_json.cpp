@@ -76,6 +76,7 @@ Json to_json(const FlattenMetrics& m) {
       {"components", m.components},
       {"boundaryLoops", m.boundary_loops},
       {"flipped", m.flipped},
+      {"outlineCrossings", m.outline_crossings},
       {"compressionErrorMean", m.compression_error_mean},
       {"compressionErrorMax", m.compression_error_max},
       {"crossErrorMean", m.cross_error_mean},
