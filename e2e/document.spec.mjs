@@ -105,7 +105,7 @@ test('an op toggled off is skipped and its amounts re-run the later ops', async 
   expect(bitwise(await positions(), retwisted)).toBe(true);
   await step('undo');
   expect(bitwise(await positions(), afterThree)).toBe(true);
-  await step('undo', false); // the second op's region, selected from the panel
+  // (Opening the second op in the panel showed its region: no step.)
   expect(await undoTitle()).toBe('Undo Turn on Shear (AnDefGrad) (Ctrl+Z)');
   await step('undo');
   expect((await ops())[2]).toMatch(/^false:/);
@@ -124,7 +124,6 @@ test('an op toggled off is skipped and its amounts re-run the later ops', async 
   expect((await ops())[2]).toMatch(/^false:/);
   expect(bitwise(await positions(), afterTwo)).toBe(true);
   await step('redo');
-  await step('redo', false);
   await step('redo');
   expect(await page.evaluate(() => window.anisoform.document().ops[1].op.transform.twist.degreesPerUnit)).toBe(10);
   expect(bitwise(await positions(), retwisted)).toBe(true);
@@ -147,7 +146,7 @@ test('an op toggled off is skipped and its amounts re-run the later ops', async 
   await along.dispatchEvent('change');
   await expect(along).toHaveValue('1.4');
   expect(await page.evaluate(() => window.anisoform.document().ops[0].op.transform.scale[0])).toBe(1.4);
-  expect(await undoTitle()).toBe('Undo Select the region of Stretch (AnARAP) (Ctrl+Z)');
+  expect(await page.getByTestId('redo').getAttribute('title')).toBe('Redo Change the amounts of Twist (AnARAP) (Ctrl+Shift+Z)');
   expect(bitwise(await positions(), retwisted)).toBe(true);
   expect(pageErrors).toEqual([]);
 });
@@ -326,9 +325,10 @@ test('an amount typed in the last edit previews live; leaving the field commits 
   await page.getByTestId(`op-select-${third.id}`).click();
   const amount = page.getByTestId(`op-amount-${third.id}-Shear`);
   await expect(amount).toHaveValue('0.3');
-  // (Selecting the edit selected its region: a step of its own.)
-  await expect(page.getByTestId('undo')).toHaveAttribute('title', 'Undo Select the region of Shear (AnDefGrad) (Ctrl+Z)');
+  // (Opening the edit showed its region, with no step of its own.)
+  await expect(page.getByTestId(`op-region-${third.id}`)).toContainText('shown on the mesh');
   const undoTitle = await page.getByTestId('undo').getAttribute('title');
+  expect(undoTitle).toBe('Undo Shear (AnDefGrad) (Ctrl+Z)');
   await typeInto(amount, '0.6');
   await expect.poll(() => page.evaluate(() => window.__live)).toBeGreaterThan(0);
   expect(await shear()).toBe(0.3);
@@ -371,9 +371,10 @@ test('the Edits list by keyboard: Esc takes a typed amount back, a decimal comma
   const amount = page.getByTestId(`op-amount-${third.id}-Shear`);
   await expect(amount).toHaveValue('0.3');
   expect(await focused()).toBe(`op-select-${third.id}`);
-  // (Opening the op shows its region as the selection: once that is done, the history is still.)
-  await expect(page.getByTestId('undo')).toHaveAttribute('title', 'Undo Select the region of Shear (AnDefGrad) (Ctrl+Z)');
+  // (Opening the op shows its region, with no step of the history.)
+  await expect(page.getByTestId(`op-region-${third.id}`)).toContainText('shown on the mesh');
   const undoTitle = await page.getByTestId('undo').getAttribute('title');
+  expect(undoTitle).toBe('Undo Shear (AnDefGrad) (Ctrl+Z)');
 
   // Typed 0.9 (previewed live), then Esc: the field shows 0.3 and the committed shape is back, bitwise; leaving commits nothing.
   await amount.focus();
@@ -431,15 +432,19 @@ test("an op's region shows on the mesh and the current selection replaces it; th
   const { afterThree, document } = await editSpot(page);
   const [first] = document.ops;
 
-  // Selecting the op selects its region on the mesh: bitwise those weights, though the mesh has moved since.
-  await page.getByTestId(`op-select-${first.id}`).click();
-  await expect(page.getByTestId(`op-region-${first.id}`)).toHaveText(`Region: ${first.region}`);
-  await expect.poll(async () => bitwise(await page.evaluate(() => Array.from(window.anisoform.selection())), firstRegion))
-    .toBe(true);
-
-  // Another selection becomes the op's region; the op and the later ones re-run.
+  // Opening the op shows its region on the mesh (its count, though the mesh has moved since), and leaves
+  // the selection and the history as they were: a selection made before opening it can replace its region.
   const box = { min: [-1, 0, -1], max: [1, 1, 1] };
-  await page.evaluate((region) => window.anisoform.select({ box: region }, { falloff: 0.1 }), box);
+  const selectedBefore = await page.evaluate((region) => window.anisoform.select({ box: region }, { falloff: 0.1 }), box);
+  const undoTitle = await page.getByTestId('undo').getAttribute('title');
+  await page.getByTestId(`op-select-${first.id}`).click();
+  const regionCount = firstRegion.filter((w) => w > 0).length;
+  await expect(page.getByTestId(`op-region-${first.id}`))
+    .toHaveText(`Region: ${first.region} (${regionCount.toLocaleString('en-US')} vertices, shown on the mesh)`);
+  expect(await page.evaluate(() => window.anisoform.selection().filter((w) => w > 0).length)).toBe(selectedBefore);
+  expect(await page.getByTestId('undo').getAttribute('title')).toBe(undoTitle);
+
+  // That selection becomes the op's region; the op and the later ones re-run.
   const rerun = await armChange(page, 'document');
   await page.getByTestId(`op-use-selection-${first.id}`).click();
   await rerun();

@@ -3,9 +3,11 @@
 // moved up or down, selected, and its amounts edited; the later ops re-run
 // (api.setOpEnabled, api.removeOp, api.moveOp, api.setParameter), and each
 // change is a step of the history.
-// Selecting an op selects its region on the mesh (as the op evaluates it, on
-// its input); its soft border can be changed, and the current selection can
-// replace that region.
+// Opening an op shows its region on the mesh (as the op evaluates it, on its
+// input) in the selection's colours, without touching the selection itself:
+// looking is no step of the history, and "Use current selection" takes the
+// selection made before (or after) opening it. Closing the op shows the
+// selection again. Its soft border can be changed too.
 import { h, section } from '../ui/dom.js';
 import { falloffField, opFields } from './op-fields.js';
 
@@ -68,12 +70,17 @@ export function opsPanel({ api, editor }) {
         .catch((error) => editor.report(error, 'The region was not changed')),
     }, "Use current selection as this op's region"));
 
-  // The op's region becomes the selection (one undoable step), so it shows on the mesh.
+  // The op's region drawn as a selection would be (not committed: no history step).
   const showRegion = (entry) => editor.ops.regionWeights(entry.id)
     .then((weights) => {
-      if (selected === entry.id) editor.setSelection(weights, `Select the region of ${entry.label || entry.id}`);
+      if (selected !== entry.id) return;
+      editor.showSelection(weights);
+      const label = list.querySelector(`[data-testid="${CSS.escape(`op-region-${entry.id}`)}"]`);
+      const count = weights.reduce((sum, w) => sum + (w > 0 ? 1 : 0), 0);
+      if (label) label.textContent = `Region: ${entry.region} (${count.toLocaleString('en-US')} vertices, shown on the mesh)`;
     })
     .catch((error) => editor.report(error, 'The region could not be shown'));
+  const showSelectionAgain = () => editor.document && editor.showSelection(editor.document.selection);
 
   const row = (entry, index, ops) => {
     const isSelected = entry.id === selected;
@@ -101,6 +108,7 @@ export function opsPanel({ api, editor }) {
           selected = isSelected ? null : entry.id;
           render();
           if (selected) showRegion(entry);
+          else showSelectionAgain();
         },
       }, entry.label || entry.id),
       h('button', {
@@ -130,7 +138,10 @@ export function opsPanel({ api, editor }) {
   function render() {
     const document = editor.ops.document;
     const ops = document?.ops ?? [];
-    if (!ops.some((entry) => entry.id === selected)) selected = null;
+    if (selected && !ops.some((entry) => entry.id === selected)) {
+      selected = null; // its op is gone (deleted, undone): the selection shows again
+      showSelectionAgain();
+    }
     const focus = focusWithin(list);
     list.replaceChildren(...ops.map(row));
     empty.hidden = ops.length > 0;
