@@ -781,3 +781,22 @@ TEST_CASE("cli: a whole mesh flattened to OBJ keeps its vertex numbering, so the
     CHECK((pattern.V.row(v) - input.V.row(v)).norm() < 1e-5);
   }
 }
+
+TEST_CASE("cli: a selection whose pieces meet at single vertices names them when the conformal start fails", "[cli]") {
+  // Every vertex i of the plane's grid with (7919 i) mod 11 < 7: scattered pieces, many joined at one vertex.
+  std::string lines;
+  for (int i = 0; i < 841; ++i) {
+    if ((7919 * i) % 11 < 7) lines += std::to_string(i) + "\n";
+  }
+  const std::string selection = write_temp_text("bowties.txt", lines);
+  const CliRun run = run_expecting(
+      {"flatten", mesh("open/plane.off"), temp_path("bowties.obj"), "--select", "file:" + selection}, 3);
+  CHECK(contains(run.err, "the conformal start map could not be factored (LSCM): the patch's pieces meet at single "
+                          "vertices ("));
+  CHECK(contains(run.err, "select whole faces around them, or flatten the pieces one at a time"));
+  // The vertices it names are selected ones (the input's numbering).
+  const std::size_t at = run.err.find("vertices ", run.err.find("single vertices (") + 17);
+  REQUIRE(at != std::string::npos);
+  const int named = std::stoi(run.err.substr(at + 9));
+  CHECK((7919 * named) % 11 < 7);
+}

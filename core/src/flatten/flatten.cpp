@@ -96,20 +96,38 @@ Flattener::Flattener(const Mesh& mesh, const std::vector<char>& vertex_mask)
   try {
     lscm_free_boundary(im.patch, im.charts, im.conformal_start);
   } catch (const Error& error) {
-    // Zero-area triangles are what leaves the conformal map's system
-    // singular (a deformation solves through them): say which.
-    if (error.code() != ErrorCode::Numerical || report.degenerate_triangles == 0) throw;
-    std::string faces;
-    int named = 0;
-    for (const Problem& problem : report.problems) {
-      const bool zero_area = problem.kind == ProblemKind::ZeroAreaTriangle || problem.kind == ProblemKind::RepeatedCorner;
-      if (!zero_area || named == 3) continue;
-      faces += (named++ > 0 ? ", " : "") + std::to_string(im.patch.input_face[problem.element]);
+    // What leaves the conformal map's system singular (a deformation solves
+    // through both): zero-area triangles, or pieces joined at a single vertex
+    // (a selection's bowties), which turn about it freely. Say which, by the
+    // input's numbering.
+    if (error.code() != ErrorCode::Numerical) throw;
+    const auto named = [&](auto&& wanted, const std::vector<int>& numbering) {
+      std::string list;
+      int count = 0;
+      for (const Problem& problem : report.problems) {
+        if (!wanted(problem.kind)) continue;
+        if (count < 3) list += (count > 0 ? ", " : "") + std::to_string(numbering[problem.element]);
+        ++count;
+      }
+      return list + (count > 3 ? " ..." : "");
+    };
+    if (report.degenerate_triangles > 0) {
+      const std::string faces = named([](ProblemKind k) {
+        return k == ProblemKind::ZeroAreaTriangle || k == ProblemKind::RepeatedCorner;
+      }, im.patch.input_face);
+      fail(ErrorCode::Numerical, std::string(error.what()) + ": the patch has " +
+                                     std::to_string(report.degenerate_triangles) + " zero-area triangle(s) (faces " +
+                                     faces + "): remove them, or flatten a selection without them");
     }
-    fail(ErrorCode::Numerical, std::string(error.what()) + ": the patch has " +
-                                   std::to_string(report.degenerate_triangles) + " zero-area triangle(s) (faces " +
-                                   faces + (report.degenerate_triangles > 3 ? " ..." : "") +
-                                   "): remove them, or flatten a selection without them");
+    if (report.non_manifold_vertices > 0) {
+      const std::string vertices = named([](ProblemKind k) { return k == ProblemKind::NonManifoldVertex; },
+                                         im.patch.input_vertex);
+      fail(ErrorCode::Numerical, std::string(error.what()) + ": the patch's pieces meet at single vertices (" +
+                                     std::to_string(report.non_manifold_vertices) + ": vertices " + vertices +
+                                     "), about which they turn freely: select whole faces around them, or flatten "
+                                     "the pieces one at a time");
+    }
+    throw;
   }
 }
 
