@@ -140,8 +140,21 @@ test('an op toggled off is skipped and its amounts re-run the later ops', async 
   }));
   await along.fill('-1');
   await along.dispatchEvent('change');
-  expect(await refused).toMatch(/scale/);
+  // In the list's words: the op's label and the field's name, not the document's places.
+  expect(await refused).toBe('The parameter was not applied: Stretch (AnARAP): stretch along (su) must be positive, got -1');
   await expect(along).toHaveValue('1.4');
+  const border = page.getByTestId(`op-falloff-${first.id}`);
+  // (Leaving the amount field fires its own change, refused again: the border's refusal is waited for by its words.)
+  const borderRefused = page.evaluate(() => new Promise((resolve) => {
+    const off = window.anisoform.on('error', ({ message }) => {
+      if (!message.startsWith('The region was not changed')) return;
+      off();
+      resolve(message);
+    });
+  }));
+  await border.fill('-1');
+  await border.dispatchEvent('change');
+  expect(await borderRefused).toBe('The region was not changed: the region of Stretch (AnARAP): soft border (falloff) must be >= 0, got -1');
   await along.fill('');
   await along.dispatchEvent('change');
   await expect(along).toHaveValue('1.4');

@@ -8,7 +8,7 @@
 //   live-preview.js          a slider being dragged (setParameter with {preview: true})
 //   document-persistence.js  open(), the 'document' announcements, autosave
 import { Request } from '../worker/protocol.js';
-import { describeEdit, foldOverWarning } from '../editor/edit-wording.js';
+import { describeEdit, foldOverWarning, inPageWords } from '../editor/edit-wording.js';
 import { EditDocument, regionSteps } from './edit-document.js';
 import { OpRunner } from './op-runner.js';
 import { LivePreview } from './live-preview.js';
@@ -381,9 +381,10 @@ export class OpStack {
       try {
         return await this.#runner.rerunFrom(index);
       } catch (error) {
+        const worded = inPageWords(error, this.document); // while the document names the change
         revert();
         await this.#runner.restore(this.document.ops.length).catch(() => {});
-        throw error;
+        throw worded;
       }
     });
     this.#persistence.changed();

@@ -44,3 +44,29 @@ export function reporter(emit) {
     return wrapped;
   };
 }
+
+/**
+ * A core refusal of a change made in the page (an amount, a soft border, an
+ * op moved or turned on), in the page's words. The core names a document's
+ * parts by their place ("document.ops[0] (id 'op-1').op.transform: scale su
+ * must be positive"), which the page never shows; the Edits list shows the
+ * op's label and its amounts' names ("Stretch (AnARAP): stretch along (su)
+ * must be positive"). Anything else is returned as it is.
+ */
+export function inPageWords(error, document) {
+  if (typeof error?.message !== 'string' || !document) return error;
+  const labelOf = (entry, fallback) => (entry ? entry.label || entry.id : fallback);
+  const message = error.message
+    .replace(/document\.ops\[\d+\] \(id '([^']*)'\)(?:\.op)?(?:\.transform)?(?:\.|: )?/g,
+      (_, id) => `${labelOf(document.ops.find((entry) => entry.id === id), id)}: `)
+    .replace(/document\.regions\[\d+\] \(name '([^']*)'\)(?:\.steps\[(\d+)\])?\.?/g, (_, name, step) => {
+      const owner = document.ops.find((entry) => entry.region === name);
+      const which = step && step !== '0' ? ` (step ${Number(step) + 1})` : '';
+      return `${owner ? `the region of ${labelOf(owner)}` : 'the region'}${which}: `;
+    })
+    .replace(/\bscale su\b/g, 'stretch along (su)')
+    .replace(/\bscale sv\b/g, 'stretch across (sv)')
+    .replace(/\bfalloff\b/g, 'soft border (falloff)');
+  if (message === error.message) return error;
+  return Object.assign(new Error(message), { code: error.code, cause: error });
+}
