@@ -127,6 +127,10 @@ test('an edit the solver refuses is reported once', async ({ page }) => {
   expect(rejection).toContain('failed');
   await expect(page.getByTestId('error')).toBeVisible();
   expect(await page.evaluate(() => window.__errors.map((event) => event.message))).toEqual([rejection]);
+  // In the call's words: the edit it made, not the document's place for it ("document.ops[0] (id 'op-1')").
+  const pinned = await page.evaluate(() =>
+    window.anisoform.deform({ method: 'arap', pins: [999_999], move: [0, 0.1, 0] }).then(() => null, (error) => error.message));
+  expect(pinned).toBe('Move (ARAP) failed: pinned vertex 999999 is out of range (the mesh has 2930 vertices)');
 });
 
 test('Apply is disabled while its edit solves: clicks meanwhile stack no second edit', async ({ page }) => {

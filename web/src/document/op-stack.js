@@ -143,9 +143,10 @@ export class OpStack {
         try {
           return await this.#runner.replay(index, index + 1);
         } catch (error) {
+          const worded = inPageWords(error, this.document, { labelled: false });
           this.document.dropLast(entry);
           this.document.undone = undone;
-          throw error;
+          throw worded;
         }
       });
       this.#runner.cache.dropAfter(index);

@@ -51,14 +51,16 @@ export function reporter(emit) {
  * parts by their place ("document.ops[0] (id 'op-1').op.transform: scale su
  * must be positive"), which the page never shows; the Edits list shows the
  * op's label and its amounts' names ("Stretch (AnARAP): stretch along (su)
- * must be positive"). Anything else is returned as it is.
+ * must be positive"). `labelled: false` leaves the op's label out (a
+ * commit's refusal, whose context names the edit already). Anything else is
+ * returned as it is.
  */
-export function inPageWords(error, document) {
+export function inPageWords(error, document, { labelled = true } = {}) {
   if (typeof error?.message !== 'string' || !document) return error;
   const labelOf = (entry, fallback) => (entry ? entry.label || entry.id : fallback);
   const message = error.message
     .replace(/document\.ops\[\d+\] \(id '([^']*)'\)(?:\.op)?(?:\.transform)?(?:\.|: )?/g,
-      (_, id) => `${labelOf(document.ops.find((entry) => entry.id === id), id)}: `)
+      (_, id) => (labelled ? `${labelOf(document.ops.find((entry) => entry.id === id), id)}: ` : ''))
     .replace(/document\.regions\[\d+\] \(name '([^']*)'\)(?:\.steps\[(\d+)\])?\.?/g, (_, name, step) => {
       const owner = document.ops.find((entry) => entry.region === name);
       const which = step && step !== '0' ? ` (step ${Number(step) + 1})` : '';
