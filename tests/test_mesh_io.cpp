@@ -812,3 +812,26 @@ TEST_CASE("mesh_io: readers never crash or hang on truncated or corrupted bytes"
   CHECK(reads == 7 * 100 + 80);
   CHECK(errors > 0);
 }
+
+TEST_CASE("mesh_io: a COFF's vertex colours are read, and written to OFF (as COFF), PLY and OBJ", "[io]") {
+  // plane.off is a COFF whose vertices are all 192 192 192 255.
+  const aniso::ReadResult read = aniso::read_mesh(aniso::test::mesh_path("open/plane.off"));
+  REQUIRE(read.attributes.vertex_colors.rows() == read.mesh.V.rows());
+  CHECK((read.attributes.vertex_colors.array() - 192.0 / 255.0).abs().maxCoeff() < 1e-12);
+  for (const aniso::MeshFormat format : {aniso::MeshFormat::Off, aniso::MeshFormat::Ply, aniso::MeshFormat::Obj}) {
+    const aniso::SurfaceAttributes attributes =
+        aniso::attributes_for_format(read.attributes, format, static_cast<int>(read.mesh.V.rows()));
+    aniso::WriteOptions options;
+    options.attributes = &attributes;
+    const std::string bytes = aniso::write_mesh_to_memory(read.mesh, format, options);
+    const aniso::ReadResult back = aniso::read_mesh_from_memory(bytes.data(), bytes.size(), format);
+    INFO(aniso::format_name(format));
+    CHECK((aniso::vertex_colors(back.attributes, static_cast<int>(back.mesh.V.rows())) -
+           read.attributes.vertex_colors).cwiseAbs().maxCoeff() < 1e-6);
+    CHECK((back.mesh.V - read.mesh.V).cwiseAbs().maxCoeff() == 0.0);
+  }
+  // A plain OFF stays plain.
+  const aniso::ReadResult plain = aniso::read_mesh(aniso::test::mesh_path("formats/spot_lowres.off"));
+  CHECK(plain.attributes.vertex_colors.rows() == 0);
+  CHECK(aniso::write_mesh_to_memory(plain.mesh, aniso::MeshFormat::Off).rfind("OFF\n", 0) == 0);
+}

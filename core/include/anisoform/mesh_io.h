@@ -101,7 +101,8 @@ struct WriteOptions {
   bool binary = true;  // PLY and STL: binary (little endian) or ASCII
   // Written where the format has them: OBJ the texture (`vt`, `f v/vt`; its
   // faces must match the mesh's) and materials (`mtllib`, `usemtl`), PLY the
-  // vertex properties (after x, y, z; one value per vertex each).
+  // vertex properties (after x, y, z; one value per vertex each); OBJ, PLY and
+  // OFF (as COFF) the vertex colours (attributes_for_format).
   const SurfaceAttributes* attributes = nullptr;
 };
 

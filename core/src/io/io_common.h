@@ -215,7 +215,7 @@ ReadResult read_ply(const char* data, std::size_t size);
 ReadResult read_stl(const char* data, std::size_t size);
 
 std::string write_obj(const Mesh& mesh, const SurfaceAttributes* attributes = nullptr);
-std::string write_off(const Mesh& mesh);
+std::string write_off(const Mesh& mesh, const SurfaceAttributes* attributes = nullptr);
 std::string write_ply(const Mesh& mesh, bool binary, const VertexProperties* properties = nullptr);
 std::string write_stl(const Mesh& mesh, bool binary);
 

@@ -1,7 +1,9 @@
 // Object File Format (OFF, ASCII): reading the OFF/COFF/NOFF/STOFF family
-// (per-vertex colours, normals and texture coordinates are skipped, as are
-// face colours) and writing plain OFF.
+// (a COFF's per-vertex colours are kept, as an OBJ's are; normals, texture
+// coordinates and face colours are skipped) and writing OFF, or COFF when
+// the mesh has vertex colours.
 #include <algorithm>
+#include <cmath>
 
 #include "anisoform/mesh_io.h"
 #include "io/io_common.h"
@@ -60,6 +62,36 @@ long long parse_count(std::string_view token, const char* what, int line) {
   return count;
 }
 
+// The colour after a COFF vertex's coordinates (and normal): three or four
+// numbers; anything else (a colour-map index, none) leaves the mesh without
+// colours, as one OBJ vertex without them does.
+void read_vertex_color(std::string_view line, bool has_normals, PolygonMesh& polygons) {
+  if (has_normals) {
+    for (int k = 0; k < 3; ++k) next_token(line);
+  }
+  double rgb[3];
+  for (double& value : rgb) {
+    const std::string_view token = next_token(line);
+    if (!polygons.all_colored || token.empty() || parse_coordinate(token, value) || !(value >= 0.0)) {
+      polygons.all_colored = false;
+      polygons.colors.clear();
+      return;
+    }
+  }
+  polygons.colors.insert(polygons.colors.end(), rgb, rgb + 3);
+}
+
+// COFF colours are integers to 255 or fractions to 1 (the spec's): any value
+// above 1 says the file counts to 255.
+void finish_colors(PolygonMesh& polygons) {
+  if (!polygons.all_colored || polygons.colors.empty()) {
+    polygons.colors.clear();
+    return;
+  }
+  if (*std::max_element(polygons.colors.begin(), polygons.colors.end()) <= 1.0) return;
+  for (double& value : polygons.colors) value = std::min(value / 255.0, 1.0);
+}
+
 }  // namespace
 
 ReadResult read_off(const char* data, std::size_t size) {
@@ -72,7 +104,11 @@ ReadResult read_off(const char* data, std::size_t size) {
 
   if (!lines.next(line)) fail_file("the file has no OFF header (only blank lines and comments)");
   std::string_view rest = line;
-  check_header_keyword(next_token(rest), rest);
+  const std::string_view keyword = next_token(rest);
+  check_header_keyword(keyword, rest);
+  // A vertex line: x y z, then [nx ny nz] (N), then [r g b [a]] (C), then [s t] (ST).
+  const bool has_normals = keyword.find('N') != std::string_view::npos;
+  const bool has_colors = keyword.find('C') != std::string_view::npos;
   // The counts may follow the keyword on the same line ("OFF 8 6 0").
   {
     std::string_view probe = rest;
@@ -107,8 +143,10 @@ ReadResult read_off(const char* data, std::size_t size) {
         fail_file(number_problem(token, problem) + at_line(lines.line_number()));
       }
     }
+    if (has_colors) read_vertex_color(line, has_normals, polygons);
     polygons.add_vertex(xyz[0], xyz[1], xyz[2]);
   }
+  finish_colors(polygons);
 
   for (long long f = 0; f < num_faces; ++f) {
     if (!lines.next(line)) fail_file(truncated_message(f, num_faces, "faces"));
@@ -142,7 +180,37 @@ ReadResult read_off(const char* data, std::size_t size) {
   return assemble_mesh(polygons, std::move(report));
 }
 
-std::string write_off(const Mesh& mesh) {
+namespace {
+
+// COFF: each vertex's colour after its position, as integers to 255 (what
+// most readers of COFF expect), alpha full.
+std::string write_coff(const Mesh& mesh, const Eigen::MatrixX3d& colors) {
+  std::string out = "COFF\n";
+  append_number(out, static_cast<long long>(mesh.V.rows()));
+  out += ' ';
+  append_number(out, static_cast<long long>(mesh.F.rows()));
+  out += " 0\n";
+  for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      append_number(out, mesh.V(i, k));
+      out += ' ';
+    }
+    for (int k = 0; k < 3; ++k) {
+      append_number(out, static_cast<long long>(std::lround(std::clamp(colors(i, k), 0.0, 1.0) * 255.0)));
+      out += ' ';
+    }
+    out += "255\n";
+  }
+  append_triangle_rows(out, mesh.F, "3", 0);
+  return out;
+}
+
+}  // namespace
+
+std::string write_off(const Mesh& mesh, const SurfaceAttributes* attributes) {
+  const Eigen::MatrixX3d colors =
+      attributes ? vertex_colors(*attributes, static_cast<int>(mesh.V.rows())) : Eigen::MatrixX3d();
+  if (colors.rows() > 0) return write_coff(mesh, colors);
   std::string out = "OFF\n";
   out.reserve(static_cast<std::size_t>(mesh.V.rows()) * 40 + static_cast<std::size_t>(mesh.F.rows()) * 24);
   append_number(out, static_cast<long long>(mesh.V.rows()));

@@ -92,7 +92,7 @@ std::string write_mesh_to_memory(const Mesh& mesh, MeshFormat format, const Writ
                          : SurfaceAttributes{};
   switch (format) {
     case MeshFormat::Obj: return io::write_obj(mesh, &attributes);
-    case MeshFormat::Off: return io::write_off(mesh);
+    case MeshFormat::Off: return io::write_off(mesh, &attributes);
     case MeshFormat::Ply: return io::write_ply(mesh, options.binary, &attributes.vertex_properties);
     case MeshFormat::Stl: return io::write_stl(mesh, options.binary);
   }
