@@ -257,3 +257,39 @@ TEST_CASE("pattern: a piece of a few millimetres keeps its note whole and 4 mm h
   CHECK(width_mm >= 2.4 * static_cast<double>(options.note.size()) + 20.0);
   CHECK(width_mm < 2.4 * static_cast<double>(options.note.size()) + 20.1);
 }
+
+TEST_CASE("pattern: a DXF's extents hold every entity, the note below the pattern too", "[pattern]") {
+  const Mesh torso = test::load("open/human_woman_torso_front_patch.obj");
+  const FlattenOutput out = flattened(torso);
+  PatternExportOptions options;
+  options.mm_per_unit = 1000.0;
+  options.note = "anisotropic, su 0.8 sv 1, direction global:0,1,0; grainline = mean compression direction";
+  const std::string dxf = write_pattern_dxf(make_pattern(out.patch, out.result), options);
+  // The file as (group code, value) pairs.
+  std::vector<std::pair<int, std::string>> pairs;
+  std::istringstream in(dxf);
+  for (std::string code, value; std::getline(in, code) && std::getline(in, value);) pairs.emplace_back(std::stoi(code), value);
+  const auto header_point = [&](const std::string& name) {
+    for (std::size_t i = 0; i + 2 < pairs.size(); ++i) {
+      if (pairs[i].first == 9 && pairs[i].second == name) {
+        return Eigen::Vector2d(std::stod(pairs[i + 1].second), std::stod(pairs[i + 2].second));
+      }
+    }
+    FAIL("no " << name);
+    return Eigen::Vector2d();
+  };
+  const Eigen::Vector2d low = header_point("$EXTMIN"), high = header_point("$EXTMAX");
+  int points = 0;
+  for (std::size_t i = 0; i + 1 < pairs.size(); ++i) {
+    if (pairs[i].first != 10 && pairs[i].first != 11) continue;
+    if (i > 0 && pairs[i - 1].first == 9) continue;  // the header's own
+    const Eigen::Vector2d p(std::stod(pairs[i].second), std::stod(pairs[i + 1].second));
+    if (p.isZero() && pairs[i - 1].first == 66) continue;  // a POLYLINE's dummy point
+    ++points;
+    CHECK((p.array() >= low.array() - 1e-9).all());
+    CHECK((p.array() <= high.array() + 1e-9).all());
+  }
+  CHECK(points > 50);  // the outline (about 90 points), the grainline, the note
+  // The note's baseline is inside, below the pattern.
+  CHECK(low.y() < 0.0);
+}

@@ -109,6 +109,8 @@ std::string scale_note(const PatternExportOptions& options) {
 // sheet wide enough for the longest line (0.6 em per character bounds the
 // width of a sans-serif ASCII line).
 constexpr double kNoteFontMm = 4.0;
+// The DXF note's baseline below the pattern's lowest point.
+constexpr double kNoteGapMm = 10.0;
 constexpr double kNoteLineMm = 5.0;
 double note_width_mm(const std::string& line) { return 0.6 * kNoteFontMm * static_cast<double>(line.size()); }
 
@@ -240,10 +242,15 @@ std::string write_pattern_dxf(const Pattern& pattern, const PatternExportOptions
   group(1, "AC1009");
   group(9, "$INSUNITS");
   group(70, "4");
+  // The extents hold the note too: its baseline kNoteGapMm below the
+  // pattern, its width at most a type height per character.
+  const std::string note = scale_note(options);
+  const Eigen::Vector2d note_at(box.min.x(), box.min.y() - kNoteGapMm);
   group(9, "$EXTMIN");
-  point(10, box.min);
+  point(10, Eigen::Vector2d(box.min.x(), note_at.y()));
   group(9, "$EXTMAX");
-  point(10, box.max);
+  point(10, Eigen::Vector2d(std::max(box.max.x(), note_at.x() + kNoteFontMm * static_cast<double>(note.size())),
+                            box.max.y()));
   group(0, "ENDSEC");
 
   group(0, "SECTION");
@@ -271,9 +278,9 @@ std::string write_pattern_dxf(const Pattern& pattern, const PatternExportOptions
   }
   group(0, "TEXT");
   group(8, "NOTE");
-  point(10, Eigen::Vector2d(box.min.x(), box.min.y() - 10.0));
+  point(10, note_at);
   group(40, number(kNoteFontMm));
-  group(1, scale_note(options));
+  group(1, note);
   group(0, "ENDSEC");
   group(0, "EOF");
   return dxf.str();
