@@ -10,15 +10,23 @@ const EVENTS = ['change', 'error', 'progress', 'positions', 'document'];
 
 // The events whose payload is the page's own state (the positions shown, the
 // edit document): a listener gets a copy, as positions() and document()
-// give, so that changing it changes nothing of the modeller's.
+// give, so that changing it changes nothing of the modeller's. The arrays
+// are copied when first read: a listener that only counts frames (live)
+// costs a preview frame no copy of its positions.
 const PAYLOAD_COPIES = {
-  positions: ({ positions, live, distortion }) => ({
-    positions: positions.slice(),
-    live,
-    ...(distortion ? { distortion: distortion.slice() } : {}),
-  }),
+  positions: ({ positions, live, distortion }) => {
+    const event = { live };
+    copiedOnRead(event, 'positions', positions);
+    if (distortion) copiedOnRead(event, 'distortion', distortion);
+    return event;
+  },
   document: (document) => document?.toJSON() ?? null,
 };
+
+function copiedOnRead(target, key, array) {
+  let copy = null;
+  Object.defineProperty(target, key, { enumerable: true, get: () => (copy ??= array.slice()) });
+}
 
 export function createAnisoformApi({ editor, viewer, picker, ready }) {
   const document = () => {
