@@ -5,19 +5,23 @@
 // shortcut overlay: focus moves into it and stays there until it closes.
 import { h } from './dom.js';
 
+// Ids of each modeller's dialog (a page may hold several modellers).
+let made = 0;
+
 export function replaceDialog(root) {
-  const text = h('p', { id: 'replace-dialog-text' });
+  const id = `anisoform-replace-${++made}`;
+  const text = h('p', { id: `${id}-text` });
   const choice = (value, label, className = 'button') =>
     h('button', { className, type: 'submit', value, 'data-testid': `replace-${value}` }, label);
   const cancel = choice('cancel', 'Keep working');
   const dialog = h('dialog', {
     className: 'modal-dialog replace-dialog',
     'data-testid': 'replace-dialog',
-    'aria-labelledby': 'replace-dialog-title',
-    'aria-describedby': 'replace-dialog-text',
+    'aria-labelledby': `${id}-title`,
+    'aria-describedby': `${id}-text`,
   },
   h('form', { method: 'dialog' },
-    h('h2', { id: 'replace-dialog-title' }, 'Replace the edits?'),
+    h('h2', { id: `${id}-title` }, 'Replace the edits?'),
     text,
     h('div', { className: 'row' }, choice('save', 'Save edits, then open', 'button button-primary'), choice('open', 'Open without saving'), cancel)));
   root.append(dialog);
