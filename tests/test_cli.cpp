@@ -800,3 +800,15 @@ TEST_CASE("cli: a selection whose pieces meet at single vertices names them when
   const int named = std::stoi(run.err.substr(at + 9));
   CHECK((7919 * named) % 11 < 7);
 }
+
+TEST_CASE("cli: a vertex both pinned and a handle is refused by name", "[cli]") {
+  const std::string op = write_temp_text("pinned_handle.json",
+                                         R"({"method":"arap","pins":[2,1],"handles":[1],"move":[0,0.1,0]})");
+  const CliRun run = run_expecting({"deform", mesh("formats/spot_lowres.obj"), temp_path("pinned_handle.obj"), "--op", op}, 2);
+  CHECK(contains(run.err, "vertex 1 is both pinned and a handle"));
+  // Apart, the handle moves and the pin stays.
+  const std::string apart = write_temp_text("apart.json", R"({"method":"arap","pins":[2],"handles":[1],"move":[0,0.1,0]})");
+  const json moved = stdout_json(run_expecting(
+      {"deform", mesh("formats/spot_lowres.obj"), temp_path("apart.obj"), "--op", apart}, 0));
+  CHECK(moved["max_displacement"].get<double>() > 0.09);
+}

@@ -128,6 +128,19 @@ void validate_request(const DeformRequest& request, int n) {
   if (!request.handles.empty() && request.method != Method::Arap) {
     fail(ErrorCode::BadParameter, "handles are only used by the arap method");
   }
+  // A handle moves by the offset and a pin stays at rest: one vertex cannot
+  // do both (the pin won, silently).
+  if (!request.handles.empty() && !request.pins.empty()) {
+    std::vector<char> pinned(n, 0);
+    for (const int p : request.pins) pinned[p] = 1;
+    for (const int h : request.handles) {
+      if (pinned[h]) {
+        fail(ErrorCode::BadParameter, "vertex " + std::to_string(h) +
+                                          " is both pinned and a handle: a handle moves by the offset, a pin stays "
+                                          "where it is; give it as one or the other");
+      }
+    }
+  }
   if (!request.handle_offset.allFinite()) fail(ErrorCode::BadParameter, "the handle offset must be finite");
   check_iteration_count(request.max_iterations, "iterations");
   check_iteration_count(request.rotation_steps, "rotation steps");
