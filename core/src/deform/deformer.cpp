@@ -25,6 +25,7 @@
 #include "geometry/laplacian_solver.h"
 #include "geometry/supernodal_ldlt.h"
 #include "anisoform/mesh_check.h"
+#include "anisoform/op.h"
 #include "mesh/topology.h"
 
 namespace aniso {
@@ -422,9 +423,7 @@ double Deformer::prepare_step() {
       workspace_->inversions.build_adjacency(rest_);
       DirectionSource along_longest;
       along_longest.kind = DirectionSource::Kind::Global;
-      Eigen::Index axis = 0;
-      (rest_.V.colwise().maxCoeff() - rest_.V.colwise().minCoeff()).maxCoeff(&axis);
-      along_longest.vector = Eigen::Vector3d::Unit(axis);
+      along_longest.vector = longest_axis(bounding_box(rest_.V));
       const SideFrames frames = side_frames(workspace_->targets, along_longest);
       iterations->warm_up(*solvers_.at(pins), frames.frames.u, frames.frames.v);
     } catch (const std::bad_alloc&) {
