@@ -194,7 +194,7 @@ std::vector<int> region_vertices(const Mesh& mesh, const Region& region,
 }
 
 std::string read_text_file(const std::string& path, const std::string& option) {
-  return naming_option(option, [&] { return read_regular_file(path, ErrorCode::BadParameter); });
+  return naming_option(option, [&] { return read_regular_file(path, ErrorCode::BadFile); });
 }
 
 std::vector<DirectionConstraint> read_direction_field(const std::string& path) {

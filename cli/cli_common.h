@@ -76,15 +76,15 @@ struct Prefixed {
 Prefixed split_prefixed(const std::string& text, const std::string& option,
                         const std::string& expected_form);
 
-// Runs `parse` and puts "OPTION: " before the message of a BadParameter
-// error it throws: the core's parsers cannot know which option the text came
+// Runs `parse` and puts "OPTION: " before the message of a BadParameter or
+// BadFile (a file the option names that cannot be read) error it throws: the core's parsers cannot know which option the text came
 // from, and --select, --pin and --handle take the same forms.
 template <typename Parse>
 auto naming_option(const std::string& option, Parse&& parse) -> decltype(parse()) {
   try {
     return parse();
   } catch (const Error& e) {
-    if (e.code() != ErrorCode::BadParameter) throw;
+    if (e.code() != ErrorCode::BadParameter && e.code() != ErrorCode::BadFile) throw;
     throw Error(e.code(), option + ": " + e.what());
   }
 }

@@ -158,7 +158,7 @@ TEST_CASE("cli robustness: a header promising more than the file holds names the
   CHECK(contains(run.err, "bytes follow it"));
 }
 
-TEST_CASE("cli robustness: empty, hexadecimal and directory values are refused naming the option",
+TEST_CASE("cli robustness: empty, hexadecimal values and unreadable files are refused naming the option",
           "[cli][robustness]") {
   CliScratch dir("values");
   const std::string in = mesh_path("formats/spot_lowres.obj");
@@ -175,19 +175,10 @@ TEST_CASE("cli robustness: empty, hexadecimal and directory values are refused n
       {{"deform", in, out, "--iterations", "0x10"}, "--iterations: '0x10' is not an integer"},
       {{"deform", in, out, "--direction", "field:" + hex_field},
        "--direction: " + hex_field + " line 2: DX: '0x1p0' is a hexadecimal number"},
-      {{"deform", in, out, "--select", "file:" + dir.file("selection")},
-       "--select: " + dir.file("selection") + " is a directory, not a regular file"},
       {{"deform", in, out, "--select", "sphere:0,0,0,0x1p0"}, "sphere number 4: '0x1p0' is a hexadecimal number"},
       // Files named by options are named once, by deform and flatten alike.
       {{"flatten", in, dir.file("p.svg"), "--direction", "field:" + hex_field},
        "flatten: error: --direction: " + hex_field + " line 2: DX: '0x1p0' is a hexadecimal number"},
-      {{"deform", in, out, "--direction", "field:" + dir.file("none.txt")},
-       "deform: error: --direction: cannot open " + dir.file("none.txt")},
-      {{"flatten", in, dir.file("p.svg"), "--direction", "field:" + dir.file("none.txt")},
-       "flatten: error: --direction: cannot open " + dir.file("none.txt")},
-      {{"replay", dir.file("none.json"), out}, "replay: error: DOC: cannot open " + dir.file("none.json")},
-      {{"flatten", in, dir.file("p.svg"), "--select", "file:" + dir.file("none.txt")},
-       "flatten: error: --select: cannot open " + dir.file("none.txt")},
       // Amounts out of the core's range name their option too.
       {{"flatten", in, dir.file("p.svg"), "--compress", "0"}, "flatten: error: --compress: su must be positive, got 0"},
       {{"deform", in, out, "--scale", "1,0"}, "deform: error: --scale: scale sv must be positive, got 0"},
@@ -198,6 +189,27 @@ TEST_CASE("cli robustness: empty, hexadecimal and directory values are refused n
   };
   for (const auto& [args, message] : cases) {
     const CliRun run = run_expecting(args, 2);
+    INFO(describe(args, run));
+    CHECK(contains(run.err, message));
+    CHECK(run.out.empty());
+  }
+  // A file an option names that cannot be read is a bad input file (exit 3),
+  // as a missing mesh is; still named by its option.
+  const std::vector<std::pair<std::vector<std::string>, std::string>> unreadable{
+      {{"deform", in, out, "--select", "file:" + dir.file("selection")},
+       "deform: error: --select: " + dir.file("selection") + " is a directory, not a regular file"},
+      {{"deform", in, out, "--direction", "field:" + dir.file("none.txt")},
+       "deform: error: --direction: cannot open " + dir.file("none.txt")},
+      {{"flatten", in, dir.file("p.svg"), "--direction", "field:" + dir.file("none.txt")},
+       "flatten: error: --direction: cannot open " + dir.file("none.txt")},
+      {{"replay", dir.file("none.json"), out}, "replay: error: DOC: cannot open " + dir.file("none.json")},
+      {{"flatten", in, dir.file("p.svg"), "--select", "file:" + dir.file("none.txt")},
+       "flatten: error: --select: cannot open " + dir.file("none.txt")},
+      {{"deform", in, out, "--op", dir.file("none.json")},
+       "deform: error: --op: cannot open " + dir.file("none.json")},
+  };
+  for (const auto& [args, message] : unreadable) {
+    const CliRun run = run_expecting(args, 3);
     INFO(describe(args, run));
     CHECK(contains(run.err, message));
     CHECK(run.out.empty());

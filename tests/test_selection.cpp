@@ -78,7 +78,8 @@ TEST_CASE("selection: parse_region errors name the problem", "[selection]") {
              Catch::Contains("box needs 6 numbers, got 7"));
   CHECK_THAT(bad_parameter_message([] { aniso::parse_region("cube:1"); }),
              Catch::Contains("unknown region 'cube:1'"));
-  CHECK_THAT(bad_parameter_message([] { aniso::parse_region("file:/nonexistent/sel.txt"); }),
+  CHECK_THAT(aniso::test::error_message_of([] { aniso::parse_region("file:/nonexistent/sel.txt"); },
+                                           aniso::ErrorCode::BadFile),
              Catch::Contains("cannot open /nonexistent/sel.txt: no such file"));
 
   const std::string bad_index = write_temp_text("selection_bad_index.txt", "1\n2\n-3\n");
@@ -95,7 +96,9 @@ TEST_CASE("selection: parse_region errors name the problem", "[selection]") {
              Catch::Contains("line 2: weight: '0x1p-1' is a hexadecimal number"));
   CHECK_THAT(bad_parameter_message([] { aniso::parse_region("sphere:0,0,0,0x1p0"); }),
              Catch::Contains("sphere number 4: '0x1p0' is a hexadecimal number"));
-  CHECK_THAT(bad_parameter_message([] { aniso::parse_region(std::string("file:") + aniso::test::kScratchDir); }),
+  CHECK_THAT(aniso::test::error_message_of(
+                 [] { aniso::parse_region(std::string("file:") + aniso::test::kScratchDir); },
+                 aniso::ErrorCode::BadFile),
              Catch::Contains(std::string(aniso::test::kScratchDir) + " is a directory, not a regular file"));
   const std::string empty = write_temp_text("selection_empty.txt", "# nothing\n\n");
   CHECK_THAT(bad_parameter_message([&] { aniso::parse_region("file:" + empty); }),

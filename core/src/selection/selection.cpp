@@ -50,7 +50,7 @@ std::vector<double> parse_number_list(const std::string& list, std::size_t expec
 }
 
 Region parse_vertex_file(const std::string& path) {
-  const std::string contents = read_regular_file(path, ErrorCode::BadParameter);
+  const std::string contents = read_regular_file(path, ErrorCode::BadFile);
 
   Region region;
   region.kind = Region::Kind::Vertices;
