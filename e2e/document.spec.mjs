@@ -535,6 +535,41 @@ test('the work is autosaved and restored bitwise after a reload; reset clears it
   expect(pageErrors).toEqual([]);
 });
 
+test('after a reload, undo first turns back on an op that was off, then takes the ops away', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const { afterTwo, afterThree, document } = await editSpot(page);
+  const second = document.ops[1];
+  await page.evaluate((id) => window.anisoform.setOpEnabled(id, false), second.id);
+  await expect.poll(() => page.evaluate(() => new Promise((resolve) => {
+    const request = indexedDB.open('anisoform', 1);
+    request.onsuccess = () => {
+      const get = request.result.transaction('autosave').objectStore('autosave').get('current');
+      get.onsuccess = () => resolve(get.result?.document.ops[1].enabled);
+    };
+  }))).toBe(false);
+
+  await page.reload();
+  await page.evaluate(() => window.anisoform.ready);
+  const undo = page.getByTestId('undo');
+  await expect(undo).toHaveAttribute('title', `Undo Turn off ${second.label} (Ctrl+Z)`);
+  await undo.click();
+  await expect.poll(() => page.evaluate(() => window.anisoform.document().ops.map((op) => op.enabled)))
+    .toEqual([true, true, true]);
+  await expect.poll(async () => bitwise(await page.evaluate(() => Array.from(window.anisoform.positions())), afterThree))
+    .toBe(true);
+  await expect(undo).toHaveAttribute('title', `Undo ${document.ops[2].label} (Ctrl+Z)`);
+  await undo.click();
+  await expect.poll(async () => bitwise(await page.evaluate(() => Array.from(window.anisoform.positions())), afterTwo))
+    .toBe(true);
+  // Redo turns it off again, as the session that made it had.
+  const redo = page.getByTestId('redo');
+  await redo.click();
+  await redo.click();
+  await expect.poll(() => page.evaluate(() => window.anisoform.document().ops.map((op) => op.enabled)))
+    .toEqual([true, false, true]);
+  expect(pageErrors).toEqual([]);
+});
+
 test('a full storage quota is reported and the work in the page is kept', async ({ page }) => {
   const pageErrors = await openApp(page);
   const outcome = await page.evaluate(async () => {

@@ -11,7 +11,7 @@ export class DocumentPersistence {
   #runner;
   #run;
   #stack;
-  #historyEntry;
+  #rebuildHistory;
   #autosave = new Autosave();
   /** The base mesh as loaded: {name, bytes: a Blob of the file}. */
   mesh = null;
@@ -20,15 +20,15 @@ export class DocumentPersistence {
 
   /**
    * stack: the OpStack (its `document` is read and replaced here); runner:
-   * its OpRunner; run(work): its one-at-a-time runner; historyEntry(label):
-   * the undo entry of an op.
+   * its OpRunner; run(work): its one-at-a-time runner; rebuildHistory():
+   * makes the history of the document just adopted.
    */
-  constructor({ editor, stack, runner, run, historyEntry }) {
+  constructor({ editor, stack, runner, run, rebuildHistory }) {
     this.#editor = editor;
     this.#stack = stack;
     this.#runner = runner;
     this.#run = run;
-    this.#historyEntry = historyEntry;
+    this.#rebuildHistory = rebuildHistory;
   }
 
   /**
@@ -93,9 +93,7 @@ export class DocumentPersistence {
     cache.set(0, state0);
     states.forEach((state, k) => cache.set(k + 1, state));
     this.#runner.show(document.ops.length, result);
-    const history = this.#editor.history;
-    history.clear();
-    for (const entry of document.ops) history.push(this.#historyEntry(entry.label));
+    this.#rebuildHistory();
     this.changed();
   }
 

@@ -60,7 +60,7 @@ export class OpStack {
     this.#runner = new OpRunner({ editor, client, document, dropPattern });
     this.#live = new LivePreview({ editor, client, runner: this.#runner, run, document });
     this.#persistence = new DocumentPersistence({ editor, stack: this, runner: this.#runner, run,
-      historyEntry: (label) => this.#historyEntry(label) });
+      rebuildHistory: () => this.#rebuildHistory() });
   }
 
   /** Whether a slider's live preview holds the worker's state (live-preview.js). */
@@ -168,6 +168,21 @@ export class OpStack {
       undo: () => this.#step(() => this.document.undoLast(), 'Undo failed'),
       redo: () => this.#step(() => this.document.redoNext(), 'Redo failed'),
     };
+  }
+
+  // The history of an opened document (saved edits, or the autosave after a
+  // reload): each op committed in turn, then each op that is off turned off,
+  // so that undo first turns those back on, then takes the ops away, as the
+  // session that made them would have.
+  #rebuildHistory() {
+    const history = this.#editor.history;
+    history.clear();
+    for (const entry of this.document.ops) history.push(this.#historyEntry(entry.label));
+    for (const { id, label, enabled } of this.document.ops) {
+      if (enabled) continue;
+      this.#pushStep(`Turn off ${label || id}`, () => this.#setOpField(id, 'enabled', true),
+        () => this.#setOpField(id, 'enabled', false));
+    }
   }
 
   // Undo, redo and reset run while nothing else does (editor.undo() refuses
