@@ -72,6 +72,9 @@ for (const width of [390, 320]) {
     const pageErrors = await openApp(page);
     const fresh = await expectTidy(page, 'fresh page');
     expect(fresh.view).toBeGreaterThan(0.35 * HEIGHT);
+    // The status bar keeps its height as its texts change (the view above it too).
+    const statusHeight = () => page.locator('.status-bar').evaluate((bar) => bar.getBoundingClientRect().height);
+    const freshStatus = await statusHeight();
 
     // Cut off by its iteration cap: the status line's longest text.
     await page.evaluate(() => window.anisoform.deform({
@@ -79,7 +82,9 @@ for (const width of [390, 320]) {
     }));
     await expect(page.getByTestId('status-solve')).toContainText(/^solve \d.* · cap reached$/);
     await expect(page.getByTestId('status-fps')).not.toBeEmpty();
-    await expectTidy(page, 'after a solve');
+    const solved = await expectTidy(page, 'after a solve');
+    expect(await statusHeight()).toBe(freshStatus);
+    expect(solved.view).toBe(fresh.view);
     for (const tool of ['select', 'stretch', 'thicken', 'shear', 'rotate', 'twist', 'arrows']) {
       await page.getByTestId(`tool-${tool}`).tap();
       await expectTidy(page, `${tool} options`);

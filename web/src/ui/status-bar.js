@@ -6,9 +6,9 @@ import { openSurface } from '../editor/problem-summary.js';
 import { h } from './dom.js';
 
 export function statusBar(container, { editor, viewer, lifetime }) {
-  const mesh = h('span', { className: 'status-item', 'data-testid': 'status-mesh' });
-  const solve = h('span', { className: 'status-item', 'data-testid': 'status-solve' }, 'solve —');
-  const fps = h('span', { className: 'status-item', 'data-testid': 'status-fps' });
+  const mesh = h('span', { className: 'status-item status-mesh', 'data-testid': 'status-mesh' });
+  const solve = h('span', { className: 'status-item status-solve', 'data-testid': 'status-solve' }, 'solve —');
+  const fps = h('span', { className: 'status-item status-fps', 'data-testid': 'status-fps' });
   const bar = h('span', { className: 'progress-bar' }, h('span', { className: 'progress-fill' }));
   const progressText = h('span', { className: 'progress-text' });
   // Stops a committed solve (Esc does too): the state before it stays.
