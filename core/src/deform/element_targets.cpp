@@ -5,6 +5,8 @@
 #include <optional>
 #include <utility>
 
+#include <Eigen/Eigenvalues>
+
 #include "directions/curvature.h"
 #include "anisoform/direction_field.h"
 #include "anisoform/error.h"
@@ -176,8 +178,32 @@ ElementTargets vertex_targets(TargetContext& context, const DirectionSource& sou
 
 namespace {
 
+// The line-field mean of triangle t's corner directions: the principal axis
+// of the sum of d d^T, which neither a corner's sign nor the corner a face
+// lists first changes. (Signs aligned to the first corner, then summed, gave
+// an edit that moved by 1 % of the diagonal when the file listed each face
+// from its next corner.) Its sign is the lowest-numbered corner's; zero when
+// no corner has a direction.
+Eigen::Vector3d corner_line_mean(const Mesh& mesh, const Positions& vdir, int t) {
+  Eigen::Matrix3d tensor = Eigen::Matrix3d::Zero();
+  int lowest = -1;
+  for (int k = 0; k < 3; ++k) {
+    const int corner = mesh.F(t, k);
+    const Eigen::Vector3d d = vdir.row(corner).transpose();
+    if (d.squaredNorm() == 0.0) continue;
+    tensor += d * d.transpose();
+    if (lowest < 0 || corner < lowest) lowest = corner;
+  }
+  if (lowest < 0) return Eigen::Vector3d::Zero();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
+  eigen.computeDirect(tensor, Eigen::ComputeEigenvectors);
+  Eigen::Vector3d axis = eigen.eigenvectors().col(2);  // eigenvalues ascend
+  if (axis.dot(vdir.row(lowest).transpose()) < 0.0) axis = -axis;
+  return axis;
+}
+
 // Per-triangle frames (METHOD §3): triangle normals, directions averaged from
-// the triangle's vertices as a line field (signs aligned), degenerate ones
+// the triangle's vertices as a line field (corner_line_mean), degenerate ones
 // filled from the neighbouring triangles.
 Frames triangle_frames(TargetContext& context, const DirectionSource& source, const Positions& vdir) {
   const Mesh& mesh = context.rest();
@@ -190,15 +216,7 @@ Frames triangle_frames(TargetContext& context, const DirectionSource& source, co
       directions.row(t) = vdir.row(mesh.F(t, 0));
       continue;
     }
-    // Line-field mean: align the corners' signs to the first non-zero one.
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    Eigen::Vector3d ref = Eigen::Vector3d::Zero();
-    for (int k = 0; k < 3; ++k) {
-      Eigen::Vector3d d = vdir.row(mesh.F(t, k)).transpose();
-      if (ref.squaredNorm() == 0.0) ref = d;
-      sum += d.dot(ref) < 0.0 ? Eigen::Vector3d(-d) : d;
-    }
-    directions.row(t) = sum.transpose();
+    directions.row(t) = corner_line_mean(mesh, vdir, t).transpose();
   }
   return build_frames(context.triangle_normals(), directions,
                       [&]() -> const VertexAdjacency& { return context.triangle_adjacency(); });
