@@ -85,6 +85,15 @@ for (const width of [390, 320]) {
     const solved = await expectTidy(page, 'after a solve');
     expect(await statusHeight()).toBe(freshStatus);
     expect(solved.view).toBe(fresh.view);
+    // While a solve runs, with its progress and Cancel shown, too; Cancel
+    // is tapped fully (44 px) and stops it.
+    const running = page.evaluate(() => window.anisoform.deform({ method: 'anarap', tolerance: 0, maxIterations: 10000,
+      direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.2, 1] } }).catch((error) => error.code));
+    await expect(page.getByTestId('cancel-solve')).toBeVisible();
+    expect(await statusHeight()).toBe(freshStatus);
+    await expectTidy(page, 'while solving');
+    await page.getByTestId('cancel-solve').tap();
+    expect(await running).toBe('cancelled');
     for (const tool of ['select', 'stretch', 'thicken', 'shear', 'rotate', 'twist', 'arrows']) {
       await page.getByTestId(`tool-${tool}`).tap();
       await expectTidy(page, `${tool} options`);
