@@ -81,6 +81,51 @@ test('two modellers on one page are independent', async ({ page }) => {
   expect(pageErrors).toEqual([]);
 });
 
+test('two modellers with the full UI: each label works its own modeller\'s control, no id is on the page twice', async ({ page }) => {
+  const pageErrors = await openExample(page);
+  await page.evaluate(async () => {
+    const host = Object.assign(document.createElement('div'), { style: 'height: 500px' });
+    host.dataset.testid = 'host-second';
+    document.body.append(host);
+    window.second = window.anisoformExample.createModeller(host, { ui: 'full', mesh: '../spool.off' });
+    await window.second.api.ready;
+  });
+  const duplicates = () => page.evaluate(() => {
+    const ids = [...document.querySelectorAll('[id]')].map((element) => element.id);
+    return ids.filter((id, i) => ids.indexOf(id) !== i);
+  });
+  expect(await duplicates()).toEqual([]);
+  const spot = page.getByTestId('host-spot');
+  const second = page.getByTestId('host-second');
+  // Its labels name and work its own fields.
+  await second.getByText('Wireframe', { exact: true }).click();
+  await expect(second.getByRole('checkbox', { name: 'Wireframe' })).toBeChecked();
+  await expect(spot.getByRole('checkbox', { name: 'Wireframe' })).not.toBeChecked();
+  await expect(second.getByRole('textbox', { name: 'Iterations' })).toHaveCount(1);
+  // Open… in the second modeller opens into the second modeller.
+  const [chooser] = await Promise.all([page.waitForEvent('filechooser'), second.getByText('Open…', { exact: true }).click()]);
+  const loaded = page.evaluate(() => new Promise((resolve) => {
+    const off = window.second.api.on('change', ({ reason }) => reason === 'load' && (off(), resolve()));
+  }));
+  await chooser.setFiles(meshPath('open/hemisphere.obj'));
+  await loaded;
+  const counts = await page.evaluate(() => [window.anisoformExample.modellers.spot.api.info().vertices,
+    window.second.api.info().vertices]);
+  expect(counts).toEqual([2930, 2051]);
+  // A modeller made after the first is disposed takes the plain ids again.
+  await page.evaluate(async () => {
+    window.anisoformExample.modellers.spot.dispose();
+    const host = Object.assign(document.createElement('div'), { style: 'height: 500px' });
+    host.dataset.testid = 'host-third';
+    document.body.append(host);
+    window.third = window.anisoformExample.createModeller(host, { ui: 'full', mesh: '../spool.off' });
+    await window.third.api.ready;
+  });
+  expect(await duplicates()).toEqual([]);
+  await expect(page.getByTestId('host-third').locator('#display-wireframe')).toHaveCount(1);
+  expect(pageErrors).toEqual([]);
+});
+
 test('dispose stops the worker, the frames, the observers and every listener', async ({ page }) => {
   const pageErrors = await openExample(page);
   const withBoth = await census(page);

@@ -29,6 +29,7 @@ import { replaceDialog } from '../ui/replace-dialog.js';
 import { shortcutDialog } from '../ui/shortcut-dialog.js';
 import { statusBar } from '../ui/status-bar.js';
 import { toolPanel } from '../ui/tool-panel.js';
+import { claimUniqueIds } from '../ui/unique-ids.js';
 
 export function installFullUi(layout, { api, editor, settings, tools, viewer, picker, reportError, lifetime, keyTarget }) {
   // The editor has reported a refused selection already (the banner).
@@ -56,4 +57,5 @@ export function installFullUi(layout, { api, editor, settings, tools, viewer, pi
   frameButton(layout.viewport, { api });
   const dialog = shortcutDialog(layout.root, { tools });
   installEditingKeys(keyTarget, lifetime, { settings, dialog, selectRegion, files });
+  claimUniqueIds(layout.root, lifetime);
 }

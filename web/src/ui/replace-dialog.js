@@ -5,11 +5,9 @@
 // shortcut overlay: focus moves into it and stays there until it closes.
 import { h } from './dom.js';
 
-// Ids of each modeller's dialog (a page may hold several modellers).
-let made = 0;
-
 export function replaceDialog(root) {
-  const id = `anisoform-replace-${++made}`;
+  // Numbered when another modeller holds it (claimUniqueIds, full-ui.js).
+  const id = 'replace-dialog';
   const text = h('p', { id: `${id}-text` });
   const choice = (value, label, className = 'button') =>
     h('button', { className, type: 'submit', value, 'data-testid': `replace-${value}` }, label);
