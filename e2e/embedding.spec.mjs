@@ -293,9 +293,34 @@ test('<anisoform-modeller>: src loads, events come out as DOM events, .api works
   expect(refusedUi).toEqual({ error: { code: 'bad-parameter', message: "anisoform-modeller: ui must be 'full' or 'none', got 'bogus'" },
     kept: true, panel: 0, ops: 1 });
 
-  // Removed from the page: disposed.
-  const afterRemoval = await page.evaluate(() => {
+  // Two ui changes in quick succession go on from the work (the second
+  // change came while the first rebuild was still opening it).
+  const quick = await page.evaluate(async () => {
+    const element = window.element;
+    const before = Array.from(element.api.positions());
+    element.setAttribute('ui', 'full');
+    element.setAttribute('ui', 'none');
+    await element.api.ready;
+    const after = element.api.positions();
+    return { ops: element.api.document().ops.length, same: after.every((value, i) => value === before[i]) };
+  });
+  expect(quick).toEqual({ ops: 1, same: true });
+
+  // Moved to another parent in one task: the same modeller, its work kept.
+  const moved = await page.evaluate(async () => {
+    const element = window.element;
+    const { api } = element;
+    const parent = document.body.appendChild(document.createElement('section'));
+    parent.append(element);
+    await new Promise((resolve) => setTimeout(resolve, 50));
+    return { same: element.api === api, ops: api.document().ops.length, workers: window.__census().workers };
+  });
+  expect(moved).toEqual({ same: true, ops: 1, workers: workersBefore + 1 });
+
+  // Removed from the page: disposed (at the end of the task).
+  const afterRemoval = await page.evaluate(async () => {
     window.element.remove();
+    await null;
     return { api: window.element.api, children: window.element.childElementCount };
   });
   expect(afterRemoval).toEqual({ api: null, children: 0 });
@@ -318,10 +343,12 @@ test('<anisoform-modeller>: src loads, events come out as DOM events, .api works
     };
     const created = window.__census().workersCreated;
     (await make()).remove();
+    await null; // disposed at the end of the task that removed it
     const kept = { kept: solvers.size, workers: window.__census().workers };
     const second = await make();
     const taken = { kept: solvers.size, newWorkers: window.__census().workersCreated - created, vertices: second.api.info().vertices };
     second.remove();
+    await null;
     solvers.dispose();
     let refusal = 'accepted';
     try {

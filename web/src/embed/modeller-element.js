@@ -8,7 +8,9 @@
 // reported and the modeller kept). The api's
 // events come out as DOM CustomEvents ('change', 'error', 'progress', with the
 // api's payload as `detail`); `.api` is the modeller's api while connected.
-// Disconnecting disposes the modeller; connecting again builds a new one.
+// Removing the element disposes the modeller (once the task that removed it
+// has not put it back: moved to another parent, it keeps its work);
+// connecting it again builds a new one.
 // The solver worker: a new ui rebuilds the modeller on the same worker (the
 // element's own pool, ended on disconnect); `.solvers`, a pool from
 // createSolverPool, shares workers with other elements and modellers: the
@@ -33,6 +35,8 @@ export class AnisoformModellerElement extends HTMLElement {
   #reconciling = false;
   /** The ui the modeller was built with. */
   #ui = 'full';
+  /** The work a ui change built the modeller on, until it has opened it (another change then goes on from it). */
+  #startWork = null;
 
   /** A pool (createSolverPool) to take the solver worker from and give it back to; used from the next connection or ui change. */
   get solvers() {
@@ -52,14 +56,20 @@ export class AnisoformModellerElement extends HTMLElement {
   }
 
   connectedCallback() {
+    // Moved (removed and put back in one task, as frameworks and dialogs
+    // move elements): the modeller and its work go on.
+    if (this.#modeller) return;
     if (getComputedStyle(this).display === 'inline') this.style.display = 'block';
     this.#build();
   }
 
   disconnectedCallback() {
-    this.#teardown();
-    this.#ownSolvers?.dispose();
-    this.#ownSolvers = null;
+    queueMicrotask(() => {
+      if (this.isConnected) return;
+      this.#teardown();
+      this.#ownSolvers?.dispose();
+      this.#ownSolvers = null;
+    });
   }
 
   attributeChangedCallback(name, previous, value) {
@@ -108,7 +118,8 @@ export class AnisoformModellerElement extends HTMLElement {
       return;
     }
     if (ui === this.#ui) return;
-    const work = modellerWork(this.#modeller);
+    // A modeller still opening the work it was built on holds none of it yet.
+    const work = this.#startWork ?? modellerWork(this.#modeller);
     this.#teardown();
     this.#build(work);
   }
@@ -134,9 +145,14 @@ export class AnisoformModellerElement extends HTMLElement {
       ...start,
       solvers: this.#sharedSolvers ?? this.#ownSolvers,
     });
-    const { api } = this.#modeller;
+    const modeller = this.#modeller;
+    const { api } = modeller;
     this.#offs = RELAYED_EVENTS.map((type) => api.on(type, (detail) => this.dispatchEvent(new CustomEvent(type, { detail }))));
-    api.ready.catch(() => {}); // reported as an 'error' event
+    this.#startWork = work;
+    const opened = () => {
+      if (this.#modeller === modeller) this.#startWork = null;
+    };
+    api.ready.then(opened, opened); // a failure is reported as an 'error' event
     if (ui !== this.#ui) this.#rebuildFor(ui);
   }
 
