@@ -133,7 +133,7 @@ test('an edit the solver refuses is reported once', async ({ page }) => {
   expect(pinned).toBe('Move (ARAP) failed: pinned vertex 999999 is out of range (the mesh has 2930 vertices)');
 });
 
-test('Apply is disabled while its edit solves: clicks meanwhile stack no second edit', async ({ page }) => {
+test('Apply is off while its edit solves: clicks and Enter meanwhile stack no second edit, and the focus stays on it', async ({ page }) => {
   const pageErrors = await openApp(page);
   // A 26k-vertex mesh, so that the commit lasts long enough to click into.
   expect((await uploadFile(page, meshPath('closed/armadillo.off'))).ok).toBe(true);
@@ -141,12 +141,44 @@ test('Apply is disabled while its edit solves: clicks meanwhile stack no second 
   await page.getByTestId('tool-stretch').click();
   await page.locator('#direction-source').selectOption('global');
   const apply = page.getByTestId('apply-stretch');
-  await apply.click();
+  const focused = () => page.evaluate(() => document.activeElement?.dataset.testid ?? document.activeElement?.tagName);
+  await apply.focus();
+  await page.keyboard.press('Enter');
   await expect(apply).toBeDisabled();
-  // The browser sends no click to a disabled button: these do nothing.
+  expect(await focused()).toBe('apply-stretch');
   await apply.click({ force: true });
-  await apply.click({ force: true });
+  await page.keyboard.press('Enter');
   await expect(apply).toBeEnabled({ timeout: 60_000 });
+  expect(await page.evaluate(() => window.anisoform.document().ops.length)).toBe(1);
+  // Still on Apply: Enter applies again.
+  expect(await focused()).toBe('apply-stretch');
+  await page.keyboard.press('Enter');
+  await expect.poll(() => page.evaluate(() => window.anisoform.document().ops.length), { timeout: 60_000 }).toBe(2);
+  expect(pageErrors).toEqual([]);
+});
+
+test('Undo and Redo keep the focus at either end of the history', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  await page.evaluate(async () => {
+    await window.anisoform.select({ all: true });
+    await window.anisoform.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.2, 1] } });
+  });
+  const undo = page.getByTestId('undo');
+  const redo = page.getByTestId('redo');
+  // Two steps: the selection and the edit.
+  await undo.focus();
+  await page.keyboard.press('Enter');
+  await expect.poll(() => page.evaluate(() => window.anisoform.document().ops.length)).toBe(0);
+  await page.keyboard.press('Enter');
+  await expect(undo).toBeDisabled();
+  await expect(undo).toBeFocused();
+  await page.keyboard.press('Enter'); // nothing left to undo: nothing happens
+  await page.keyboard.press('Tab');
+  await expect(redo).toBeFocused();
+  await page.keyboard.press('Enter');
+  await page.keyboard.press('Enter');
+  await expect(redo).toBeDisabled();
+  await expect(redo).toBeFocused();
   expect(await page.evaluate(() => window.anisoform.document().ops.length)).toBe(1);
   expect(pageErrors).toEqual([]);
 });

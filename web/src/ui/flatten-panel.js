@@ -10,17 +10,18 @@ import { formatPercent } from '../viewer/pattern-view.js';
 import { decimalInput, parseDecimal } from './decimal-input.js';
 import { h, section } from './dom.js';
 import { mmPerUnitOf, patternScale } from './pattern-scale.js';
+import { setOff, whenOn } from './focusable-disabled.js';
 import { checkboxField, numberField, selectField, showWhen, vectorField } from './fields.js';
 
 export function flattenPanel({ api, editor, settings, reportError }) {
   const run = h('button', {
     className: 'button button-primary',
     'data-testid': 'flatten-run',
-    onclick: () => flattenFromSettings({ api, editor, settings, reportError }),
+    onclick: whenOn(() => flattenFromSettings({ api, editor, settings, reportError })),
   }, 'Flatten');
   const metrics = h('div', { className: 'flatten-metrics', 'data-testid': 'flatten-metrics' });
   editor.on('pattern', (pattern) => showMetrics(metrics, pattern));
-  editor.on('busy', (busy) => (run.disabled = busy));
+  editor.on('busy', (busy) => setOff(run, busy));
   showMetrics(metrics, null);
 
   const exportButton = (format) => h('button', {

@@ -4,6 +4,7 @@
 import { TOOL_KEYS } from '../interaction/shortcut-list.js';
 import { FLATTEN_MODE_TOOLS } from '../tools/tool-registry.js';
 import { h, section } from './dom.js';
+import { setOff, whenOn } from './focusable-disabled.js';
 import { numberField, selectField, showWhen, vectorField } from './fields.js';
 
 export function toolPanel({ editor, settings, tools, reportError, selectRegion }) {
@@ -74,12 +75,12 @@ function toolOptions(tool, { editor, settings, reportError, selectRegion }) {
   const apply = h('button', {
     className: 'button button-primary',
     'data-testid': `apply-${tool.id}`,
-    onclick: () => Promise.resolve()
+    onclick: whenOn(() => Promise.resolve()
       .then(() => tool.apply())
-      .catch((error) => reportError(error, `${tool.label} was not applied`)),
+      .catch((error) => reportError(error, `${tool.label} was not applied`))),
   }, 'Apply');
   // One commit at a time: clicks during a solve would stack edits the user
   // did not see the first of.
-  editor.on('busy', (busy) => (apply.disabled = busy));
+  editor.on('busy', (busy) => setOff(apply, busy));
   return h('div', {}, fields, h('div', { className: 'row' }, apply));
 }
