@@ -5,8 +5,9 @@
 // painting (Shift+C takes it away), the Select tool's button a box; ? opens
 // the shortcut overlay, an accessible dialog that Esc closes; Ctrl+S saves
 // the edits and Ctrl+O opens the file picker, not the browser's own.
+// A polite live region tells a screen reader when work ends.
 import { saveScreenshot } from './artifacts.mjs';
-import { expect, openApp, test } from './support.mjs';
+import { expect, meshPath, openApp, test, uploadFile } from './support.mjs';
 
 /** Presses Tab until the focused element matches `selector` (at most 80 presses). */
 async function tabTo(page, selector) {
@@ -159,5 +160,29 @@ test('Ctrl+S is Save edits, Ctrl+O is Open…, not the browser\'s own', async ({
   await page.evaluate(() => {
     for (const testId of ['save-edits', 'file-input']) delete document.querySelector(`[data-testid=${testId}]`).click;
   });
+  expect(pageErrors).toEqual([]);
+});
+
+test('a screen reader is told when a mesh loads, an edit is solved and a pattern is flattened; a new mesh clears the last solve\'s figures', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const announcer = page.getByTestId('announcer');
+  await expect(announcer).toHaveAttribute('role', 'status');
+  await expect(announcer).toHaveAttribute('aria-live', 'polite');
+  await expect(announcer).toHaveText('Loaded spot_triangulated.obj: 2,930 vertices, 5,856 triangles');
+  await page.evaluate(async () => {
+    await window.anisoform.select({ all: true });
+    await window.anisoform.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.2, 1] } });
+  });
+  await expect(announcer).toHaveText(/^Edit solved: \d+ iterations, \d+ ms$/);
+  await expect(page.getByTestId('status-solve')).toContainText(/^solve \d/);
+  await page.evaluate(async () => {
+    await window.anisoform.select({ sphere: { center: [0, 0.2, 0.4], radius: 0.3 } });
+    await window.anisoform.flatten({ compress: 0.9, direction: { type: 'global', vector: [1, 0, 0] }, patch: 'selection' });
+  });
+  await expect(announcer).toHaveText(/^Flattened: compression error [\d.]+ % mean, [\d.]+ % max; \d+ flipped triangles$/);
+  // Another mesh: its load is said, and the status bar no longer shows the last mesh's solve.
+  expect((await uploadFile(page, meshPath('closed/torus.obj'))).ok).toBe(true);
+  await expect(announcer).toHaveText(/^Loaded torus.obj: [\d,]+ vertices, [\d,]+ triangles$/);
+  await expect(page.getByTestId('status-solve')).toHaveText('solve —');
   expect(pageErrors).toEqual([]);
 });

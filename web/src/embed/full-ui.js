@@ -9,6 +9,7 @@ import '../ui/styles.css';
 import '../ui/narrow-layout.css';
 import '../ui/focus-and-overlays.css';
 import { opsPanel } from '../document/ops-panel.js';
+import { installAnnouncer } from '../ui/announcer.js';
 import { selectRegionAtViewCentre } from '../editor/region-at-view-centre.js';
 import { installEditingKeys } from '../interaction/editing-keys.js';
 import { directionPanel } from '../ui/direction-panel.js';
@@ -52,6 +53,7 @@ export function installFullUi(layout, { api, editor, settings, tools, viewer, pi
   panelSheetToggle(layout.sidePanel);
   patternPane(layout.patternPane, { editor, settings, lifetime });
   statusBar(layout.statusBar, { editor, viewer, lifetime });
+  installAnnouncer(layout.statusBar, { editor });
   installMessages(layout.viewport, { editor, lifetime });
   installDropZone(layout.root, layout.dropOverlay, { api, reportError, lifetime, mayReplace: files.mayReplace });
   frameButton(layout.viewport, { api });

@@ -20,6 +20,9 @@ export function statusBar(container, { editor, viewer, lifetime }) {
   container.append(mesh, progress, h('span', { className: 'spacer' }), solve, fps);
 
   editor.on('mesh', (document) => {
+    // The last solve was of the mesh before.
+    solve.textContent = 'solve —';
+    solve.title = '';
     const surface = openSurface(document.info);
     mesh.textContent = `${document.vertexCount.toLocaleString()} vertices · ${document.triangleCount.toLocaleString()} triangles${surface.text}`;
     mesh.title = surface.title;
