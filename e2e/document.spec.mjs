@@ -502,7 +502,7 @@ test("an op's region shows on the mesh and the current selection replaces it; th
   expect(freshErrors).toEqual([]);
 });
 
-test('the work is autosaved and restored bitwise after a reload; reset clears it', async ({ page }) => {
+test('the work is autosaved and restored bitwise after a reload; reset clears the edits, the mesh stays', async ({ page }) => {
   const pageErrors = await openApp(page);
   const { afterThree, document } = await editSpot(page);
   // The autosave of the last op is written after the commit resolves.
@@ -532,6 +532,32 @@ test('the work is autosaved and restored bitwise after a reload; reset clears it
     ops: window.anisoform.document().ops.length }));
   expect(afterReset.ops).toBe(0);
   expect(bitwise(afterReset.positions, loaded)).toBe(true);
+
+  // A mesh of the user's, edited and reset: a reload shows it without the
+  // edits (it used to bring the default mesh back).
+  expect((await uploadFile(page, meshPath('closed/torus.obj'))).ok).toBe(true);
+  const torus = await page.evaluate(async () => {
+    const api = window.anisoform;
+    const before = Array.from(api.positions());
+    await api.select({ all: true });
+    await api.deform({ method: 'anarap', direction: { type: 'global', vector: [1, 0, 0] }, transform: { scale: [1.3, 1] } });
+    api.reset();
+    return before;
+  });
+  await expect.poll(() => page.evaluate(() => new Promise((resolve) => {
+    const request = indexedDB.open('anisoform', 1);
+    request.onsuccess = () => {
+      const get = request.result.transaction('autosave').objectStore('autosave').get('current');
+      get.onsuccess = () => resolve(get.result && `${get.result.meshName} ${get.result.document.ops.length}`);
+    };
+  }))).toBe('torus.obj 0');
+  await page.reload();
+  await page.evaluate(() => window.anisoform.ready);
+  const reloaded = await page.evaluate(() => ({ name: window.anisoform.document().mesh.name,
+    positions: Array.from(window.anisoform.positions()), ops: window.anisoform.document().ops.length }));
+  expect(reloaded.name).toBe('torus.obj');
+  expect(reloaded.ops).toBe(0);
+  expect(bitwise(reloaded.positions, torus)).toBe(true);
   expect(pageErrors).toEqual([]);
 });
 

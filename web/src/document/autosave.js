@@ -70,13 +70,4 @@ export class Autosave {
       throw storageError('read the saved work', error);
     }
   }
-
-  clear() {
-    if (!this.enabled) return Promise.resolve();
-    const clearing = this.#chain.then(() => transact('readwrite', (store) => store.delete(KEY)));
-    this.#chain = clearing.catch(() => {});
-    return clearing.catch((error) => {
-      throw storageError('clear', error);
-    });
-  }
 }

@@ -137,8 +137,4 @@ export class DocumentPersistence {
     await this.open(record.document).catch((error) => this.#editor.report(error, 'The saved work could not be replayed'));
     return true;
   }
-
-  clearAutosave() {
-    return this.#autosave.clear();
-  }
 }

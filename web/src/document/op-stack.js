@@ -211,18 +211,19 @@ export class OpStack {
     }).catch((error) => this.#editor.report(error, context));
   }
 
-  /** Back to the mesh as loaded: the ops are cleared (undoable) and so is the autosave. */
+  /** Back to the mesh as loaded: the ops are cleared (undoable); the autosave keeps the mesh, without them. */
   reset() {
     const document = this.document;
     if (!document || document.ops.length === 0) return false;
     const cleared = { ops: document.ops, undone: document.undone };
+    // The step autosaves the document, now empty, with the mesh (clearing
+    // the autosave brought the default mesh back at the next reload).
     const clear = () => {
       this.#step(() => {
         document.ops = [];
         document.undone = [];
         return true;
       }, 'Reset failed');
-      this.#persistence.clearAutosave().catch((error) => this.#editor.report(error, 'Autosave'));
     };
     clear();
     this.#editor.history.push({
@@ -445,10 +446,6 @@ export class OpStack {
   /** Restores the autosaved work, if any; resolves true when a saved mesh was loaded. */
   restoreAutosave() {
     return this.#persistence.restoreAutosave();
-  }
-
-  clearAutosave() {
-    return this.#persistence.clearAutosave();
   }
 
   // ---- helpers -------------------------------------------------------------
