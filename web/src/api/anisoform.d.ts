@@ -168,7 +168,7 @@ export interface Anisoform {
   /** Undo/redo move over the document's ops (and selection steps). */
   undo(): boolean;
   redo(): boolean;
-  /** Back to the mesh as loaded: the ops are cleared (undoable) and so is the autosave; false if there were none. */
+  /** Back to the mesh as loaded: the ops are cleared (undoable; the autosave keeps the mesh, without them); false if there were none. */
   reset(): boolean;
   /** The edit document (a copy): the ops done so far. */
   document(): EditDocument;
