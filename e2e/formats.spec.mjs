@@ -73,6 +73,34 @@ test('dropping a file on the page loads it', async ({ page }) => {
   await expect(page.getByTestId('drop-overlay')).toBeHidden();
 });
 
+test('a .gltf with its buffers embedded as data: URIs opens under the strict CSP, as its GLB does', async ({ page }, testInfo) => {
+  const pageErrors = await openApp(page);
+  // spot_lowres.glb as a .gltf: its binary chunk a base64 data: URI, after
+  // a small first buffer that no view uses (so the views' buffer is 1).
+  const glb = readFileSync(meshPath('formats/spot_lowres.glb'));
+  const jsonLength = glb.readUInt32LE(12);
+  const json = JSON.parse(glb.subarray(20, 20 + jsonLength).toString('utf8'));
+  const bin = glb.subarray(28 + jsonLength, 28 + jsonLength + glb.readUInt32LE(20 + jsonLength));
+  json.buffers = [
+    { uri: 'data:application/octet-stream;base64,AAECAwQ=', byteLength: 5 },
+    { uri: `data:application/octet-stream;base64,${bin.toString('base64')}`, byteLength: json.buffers[0].byteLength },
+  ];
+  for (const view of json.bufferViews) view.buffer = 1;
+  const gltf = testInfo.outputPath('spot_lowres.gltf');
+  writeFileSync(gltf, JSON.stringify(json));
+
+  const fromGlb = await uploadFile(page, meshPath('formats/spot_lowres.glb'));
+  expect(fromGlb.ok).toBe(true);
+  const glbPositions = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  const fetched = [];
+  page.on('request', (request) => fetched.push(request.url()));
+  const outcome = await uploadFile(page, gltf);
+  expect(outcome).toMatchObject({ ok: true, info: { vertices: 829, triangles: 1654 } });
+  expect(await page.evaluate(() => Array.from(window.anisoform.positions()))).toEqual(glbPositions);
+  expect(fetched.filter((url) => url.startsWith('data:'))).toEqual([]);
+  expect(pageErrors).toEqual([]);
+});
+
 test('a .gltf that keeps its geometry in another file is refused naming it, and nothing is fetched', async ({ page }, testInfo) => {
   const pageErrors = await openApp(page);
   // The smallest such file: one triangle whose positions are in ext.bin.

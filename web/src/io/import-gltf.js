@@ -9,15 +9,9 @@ import { Group, Matrix4, Mesh, Scene, TextureLoader, Vector3 } from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 
 import { prepareDecoders } from './gltf-decoders.js';
+import { embeddedBuffersAsGlb } from './gltf-embedded.js';
+import { GltfImportError } from './gltf-import-error.js';
 import { GltfSource } from './gltf-source.js';
-
-export class GltfImportError extends Error {
-  constructor(message) {
-    super(message);
-    this.name = 'GltfImportError';
-    this.code = 'bad-file';
-  }
-}
 
 /** @returns {Promise<{positions: Float32Array, triangles: Uint32Array, notes: string[], source: GltfSource}>} */
 export async function importGltf(bytes, name) {
@@ -36,7 +30,7 @@ export async function importGltf(bytes, name) {
   let decoders = null;
   try {
     decoders = await prepareDecoders(loader, json);
-    gltf = await loader.parseAsync(bytes, '');
+    gltf = await loader.parseAsync(embeddedBuffersAsGlb(json, name) ?? bytes, '');
   } catch (error) {
     // DRACOLoader's workers reject with their message ({type: 'error', error}), not an Error.
     const reason = error?.message ?? (typeof error?.error === 'string' ? `Draco geometry: ${error.error}` : String(error));
