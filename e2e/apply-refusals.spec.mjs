@@ -182,3 +182,14 @@ test('Undo and Redo keep the focus at either end of the history', async ({ page 
   expect(await page.evaluate(() => window.anisoform.document().ops.length)).toBe(1);
   expect(pageErrors).toEqual([]);
 });
+
+test('Apply with an amount the core refuses says so in the panel\'s words', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  await recordErrors(page);
+  const before = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  await page.locator('#direction-source').selectOption('global');
+  await applyStretch(page, 0);
+  await expectRefusal(page, { before, words: ['Stretch', 'stretch along (su) must be positive, got 0'] });
+  expect((await page.evaluate(() => window.__errors))[0].message).not.toContain('op.transform');
+  expect(pageErrors).toEqual([]);
+});

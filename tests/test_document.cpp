@@ -319,6 +319,9 @@ TEST_CASE("document: a bad document is refused naming the field, the session unc
   CHECK_THAT(refusal_of_document(other_mesh, ErrorCode::BadMesh),
              Catch::Contains("document mesh hash fnv1a64:0123456789abcdef ('spool.off', 649 vertices, 1294 "
                              "triangles) does not match the loaded mesh fnv1a64:"));
+  CHECK_THAT(refusal_of_document(other_mesh, ErrorCode::BadMesh),
+             Catch::EndsWith("triangles): saved edits replay only on the mesh they were made on; open them with "
+                             "'spool.off'"));
 
   const std::string text = good.dump();
   CHECK_THAT(test::bad_parameter_message([&] { document_from_text(text.substr(0, text.size() / 2)); }),

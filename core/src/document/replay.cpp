@@ -50,7 +50,9 @@ void check_document(const EditDocument& document, const Session& session) {
                                  std::to_string(document.vertices) + " vertices, " +
                                  std::to_string(document.triangles) + " triangles) does not match the loaded mesh " +
                                  loaded_hash + " (" + std::to_string(rest.num_vertices()) + " vertices, " +
-                                 std::to_string(rest.num_triangles()) + " triangles)");
+                                 std::to_string(rest.num_triangles()) +
+                                 " triangles): saved edits replay only on the mesh they were made on; open them "
+                                 "with '" + document.mesh_name + "'");
   }
   const Mesh loaded{session.loaded_positions(), rest.F};
   for (std::size_t i = 0; i < document.regions.size(); ++i) {

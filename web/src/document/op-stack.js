@@ -135,7 +135,9 @@ export class OpStack {
       const editor = this.#editor;
       const steps = this.#selectionSteps();
       editor.selectionState.syncForEdit();
-      const { op } = await this.#client.request(Request.resolveOp, { op: solverOp });
+      const { op } = await this.#client.request(Request.resolveOp, { op: solverOp }).catch((error) => {
+        throw inPageWords(error, this.document, { labelled: false });
+      });
       const index = this.document.ops.length;
       const undone = [...this.document.undone];
       const result = await this.#solving(async () => {

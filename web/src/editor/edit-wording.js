@@ -66,6 +66,8 @@ export function inPageWords(error, document, { labelled = true } = {}) {
       const which = step && step !== '0' ? ` (step ${Number(step) + 1})` : '';
       return `${owner ? `the region of ${labelOf(owner)}` : 'the region'}${which}: `;
     })
+    // An edit's own op, before it is in the document ("op.transform: ...").
+    .replace(/^op\.transform(?::\s*|\.)/, '')
     .replace(/\bscale su\b/g, 'stretch along (su)')
     .replace(/\bscale sv\b/g, 'stretch across (sv)')
     .replace(/\bfalloff\b/g, 'soft border (falloff)');
