@@ -272,6 +272,30 @@ test("an earlier op's method and direction from the Edits list: it re-runs as a 
   expect(pageErrors).toEqual([]);
 });
 
+test('a direction in the Edits list goes from z to x whatever field is typed first', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const { document } = await editSpot(page);
+  const [first] = document.ops;
+  await page.getByTestId(`op-select-${first.id}`).click();
+  const z = page.getByTestId(`op-direction-${first.id}-z`);
+  await expect(z).toHaveAccessibleName('Direction z');
+  // z to 0 first: (0, 0, 0) is no direction; nothing is sent, and the fields keep what was typed.
+  await z.fill('0');
+  await z.press('Tab');
+  await expect(page.getByTestId(`op-direction-${first.id}-hint`)).toContainText('needs a component that is not 0');
+  await expect(z).toHaveValue('0');
+  await expect(page.getByTestId('error')).toBeHidden();
+  expect((await page.evaluate(() => window.anisoform.document().ops[0])).op.direction.vector).toEqual([0, 0, 1]);
+  const done = await armChange(page, 'document');
+  const x = page.getByTestId(`op-direction-${first.id}-x`);
+  await x.fill('1');
+  await x.press('Enter');
+  await done();
+  expect((await page.evaluate(() => window.anisoform.document().ops[0])).op.direction).toEqual({ type: 'global', vector: [1, 0, 0] });
+  await expect(page.getByTestId(`op-direction-${first.id}-hint`)).toBeEmpty();
+  expect(pageErrors).toEqual([]);
+});
+
 test("an ARAP drag's move from the Edits list: the dragged part moves by the new offset; undo takes it back", async ({ page }) => {
   const pageErrors = await openApp(page);
   const { rest, dragged } = await page.evaluate(async () => {

@@ -39,7 +39,7 @@ export function opFields(entry, { change, preview, dropPreview, redraw }) {
   // op's own value typed again, or none) sends the value kept, so that the
   // screen shows the op's committed shape again (a value the op has makes no
   // step of the history).
-  const number = (label, value, testId, write) => {
+  const number = (label, value, testId, write, name = undefined) => {
     let previewed = false;
     const settle = (typed) => {
       const wasPreviewed = previewed;
@@ -51,6 +51,7 @@ export function opFields(entry, { change, preview, dropPreview, redraw }) {
       decimalInput({
         value: String(value),
         'data-testid': testId,
+        ...(name ? { 'aria-label': name } : {}),
         // Esc takes the typed value back: the field shows the op's, and a preview of it is dropped.
         onkeydown: (event) => {
           if (event.key !== 'Escape') return;
@@ -87,10 +88,26 @@ export function opFields(entry, { change, preview, dropPreview, redraw }) {
       }, SWITCHABLE.map((name) => h('option', { value: name, selected: name === op.method }, METHOD_NAMES[name]))))
     : null;
 
-  // x, y, z fields of a vector, each changing its own component.
-  const xyz = (label, vector, testId, write) => h('div', { className: 'op-direction' }, h('span', {}, label),
-    h('div', { className: 'xyz' }, [0, 1, 2].map((axis) => number('xyz'[axis], Number(vector[axis].toFixed(4)),
-      `${testId}-${'xyz'[axis]}`, (value, send) => write(vector.map((v, k) => (k === axis ? value : v)), send)))));
+  // x, y, z fields of a vector: a value typed in one goes with the values in
+  // the other two, so that a direction can go from x to z in any order of
+  // typing. With `nonZero` (a direction), (0, 0, 0) is not sent: the fields
+  // keep what is typed and say that one must be non-zero (it used to be
+  // refused, and the field typed put back).
+  const xyz = (label, vector, testId, write, { nonZero = false } = {}) => {
+    const hint = h('p', { className: 'hint op-vector-hint', 'data-testid': `${testId}-hint`, 'aria-live': 'polite' });
+    const fields = [0, 1, 2].map((axis) => number('xyz'[axis], Number(vector[axis].toFixed(4)), `${testId}-${'xyz'[axis]}`,
+      (value, send) => {
+        const typed = inputs.map((input, k) => (k === axis ? value : parseDecimal(input.value)));
+        const next = typed.map((v, k) => (Number.isFinite(v) ? v : vector[k]));
+        const zero = nonZero && next.every((v) => v === 0);
+        hint.textContent = zero ? `A ${label.toLowerCase()} needs a component that is not 0: type one in another field.` : '';
+        inputs.forEach((input) => input.toggleAttribute('aria-invalid', zero));
+        if (zero) dropPreview(); // a value typed before, previewed, is not the fields' now
+        else write(next, send);
+      }, `${label} ${'xyz'[axis]}`));
+    const inputs = fields.map((field) => field.querySelector('input'));
+    return h('div', { className: 'op-direction' }, h('span', {}, label), h('div', { className: 'xyz' }, fields), hint);
+  };
 
   // ARAP with handles moves the dragged part by `move`; the direction plays no part.
   if (op.method === 'arap') {
@@ -105,7 +122,7 @@ function directionFields(entry, xyz, change) {
   const direction = entry.op.direction;
   if (direction?.type === 'global') {
     return xyz('Direction', direction.vector, `op-direction-${entry.id}`,
-      (vector, send) => send({ direction: { type: 'global', vector } }));
+      (vector, send) => send({ direction: { type: 'global', vector } }), { nonZero: true });
   }
   if (direction?.type === 'curvature') {
     return h('label', { className: 'field op-amount' }, 'Direction',
