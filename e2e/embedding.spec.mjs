@@ -126,6 +126,45 @@ test('two modellers with the full UI: each label works its own modeller\'s contr
   expect(pageErrors).toEqual([]);
 });
 
+test('api calls in the wrong order: refusals are reported, a second cancel() is false, a dispose stops a solve as cancelled', async ({ page }) => {
+  const pageErrors = await openExample(page);
+  const outcome = await page.evaluate(async () => {
+    const { createModeller } = window.anisoformExample;
+    const host = Object.assign(document.createElement('div'), { style: 'height: 200px' });
+    document.body.append(host);
+    const empty = createModeller(host, { ui: 'none' });
+    const errors = [];
+    empty.api.on('error', (event) => errors.push(event.message));
+    await empty.api.ready;
+    const refusals = [];
+    for (const call of [() => empty.api.select({ all: true }), () => empty.api.flatten({})]) {
+      refusals.push(await call().then(() => 'resolved', (error) => error.code));
+    }
+    empty.dispose();
+
+    const modeller = createModeller(host, { ui: 'none', mesh: '../spot_triangulated.obj' });
+    await modeller.api.ready;
+    await modeller.api.select({ all: true });
+    const long = { method: 'anarap', tolerance: 0, maxIterations: 10000, direction: { type: 'global', vector: [0, 1, 0] },
+      transform: { scale: [1.2, 1] } };
+    const first = modeller.api.deform(long).then(() => 'resolved', (error) => error.code);
+    await new Promise((resolve) => setTimeout(resolve, 50));
+    const cancels = [modeller.api.cancel(), modeller.api.cancel()];
+    const cancelled = await first;
+    const second = modeller.api.deform(long).then(() => 'resolved', (error) => error.code);
+    await new Promise((resolve) => setTimeout(resolve, 50));
+    modeller.dispose();
+    return { refusals, errors, cancels, cancelled, disposed: await second };
+  });
+  expect(outcome.refusals).toEqual(['bad-parameter', 'bad-parameter']);
+  expect(outcome.errors).toHaveLength(2);
+  expect(outcome.errors.every((message) => message.includes('no mesh is loaded yet'))).toBe(true);
+  expect(outcome.cancels).toEqual([true, false]);
+  expect(outcome.cancelled).toBe('cancelled');
+  expect(outcome.disposed).toBe('cancelled');
+  expect(pageErrors).toEqual([]);
+});
+
 test('dispose stops the worker, the frames, the observers and every listener', async ({ page }) => {
   const pageErrors = await openExample(page);
   const withBoth = await census(page);
@@ -517,7 +556,7 @@ test('a solver pool hands a disposed modeller\'s idle worker to the next one, wh
   expect(outcome.takenBy).toEqual({ kept: 0, workers: 1, rest: true });
   expect(outcome.firstEdit.iterations).toBeGreaterThan(0);
   expect(outcome.secondEdit).toEqual(outcome.firstEdit);
-  expect(outcome.busy).toEqual({ kept: 0, workers: 0, running: 'Stretch (AnARAP) failed: this modeller was disposed' });
+  expect(outcome.busy).toEqual({ kept: 0, workers: 0, running: 'stopped: this modeller was disposed' });
   expect(outcome.otherKind).toEqual({ kept: 1, workers: 2 });
   expect(outcome.full).toEqual({ kept: 1, workers: 1 });
   expect(outcome.disposed).toEqual({ kept: 0, workers: 0 });

@@ -110,9 +110,9 @@ export interface PositionsEvent {
  */
 export type { EditDocument } from '../wasm/anisoform-wasm';
 /**
- * Every refusal and failure, once: a rejected load, deform, flatten or export
- * (its promise rejects with the same message), and what the page's own
- * buttons could not do. The message says what to do about it.
+ * Every refusal and failure, once: a rejected load, select, deform, flatten,
+ * export or document change (its promise rejects with the same message), and
+ * what the page's own buttons could not do. The message says what to do about it.
  */
 export interface ErrorEvent {
   /** 'storage': an autosave failed (the work in the page is kept). */
@@ -121,7 +121,8 @@ export interface ErrorEvent {
 }
 /**
  * What a rejected promise of the api holds: an Error with the code of its 'error' event, or
- * 'cancelled' for a solve stopped by cancel() (which is no failure: no 'error' event).
+ * 'cancelled' for a solve stopped by cancel() or by the modeller's dispose() (which is no
+ * failure: no 'error' event).
  */
 export interface AnisoformError extends Error {
   code: ErrorEvent['code'] | 'cancelled';

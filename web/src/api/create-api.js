@@ -59,10 +59,11 @@ export function createAnisoformApi({ editor, viewer, picker, ready }) {
     positions: () => document().positions.slice(),
 
     // The core's selection rule, run in the solver worker: a promise.
-    async select(region, options = {}) {
+    // A refusal, no mesh loaded included, is reported ('error') as every other.
+    select: (region, options = {}) => reported(Promise.resolve().then(() => {
       document();
       return editor.select(region, options);
-    },
+    })),
 
     selection: () => document().selection.slice(),
 
@@ -88,7 +89,7 @@ export function createAnisoformApi({ editor, viewer, picker, ready }) {
 
     // A garment pattern of the mesh (or its selection) with the wanted
     // compression built in; the mesh and its history are untouched.
-    async flatten(options = {}) {
+    flatten: (options = {}) => reported(Promise.resolve().then(async () => {
       document();
       const result = await editor.flatten(options);
       return {
@@ -99,7 +100,7 @@ export function createAnisoformApi({ editor, viewer, picker, ready }) {
         crossError: result.crossError.slice(),
         grainlines: result.grainlines.map((g) => [...g]),
       };
-    },
+    })),
 
     exportPattern: (format, options) => editor.exportPattern(format, options),
 

@@ -62,6 +62,8 @@ export class Editor extends EventEmitter {
   heatMapKind = null;
   #client;
   #busy = 0;
+  /** Whether the solve running was cancelled (until a solve ends or starts). */
+  #cancelling = false;
   #prepareTimer = 0;
   #preparation = 0; // counts prepareSolver() calls: the latest one goes on
   #prepared = Promise.resolve();
@@ -101,7 +103,10 @@ export class Editor extends EventEmitter {
    * state in the background. False when nothing is being solved.
    */
   cancelSolve() {
-    if (!this.busy || !this.document) return false;
+    // A solve already cancelled, still unwinding, is not cancelled again
+    // (nor its fresh worker restarted again).
+    if (!this.busy || !this.document || this.#cancelling) return false;
+    this.#cancelling = true;
     const document = this.document;
     this.selectionState.forget(); // the new worker has none
     this.#patterns.drop(); // the last flattening was the old worker's
@@ -120,9 +125,11 @@ export class Editor extends EventEmitter {
   /** Marks a committed solve in progress; call the returned function when it ends. */
   beginBusy() {
     this.#busy++;
+    this.#cancelling = false;
     this.emit('busy', true);
     return () => {
       this.#busy--;
+      this.#cancelling = false;
       this.emit('busy', this.#busy > 0);
     };
   }

@@ -196,11 +196,12 @@ export class SolverClient extends EventEmitter {
     this.#worker.onerror = null;
     if (this.#pool && !this.busy && !this.#tainted) this.#pool.give(this.#worker, this.#poolKey());
     else this.#worker.terminate();
-    for (const { reject } of this.#held) reject(disposedError());
+    // Work under way is stopped, not refused: 'cancelled', as a cancel() is.
+    for (const { reject } of this.#held) reject(stoppedByDispose());
     this.#held = [];
     this.#queuedPreview?.resolve(null);
     this.#queuedPreview = null;
-    for (const { reject } of this.#pending.values()) reject(disposedError());
+    for (const { reject } of this.#pending.values()) reject(stoppedByDispose());
     this.#pending.clear();
   }
 
@@ -255,4 +256,8 @@ export class SolverClient extends EventEmitter {
 
 function disposedError() {
   return new SolverError({ code: 'bad-parameter', message: 'this modeller was disposed' });
+}
+
+function stoppedByDispose() {
+  return new SolverError({ code: 'cancelled', message: 'stopped: this modeller was disposed' });
 }
