@@ -78,6 +78,11 @@ test('the 3D view takes the focus and the keys: tools, brush radius, pan, region
     return { centre: hit.point, diagonal: Math.hypot(...max.map((value, k) => value - min[k])) };
   });
   const r = 0.1 * diagonal;
+  // A hard brush (no soft edge): the region is the sphere itself.
+  const softness = page.locator('#brush-softnessPercent');
+  await softness.fill('0');
+  await softness.press('Enter');
+  await page.getByTestId('viewport').focus();
   await page.keyboard.press('c');
   await expect.poll(() => page.evaluate(() => window.anisoform.selection().some((w) => w > 0))).toBe(true);
   const inSphere = (p) => Math.hypot(p[0] - centre[0], p[1] - centre[1], p[2] - centre[2]) <= r;
@@ -184,5 +189,29 @@ test('a screen reader is told when a mesh loads, an edit is solved and a pattern
   expect((await uploadFile(page, meshPath('closed/torus.obj'))).ok).toBe(true);
   await expect(announcer).toHaveText(/^Loaded torus.obj: [\d,]+ vertices, [\d,]+ triangles$/);
   await expect(page.getByTestId('status-solve')).toHaveText('solve —');
+  expect(pageErrors).toEqual([]);
+});
+
+test('C selects with the brush\'s soft edge: full weight inside radius x (1 - softness), none beyond the radius', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  await page.getByTestId('viewport').focus();
+  const centre = await page.evaluate(() => {
+    const canvas = document.querySelector('[data-testid=viewport]');
+    return window.anisoform.pick([canvas.clientWidth / 2, canvas.clientHeight / 2]).point;
+  });
+  await page.keyboard.press('c'); // the default brush: 8 % radius, soft edge 50 %
+  await expect.poll(() => page.evaluate(() => window.anisoform.selection().some((w) => w > 0))).toBe(true);
+  const { positions, selection } = await page.evaluate(() => ({
+    positions: Array.from(window.anisoform.positions()), selection: Array.from(window.anisoform.selection()) }));
+  const extent = [0, 1, 2].map((k) => {
+    const values = positions.filter((_, i) => i % 3 === k);
+    return Math.max(...values) - Math.min(...values);
+  });
+  const r = 0.08 * Math.hypot(...extent);
+  const distance = (v) => Math.hypot(...[0, 1, 2].map((k) => positions[3 * v + k] - centre[k]));
+  const vertices = selection.map((_, v) => v);
+  expect(vertices.filter((v) => distance(v) <= 0.5 * r - 1e-6 && selection[v] !== 1)).toEqual([]);
+  expect(vertices.filter((v) => distance(v) > r + 1e-6 && selection[v] > 0)).toEqual([]);
+  expect(selection.filter((w) => w > 0 && w < 1).length).toBeGreaterThan(5);
   expect(pageErrors).toEqual([]);
 });

@@ -1,6 +1,6 @@
 // Selecting without painting (the C key, the Select tool's button): the
-// brush's region (a sphere, or an axis-aligned cube, of the brush radius)
-// centred on the surface point in the middle of the 3D view, or on the orbit
+// brush's region (a sphere, or an axis-aligned cube, of the brush radius,
+// with its soft edge) centred on the surface point in the middle of the 3D view, or on the orbit
 // target when no surface is there. It is added or subtracted as the brush
 // mode says (Shift inverts it, as for a stroke); the core's select rule does
 // the selecting, as one undo step.
@@ -12,11 +12,16 @@ export function selectRegionAtViewCentre({ api, editor, viewer, picker, settings
   const canvas = viewer.canvas;
   const hit = picker.pick(canvas.clientWidth / 2, canvas.clientHeight / 2);
   const center = hit ? hit.point : viewer.controls.target.toArray();
-  const { radiusPercent, mode, region } = settings.values.brush;
+  const { radiusPercent, softnessPercent, mode, region } = settings.values.brush;
   const radius = (radiusPercent / 100) * document.bounds().diagonal;
+  // The brush's soft edge, as a dab has it: full weight out to
+  // radius x (1 - softness), fading to none at the radius (the core's falloff
+  // runs outside its region). It used to be ignored here.
+  const soft = radius * (softnessPercent / 100);
+  const hard = radius - soft;
   const shape = region === 'box'
-    ? { box: { min: center.map((value) => value - radius), max: center.map((value) => value + radius) } }
-    : { sphere: { center, radius } };
+    ? { box: { min: center.map((value) => value - hard), max: center.map((value) => value + hard) } }
+    : { sphere: { center, radius: hard } };
   const subtract = (mode === 'subtract') !== invert;
-  return api.select(shape, { mode: subtract ? 'subtract' : 'add' });
+  return api.select(shape, { mode: subtract ? 'subtract' : 'add', falloff: soft });
 }

@@ -44,7 +44,8 @@ function toolOptions(tool, { editor, settings, reportError, selectRegion }) {
       numberField(settings, 'brush', { key: 'radiusPercent', label: 'Radius %', min: 0.5, max: 100, step: 0.5 }),
       numberField(settings, 'brush', { key: 'softnessPercent', label: 'Soft edge %', min: 0, max: 100, step: 5 }),
       selectField(settings, 'brush', { key: 'mode', label: 'Mode', options: [['add', 'Add'], ['subtract', 'Subtract']] }),
-      selectField(settings, 'brush', { key: 'region', label: 'Region', options: [['sphere', 'Sphere'], ['box', 'Box']] }),
+      // Painting is always with the ball the cursor shows: the shape is the view-centre selection's.
+      selectField(settings, 'brush', { key: 'region', label: 'At view centre', options: [['sphere', 'Sphere'], ['box', 'Box']] }),
       h('div', { className: 'row' },
         h('button', {
           className: 'button',
