@@ -28,3 +28,20 @@ test('the stretch heat map colours a live drag, its commit, and clears on undo',
   await expect(page.getByTestId('error')).toBeHidden();
   expect(pageErrors).toEqual([]);
 });
+
+test('the compression error heat map before any flattening says there is no pattern yet, with no scale', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  await page.locator('#display-heatMap').selectOption('compression');
+  const legend = page.getByTestId('heatmap-legend');
+  await expect(legend).toBeVisible();
+  await expect(page.getByTestId('heatmap-legend-range')).toHaveText(/^No pattern yet: flatten a patch/);
+  await expect(page.getByTestId('heatmap-legend-values')).toBeEmpty();
+  // Once flattened, the scale and its range are shown.
+  await page.evaluate(async () => {
+    await window.anisoform.select({ sphere: { center: [0, 0.2, 0.4], radius: 0.3 } });
+    await window.anisoform.flatten({ compress: 0.9, direction: { type: 'global', vector: [1, 0, 0] }, patch: 'selection' });
+  });
+  await expect(page.getByTestId('heatmap-legend-range')).toHaveText(/Range adapted|Fixed range/);
+  await expect(page.getByTestId('heatmap-legend-values').locator('span')).toHaveCount(3);
+  expect(pageErrors).toEqual([]);
+});

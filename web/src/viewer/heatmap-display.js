@@ -47,7 +47,13 @@ export class HeatmapDisplay {
     this.meshView.setHeatPalette(HEAT_PALETTES[kind]);
     if (kind === 'compression') {
       const pattern = this.editor.pattern;
-      this.#show(kind, compressionValues(pattern, document.vertexCount), pattern ? pattern.vertexError : []);
+      if (!pattern) {
+        // No made-up 0-2 % scale over a plain surface: there is nothing to show yet.
+        this.meshView.showDistortion(compressionValues(null, document.vertexCount));
+        this.legend.showNothing(HEAT_PALETTES[kind], 'No pattern yet: flatten a patch (Flatten mode) to see its error here');
+        return;
+      }
+      this.#show(kind, compressionValues(pattern, document.vertexCount), pattern.vertexError);
       return;
     }
     if (distortion) {

@@ -56,6 +56,7 @@ export class HeatmapLegend {
       const t = low + ((1 - low) * i) / (BAR_STOPS - 1);
       stops.push(`${rgb(paletteColor(palette, t))} ${((100 * i) / (BAR_STOPS - 1)).toFixed(1)}%`);
     }
+    this.bar.style.display = '';
     this.bar.style.background = `linear-gradient(to right, ${stops.join(', ')})`;
     this.title.textContent = palette.title;
     const values = palette.oneSided ? [0, range.value / 2, range.value] : [-range.value, 0, range.value];
@@ -64,6 +65,16 @@ export class HeatmapLegend {
       ? `Range adapted to the data (${Math.round(100 * ADAPTIVE_PERCENTILE)}th percentile)`
       : 'Fixed range';
     this.element.setAttribute('aria-label', `${palette.title}: ${values.map(format).join(' to ')}; ${this.range.textContent}`);
+    this.setShown(true);
+  }
+
+  /** The quantity's name and why there are no values to show (no colour bar: nothing is coloured). */
+  showNothing(palette, why) {
+    this.title.textContent = palette.title;
+    this.bar.style.display = 'none';
+    this.ends.replaceChildren();
+    this.range.textContent = why;
+    this.element.setAttribute('aria-label', `${palette.title}: ${why}`);
     this.setShown(true);
   }
 
