@@ -272,6 +272,33 @@ test("an earlier op's method and direction from the Edits list: it re-runs as a 
   expect(pageErrors).toEqual([]);
 });
 
+test('an op is renamed in the Edits list: saved with its edits, undone as a step, nothing re-runs', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const { afterThree, document } = await editSpot(page);
+  const [first] = document.ops;
+  const opener = page.getByTestId(`op-select-${first.id}`);
+  await opener.click();
+  await expect(opener).toHaveAttribute('aria-expanded', 'true');
+  const name = page.getByTestId(`op-name-${first.id}`);
+  await expect(name).toHaveValue('Stretch (AnARAP)');
+  await name.fill('  Longer nose  ');
+  await name.press('Enter');
+  await expect(page.getByTestId(`op-select-${first.id}`)).toHaveText('Longer nose');
+  const renamed = await page.evaluate(() => ({ positions: Array.from(window.anisoform.positions()),
+    label: window.anisoform.document().ops[0].label }));
+  expect(renamed.label).toBe('Longer nose');
+  expect(bitwise(renamed.positions, afterThree)).toBe(true);
+  expect(await page.getByTestId('undo').getAttribute('title')).toBe('Undo Rename Stretch (AnARAP) to Longer nose (Ctrl+Z)');
+  // Esc puts the name back; an empty name is no name.
+  await name.fill('Something else');
+  await name.press('Escape');
+  await expect(name).toHaveValue('Longer nose');
+  expect(await page.evaluate((id) => window.anisoform.renameOp(id, ' ').catch((error) => error.code), first.id)).toBe('bad-parameter');
+  await page.evaluate(() => window.anisoform.undo());
+  await expect(page.getByTestId(`op-select-${first.id}`)).toHaveText('Stretch (AnARAP)');
+  expect(pageErrors).toEqual([]);
+});
+
 test('a direction in the Edits list goes from z to x whatever field is typed first', async ({ page }) => {
   const pageErrors = await openApp(page);
   const { document } = await editSpot(page);
@@ -491,7 +518,9 @@ test("an op's region shows on the mesh and the current selection replaces it; th
   expect(changed.document.ops[0].region).not.toBe(first.region);
   expect(region.steps).toEqual([{ region: { box }, falloff: 0.1 }]);
   expect(changed.document.ops.slice(1)).toEqual(document.ops.slice(1));
-  await expect(page.getByTestId(`op-region-${first.id}`)).toHaveText(`Region: ${region.name}`);
+  // The op's new region is shown in its place, with its count.
+  await expect(page.getByTestId(`op-region-${first.id}`))
+    .toHaveText(new RegExp(`^Region: ${region.name} \\([\\d,]+ vertices, shown on the mesh\\)$`));
   expect(bitwise(changed.positions, afterThree)).toBe(false);
 
   // A fresh page replays the new document to bitwise the same positions.
@@ -516,6 +545,8 @@ test("an op's region shows on the mesh and the current selection replaces it; th
   expect(widenedRegion.steps).toEqual([{ region: { box }, falloff: 0.3 }]);
   expect(bitwise(widened.positions, changed.positions)).toBe(false);
   expect(await page.getByTestId('undo').getAttribute('title')).toBe('Undo Change the region of Stretch (AnARAP) (Ctrl+Z)');
+  await expect(page.getByTestId(`op-region-${first.id}`))
+    .toHaveText(new RegExp(`^Region: ${widened.document.ops[0].region} \\([\\d,]+ vertices, shown on the mesh\\)$`));
   const undone = await armChange(page, 'document');
   expect(await page.evaluate(() => window.anisoform.undo())).toBe(true);
   await undone();

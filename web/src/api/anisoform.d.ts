@@ -197,6 +197,8 @@ export interface Anisoform {
   removeOp(opId: string): Promise<void>;
   /** Moves an op to place `index` (0-based) of the list; the ops from the first place that changed re-run. A step of the history. */
   moveOp(opId: string, index: number): Promise<void>;
+  /** Names an op (its label in the Edits list and in saved edits; 1 to 80 characters). Nothing re-runs. A step of the history. */
+  renameOp(opId: string, name: string): Promise<void>;
   /**
    * Gives an op the region of these select steps (as a document's region holds them: a soft border
    * is a step's `falloff`); the op and the later ones re-run. A step of the history.

@@ -78,6 +78,7 @@ export function createAnisoformApi({ editor, viewer, picker, ready }) {
     setOpEnabled: (opId, enabled) => reported(editor.ops.setEnabled(opId, enabled), 'The op was not changed'),
     removeOp: (opId) => reported(editor.ops.removeOp(opId), 'The op was not deleted'),
     moveOp: (opId, index) => reported(editor.ops.moveOp(opId, index), 'The op was not moved'),
+    renameOp: (opId, name) => reported(editor.ops.renameOp(opId, name), 'The op was not renamed'),
     setRegion: (opId, steps) => reported(editor.ops.setRegion(opId, steps), 'The region was not changed'),
 
     cancel: () => editor.cancelSolve() || editor.ops.dropPreview(),

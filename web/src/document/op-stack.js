@@ -16,6 +16,8 @@ import { DocumentPersistence } from './document-persistence.js';
 import { badParameter } from '../shared/errors.js';
 
 // What setParameter may change, in the words of its history step.
+// An op's name is a list label, not a document: long enough for "Stretch the left sleeve, 2nd try".
+const MAX_NAME_LENGTH = 80;
 const PATCH_WORDS = { transform: 'amounts', method: 'method', direction: 'direction', move: 'move' };
 
 // Why `patch` is no setParameter patch (null if it is one): an object with
@@ -326,6 +328,28 @@ export class OpStack {
   stepsOfRegion(opId) {
     const { region } = this.#requireDocument().ops[this.document.indexOf(opId)];
     return structuredClone(this.document.regions.find((entry) => entry.name === region)?.steps ?? []);
+  }
+
+  /**
+   * Names op `opId` (the Edits list's label, kept in saved edits): nothing
+   * re-runs; a step of the history.
+   */
+  renameOp(opId, name) {
+    if (typeof name !== 'string' || name.trim() === '' || name.trim().length > MAX_NAME_LENGTH) {
+      return Promise.reject(badParameter(`renameOp(opId, name): name must be text of 1 to ${MAX_NAME_LENGTH} characters, got ${JSON.stringify(name)}`));
+    }
+    return this.#run(async () => {
+      const entry = this.#requireDocument().ops[this.document.indexOf(opId)];
+      const before = entry.label;
+      const after = name.trim();
+      if (before === after) return;
+      const named = (label) => async () => {
+        entry.label = label;
+        this.#persistence.changed();
+      };
+      await named(after)();
+      this.#pushStep(`Rename ${before || entry.id} to ${after}`, named(before), named(after));
+    });
   }
 
   /** Deletes op `opId`: the later ops re-run on its input; a step of the history. */

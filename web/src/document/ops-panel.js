@@ -56,7 +56,7 @@ export function opsPanel({ api, editor }) {
       }, text)));
 
   const regionControls = (entry) => h('div', { className: 'op-region' },
-    h('span', { 'data-testid': `op-region-${entry.id}` }, `Region: ${entry.region}`),
+    h('span', { 'data-testid': `op-region-${entry.id}` }, regionText(entry)),
     falloffField(entry, editor.ops.stepsOfRegion(entry.id), {
       setRegion: (steps) => redrawIfRefused(api.setRegion(entry.id, steps)),
       redraw: render,
@@ -70,16 +70,50 @@ export function opsPanel({ api, editor }) {
         .catch((error) => editor.report(error, 'The region was not changed')),
     }, "Use current selection as this op's region"));
 
+  // The op's name: Enter or leaving the field names it (a step of the
+  // history), Esc puts the name back; an empty one is the old name again.
+  const nameField = (entry) => h('label', { className: 'field op-amount' }, 'Name',
+    h('input', {
+      type: 'text',
+      value: entry.label || entry.id,
+      maxLength: 80,
+      'data-testid': `op-name-${entry.id}`,
+      onkeydown: (event) => {
+        if (event.key === 'Enter') event.target.blur();
+        if (event.key !== 'Escape') return;
+        event.target.value = entry.label || entry.id;
+        event.stopPropagation();
+      },
+      onchange: (event) => {
+        const name = event.target.value.trim();
+        if (name === '' || name === entry.label) {
+          event.target.value = entry.label || entry.id;
+          return;
+        }
+        redrawIfRefused(api.renameOp(entry.id, name));
+      },
+    }));
+
   // The op's region drawn as a selection would be (not committed: no history step).
-  const showRegion = (entry) => editor.ops.regionWeights(entry.id)
-    .then((weights) => {
-      if (selected !== entry.id) return;
-      editor.showSelection(weights);
-      const label = list.querySelector(`[data-testid="${CSS.escape(`op-region-${entry.id}`)}"]`);
-      const count = weights.reduce((sum, w) => sum + (w > 0 ? 1 : 0), 0);
-      if (label) label.textContent = `Region: ${entry.region} (${count.toLocaleString('en-US')} vertices, shown on the mesh)`;
-    })
-    .catch((error) => editor.report(error, 'The region could not be shown'));
+  // The region shown ({region, count}): a new region of the op (its soft
+  // border changed, the selection made its region) is shown anew; the rows
+  // drawn again keep its count.
+  let shown = null;
+  const regionText = (entry) => (shown?.region === entry.region && shown.count !== null
+    ? `Region: ${entry.region} (${shown.count.toLocaleString('en-US')} vertices, shown on the mesh)`
+    : `Region: ${entry.region}`);
+  const showRegion = (entry) => {
+    shown = { region: entry.region, count: null };
+    return editor.ops.regionWeights(entry.id)
+      .then((weights) => {
+        if (selected !== entry.id) return;
+        editor.showSelection(weights);
+        shown = { region: entry.region, count: weights.reduce((sum, w) => sum + (w > 0 ? 1 : 0), 0) };
+        const label = list.querySelector(`[data-testid="${CSS.escape(`op-region-${entry.id}`)}"]`);
+        if (label) label.textContent = regionText(entry);
+      })
+      .catch((error) => editor.report(error, 'The region could not be shown'));
+  };
   const showSelectionAgain = () => editor.document && editor.showSelection(editor.document.selection);
 
   const row = (entry, index, ops) => {
@@ -97,6 +131,7 @@ export function opsPanel({ api, editor }) {
       h('button', {
         className: 'op-label',
         'data-testid': `op-select-${entry.id}`,
+        'aria-expanded': String(isSelected),
         title: 'Show this edit\'s amounts and region (Delete deletes it)',
         // Delete (or Backspace) on the focused name deletes the edit, as the × does.
         onkeydown: (event) => {
@@ -106,9 +141,9 @@ export function opsPanel({ api, editor }) {
         },
         onclick: () => {
           selected = isSelected ? null : entry.id;
-          render();
-          if (selected) showRegion(entry);
-          else showSelectionAgain();
+          shown = null;
+          render(); // shows the region of the op opened
+          if (!selected) showSelectionAgain();
         },
       }, entry.label || entry.id),
       h('button', {
@@ -120,6 +155,7 @@ export function opsPanel({ api, editor }) {
         onclick: () => redrawIfRefused(api.removeOp(entry.id)),
       }, '×'),
       isSelected ? h('div', { className: 'op-amounts' },
+        nameField(entry),
         opFields(entry, {
           change: (patch) => redrawIfRefused(api.setParameter(entry.id, patch)),
           // Typing previews the last edit (warm-started iterations, cheap);
@@ -144,6 +180,8 @@ export function opsPanel({ api, editor }) {
     }
     const focus = focusWithin(list);
     list.replaceChildren(...ops.map(row));
+    const open = ops.find((entry) => entry.id === selected);
+    if (open && shown?.region !== open.region) showRegion(open);
     empty.hidden = ops.length > 0;
     focus.restore();
   }
