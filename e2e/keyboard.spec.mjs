@@ -215,3 +215,20 @@ test('C selects with the brush\'s soft edge: full weight inside radius x (1 - so
   expect(selection.filter((w) => w > 0 && w < 1).length).toBeGreaterThan(5);
   expect(pageErrors).toEqual([]);
 });
+
+test('the Deform and Flatten tabs are one Tab stop, and the arrow keys switch between them', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const deform = page.getByRole('tab', { name: 'Deform' });
+  const flatten = page.getByRole('tab', { name: 'Flatten' });
+  await expect(deform).toHaveAttribute('tabindex', '0');
+  await expect(flatten).toHaveAttribute('tabindex', '-1');
+  await deform.focus();
+  await page.keyboard.press('ArrowRight');
+  await expect(flatten).toBeFocused();
+  await expect(flatten).toHaveAttribute('aria-selected', 'true');
+  await expect(page.getByTestId('flatten-run')).toBeVisible();
+  await page.keyboard.press('Home');
+  await expect(deform).toBeFocused();
+  await expect(deform).toHaveAttribute('aria-selected', 'true');
+  expect(pageErrors).toEqual([]);
+});

@@ -9,6 +9,10 @@ const MODES = [
   ['flatten', 'Flatten', 'Flatten an open patch into a garment pattern with directed shrinkage'],
 ];
 
+// A tab list as the ARIA pattern has it: one Tab stop (the selected tab),
+// the arrow keys, Home and End move between the tabs and select them.
+const ARROWS = { ArrowLeft: -1, ArrowUp: -1, ArrowRight: 1, ArrowDown: 1 };
+
 export function modeSwitch({ settings, app }) {
   const tabs = MODES.map(([mode, label, title]) => h('button', {
     className: 'mode-tab',
@@ -16,10 +20,25 @@ export function modeSwitch({ settings, app }) {
     title,
     'data-testid': `mode-${mode}`,
     onclick: () => settings.update('mode', mode),
+    onkeydown: (event) => {
+      const here = MODES.findIndex(([m]) => m === mode);
+      let next = null;
+      if (event.key in ARROWS) next = (here + ARROWS[event.key] + MODES.length) % MODES.length;
+      else if (event.key === 'Home') next = 0;
+      else if (event.key === 'End') next = MODES.length - 1;
+      if (next === null) return;
+      event.preventDefault();
+      settings.update('mode', MODES[next][0]);
+      tabs[next].focus();
+    },
   }, label));
   const sync = () => {
     const mode = settings.values.mode;
-    tabs.forEach((tab, index) => tab.setAttribute('aria-selected', String(MODES[index][0] === mode)));
+    tabs.forEach((tab, index) => {
+      const selected = MODES[index][0] === mode;
+      tab.setAttribute('aria-selected', String(selected));
+      tab.tabIndex = selected ? 0 : -1;
+    });
     app.classList.toggle('mode-flatten', mode === 'flatten');
     if (mode === 'flatten' && !FLATTEN_MODE_TOOLS.includes(settings.values.tool)) settings.update('tool', 'select');
   };
