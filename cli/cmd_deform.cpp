@@ -269,10 +269,13 @@ int run_deform(const DeformArguments& args) {
     warnings.push_back("--method arap is isotropic ARAP with handles: the local transform "
                        "(--scale, --shear, --rotate, --twist, --thicken) is not used");
   }
-  // The twist's range depends on the mesh, so the core checks it at the
-  // solve; checked here first by the same rule, to name where it came from.
+  // The twist's and the move's ranges depend on the mesh, so the core checks
+  // them at the solve; checked here first by the same rules, to name where
+  // they came from.
   naming_option(args.op.empty() ? "--twist" : "--op",
                 [&] { validate_twist(edit.request.transform, info.report.bbox.diagonal()); });
+  naming_option(args.op.empty() ? "--move" : "--op",
+                [&] { validate_move(edit.request.handle_offset, info.report.bbox.diagonal()); });
   // What the session will solve, for the counts echoed below.
   const DeformRequest resolved = resolve_edit(edit, mesh.V, info.report.bbox, session.selection());
   if (selected > 0 && resolved.method != Method::Arap &&

@@ -142,7 +142,6 @@ void validate_request(const DeformRequest& request, int n) {
       }
     }
   }
-  if (!request.handle_offset.allFinite()) fail(ErrorCode::BadParameter, "the handle offset must be finite");
   check_iteration_count(request.max_iterations, "iterations");
   check_iteration_count(request.rotation_steps, "rotation steps");
   if (!(request.rotation_coupling > 0.0) || !std::isfinite(request.rotation_coupling)) {
@@ -444,6 +443,7 @@ DeformResult Deformer::deform(const DeformRequest& request) {
   const int n = rest_.num_vertices();
   validate_request(request, n);
   validate_twist(request.transform, diagonal_);
+  validate_move(request.handle_offset, diagonal_);
   checked_weights(request, n);  // here, so that a bad weight is named by the input's numbering
   // Solve on the unit-size copy (limits.h: results independent of the units,
   // no overflow in squared areas) in its numbering, then scale lengths and
