@@ -84,3 +84,28 @@ TEST_CASE("cli: ARAP on a selection with no fully selected vertex names the rule
   CHECK(moved_most(rest, out) == Approx(0.1).epsilon(1e-6));
 }
 
+// The linear map moved vertices of no face by the selection's map, as if
+// they were part of the shape; the warning says they are left where they are.
+TEST_CASE("deformer: every method leaves a vertex in no face where it is", "[cli]") {
+  const aniso::Mesh spot = aniso::test::load("closed/spot_triangulated.obj");
+  aniso::Mesh with_loose{Eigen::MatrixXd(spot.num_vertices() + 2, 3), spot.F};
+  with_loose.V << spot.V, Eigen::RowVector3d(5, 5, 5), Eigen::RowVector3d(0, 0, 0);
+  aniso::Deformer loose(with_loose), plain(spot);
+  for (const aniso::Method method : {aniso::Method::Linear, aniso::Method::AnArap, aniso::Method::AnDefGrad}) {
+    INFO(aniso::method_name(method));
+    aniso::DeformRequest request;
+    request.method = method;
+    request.transform.su = 1.5;
+    request.direction.vector = Eigen::Vector3d::UnitZ();
+    const aniso::Positions V = loose.deform(request).V;
+    CHECK(V.bottomRows(2) == with_loose.V.bottomRows(2));
+    if (method == aniso::Method::Linear) {
+      // And the rest is the mesh's own linear map, about its own centroid.
+      // (The copies solved on are scaled to the two meshes' own sizes, so
+      // the results agree to round-off.)
+      const double off = (V.topRows(spot.num_vertices()) - plain.deform(request).V).cwiseAbs().maxCoeff();
+      CHECK(off < 1e-12);
+    }
+  }
+}
+

@@ -175,10 +175,22 @@ DeformRequest renumbered(const DeformRequest& request, const std::vector<int>& r
 
 // The point the linear baseline scales about: the weighted centroid of the
 // selection.
-Eigen::Vector3d linear_center(const Mesh& mesh, const Eigen::VectorXd& w) {
+// Whether each vertex belongs to a face. The solvers leave the others where
+// they are (pinned in their own component); the linear map must too.
+std::vector<char> in_a_face(const Mesh& mesh) {
+  std::vector<char> used(mesh.num_vertices(), 0);
+  for (int t = 0; t < mesh.F.rows(); ++t) {
+    for (int k = 0; k < 3; ++k) used[mesh.F(t, k)] = 1;
+  }
+  return used;
+}
+
+// The selection's centroid, of the vertices in a face.
+Eigen::Vector3d linear_center(const Mesh& mesh, const Eigen::VectorXd& w, const std::vector<char>& used) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   double total = 0.0;
   for (int i = 0; i < mesh.num_vertices(); ++i) {
+    if (!used[i]) continue;
     sum += w[i] * mesh.V.row(i).transpose();
     total += w[i];
   }
@@ -512,9 +524,11 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
     TransformSpec local = request.transform;
     local.twist = false;
     const ElementTargets targets = vertex_targets(ws.targets, request.direction, local, w);
-    const Eigen::Vector3d center = linear_center(unit_, w);
+    const std::vector<char> used = in_a_face(unit_);
+    const Eigen::Vector3d center = linear_center(unit_, w, used);
     result.V = unit_.V;
     for (int i = 0; i < n; ++i) {
+      if (!used[i]) continue;
       const Eigen::Vector3d p = unit_.V.row(i).transpose();
       const Eigen::Vector3d q = center + targets.T[i] * (p - center);
       const Eigen::Vector3d o = request.transform.twist_origin;
