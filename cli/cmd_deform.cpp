@@ -294,8 +294,15 @@ int run_deform(const DeformArguments& args) {
   const DeformOpResult result = session.deform(edit);
   // As the app's status line: a cut-off solve is not the edit's converged shape.
   if (!result.converged) {
-    warnings.push_back("stopped at the iteration cap (" + std::to_string(result.iterations) +
-                       ") before the energy settled: raise --iterations for a closer result");
+    // At the most --iterations allows, raising it is no advice.
+    warnings.push_back(result.iterations >= limits::kMaxIterations
+                           ? "stopped at the iteration cap (" + std::to_string(result.iterations) +
+                                 ", the most --iterations allows) before the energy settled: a larger "
+                                 "--tolerance (the default is " + echo_number(DeformRequest().tolerance) +
+                                 ") ends the solve where the energy "
+                                 "changes less"
+                           : "stopped at the iteration cap (" + std::to_string(result.iterations) +
+                                 ") before the energy settled: raise --iterations for a closer result");
   }
   // As the app's warning (edit-wording.js foldOverWarning).
   if (result.inverted > 0) {

@@ -109,3 +109,37 @@ TEST_CASE("deformer: every method leaves a vertex in no face where it is", "[cli
   }
 }
 
+TEST_CASE("deformer: the energy of a perfect fit is 0, never below", "[cli]") {
+  aniso::Deformer deformer(aniso::test::load("closed/spot_triangulated.obj"));
+  for (const aniso::Method method : {aniso::Method::AnArap, aniso::Method::Arap, aniso::Method::AnDefGrad}) {
+    INFO(aniso::method_name(method));
+    aniso::DeformRequest request;
+    request.method = method;
+    const aniso::DeformResult result = deformer.deform(request);
+    CHECK(result.energy >= 0.0);
+    CHECK(result.energy < 1e-12);
+    for (const double energy : result.energy_history) CHECK(energy >= 0.0);
+  }
+}
+
+// At --iterations 10000 (limits.h kMaxIterations) there is no more to raise
+// (Anderson mixing at tolerance 0 on this mesh: 2 s to the cap natively).
+TEST_CASE("cli: a deformation stopped at the most iterations allowed does not say to raise them", "[cli]") {
+  const std::string in = aniso::test::mesh_path("formats/spot_lowres.obj");
+  const std::string out = temp_path("max_iterations.obj");
+  const auto cap_warning = [&](const std::string& iterations) {
+    const json result = stdout_json(run_expecting({"deform", in, out, "--scale", "1.5", "--select", "all",
+                                                   "--iterations", iterations, "--tolerance", "0",
+                                                   "--acceleration", "anderson"},
+                                                  0));
+    for (const auto& w : result["warnings"]) {
+      if (w.get<std::string>().rfind("stopped at the iteration cap", 0) == 0) return w.get<std::string>();
+    }
+    return std::string();
+  };
+  CHECK(cap_warning("3") == "stopped at the iteration cap (3) before the energy settled: raise --iterations for a "
+                            "closer result");
+  CHECK(cap_warning("10000") ==
+        "stopped at the iteration cap (10000, the most --iterations allows) before the energy settled: a larger "
+        "--tolerance (the default is 1e-06) ends the solve where the energy changes less");
+}

@@ -481,8 +481,13 @@ DeformResult Deformer::deform(const DeformRequest& request) {
   result.V.resize(n, 3);
   for (int k = 0; k < n; ++k) result.V.row(order_[k]) = solved.row(k);
   result.V *= scale_;
-  result.energy *= scale_ * scale_;
-  for (double& energy : result.energy_history) energy *= scale_ * scale_;
+  // Energies are sums of squares, but AnARAP's per fan is evaluated expanded
+  // (|e'|^2 - 2 tr(R S) + |T e|^2), which round-off takes below 0 at a
+  // perfect fit (-4.4e-17 on spot unchanged): reported as 0. (A NaN stays
+  // one, for the last guard below.)
+  const auto reported = [this](double energy) { return (energy < 0.0 ? 0.0 : energy) * scale_ * scale_; };
+  result.energy = reported(result.energy);
+  for (double& energy : result.energy_history) energy = reported(energy);
   // The last guard: no non-finite number leaves the deformer.
   for (int i = 0; i < result.V.rows(); ++i) {
     if (!result.V.row(i).allFinite()) {
