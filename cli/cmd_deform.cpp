@@ -261,7 +261,6 @@ int run_deform(const DeformArguments& args) {
 
   const int selected = naming_option(
       "--select", [&] { return session.select(plan.selection, plan.falloff, SelectionMode::Replace); });
-  if (selected == 0) warnings.push_back("the selection holds no vertex: the mesh is left unchanged");
   DeformOp& edit = plan.edit;
   if (plan.pins) edit.request.pins = region_vertices(mesh, *plan.pins, "--pin");
   if (plan.handles) edit.request.handles = region_vertices(mesh, *plan.handles, "--handle");
@@ -269,21 +268,41 @@ int run_deform(const DeformArguments& args) {
     warnings.push_back("--method arap is isotropic ARAP with handles: the local transform "
                        "(--scale, --shear, --rotate, --twist, --thicken) is not used");
   }
-  // The twist's range depends on the mesh, so the core checks it at the
-  // solve; checked here first by the same rule, to name where it came from.
+  // The twist's and the move's ranges depend on the mesh, so the core checks
+  // them at the solve; checked here first by the same rules, to name where
+  // they came from.
   naming_option(args.op.empty() ? "--twist" : "--op",
                 [&] { validate_twist(edit.request.transform, info.report.bbox.diagonal()); });
+  naming_option(args.op.empty() ? "--move" : "--op",
+                [&] { validate_move(edit.request.handle_offset, info.report.bbox.diagonal()); });
   // What the session will solve, for the counts echoed below.
   const DeformRequest resolved = resolve_edit(edit, mesh.V, info.report.bbox, session.selection());
-  if (selected > 0 && resolved.method != Method::Arap &&
-      every_selected_vertex_pinned(session.selection(), resolved.pins)) {
+  // ARAP moves its handles, given or taken from the selection (resolve_edit);
+  // the other methods the selected vertices.
+  if (resolved.method == Method::Arap) {
+    if (resolved.handles.empty()) {
+      warnings.push_back(selected == 0 ? "the selection holds no vertex: the mesh is left unchanged"
+                                       : "ARAP's handles are the vertices selected with weight 1; the selection "
+                                         "has none: the mesh is left unchanged (select the part to move fully, "
+                                         "or give --handle)");
+    }
+  } else if (selected == 0) {
+    warnings.push_back("the selection holds no vertex: the mesh is left unchanged");
+  } else if (every_selected_vertex_pinned(session.selection(), resolved.pins)) {
     warnings.push_back("every selected vertex is pinned: the mesh is left unchanged");
   }
   const DeformOpResult result = session.deform(edit);
   // As the app's status line: a cut-off solve is not the edit's converged shape.
   if (!result.converged) {
-    warnings.push_back("stopped at the iteration cap (" + std::to_string(result.iterations) +
-                       ") before the energy settled: raise --iterations for a closer result");
+    // At the most --iterations allows, raising it is no advice.
+    warnings.push_back(result.iterations >= limits::kMaxIterations
+                           ? "stopped at the iteration cap (" + std::to_string(result.iterations) +
+                                 ", the most --iterations allows) before the energy settled: a larger "
+                                 "--tolerance (the default is " + echo_number(DeformRequest().tolerance) +
+                                 ") ends the solve where the energy "
+                                 "changes less"
+                           : "stopped at the iteration cap (" + std::to_string(result.iterations) +
+                                 ") before the energy settled: raise --iterations for a closer result");
   }
   // As the app's warning (edit-wording.js foldOverWarning).
   if (result.inverted > 0) {

@@ -59,6 +59,8 @@ TEST_CASE("limits: huge amounts on the command line are refused by name with exi
       {{"deform", in, out, "--shear", "1e300"}, "shear = 1e+300 is out of range (-100 .. 100)"},
       {{"deform", in, out, "--twist", "0,1,0:1e300"}, "twist rate = 1e+300"},
       {{"deform", in, out, "--rotate", "n:1e300"}, "rotation angle (degrees) = 1e+300 is out of range"},
+      {{"deform", in, out, "--method", "arap", "--move", "1e300,0,0"},
+       "--move: move = (1e+300, 0, 0) is 1e+300 long; at most 100 times the mesh's bounding-box diagonal"},
       {{"flatten", aniso::test::mesh_path("open/spothead.obj"), temp_path("limits_pattern.obj"), "--compress",
         "1e300"},
        "su = 1e+300 is out of range (0.01 .. 100)"},
@@ -142,6 +144,35 @@ TEST_CASE("limits: a twist's range is relative to the mesh size", "[limits]") {
   // The same rate on spot a thousand times smaller is 1000 turns... / 1000.
   aniso::Deformer small(aniso::Mesh{spot.V * 1e-3, spot.F});
   CHECK(small.deform(request).V.allFinite());
+}
+
+// A move of 1e300 used to be solved: the output held coordinates the readers
+// refuse, and the session could not flatten afterwards.
+TEST_CASE("limits: an ARAP move's range is relative to the mesh size", "[limits]") {
+  const aniso::Mesh spot = aniso::test::load("closed/spot_triangulated.obj");
+  const double diagonal = (spot.V.colwise().maxCoeff() - spot.V.colwise().minCoeff()).norm();
+  aniso::DeformRequest request;
+  request.method = aniso::Method::Arap;
+  request.handles = {0};
+  request.pins = {100};
+  request.handle_offset = Eigen::Vector3d(1e300, 0, 0);
+  aniso::Deformer deformer(spot);
+  const std::string message = aniso::test::bad_parameter_message([&] { deformer.deform(request); });
+  CHECK_THAT(message, Catch::Contains("move = (1e+300, 0, 0)") && Catch::Contains("at most 100 times"));
+  request.handle_offset = Eigen::Vector3d(0, 0, 101 * diagonal);
+  CHECK_THAT(aniso::test::bad_parameter_message([&] { deformer.deform(request); }),
+             Catch::Contains("at most 100 times"));
+  // Within the range the handle lands where it was sent.
+  request.handle_offset = Eigen::Vector3d(0, 0, 99 * diagonal);
+  const aniso::DeformResult moved = deformer.deform(request);
+  CHECK(moved.V.row(0) == spot.V.row(0) + request.handle_offset.transpose());
+  // A session refuses it before any change: its pose stays as it was.
+  aniso::Session session;
+  session.adopt_mesh(spot, {});
+  aniso::DeformOp op = aniso::deform_op_from_json(nlohmann::json::parse(R"({"method":"arap","move":[1e300,0,0]})"));
+  const aniso::Positions before = session.positions();
+  CHECK_THAT(aniso::test::bad_parameter_message([&] { session.deform(op); }), Catch::Contains("move = (1e+300"));
+  CHECK(session.positions() == before);
 }
 
 // A crafted request with tolerance 0 would otherwise hold the solver for as

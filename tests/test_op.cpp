@@ -230,11 +230,12 @@ TEST_CASE("op: the mesh's defaults are resolved by the session's rule", "[op]") 
   CHECK(resolved.pins.front() == 3);
   CHECK(resolved.direction.vector == longest_axis(box));
 
-  // Nothing selected: the whole mesh is the handle; given pins and handles are kept.
+  // Nothing selected: no handle, so nothing moves (it used to be the whole
+  // mesh, which the CLI reported as unchanged); given pins and handles are kept.
   const DeformOp pinned = deform_op_from_json(Json::parse(R"({"method":"arap","pins":[7]})"));
-  const DeformRequest all = resolve_edit(pinned, mesh.V, box, Eigen::VectorXd::Zero(n));
-  CHECK(static_cast<int>(all.handles.size()) == n);
-  CHECK(all.pins == std::vector<int>{7});
+  const DeformRequest none = resolve_edit(pinned, mesh.V, box, Eigen::VectorXd::Zero(n));
+  CHECK(none.handles.empty());
+  CHECK(none.pins == std::vector<int>{7});
   const DeformOp handled = deform_op_from_json(Json::parse(R"({"method":"arap","handles":[5, 6]})"));
   const DeformRequest kept = resolve_edit(handled, mesh.V, box, weights);
   CHECK(kept.handles == std::vector<int>{5, 6});

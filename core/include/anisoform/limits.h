@@ -34,6 +34,12 @@ constexpr double kMaxRotateDegrees = 3600.0;
 // |rate| * bounding-box diagonal <= kMaxTwistDegrees (one hundred turns).
 constexpr double kMaxTwistDegrees = 36000.0;
 
+// ARAP's move (the handles' offset): |offset| <= kMaxMoveDiagonals bounding-box
+// diagonals, as the scales keep a deformed mesh within a hundred mesh sizes.
+// Beyond, it is a typing mistake: a move of 1e300 wrote coordinates that the
+// readers refuse (kMaxCoordinate) and left a session that could not flatten.
+constexpr double kMaxMoveDiagonals = 100.0;
+
 // Mesh coordinates: |x| <= kMaxCoordinate. The square of any coordinate
 // difference (up to 2e150) and sums of three such squares stay finite, so edge
 // lengths, bounding boxes and the normalisation to unit size (deformer.cpp)

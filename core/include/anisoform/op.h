@@ -114,7 +114,7 @@ ModelUnitGuess guess_model_unit(const BoundingBox& box);
 //   Arap with no handles (none would move: the edit would do nothing): handles
 //     are the vertices with selection weight >= 0.999 and, unless pins are
 //     given, pins those with weight 0 (the soft border in between deforms as
-//     rigidly as possible); nothing selected: every vertex is a handle;
+//     rigidly as possible); nothing selected: no handle (nothing moves);
 //   preview: max_iterations capped at kPreviewIterations.
 DeformRequest resolve_edit(const DeformOp& edit, const Positions& rest, const BoundingBox& loaded_box,
                            const Eigen::VectorXd& weights);

@@ -71,6 +71,11 @@ void validate_scale(double value, const std::string& name);
 // Error(BadParameter) when |rate| * mesh_diagonal exceeds it.
 void validate_twist(const TransformSpec& spec, double mesh_diagonal);
 
+// ARAP's move depends on the mesh's size too (limits.h kMaxMoveDiagonals):
+// Error(BadParameter) when the offset is not finite or longer than that many
+// diagonals.
+void validate_move(const Eigen::Vector3d& offset, double mesh_diagonal);
+
 // Per-element amounts overriding su / sv (from a direction field with amounts).
 struct Amounts {
   double su;

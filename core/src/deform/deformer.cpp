@@ -142,7 +142,6 @@ void validate_request(const DeformRequest& request, int n) {
       }
     }
   }
-  if (!request.handle_offset.allFinite()) fail(ErrorCode::BadParameter, "the handle offset must be finite");
   check_iteration_count(request.max_iterations, "iterations");
   check_iteration_count(request.rotation_steps, "rotation steps");
   if (!(request.rotation_coupling > 0.0) || !std::isfinite(request.rotation_coupling)) {
@@ -176,10 +175,22 @@ DeformRequest renumbered(const DeformRequest& request, const std::vector<int>& r
 
 // The point the linear baseline scales about: the weighted centroid of the
 // selection.
-Eigen::Vector3d linear_center(const Mesh& mesh, const Eigen::VectorXd& w) {
+// Whether each vertex belongs to a face. The solvers leave the others where
+// they are (pinned in their own component); the linear map must too.
+std::vector<char> in_a_face(const Mesh& mesh) {
+  std::vector<char> used(mesh.num_vertices(), 0);
+  for (int t = 0; t < mesh.F.rows(); ++t) {
+    for (int k = 0; k < 3; ++k) used[mesh.F(t, k)] = 1;
+  }
+  return used;
+}
+
+// The selection's centroid, of the vertices in a face.
+Eigen::Vector3d linear_center(const Mesh& mesh, const Eigen::VectorXd& w, const std::vector<char>& used) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   double total = 0.0;
   for (int i = 0; i < mesh.num_vertices(); ++i) {
+    if (!used[i]) continue;
     sum += w[i] * mesh.V.row(i).transpose();
     total += w[i];
   }
@@ -444,6 +455,7 @@ DeformResult Deformer::deform(const DeformRequest& request) {
   const int n = rest_.num_vertices();
   validate_request(request, n);
   validate_twist(request.transform, diagonal_);
+  validate_move(request.handle_offset, diagonal_);
   checked_weights(request, n);  // here, so that a bad weight is named by the input's numbering
   // Solve on the unit-size copy (limits.h: results independent of the units,
   // no overflow in squared areas) in its numbering, then scale lengths and
@@ -469,8 +481,13 @@ DeformResult Deformer::deform(const DeformRequest& request) {
   result.V.resize(n, 3);
   for (int k = 0; k < n; ++k) result.V.row(order_[k]) = solved.row(k);
   result.V *= scale_;
-  result.energy *= scale_ * scale_;
-  for (double& energy : result.energy_history) energy *= scale_ * scale_;
+  // Energies are sums of squares, but AnARAP's per fan is evaluated expanded
+  // (|e'|^2 - 2 tr(R S) + |T e|^2), which round-off takes below 0 at a
+  // perfect fit (-4.4e-17 on spot unchanged): reported as 0. (A NaN stays
+  // one, for the last guard below.)
+  const auto reported = [this](double energy) { return (energy < 0.0 ? 0.0 : energy) * scale_ * scale_; };
+  result.energy = reported(result.energy);
+  for (double& energy : result.energy_history) energy = reported(energy);
   // The last guard: no non-finite number leaves the deformer.
   for (int i = 0; i < result.V.rows(); ++i) {
     if (!result.V.row(i).allFinite()) {
@@ -512,9 +529,11 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
     TransformSpec local = request.transform;
     local.twist = false;
     const ElementTargets targets = vertex_targets(ws.targets, request.direction, local, w);
-    const Eigen::Vector3d center = linear_center(unit_, w);
+    const std::vector<char> used = in_a_face(unit_);
+    const Eigen::Vector3d center = linear_center(unit_, w, used);
     result.V = unit_.V;
     for (int i = 0; i < n; ++i) {
+      if (!used[i]) continue;
       const Eigen::Vector3d p = unit_.V.row(i).transpose();
       const Eigen::Vector3d q = center + targets.T[i] * (p - center);
       const Eigen::Vector3d o = request.transform.twist_origin;
@@ -534,6 +553,11 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
     result.energy = gradient_energy(unit_, cotan_weights_, targets.T, result.V);
     result.iterations = 1;
     result.directions_filled = targets.filled;
+  } else if (request.method == Method::Arap && request.handles.empty()) {
+    // No handle: T = I with every held vertex at rest, so the rest pose is
+    // the minimum (energy 0) exactly, where a solve and the gauge's rigid fit
+    // return it up to round-off (3e-16 on spot): nothing moves.
+    result.V = unit_.V;
   } else {
     const bool isotropic = request.method == Method::Arap;
     std::vector<int> user_pins = request.pins;

@@ -96,6 +96,20 @@ void validate_twist(const TransformSpec& spec, double mesh_diagonal) {
            " degrees are allowed");
 }
 
+void validate_move(const Eigen::Vector3d& offset, double mesh_diagonal) {
+  const std::string given = "move = (" + range_number_text(offset.x()) + ", " + range_number_text(offset.y()) +
+                            ", " + range_number_text(offset.z()) + ")";
+  if (!offset.allFinite()) fail(ErrorCode::BadParameter, given + " must be finite");
+  const double limit = limits::kMaxMoveDiagonals * mesh_diagonal;
+  // stableNorm: |(1e300, 0, 0)| is 1e300, where the plain norm's square overflows.
+  const double length = offset.stableNorm();
+  if (length <= limit) return;
+  fail(ErrorCode::BadParameter,
+       given + " is " + range_number_text(length) + " long; at most " +
+           range_number_text(limits::kMaxMoveDiagonals) + " times the mesh's bounding-box diagonal of " +
+           range_number_text(mesh_diagonal) + " (" + range_number_text(limit) + ") is allowed");
+}
+
 Eigen::Matrix3d element_transform(const TransformSpec& spec, const Eigen::Vector3d& cu,
                                   const Eigen::Vector3d& cv, const Eigen::Vector3d& n,
                                   double weight, const Eigen::Vector3d& position,

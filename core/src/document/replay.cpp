@@ -69,6 +69,7 @@ void check_document(const EditDocument& document, const Session& session) {
     naming_document_part(document_op_name(document, i), [&] {
       document_region_named(document, op.region);
       validate_twist(op.edit.request.transform, diagonal);
+      validate_move(op.edit.request.handle_offset, diagonal);
       validate_direction_source(op.edit.request.direction, rest.num_vertices());
     });
   }

@@ -217,7 +217,7 @@ struct ArapFlattening::Impl {
       ++report.iterations;
       report.energy_history.push_back(energy);
       if (settings.progress && !settings.progress(report.iterations, energy)) break;
-      const bool small_change = previous - energy <= settings.tolerance * previous;
+      const bool small_change = small_decrease(previous, energy, settings.tolerance);
       if ((!shortened && small_change) || energy <= exact_energy) {
         report.converged = true;
         break;
@@ -320,7 +320,7 @@ struct ArapFlattening::Impl {
       // As the plain loop's rule, with kFlattenQuietSteps small changes in a row:
       // one quasi-Newton step that happened to gain little is no sign of
       // convergence by itself.
-      const bool small_change = previous - energy <= settings.tolerance * previous;
+      const bool small_change = small_decrease(previous, energy, settings.tolerance);
       quiet_steps = small_change && !shortened ? quiet_steps + 1 : 0;
       stagnant_steps = small_change && shortened ? stagnant_steps + 1 : 0;
       if (quiet_steps >= kFlattenQuietSteps || energy <= exact_energy) {

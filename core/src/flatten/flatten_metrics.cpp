@@ -8,6 +8,7 @@
 
 #include <Eigen/LU>
 
+#include "anisoform/limits.h"
 #include "flatten/flatten_pipeline.h"
 
 namespace aniso {
@@ -104,6 +105,11 @@ std::string flatten_problem(const FlattenMetrics& metrics) {
   if (reason.empty()) return "";
   // The cap alone: the pattern is not finished, which says nothing of the patch.
   if (metrics.capped && metrics.flipped == 0 && metrics.non_manifold_edges == 0) {
+    // At the most the iterations may be, raising them is no advice.
+    if (metrics.iterations >= limits::kMaxIterations) {
+      return "the flattening stopped at the iteration cap (" + std::to_string(metrics.iterations) +
+             ", the most allowed) before it settled: a larger tolerance ends it where the energy changes less";
+    }
     return "the flattening stopped at the iteration cap (" + std::to_string(metrics.iterations) +
            ") before it settled: raise the iterations for the finished pattern";
   }

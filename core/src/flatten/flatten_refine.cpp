@@ -168,9 +168,6 @@ constexpr double kMaxStretch = 8.0;
 constexpr double kPivotFloor = 1e-14;
 constexpr double kFirstShift = 1e-12;
 constexpr double kShiftGrowth = 100.0;
-// A predicted decrease, relative to the energy, that a step cannot show: the
-// energy's sum over the triangles resolves about 1e-13 of itself.
-constexpr double kRoundOffDecrease = 1e-11;
 constexpr double kMaxShift = 1e-2;
 
 // rho(r) = sqrt(r^2 + d^2) - d, with its derivatives.
@@ -679,7 +676,7 @@ class NewtonStage {
       // A step the fold guard cut short says nothing about convergence (it
       // was small because a triangle is near zero area), but many in a row
       // mean such triangles block the descent.
-      const bool small_change = previous - energy <= tolerance * previous;
+      const bool small_change = small_decrease(previous, energy, tolerance);
       const bool cut_short = bound < 1.0;
       quiet = small_change && !cut_short ? quiet + 1 : 0;
       blocked = small_change && cut_short ? blocked + 1 : 0;

@@ -32,11 +32,11 @@ constexpr double kHandleWeight = 0.999;
 
 void arap_handles_from_selection(const Eigen::VectorXd& weights, DeformRequest& request) {
   const bool pins_given = !request.pins.empty();
-  if (!(weights.array() > 0.0).any()) {
-    // Nothing selected: the whole mesh is the handle.
-    for (Eigen::Index i = 0; i < weights.size(); ++i) request.handles.push_back(static_cast<int>(i));
-    return;
-  }
+  // Nothing selected: no handle, so nothing moves, as with the other methods
+  // (an empty selection used to make every vertex a handle: the whole mesh
+  // moved while the CLI said it was left unchanged). A host that means the
+  // whole mesh selects it (the web app's empty selection is "all").
+  if (!(weights.array() > 0.0).any()) return;
   std::vector<int> pins;
   for (Eigen::Index i = 0; i < weights.size(); ++i) {
     if (weights[i] >= kHandleWeight) request.handles.push_back(static_cast<int>(i));
