@@ -49,6 +49,54 @@ TEST_CASE("gauge: each component of a multi-part mesh is solved and kept in plac
   CHECK(moved > 0.05);
 }
 
+TEST_CASE("gauge: a whole multi-part mesh scaled uniformly is one similarity, its parts' gap scaled too",
+          "[gauge][method9]") {
+  // METHOD §9: v' = s R v up to one translation, and §7: the centroid kept.
+  // Each part used to be scaled about its own centroid: the gap stayed.
+  const Mesh mesh = test::load("malformed/multi_component.obj");
+  const Eigen::RowVector3d centroid = mesh.V.colwise().mean();
+  Deformer deformer(mesh);
+  for (Method method : {Method::AnArap, Method::AnDefGrad}) {
+    DeformRequest request = test::stretch_request(method, Eigen::Vector3d::UnitX(), 1.5, 1.5);
+    request.tolerance = 1e-12;
+    const DeformResult r = deformer.deform(request);
+    const Positions expected = (1.5 * (mesh.V.rowwise() - centroid)).rowwise() + centroid;
+    INFO(method_name(method));
+    CHECK((r.V - expected).rowwise().norm().maxCoeff() < 1e-6 * test::diagonal(mesh.V));
+  }
+}
+
+TEST_CASE("gauge: a part wholly selected with part of its neighbour moves with it; alone it stays", "[gauge]") {
+  // Blub (x > 1.2) and Spot's side towards it (x > 0.1) stretched along x:
+  // Blub, held by nothing of its own, follows Spot's selected side out.
+  const Mesh mesh = test::load("malformed/multi_component.obj");
+  Deformer deformer(mesh);
+  Eigen::VectorXd w(mesh.num_vertices());
+  for (int i = 0; i < mesh.num_vertices(); ++i) w[i] = mesh.V(i, 0) > 0.1 ? 1.0 : 0.0;
+  DeformRequest request = test::stretch_request(Method::AnDefGrad, Eigen::Vector3d::UnitX(), 1.5);
+  request.selection = w;
+  const DeformResult r = deformer.deform(request);
+  double spot_side = -1e9, blub_from = 1e9, blub_moved = 0.0;
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    if (mesh.V(i, 0) > 1.2) {
+      blub_from = std::min(blub_from, r.V(i, 0));
+      blub_moved += (r.V(i, 0) - mesh.V(i, 0)) / 1.0;
+    } else {
+      spot_side = std::max(spot_side, r.V(i, 0));
+    }
+  }
+  // Spot's selected side reached further out, and Blub moved out with it: the
+  // gap between them grew by the stretch instead of closing.
+  double rest_side = -1e9, rest_blub = 1e9;
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    if (mesh.V(i, 0) > 1.2) rest_blub = std::min(rest_blub, mesh.V(i, 0));
+    else rest_side = std::max(rest_side, mesh.V(i, 0));
+  }
+  CHECK(spot_side > rest_side + 0.05);
+  CHECK(blub_from - spot_side > 0.9 * (rest_blub - rest_side));
+  CHECK(blub_moved > 0.0);
+}
+
 TEST_CASE("gauge: user pins hold exactly and handles move exactly (ARAP)", "[gauge]") {
   const Mesh mesh = test::load("closed/spool.off");
   Deformer deformer(mesh);
