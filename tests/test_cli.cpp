@@ -574,7 +574,7 @@ TEST_CASE("cli: deform runs every method and direction source", "[cli]") {
   const std::string field = write_temp_text("field.txt", "# two arrows\n0 1 0 0\n400 0 1 0\n");
   const std::string selection = write_temp_text("selection.txt", "0\n1 0.5\n2\n3 1\n400\n");
   const std::vector<std::vector<std::string>> edits{
-      {"--method", "anarap", "--rotate", "n:20", "--iterations", "3"},
+      {"--method", "anarap", "--rotate", "n:20", "--iterations", "3", "--select", "box:-1,-1,0,1,2,2"},
       {"--method", "anarap", "--elements", "spokes-rims", "--scale", "1.3"},
       {"--method", "andefgrad", "--shear", "0.4", "--direction", "global:0,1,0"},
       {"--method", "andefgrad", "--twist", "0,0,1:45", "--select", "box:-1,-1,0,1,2,2"},

@@ -149,6 +149,27 @@ TEST_CASE("solvers: a face listed from another corner gives the same curvature-f
   }
 }
 
+TEST_CASE("anarap: a rotation of the whole mesh, which it cannot show, is refused; a part's rotation is not",
+          "[solver][anarap]") {
+  const Mesh mesh = test::load("open/plane.off");
+  Deformer deformer(mesh);
+  DeformRequest request;
+  request.method = Method::AnArap;
+  request.direction.kind = DirectionSource::Kind::Global;
+  request.direction.vector = Eigen::Vector3d::UnitX();
+  request.transform.rotate_axis = RotateAxis::Normal;
+  request.transform.rotate_degrees = 30.0;
+  CHECK_THROWS_WITH(deformer.deform(request), Catch::Contains("changes nothing with AnARAP") &&
+                                                  Catch::Contains("Select the part to rotate"));
+  // AnDefGrad rotates it; AnARAP rotates half of it against the other half.
+  request.method = Method::AnDefGrad;
+  CHECK((deformer.deform(request).V - mesh.V).rowwise().norm().maxCoeff() > 0.1 * diagonal(mesh.V));
+  request.method = Method::AnArap;
+  request.selection = Eigen::VectorXd::Zero(mesh.num_vertices());
+  for (int i = 0; i < mesh.num_vertices(); ++i) request.selection[i] = mesh.V(i, 0) > mesh.V.col(0).mean() ? 1.0 : 0.0;
+  CHECK((deformer.deform(request).V - mesh.V).rowwise().norm().maxCoeff() > 1e-3 * diagonal(mesh.V));
+}
+
 TEST_CASE("anarap: the energy decreases monotonically over the iterations", "[solver][method9]") {
   // Spot, not the 2.7x larger cat: descent is a property of every iteration
   // on any mesh, and Spot keeps all 30 of them.

@@ -152,6 +152,19 @@ void validate_request(const DeformRequest& request, int n) {
   }
 }
 
+// AnARAP keeps each element's shape up to a rotation of its own: a rotation
+// of every element, with nothing unselected or pinned to turn against, is a
+// rigid motion it cannot show. The whole mesh came back unchanged, and the
+// edit was reported done.
+void refuse_unseen_rotation(const DeformRequest& request, const Eigen::VectorXd& weights) {
+  if (request.method != Method::AnArap || !request.transform.rotates_only() || !request.pins.empty()) return;
+  if ((weights.array() < 1.0).any()) return;
+  fail(ErrorCode::BadParameter,
+       "a rotation of the whole mesh changes nothing with AnARAP: it keeps each part's shape up to a rotation, and "
+       "with nothing unselected or pinned to turn against, the rotation is a rigid motion. Select the part to "
+       "rotate (the rest holds it), or use AnDefGrad");
+}
+
 // The request in the numbering whose vertex rank[i] is the input's vertex i:
 // the selection, the pins and handles, a field's constraints and dense
 // directions. Entries outside the mesh are left as they are (ARAP's unused
@@ -456,7 +469,8 @@ DeformResult Deformer::deform(const DeformRequest& request) {
   validate_request(request, n);
   validate_twist(request.transform, diagonal_);
   validate_move(request.handle_offset, diagonal_);
-  checked_weights(request, n);  // here, so that a bad weight is named by the input's numbering
+  // Here, so that a bad weight is named by the input's numbering.
+  refuse_unseen_rotation(request, checked_weights(request, n));
   // Solve on the unit-size copy (limits.h: results independent of the units,
   // no overflow in squared areas) in its numbering, then scale lengths and
   // energies back and number the vertices as given.
