@@ -130,7 +130,9 @@ class NearestAnchor {
         for (int dy = -ring; dy <= ring; ++dy)
           for (int dz = -ring; dz <= ring; ++dz) {
             if (std::max({std::abs(dx), std::abs(dy), std::abs(dz)}) != ring) continue;
-            const auto found = grid_.find(key(home + Eigen::Vector3i(dx, dy, dz)));
+            const Eigen::Vector3i cell = home + Eigen::Vector3i(dx, dy, dz);
+            if (cell.minCoeff() < -1 || cell.maxCoeff() > cells_ + 1) continue;  // no vertex's cell
+            const auto found = grid_.find(key(cell));
             if (found == grid_.end()) continue;
             for (int i : found->second) {
               const double d2 = (rest_.row(i).transpose() - point).squaredNorm();
@@ -149,9 +151,10 @@ class NearestAnchor {
     const Eigen::Vector3d q = ((p - lo_) / size_).array().floor();
     return q.cwiseMax(-1.0).cwiseMin(cells_ + 1.0).cast<int>();
   }
-  static std::int64_t key(const Eigen::Vector3i& c) {
-    return (static_cast<std::int64_t>(c.x() + 2) << 40) | (static_cast<std::int64_t>(c.y() + 2) << 20) |
-           static_cast<std::int64_t>(c.z() + 2);
+  // Cells run from -1 to cells_ + 1 (cell_of clamps to them).
+  std::int64_t key(const Eigen::Vector3i& c) const {
+    const std::int64_t side = cells_ + 3;
+    return ((static_cast<std::int64_t>(c.x()) + 1) * side + (c.y() + 1)) * side + (c.z() + 1);
   }
   const Positions& rest_;
   std::vector<int> anchored_;
