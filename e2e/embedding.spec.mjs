@@ -151,11 +151,28 @@ test('api calls in the wrong order: refusals are reported, a second cancel() is 
     await new Promise((resolve) => setTimeout(resolve, 50));
     const cancels = [modeller.api.cancel(), modeller.api.cancel()];
     const cancelled = await first;
+    // Cancelled in the same task it was asked for: stopped before it reaches the worker.
+    const before = Array.from(modeller.api.positions());
+    const sameTask = modeller.api.deform(long).then(() => 'resolved', (error) => error.code);
+    const cancelledAtOnce = modeller.api.cancel();
+    const sameTaskOutcome = await sameTask;
+    const unchanged = modeller.api.positions().every((value, i) => value === before[i]);
+    const ops = modeller.api.document().ops.length;
     const second = modeller.api.deform(long).then(() => 'resolved', (error) => error.code);
     await new Promise((resolve) => setTimeout(resolve, 50));
     modeller.dispose();
-    return { refusals, errors, cancels, cancelled, disposed: await second };
+    // Disposed in the same task as the edit asked for: stopped as well, not refused.
+    const third = createModeller(host, { ui: 'none', mesh: '../spot_triangulated.obj' });
+    await third.api.ready;
+    const queued = third.api.deform(long).then(() => 'resolved', (error) => error.code);
+    third.dispose();
+    const afterDispose = await third.api.deform(long).then(() => 'resolved', (error) => `${error.code}: ${error.message}`);
+    return { refusals, errors, cancels, cancelled, sameTask: { cancelledAtOnce, outcome: sameTaskOutcome, unchanged, ops },
+      disposed: await second, disposedAtOnce: await queued, afterDispose };
   });
+  expect(outcome.sameTask).toEqual({ cancelledAtOnce: true, outcome: 'cancelled', unchanged: true, ops: 0 });
+  expect(outcome.disposedAtOnce).toBe('cancelled');
+  expect(outcome.afterDispose).toBe('bad-parameter: deform(): this modeller was disposed');
   expect(outcome.refusals).toEqual(['bad-parameter', 'bad-parameter']);
   expect(outcome.errors).toHaveLength(2);
   expect(outcome.errors.every((message) => message.includes('no mesh is loaded yet'))).toBe(true);

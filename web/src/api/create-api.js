@@ -8,6 +8,10 @@ import { badParameter } from '../shared/errors.js';
 
 const EVENTS = ['change', 'error', 'progress', 'positions', 'document'];
 
+// The calls that ask the solver for work.
+const AFTER_DISPOSE_REFUSED = ['load', 'select', 'deform', 'open', 'setParameter', 'setOpEnabled', 'removeOp', 'moveOp',
+  'setRegion', 'renameOp', 'export', 'flatten', 'exportPattern'];
+
 // The events whose payload is the page's own state (the positions shown, the
 // edit document): a listener gets a copy, as positions() and document()
 // give, so that changing it changes nothing of the modeller's. The arrays
@@ -39,7 +43,7 @@ export function createAnisoformApi({ editor, viewer, picker, ready }) {
     throw editor.report(error, context);
   });
 
-  return Object.freeze({
+  const api = {
     version: '0.1.0',
     ready,
 
@@ -130,5 +134,14 @@ export function createAnisoformApi({ editor, viewer, picker, ready }) {
         target: viewer.controls.target.toArray(),
       };
     },
-  });
+  };
+  // Called after the modeller's dispose(): refused as such (work asked for
+  // before it rejects as 'cancelled', solver-client.js).
+  for (const name of AFTER_DISPOSE_REFUSED) {
+    const call = api[name];
+    api[name] = (...args) => (editor.disposed
+      ? Promise.reject(badParameter(`${name}(): this modeller was disposed`))
+      : call(...args));
+  }
+  return Object.freeze(api);
 }

@@ -13,7 +13,7 @@ import { EditDocument, regionSteps } from './edit-document.js';
 import { OpRunner } from './op-runner.js';
 import { LivePreview } from './live-preview.js';
 import { DocumentPersistence } from './document-persistence.js';
-import { badParameter } from '../shared/errors.js';
+import { badParameter, cancelledError } from '../shared/errors.js';
 
 // What setParameter may change, in the words of its history step.
 // An op's name is a list label, not a document: long enough for "Stretch the left sleeve, 2nd try".
@@ -133,13 +133,21 @@ export class OpStack {
 
   /** Resolves `solverOp` on the current selection, appends it and solves it; resolves with its stats. */
   commit(solverOp, label) {
+    const editor = this.#editor;
+    // A cancel() from here on stops it, even before its requests reach the
+    // worker (the restarted worker would have solved and committed it).
+    const cancels = editor.cancels;
+    const stillWanted = () => {
+      if (editor.cancels !== cancels) throw cancelledError();
+    };
     return this.#run(async () => {
-      const editor = this.#editor;
+      stillWanted();
       const steps = this.#selectionSteps();
       editor.selectionState.syncForEdit();
       const { op } = await this.#client.request(Request.resolveOp, { op: solverOp }).catch((error) => {
         throw inPageWords(error, this.document, { labelled: false });
       });
+      stillWanted();
       const index = this.document.ops.length;
       const undone = [...this.document.undone];
       const result = await this.#solving(async () => {

@@ -62,6 +62,11 @@ export class Editor extends EventEmitter {
   heatMapKind = null;
   #client;
   #busy = 0;
+  /**
+   * Cancels so far: a commit asked for before a cancel, not yet sent to the
+   * worker (queued, or between its requests), is cancelled too (op-stack.js).
+   */
+  cancels = 0;
   /** Whether the solve running was cancelled (until a solve ends or starts). */
   #cancelling = false;
   #prepareTimer = 0;
@@ -107,6 +112,7 @@ export class Editor extends EventEmitter {
     // (nor its fresh worker restarted again).
     if (!this.busy || !this.document || this.#cancelling) return false;
     this.#cancelling = true;
+    this.cancels++;
     const document = this.document;
     this.selectionState.forget(); // the new worker has none
     this.#patterns.drop(); // the last flattening was the old worker's
@@ -120,6 +126,11 @@ export class Editor extends EventEmitter {
       },
     );
     return true;
+  }
+
+  /** Whether this modeller was disposed (its solver worker ended). */
+  get disposed() {
+    return this.#client.disposed;
   }
 
   /** Marks a committed solve in progress; call the returned function when it ends. */

@@ -3,3 +3,11 @@
 export function badParameter(message) {
   return Object.assign(new Error(message), { code: 'bad-parameter' });
 }
+
+// What a solve stopped by cancel() rejects with: no failure, so no 'error'
+// event (the reporter shows a notice), the same words as the worker's.
+export const CANCELLED_MESSAGE = 'Cancelled: the solve was stopped; the mesh and its history are as they were.';
+
+export function cancelledError() {
+  return Object.assign(new Error(CANCELLED_MESSAGE), { code: 'cancelled' });
+}

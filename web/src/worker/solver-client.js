@@ -5,7 +5,7 @@
 // preview replaces the waiting one (whose promise resolves with null), so
 // while the pointer moves faster than the solver, the worker only ever solves
 // the latest position, never a backlog of stale ones.
-import { badParameter } from '../shared/errors.js';
+import { CANCELLED_MESSAGE, badParameter } from '../shared/errors.js';
 import { EventEmitter } from '../shared/event-emitter.js';
 import { urlProblem } from '../shared/url-problem.js';
 import { PROGRESS, Request } from './protocol.js';
@@ -113,11 +113,11 @@ export class SolverClient extends EventEmitter {
    * wait until the seed is done. Resolves when it is (rejects if it failed).
    */
   restart(seed) {
-    if (this.#disposed) return Promise.reject(disposedError());
+    if (this.#disposed) return Promise.reject(stoppedByDispose());
     this.#worker.onmessage = null;
     this.#worker.onerror = null;
     this.#worker.terminate();
-    const cancelled = new SolverError({ code: 'cancelled', message: 'Cancelled: the solve was stopped; the mesh and its history are as they were.' });
+    const cancelled = new SolverError({ code: 'cancelled', message: CANCELLED_MESSAGE });
     this.#rejectAll(cancelled);
     // Requests held for an earlier restart belong to the work being cancelled.
     for (const { reject } of this.#held) reject(cancelled);
@@ -165,7 +165,7 @@ export class SolverClient extends EventEmitter {
   }
 
   request(kind, payload = {}, transfer = []) {
-    if (this.#disposed) return Promise.reject(disposedError());
+    if (this.#disposed) return Promise.reject(stoppedByDispose());
     // The id now, so that it is known to the caller's bookkeeping at once
     // (the previews'), even when the request waits for a restart's seed.
     const id = this.#nextId++;
@@ -174,7 +174,7 @@ export class SolverClient extends EventEmitter {
   }
 
   #post(id, kind, payload, transfer) {
-    if (this.#disposed) return Promise.reject(disposedError());
+    if (this.#disposed) return Promise.reject(stoppedByDispose());
     // The WASM location travels with init, the one request that loads it.
     if (kind === Request.init && this.#wasmUrl !== undefined) payload = { ...payload, wasmUrl: this.#wasmUrl };
     return new Promise((resolve, reject) => {
@@ -196,7 +196,6 @@ export class SolverClient extends EventEmitter {
     this.#worker.onerror = null;
     if (this.#pool && !this.busy && !this.#tainted) this.#pool.give(this.#worker, this.#poolKey());
     else this.#worker.terminate();
-    // Work under way is stopped, not refused: 'cancelled', as a cancel() is.
     for (const { reject } of this.#held) reject(stoppedByDispose());
     this.#held = [];
     this.#queuedPreview?.resolve(null);
@@ -254,10 +253,9 @@ export class SolverClient extends EventEmitter {
   }
 }
 
-function disposedError() {
-  return new SolverError({ code: 'bad-parameter', message: 'this modeller was disposed' });
-}
-
+// Work of a disposed modeller, asked for before the dispose (queued, or
+// under way) is stopped, not refused: 'cancelled', as a cancel() is. (An api
+// call made after the dispose is refused before it gets here, create-api.js.)
 function stoppedByDispose() {
   return new SolverError({ code: 'cancelled', message: 'stopped: this modeller was disposed' });
 }
