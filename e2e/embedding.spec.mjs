@@ -350,17 +350,26 @@ test('<anisoform-modeller>: src loads, events come out as DOM events, .api works
     kept: true, panel: 0, ops: 1 });
 
   // Two ui changes in quick succession go on from the work (the second
-  // change came while the first rebuild was still opening it).
+  // change came while the first rebuild was still opening it). An api taken
+  // before them is still the element's: its calls and listeners go on.
   const quick = await page.evaluate(async () => {
     const element = window.element;
-    const before = Array.from(element.api.positions());
+    const { api } = element;
+    let heard = 0;
+    api.on('positions', () => heard++);
+    const before = Array.from(api.positions());
     element.setAttribute('ui', 'full');
     element.setAttribute('ui', 'none');
-    await element.api.ready;
-    const after = element.api.positions();
-    return { ops: element.api.document().ops.length, same: after.every((value, i) => value === before[i]) };
+    await api.ready;
+    const after = api.positions();
+    await api.select({ all: true });
+    await api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.1, 1] } });
+    const ops = api.document().ops.length;
+    await api.undo();
+    return { sameApi: element.api === api, ops, same: after.every((value, i) => value === before[i]), heard: heard > 0 };
   });
-  expect(quick).toEqual({ ops: 1, same: true });
+  expect(quick).toEqual({ sameApi: true, ops: 2, same: true, heard: true });
+
 
   // Moved to another parent in one task: the same modeller, its work kept.
   const moved = await page.evaluate(async () => {
@@ -372,6 +381,18 @@ test('<anisoform-modeller>: src loads, events come out as DOM events, .api works
     return { same: element.api === api, ops: api.document().ops.length, workers: window.__census().workers };
   });
   expect(moved).toEqual({ same: true, ops: 1, workers: workersBefore + 1 });
+
+  // A src that failed (404), then a good one: ready resolves with it.
+  const recovered = await page.evaluate(async () => {
+    const element = window.element;
+    element.setAttribute('src', '../nope.obj');
+    const failed = await element.api.ready.then(() => 'resolved', (error) => error.message);
+    element.setAttribute('src', '../spot_triangulated.obj');
+    const ready = await element.api.ready.then(() => 'resolved', (error) => error.message);
+    return { failed, ready, vertices: element.api.info().vertices };
+  });
+  expect(recovered.failed).toContain('404');
+  expect(recovered).toMatchObject({ ready: 'resolved', vertices: 2930 });
 
   // Removed from the page: disposed (at the end of the task).
   const afterRemoval = await page.evaluate(async () => {

@@ -16,6 +16,7 @@
 // createSolverPool, shares workers with other elements and modellers: the
 // worker then goes back to it on disconnect.
 import { createModeller, modellerWork } from './create-modeller.js';
+import { ElementApi } from './element-api.js';
 import { UI_MODES } from './modeller-layout.js';
 import { badParameter } from '../shared/errors.js';
 import { SolverPool } from '../worker/solver-pool.js';
@@ -37,6 +38,10 @@ export class AnisoformModellerElement extends HTMLElement {
   #ui = 'full';
   /** The work a ui change built the modeller on, until it has opened it (another change then goes on from it). */
   #startWork = null;
+  /** `.api`: one object across ui changes (element-api.js). */
+  #api = new ElementApi();
+  /** Settles `.api.ready` with the load a src or edits change starts. */
+  #settleReady = null;
 
   /** A pool (createSolverPool) to take the solver worker from and give it back to; used from the next connection or ui change. */
   get solvers() {
@@ -50,9 +55,12 @@ export class AnisoformModellerElement extends HTMLElement {
     this.#sharedSolvers = pool ?? null;
   }
 
-  /** The modeller's api (window.anisoform's interface), or null while disconnected. */
+  /**
+   * The modeller's api (window.anisoform's interface), or null while
+   * disconnected: the same object across ui changes, its listeners kept.
+   */
   get api() {
-    return this.#modeller?.api ?? null;
+    return this.#modeller ? this.#api.api : null;
   }
 
   connectedCallback() {
@@ -84,6 +92,10 @@ export class AnisoformModellerElement extends HTMLElement {
       this.#srcChanged ||= name === 'src';
       if (this.#reconciling) return;
       this.#reconciling = true;
+      // `ready` is this src's from now on (read right after setting it).
+      this.#api.follow(new Promise((resolve) => {
+        this.#settleReady = resolve;
+      }));
       queueMicrotask(() => this.#reconcile());
     }
   }
@@ -94,18 +106,29 @@ export class AnisoformModellerElement extends HTMLElement {
     const edits = this.getAttribute('edits');
     const srcChanged = this.#srcChanged;
     this.#srcChanged = false;
-    if (!this.#modeller) return;
+    if (!this.#modeller) {
+      this.#settleReady?.();
+      this.#settleReady = null;
+      return;
+    }
     const done = () => {}; // the 'error' event has told
     const modeller = this.#modeller;
+    let loading = null;
     if (edits && srcChanged && src) {
       // A new product whose edits cannot be opened is shown without them (as
       // at the start), not the product before: open() put that one back.
-      modeller.open(edits, src).catch(() => modeller === this.#modeller && modeller.load(src).catch(done));
+      loading = modeller.open(edits, src).catch((error) => {
+        if (modeller !== this.#modeller) throw error;
+        return modeller.load(src);
+      });
     } else if (edits) {
-      modeller.open(edits).catch(done);
+      loading = modeller.open(edits);
     } else if (srcChanged && src) {
-      modeller.load(src).catch(done);
+      loading = modeller.load(src);
     }
+    loading?.catch(done);
+    this.#settleReady?.(loading); // `ready`: this src and edits
+    this.#settleReady = null;
   }
 
   // A new ui: the work (the mesh loaded, its edits replayed) goes on in the
@@ -147,6 +170,7 @@ export class AnisoformModellerElement extends HTMLElement {
     });
     const modeller = this.#modeller;
     const { api } = modeller;
+    this.#api.attach(api);
     this.#offs = RELAYED_EVENTS.map((type) => api.on(type, (detail) => this.dispatchEvent(new CustomEvent(type, { detail }))));
     this.#startWork = work;
     const opened = () => {
