@@ -145,7 +145,7 @@ function directionFields(entry, xyz, change) {
  */
 export function falloffField(entry, steps, { setRegion, redraw }) {
   return h('label', { className: 'field op-amount', title: "The width of the soft border around the edit's region, in model units along the surface" },
-    'Soft border',
+    'Soft border (units)',
     decimalInput({
       value: String(steps[0]?.falloff ?? 0),
       'data-testid': `op-falloff-${entry.id}`,

@@ -74,3 +74,18 @@ export function inPageWords(error, document, { labelled = true } = {}) {
   if (message === error.message) return error;
   return Object.assign(new Error(message), { code: error.code, cause: error });
 }
+
+/**
+ * A core refusal of flatten options in the panel's words: "flatten:
+ * options.compress[0] must be positive" says the call twice (after "Flatten
+ * failed") and names no field the page shows: "stretch along (compress[0])
+ * must be positive". The option's own name stays for api callers.
+ */
+export function flattenInPageWords(error) {
+  if (typeof error?.message !== 'string' || !error.message.startsWith('flatten: options')) return error;
+  const message = error.message
+    .replace(/^flatten: options\.compress\[1\]/, 'stretch across (compress[1])')
+    .replace(/^flatten: options\.compress(\[0\])?/, (_, index) => `stretch along (compress${index ?? ''})`)
+    .replace(/^flatten: options\./, '');
+  return Object.assign(new Error(message), { code: error.code, cause: error });
+}

@@ -3,6 +3,7 @@
 // until the mesh, its positions or the flattened selection change.
 import { Request } from '../worker/protocol.js';
 import { badParameter } from '../shared/errors.js';
+import { flattenInPageWords } from './edit-wording.js';
 
 export class PatternState {
   /** The last flattening (FlattenPayload plus its options), or null. */
@@ -45,7 +46,7 @@ export class PatternState {
       if (warning) editor.emit('warning', { message: warning, source: 'flatten' });
       return result;
     } catch (error) {
-      throw editor.report(error, 'Flatten failed');
+      throw editor.report(flattenInPageWords(error), 'Flatten failed');
     } finally {
       done();
       editor.emit('progress', { stage: 'done', message: '' });

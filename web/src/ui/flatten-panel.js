@@ -40,7 +40,25 @@ export function flattenPanel({ api, editor, settings, reportError }) {
     },
   }, format.toUpperCase());
   const exports = [exportButton('svg'), exportButton('dxf')];
-  editor.on('pattern', (pattern) => exports.forEach((button) => (button.disabled = !pattern)));
+  // A pattern made with other settings than the panel's now is out of date:
+  // said, and not exported (its file used to carry the old amounts while
+  // the panel showed the new ones).
+  const stale = h('p', { className: 'hint pattern-stale', 'data-testid': 'pattern-stale', hidden: true },
+    'The settings changed since this pattern was made: Flatten again to update it (export waits until then).');
+  // (A pattern the api made with options the panel never showed is not the panel's to judge.)
+  let panelMade = false;
+  const panelNow = (pattern) => sameFlattenOptions(pattern.options, panelOptionsOrNull(settings.values, editor.document));
+  const syncStale = () => {
+    const pattern = editor.pattern;
+    const outdated = Boolean(pattern) && panelMade && !panelNow(pattern);
+    stale.hidden = !outdated;
+    exports.forEach((button) => (button.disabled = !pattern || outdated));
+  };
+  editor.on('pattern', (pattern) => {
+    panelMade = Boolean(pattern) && panelNow(pattern);
+    syncStale();
+  });
+  settings.on('change', ({ section }) => (section === 'flatten' || section === 'arrows') && syncStale());
 
   return section(
     'Flatten',
@@ -61,6 +79,7 @@ export function flattenPanel({ api, editor, settings, reportError }) {
     checkboxField(settings, 'flatten', { key: 'baseline', label: 'Industry baseline (uniform 2D scale)' }),
     h('p', { className: 'hint' }, 'Stretch 0.8 = the fabric is cut 20 % shorter along the direction.'),
     h('div', { className: 'row' }, run),
+    stale,
     metrics,
     patternScale({ editor, settings }),
     h('div', { className: 'row' }, h('span', { className: 'hint' }, 'Export pattern'), ...exports),
@@ -85,15 +104,33 @@ export function flattenFromSettings({ api, editor, settings, reportError }) {
   if (values.flatten.patch === 'mesh' && document.info.boundaryLoops === 0 && document.selectionCount > 0) {
     settings.update('flatten', { patch: 'selection' });
   }
-  const options = {
-    compress: [values.flatten.along, values.flatten.across],
-    direction,
-    patch: settings.values.flatten.patch,
-  };
-  if (values.flatten.baseline) options.baseline = 'uniform';
-  api.flatten(options)
+  api.flatten(panelOptions(settings.values, direction))
     .then(() => settings.update('display', { heatMap: 'compression' }))
     .catch(reportError); // the editor has shown its own errors already
+}
+
+// The flatten options of the panel's settings, with `direction` resolved.
+function panelOptions(values, direction) {
+  const options = { compress: [values.flatten.along, values.flatten.across], direction, patch: values.flatten.patch };
+  if (values.flatten.baseline) options.baseline = 'uniform';
+  return options;
+}
+
+// The options Flatten would send now; null when it would be refused (no arrows yet).
+function panelOptionsOrNull(values, document) {
+  if (!document) return null;
+  try {
+    return panelOptions(values, flattenDirectionFromSettings(values, document.bounds()));
+  } catch {
+    return null;
+  }
+}
+
+// Whether a pattern made with `made` (PatternState's options) is what `now` would make.
+function sameFlattenOptions(made, now) {
+  if (!now) return false;
+  const key = ({ compress, direction, patch = 'mesh', baseline = null }) => JSON.stringify({ compress, direction, patch, baseline });
+  return key(made) === key(now);
 }
 
 // The placed arrows, each with an optional compression of its own (empty =
@@ -120,7 +157,7 @@ function arrowList(settings) {
     list.replaceChildren(
       arrows.length === 0
         ? h('p', { className: 'hint' }, 'Drag on the surface with the Arrows tool to place directions.')
-        : h('p', { className: 'hint' }, 'Per arrow: stretch along, across (empty = the amounts below).'),
+        : h('p', { className: 'hint' }, 'Per arrow: stretch along, across (empty = the Stretch along and across above).'),
       ...arrows.map((arrow, index) => h('div', { className: 'row arrow-row' },
         h('span', {}, `#${index + 1} v${arrow.vertex}`),
         amountInput(index, 'su', 'stretch along'),

@@ -2,7 +2,8 @@
 // plain words what went wrong and what to do (a load error also says the
 // current mesh was kept); notices say what a load repaired or found, with the
 // full list on demand, or that the user stopped a solve, until the positions
-// or the pattern change; errors stay until an edit is committed after them;
+// or the pattern change; errors stay until an edit is committed or a
+// pattern made after them (or another mesh is opened);
 // warnings say that the last edit (or the live
 // preview) folded triangles over, until the positions change again, or that
 // the last flattening is not usable as one piece, until the pattern changes.
@@ -87,9 +88,13 @@ export function installMessages(root, { editor, lifetime }) {
   });
   editor.on('gesture', (active) => !active && clearWarning('preview'));
   // A new flattening (its own warning follows) or none: the last one's warning is moot.
+  // A flattening that succeeded puts an earlier error behind the user, as a
+  // committed edit does ("nothing is selected" stayed beside the pattern).
   editor.on('pattern', (pattern) => {
     clearWarning('flatten');
-    if (pattern) clearCancelNotice();
+    if (!pattern) return;
+    clearCancelNotice();
+    error.hidden = true;
   });
   // A new load makes the old messages moot, whether it succeeds (its notice
   // comes after) or fails (its error comes after).

@@ -37,7 +37,9 @@ export function patternScale({ editor, settings }) {
   });
   const guessOption = unitField.querySelector('option[value=guess]');
   const custom = showWhen(settings, 'flatten',
-    numberField(settings, 'flatten', { key: 'mmPerUnit', label: 'mm per unit', step: 1 }),
+    // The core's range (limits.h kMinMmPerUnit..kMaxMmPerUnit): a value
+    // outside it showed a negative or zero pattern size until an export refused it.
+    numberField(settings, 'flatten', { key: 'mmPerUnit', label: 'mm per unit', step: 1, min: 0.001, max: 1e6 }),
     (f) => f.unit === 'custom');
   const note = h('p', { className: 'hint', 'data-testid': 'pattern-unit-note' });
   const size = h('p', { className: 'hint', 'data-testid': 'pattern-size' });
@@ -66,7 +68,10 @@ export function patternScale({ editor, settings }) {
     const [width, height] = patternExtent(pattern).map((extent) => extent * scale);
     size.dataset.widthMm = String(width);
     size.dataset.heightMm = String(height);
-    size.textContent = `Pattern size: ${formatMm(width)} × ${formatMm(height)} (1 unit = ${formatNumber(scale)} mm)`;
+    // In inches for a mesh in inches (the files are in mm, said beside it).
+    size.textContent = flatten.unit === 'in'
+      ? `Pattern size: ${formatNumber(width / 25.4)} in × ${formatNumber(height / 25.4)} in (${formatMm(width)} × ${formatMm(height)}; 1 unit = 25.4 mm)`
+      : `Pattern size: ${formatMm(width)} × ${formatMm(height)} (1 unit = ${formatNumber(scale)} mm)`;
   };
   editor.on('mesh', sync);
   editor.on('pattern', sync);
