@@ -301,3 +301,13 @@ test('settings changed after flattening mark the pattern out of date and hold it
   await expect(page.getByTestId('pattern-stale')).toBeHidden();
   expect(pageErrors).toEqual([]);
 });
+
+test('an open patch is first seen from the side it faces, where its arrows and glyphs are drawn', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  expect((await uploadFile(page, meshPath(TORSO))).ok).toBe(true);
+  // The torso's front patch faces +z (its area normals sum to about (0, 0.05, 0.23));
+  // the default view direction looked from -z, at its back.
+  const { position, target } = await page.evaluate(() => window.anisoform.camera());
+  expect(position[2] - target[2]).toBeGreaterThan(0);
+  expect(pageErrors).toEqual([]);
+});

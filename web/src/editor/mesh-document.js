@@ -55,6 +55,31 @@ export class MeshDocument {
   }
 
   /**
+   * The side an open surface faces (a garment patch, a face scan): the unit
+   * sum of its triangles' area normals, or null for a closed mesh or one
+   * that faces no one side (under 30 % of its area). The view first looks
+   * at that side: from behind, arrows and glyphs drawn on it were hidden.
+   */
+  facing() {
+    if (this.info.boundaryLoops === 0) return null;
+    const p = this.positions;
+    const t = this.triangles;
+    let [sx, sy, sz, area] = [0, 0, 0, 0];
+    for (let k = 0; k < t.length; k += 3) {
+      const a = 3 * t[k], b = 3 * t[k + 1], c = 3 * t[k + 2];
+      const [ux, uy, uz] = [p[b] - p[a], p[b + 1] - p[a + 1], p[b + 2] - p[a + 2]];
+      const [vx, vy, vz] = [p[c] - p[a], p[c + 1] - p[a + 1], p[c + 2] - p[a + 2]];
+      const [nx, ny, nz] = [uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx];
+      sx += nx;
+      sy += ny;
+      sz += nz;
+      area += Math.hypot(nx, ny, nz);
+    }
+    const length = Math.hypot(sx, sy, sz);
+    return length > 0.3 * area && length > 0 ? [sx / length, sy / length, sz / length] : null;
+  }
+
+  /**
    * Axis-aligned bounds of the committed positions: {min, max, center,
    * diagonal}, frozen. Kept until `positions` is replaced: a drag asks at
    * every pointer move (0.5 ms at 50k vertices).

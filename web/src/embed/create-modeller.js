@@ -102,7 +102,7 @@ export function createModeller(container, options = {}) {
     meshView.setMesh(loaded.positions, loaded.triangles, loaded.display.normals);
     gltfDisplay.setSource(loaded.gltf, loaded.positions, loaded.triangles);
     picker.attach(loaded.display.bvh);
-    viewer.frame({ defaultDirection: true });
+    viewer.frame({ defaultDirection: true, facing: loaded.facing() });
   });
   editor.on('positions', ({ positions, live }) => {
     meshView.showPositions(positions, { live });

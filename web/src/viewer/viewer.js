@@ -123,10 +123,10 @@ export class Viewer extends EventEmitter {
    * Fits the camera to the whole mesh: its bounding sphere fills the narrower
    * of the two fields of view (so the canvas aspect counts), looking along the
    * current view direction, or the default one with {defaultDirection: true}
-   * (a new mesh). The one fit of the page: load, Frame button, F / Home keys,
+   * (a new mesh; `facing`: the side an open surface faces, looked at). The one fit of the page: load, Frame button, F / Home keys,
    * anisoform.frame() and the re-fit on resize.
    */
-  frame({ defaultDirection = false } = {}) {
+  frame({ defaultDirection = false, facing = null } = {}) {
     const bounds = this.#boundsSource();
     if (!bounds) return;
     const radius = Math.max(bounds.diagonal / 2, 1e-6);
@@ -137,6 +137,13 @@ export class Viewer extends EventEmitter {
       ? DEFAULT_VIEW_DIRECTION.clone()
       : this.camera.position.clone().sub(this.controls.target).normalize();
     if (direction.lengthSq() === 0) direction.copy(DEFAULT_VIEW_DIRECTION);
+    // An open surface is first seen from the side it faces: the default
+    // direction mirrored through the surface's mean plane when it is behind.
+    if (defaultDirection && facing) {
+      const normal = new Vector3(...facing);
+      const behind = direction.dot(normal);
+      if (behind < 0) direction.addScaledVector(normal, -2 * behind).normalize();
+    }
     this.controls.target.fromArray(bounds.center);
     this.camera.position.copy(this.controls.target).addScaledVector(direction, distance);
     this.camera.near = distance / 100;
