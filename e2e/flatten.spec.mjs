@@ -27,6 +27,8 @@ test('the flatten panel flattens a garment panel into a pattern view with a heat
   await expect(pane).toHaveAttribute('data-triangles', String(loaded.info.triangles));
   await expect(page.getByTestId('metric-flipped')).toHaveText('0');
   await expect(page.getByTestId('metric-method')).toHaveText('Anisotropic ARAP');
+  // The error across the direction too, its worst triangle included (a mean alone made bad patterns look good).
+  await expect(page.getByTestId('metric-cross')).toHaveText(/^[\d.]+ % mean · [\d.]+ % max$/);
   // The pattern pane's background is #20242b; the filled pattern is not.
   expect((await differingPixelCount(page, 'pattern-canvas', [0x20, 0x24, 0x2b])).lit).toBeGreaterThan(2000);
   // The 3D view colours the same error.

@@ -184,7 +184,7 @@ test('a screen reader is told when a mesh loads, an edit is solved and a pattern
     await window.anisoform.select({ sphere: { center: [0, 0.2, 0.4], radius: 0.3 } });
     await window.anisoform.flatten({ compress: 0.9, direction: { type: 'global', vector: [1, 0, 0] }, patch: 'selection' });
   });
-  await expect(announcer).toHaveText(/^Flattened: compression error [\d.]+ % mean, [\d.]+ % max; \d+ flipped triangles$/);
+  await expect(announcer).toHaveText(/^Flattened: compression error [\d.]+ % mean, [\d.]+ % max; cross error [\d.]+ % mean, [\d.]+ % max; \d+ flipped triangles$/);
   // Another mesh: its load is said, and the status bar no longer shows the last mesh's solve.
   expect((await uploadFile(page, meshPath('closed/torus.obj'))).ok).toBe(true);
   await expect(announcer).toHaveText(/^Loaded torus.obj: [\d,]+ vertices, [\d,]+ triangles$/);

@@ -22,6 +22,7 @@ export function installAnnouncer(container, { editor }) {
     if (!pattern) return;
     const m = pattern.metrics;
     say(`Flattened: compression error ${formatPercent(m.compressionErrorMean)} mean, `
-      + `${formatPercent(m.compressionErrorMax)} max; ${m.flipped} flipped triangles`);
+      + `${formatPercent(m.compressionErrorMax)} max; cross error ${formatPercent(m.crossErrorMean)} mean, `
+      + `${formatPercent(m.crossErrorMax)} max; ${m.flipped} flipped triangles`);
   });
 }

@@ -185,7 +185,7 @@ function showMetrics(element, pattern) {
   element.replaceChildren(
     row('Method', m.method === 'uniform-baseline' ? 'Baseline (uniform)' : 'Anisotropic ARAP', 'metric-method'),
     row('Compression error', `${formatPercent(m.compressionErrorMean)} mean · ${formatPercent(m.compressionErrorMax)} max`, 'metric-compression'),
-    row('Cross error', `${formatPercent(m.crossErrorMean)} mean`, 'metric-cross'),
+    row('Cross error', `${formatPercent(m.crossErrorMean)} mean · ${formatPercent(m.crossErrorMax)} max`, 'metric-cross'),
     row('Area distortion', formatPercent(m.areaDistortionMean), 'metric-area'),
     row('Flipped triangles', String(m.flipped), 'metric-flipped'),
     row('Pieces · outlines', `${m.components} · ${m.boundaryLoops}`, 'metric-pieces'),

@@ -280,7 +280,8 @@ export function formatPercent(value) {
 
 function summary(metrics) {
   return `Compression error: mean ${formatPercent(metrics.compressionErrorMean)}, ` +
-    `max ${formatPercent(metrics.compressionErrorMax)} · cross error mean ${formatPercent(metrics.crossErrorMean)} · ` +
+    `max ${formatPercent(metrics.compressionErrorMax)} · cross error mean ${formatPercent(metrics.crossErrorMean)}, ` +
+    `max ${formatPercent(metrics.crossErrorMax)} · area off ${formatPercent(metrics.areaDistortionMean)} · ` +
     `${metrics.flipped} flipped`;
 }
 
