@@ -25,6 +25,17 @@ async function framesDuring(page, ms, action = async () => {}) {
   return (await census(page)).frames - before;
 }
 
+/** A full-UI modeller of the spool in a new host (data-testid `testid`, `height` high), as window[name]. */
+function addSpoolModeller(page, { testid, height, name }) {
+  return page.evaluate(async (options) => {
+    const host = Object.assign(document.createElement('div'), { style: `height: ${options.height}` });
+    host.dataset.testid = options.testid;
+    document.body.append(host);
+    window[options.name] = window.anisoformExample.createModeller(host, { ui: 'full', mesh: '../spool.off' });
+    await window[options.name].api.ready;
+  }, { testid, height, name });
+}
+
 /** Gives the third modeller's host element a new height: a live modeller redraws its view. */
 function resizeThirdHost(page, height) {
   return page.evaluate((value) => {
@@ -83,13 +94,7 @@ test('two modellers on one page are independent', async ({ page }) => {
 
 test('two modellers with the full UI: each label works its own modeller\'s control, no id is on the page twice', async ({ page }) => {
   const pageErrors = await openExample(page);
-  await page.evaluate(async () => {
-    const host = Object.assign(document.createElement('div'), { style: 'height: 500px' });
-    host.dataset.testid = 'host-second';
-    document.body.append(host);
-    window.second = window.anisoformExample.createModeller(host, { ui: 'full', mesh: '../spool.off' });
-    await window.second.api.ready;
-  });
+  await addSpoolModeller(page, { testid: 'host-second', height: '500px', name: 'second' });
   const duplicates = () => page.evaluate(() => {
     const ids = [...document.querySelectorAll('[id]')].map((element) => element.id);
     return ids.filter((id, i) => ids.indexOf(id) !== i);
@@ -113,14 +118,8 @@ test('two modellers with the full UI: each label works its own modeller\'s contr
     window.second.api.info().vertices]);
   expect(counts).toEqual([2930, 2051]);
   // A modeller made after the first is disposed takes the plain ids again.
-  await page.evaluate(async () => {
-    window.anisoformExample.modellers.spot.dispose();
-    const host = Object.assign(document.createElement('div'), { style: 'height: 500px' });
-    host.dataset.testid = 'host-third';
-    document.body.append(host);
-    window.third = window.anisoformExample.createModeller(host, { ui: 'full', mesh: '../spool.off' });
-    await window.third.api.ready;
-  });
+  await page.evaluate(() => window.anisoformExample.modellers.spot.dispose());
+  await addSpoolModeller(page, { testid: 'host-third', height: '500px', name: 'third' });
   expect(await duplicates()).toEqual([]);
   await expect(page.getByTestId('host-third').locator('#display-wireframe')).toHaveCount(1);
   expect(pageErrors).toEqual([]);
@@ -210,13 +209,7 @@ test('dispose stops the worker, the frames, the observers and every listener', a
   const held = await page.evaluate(() => Object.values(window.anisoformExample.modellers).map((m) => m.held));
   expect(held).toEqual([0, 0]);
 
-  await page.evaluate(async () => {
-    const host = Object.assign(document.createElement('div'), { style: 'height: 300px' });
-    host.dataset.testid = 'host-third';
-    document.body.append(host);
-    window.third = window.anisoformExample.createModeller(host, { ui: 'full', mesh: '../spool.off' });
-    await window.third.api.ready;
-  });
+  await addSpoolModeller(page, { testid: 'host-third', height: '300px', name: 'third' });
   const withThird = await census(page);
   expect(withThird.workers).toBe(1);
   expect(withThird.listeners).toBeGreaterThan(none.listeners);
