@@ -15,9 +15,9 @@ import { LivePreview } from './live-preview.js';
 import { DocumentPersistence } from './document-persistence.js';
 import { badParameter, cancelledError } from '../shared/errors.js';
 
-// What setParameter may change, in the words of its history step.
 // An op's name is a list label, not a document: long enough for "Stretch the left sleeve, 2nd try".
 const MAX_NAME_LENGTH = 80;
+// What setParameter may change, in the words of its history step.
 const PATCH_WORDS = { transform: 'amounts', method: 'method', direction: 'direction', move: 'move' };
 
 // Why `patch` is no setParameter patch (null if it is one): an object with

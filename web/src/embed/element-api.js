@@ -9,7 +9,7 @@ export class ElementApi {
   #current = null;
   #listeners = new Set(); // {event, callback, off}
   #ready = Promise.resolve();
-  /** The object handed out: frozen, its methods those of the current modeller's api. */
+  /** The object handed out (read-only): its methods those of the current modeller's api. */
   api;
 
   constructor() {
