@@ -193,3 +193,23 @@ test('Apply with an amount the core refuses says so in the panel\'s words', asyn
   expect((await page.evaluate(() => window.__errors))[0].message).not.toContain('op.transform');
   expect(pageErrors).toEqual([]);
 });
+
+test('a value a field does not take is said, not only put back', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  await page.getByTestId('tool-stretch').click();
+  const along = page.getByLabel('Along ×');
+  const kept = await along.inputValue();
+  await along.fill('abc');
+  await along.press('Tab');
+  await expect(along).toHaveValue(kept);
+  const notice = page.getByTestId('notice');
+  await expect(notice).toContainText(`Along ×: 'abc' is not a number; ${kept} is kept`);
+  // A brush radius beyond its bounds is used at the bound, and said.
+  await page.getByTestId('tool-select').click();
+  const radius = page.locator('#brush-radiusPercent');
+  await radius.fill('500');
+  await radius.press('Tab');
+  await expect(radius).toHaveValue('100');
+  await expect(notice).toContainText('Radius %: 500 is out of range (0.5 to 100); 100 is used');
+  expect(pageErrors).toEqual([]);
+});

@@ -60,4 +60,6 @@ export function installFullUi(layout, { api, editor, settings, tools, viewer, pi
   const dialog = shortcutDialog(layout.root, { tools });
   installEditingKeys(keyTarget, lifetime, { settings, dialog, selectRegion, files });
   claimUniqueIds(layout.root, lifetime);
+  // A value a panel field did not take is said (ui/fields.js).
+  settings.on('refused', ({ message }) => editor.emit('notice', { message, source: 'field' }));
 }

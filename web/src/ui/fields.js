@@ -4,6 +4,8 @@
 // replaced at once by the value kept (a number field's min/max clamp it), so
 // the field never shows a number that is not the one used.
 //
+// A value not taken (not a number, out of the field's bounds) is said in a
+// notice (settings 'refused').
 // A number field's min/max are the panel's own bounds (a brush radius in
 // percent). Amounts the core validates (limits.h: stretch, shear, angles,
 // the twist rate) get none here: the core refuses an out-of-range value with
@@ -17,9 +19,14 @@ export function numberField(settings, sectionName, { key, label, min, max }) {
     if (document.activeElement !== input) input.value = settings.values[sectionName][key];
   };
   input.addEventListener('change', () => {
-    const value = parseDecimal(input.value);
+    const typed = input.value.trim();
+    const value = parseDecimal(typed);
     if (Number.isFinite(value)) settings.update(sectionName, { [key]: clamp(value, min, max) });
-    input.value = settings.values[sectionName][key];
+    const kept = settings.values[sectionName][key];
+    input.value = kept;
+    // Said, not only undone: "abc" used to put the old value back silently.
+    if (!Number.isFinite(value) && typed !== '') refused(settings, `${label}: '${typed}' is not a number; ${kept} is kept`);
+    else if (Number.isFinite(value) && value !== kept) refused(settings, `${label}: ${typed} is out of range (${rangeText(min, max)}); ${kept} is used`);
   });
   settings.on('change', ({ section }) => section === sectionName && sync());
   // A value set while the user was in the field (a new mesh's twist rate) shows once they leave it.
@@ -64,6 +71,11 @@ export function vectorField(settings, sectionName, { key, label, point = false }
       const vector = inputs.map((field) => parseDecimal(field.value));
       if (vector.every(Number.isFinite) && (point || Math.hypot(...vector) > 0)) {
         settings.update(sectionName, { [key]: vector });
+      } else {
+        const kept = settings.values[sectionName][key];
+        refused(settings, vector.every(Number.isFinite)
+          ? `${label}: (0, 0, 0) is no direction; (${kept.join(', ')}) is kept`
+          : `${label}: every component must be a number; (${kept.join(', ')}) is kept`);
       }
       const kept = settings.values[sectionName][key];
       inputs.forEach((field, axis) => (field.value = kept[axis]));
@@ -80,6 +92,17 @@ export function showWhen(settings, sectionName, element, predicate) {
   settings.on('change', ({ section }) => section === sectionName && sync());
   sync();
   return element;
+}
+
+// A value a field did not take, for the page to say (settings 'refused',
+// shown as a notice by the full UI).
+function refused(settings, message) {
+  settings.emit('refused', { message });
+}
+
+function rangeText(min, max) {
+  if (min !== undefined && max !== undefined) return `${min} to ${max}`;
+  return min !== undefined ? `at least ${min}` : `at most ${max}`;
 }
 
 function clamp(value, min, max) {

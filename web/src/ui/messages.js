@@ -55,7 +55,7 @@ export function installMessages(root, { editor, lifetime }) {
     notice.dataset.source = source;
   });
   // element.dataset.source: what put the message there (a notice: 'load',
-  // 'cancel', 'busy' or 'save'; a warning: 'edit', 'preview' or 'flatten').
+  // 'cancel', 'busy', 'save' or 'field'; a warning: 'edit', 'preview' or 'flatten').
   const hideFrom = (element, source) => {
     if (element.dataset.source === source) element.hidden = true;
   };
@@ -73,6 +73,7 @@ export function installMessages(root, { editor, lifetime }) {
     warning.hidden = true;
     clearCancelNotice();
     hideFrom(notice, 'save'); // "No edits to save yet" is moot once there is a shape to save
+    hideFrom(notice, 'field'); // so is a value a field did not take, once an edit is made
   });
   // "Undo waits until the solve has ended" is moot once it has.
   editor.on('busy', (busy) => !busy && hideFrom(notice, 'busy'));
