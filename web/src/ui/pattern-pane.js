@@ -25,7 +25,11 @@ export function patternPane(container, { editor, settings, lifetime }) {
     const errors = shown ? (colorBy === 'cross' ? shown.crossError : shown.compressionError) : [];
     return [colorBy, heatRange('compression', errors, settings.values.display.heatRange).value];
   };
-  const syncColoring = () => view.setColoring(...coloring());
+  const syncColoring = () => {
+    const [colorBy, range] = coloring();
+    container.dataset.range = String(range); // the legend's top, for tests and assistive tools
+    view.setColoring(colorBy, range);
+  };
   settings.on('change', ({ section }) => (section === 'flatten' || section === 'display') && syncColoring());
   syncColoring();
   // What the pane shows, for tests and assistive tools: pieces and triangles drawn.
@@ -33,7 +37,9 @@ export function patternPane(container, { editor, settings, lifetime }) {
     container.dataset.pieces = pattern ? String(pattern.grainlines.length) : '0';
     container.dataset.triangles = pattern ? String(pattern.triangles.length / 3) : '0';
     shown = pattern;
-    view.show(pattern, coloring());  // one drawing of the new pattern (96k triangles for the koala's head)
+    const [colorBy, range] = coloring();
+    container.dataset.range = String(range);
+    view.show(pattern, [colorBy, range]);  // one drawing of the new pattern (96k triangles for the koala's head)
   };
   editor.on('pattern', show);
   const syncVisible = () => (container.hidden = settings.values.mode !== 'flatten');
