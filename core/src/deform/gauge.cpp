@@ -175,6 +175,9 @@ class NearestAnchor {
 void place_loose_components(const Mesh& rest, const Gauge& gauge, const Eigen::VectorXd& weights,
                             const std::vector<std::vector<int>>& members, const std::vector<int>& loose,
                             Positions& V) {
+  // One part, wholly selected: its centroid stays, and nothing else is to
+  // be read (a whole-mesh live preview frame would scan every face).
+  if (loose.empty() || gauge.components < 2) return;
   // Vertices of no face (their own components) are left where they are, by
   // every solver: they neither move nor hold anything.
   std::vector<char> surface(gauge.components, 0);
