@@ -742,7 +742,7 @@ void AnArapSolver::global_rhs(Positions& b) const {
 }
 
 bool AnArapSolver::converged(double previous, double energy, double tolerance, bool accelerated,
-                             int& small_steps) const {
+                             int& small_steps) {
   // Accelerated iterations stop after this many energy changes below the
   // tolerance in a row (plain ones after one): an accelerated step that
   // happened to gain little is no sign of convergence by itself.
@@ -757,12 +757,14 @@ bool AnArapSolver::converged(double previous, double energy, double tolerance, b
   const bool at_floor = accelerated && std::abs(energy) <= 1e-12 * energy_scale_;
   const bool small = std::abs(previous - energy) <= tolerance * reference || at_floor;
   small_steps = small ? small_steps + 1 : 0;
-  return tolerance >= 0.0 && small_steps >= (accelerated ? kAcceleratedSmallSteps : 1);
+  settled_ = tolerance >= 0.0 && small_steps >= (accelerated ? kAcceleratedSmallSteps : 1);
+  return settled_;
 }
 
 int AnArapSolver::run(const LaplacianSolver& solver, Positions& V, int max_iterations,
                         double tolerance, std::vector<double>& history, bool final_energy,
                         Acceleration acceleration, const std::function<void(int)>& on_iteration) {
+  settled_ = false;
   // L-BFGS's gradient L V - b(R) is E's only where R is fitted exactly to V.
   // Coupled rotations are fitted by one Gauss-Seidel sweep from the last
   // ones, so there its model is off and its steps erratic (a twist's native

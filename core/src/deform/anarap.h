@@ -139,12 +139,16 @@ class AnArapSolver {
           std::vector<double>& history, bool final_energy = true,
           Acceleration acceleration = Acceleration::None,
           const std::function<void(int)>& on_iteration = nullptr);
+  // Whether the last run() stopped on the tolerance test: a run that met it
+  // on its last allowed iteration converged too, though it used them all.
+  bool settled() const { return settled_; }
 
  private:
   // Whether the iterations stop after an iteration from `previous` to
   // `energy` (the relative-change test; small_steps counts the small
   // changes in a row).
-  bool converged(double previous, double energy, double tolerance, bool accelerated, int& small_steps) const;
+  // Sets settled_ when it says stop.
+  bool converged(double previous, double energy, double tolerance, bool accelerated, int& small_steps);
   // local_step(V) with each cell's fit starting from start[i] instead of
   // the current rotation (which it overwrites).
   double local_step(const Positions& V, const std::vector<Eigen::Quaterniond>& start);
@@ -183,6 +187,7 @@ class AnArapSolver {
   const CotanWeights& weights_;
   ArapElements elements_;
   int n_;
+  bool settled_ = false;
   // Spokes in CSR form: neighbours, weights, rest edge vectors e_ij = v_j - v_i.
   std::vector<int> offsets_, neighbors_;
   std::vector<double> spoke_weight_;

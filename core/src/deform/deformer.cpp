@@ -686,7 +686,7 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
                                         stepped ? Acceleration::None : request.acceleration,
                                         on_iteration);
     result.energy = result.energy_history.empty() ? 0.0 : result.energy_history.back();
-    result.converged = stepped || result.iterations < steps;
+    result.converged = stepped || iterations->settled() || result.iterations < steps;
     realign(unit_, gauge, affected, Alignment::Rigid, result.V);
     ws.last_key = key;
     ws.last_V = result.V;
