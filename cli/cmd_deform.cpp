@@ -234,20 +234,6 @@ double max_displacement(const Positions& rest, const Positions& deformed) {
   return (deformed - rest).rowwise().norm().maxCoeff();
 }
 
-// The surface methods move only selected vertices (weight > 0); with all of
-// them held, the edit has nothing to move. (ARAP's handles move although
-// pinned: its own rule.)
-bool every_selected_vertex_pinned(const Eigen::VectorXd& weights, const std::vector<int>& pins) {
-  std::vector<char> pinned(weights.size(), 0);
-  for (const int p : pins) {
-    if (p >= 0 && p < weights.size()) pinned[p] = 1;  // an --op's bad index is refused by the solve
-  }
-  for (Eigen::Index i = 0; i < weights.size(); ++i) {
-    if (weights[i] > 0.0 && !pinned[i]) return false;
-  }
-  return true;
-}
-
 int run_deform(const DeformArguments& args) {
   DeformPlan plan = plan_deform(args);
   check_output_path(args.output);
@@ -259,8 +245,7 @@ int run_deform(const DeformArguments& args) {
   std::vector<std::string> warnings = info.notes;
   warn_about_solvable_problems(info.report, warnings);
 
-  const int selected = naming_option(
-      "--select", [&] { return session.select(plan.selection, plan.falloff, SelectionMode::Replace); });
+  naming_option("--select", [&] { session.select(plan.selection, plan.falloff, SelectionMode::Replace); });
   DeformOp& edit = plan.edit;
   if (plan.pins) edit.request.pins = region_vertices(mesh, *plan.pins, "--pin");
   if (plan.handles) edit.request.handles = region_vertices(mesh, *plan.handles, "--handle");
@@ -277,20 +262,8 @@ int run_deform(const DeformArguments& args) {
                 [&] { validate_move(edit.request.handle_offset, info.report.bbox.diagonal()); });
   // What the session will solve, for the counts echoed below.
   const DeformRequest resolved = resolve_edit(edit, mesh.V, info.report.bbox, session.selection());
-  // ARAP moves its handles, given or taken from the selection (resolve_edit);
-  // the other methods the selected vertices.
-  if (resolved.method == Method::Arap) {
-    if (resolved.handles.empty()) {
-      warnings.push_back(selected == 0 ? "the selection holds no vertex: the mesh is left unchanged"
-                                       : "ARAP's handles are the vertices selected with weight 1; the selection "
-                                         "has none: the mesh is left unchanged (select the part to move fully, "
-                                         "or give --handle)");
-    }
-  } else if (selected == 0) {
-    warnings.push_back("the selection holds no vertex: the mesh is left unchanged");
-  } else if (every_selected_vertex_pinned(session.selection(), resolved.pins)) {
-    warnings.push_back("every selected vertex is pinned: the mesh is left unchanged");
-  }
+  const std::string unchanged = unchanged_reason(resolved);
+  if (!unchanged.empty()) warnings.push_back(unchanged);
   const DeformOpResult result = session.deform(edit);
   // As the app's status line: a cut-off solve is not the edit's converged shape.
   if (!result.converged) {

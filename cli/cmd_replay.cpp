@@ -61,7 +61,8 @@ void register_replay(CLI::App& app, Action& action) {
   CLI::App* replay = app.add_subcommand(
       "replay",
       "Replay an edit document (docs/document.schema.json) on its base mesh and write the "
-      "result. Keys: document, mesh, output, hash, vertices, triangles, replayed, skipped. "
+      "result. Keys: document, mesh, output, hash, vertices, triangles, replayed, skipped, warnings (ops "
+      "that left the mesh unchanged, and why). "
       "The mesh must be the document's (its hash is checked).");
   replay->add_option("DOC", args->document, "Edit document (.json)")->required();
   replay->add_option("OUT", args->output, "Output mesh: .obj .off .ply .stl")->required();

@@ -34,7 +34,7 @@ test('a document replays on a fresh page to bitwise the same positions', async (
   const { afterThree, document } = await editSpot(page);
   expect(document.format).toBe('anisoform-document');
   expect(document.ops.map((op) => op.op.direction.type)).toEqual(['global', 'global', 'global']);
-  expect(document.ops[1].op.transform.twist.origin).toHaveLength(3);
+  expect(document.ops[1].op.transform.twist.origin).toBeUndefined(); // the region's, worked out by replay
   expect(document.regions[0].steps[0].region.sphere.radius).toBe(0.4);
   expect(document.regions.at(-1).steps.map((step) => step.mode ?? 'replace')).toEqual(['replace', 'add']);
   expect(schemaErrors(document)).toEqual([]);
@@ -943,5 +943,50 @@ test("cancel() drops a setParameter preview left uncommitted, of the last op or 
   });
   const each = { previewDiffers: true, cancelled: true, back: true, positions: true };
   expect(outcome).toEqual({ results: [each, each], opsKept: true });
+  expect(pageErrors).toEqual([]);
+});
+
+test('an op given a new region edits that region; a region that selects nothing is said', async ({ page }) => {
+  // ARAP's handles and pins follow the op's region: they used to stay the old
+  // region's, so the old part stayed lifted while the Edits list showed the new one.
+  const pageErrors = await openApp(page);
+  const { rest, a, b, radius } = await page.evaluate(() => {
+    const positions = Array.from(window.anisoform.positions());
+    const vertex = (i) => positions.slice(3 * i, 3 * i + 3);
+    let maxX = 0;
+    let minX = 0;
+    for (let i = 0; i < positions.length / 3; i++) {
+      if (positions[3 * i] > positions[3 * maxX]) maxX = i;
+      if (positions[3 * i] < positions[3 * minX]) minX = i;
+    }
+    return { rest: positions, a: vertex(maxX), b: vertex(minX), radius: 0.15 * (positions[3 * maxX] - positions[3 * minX]) };
+  });
+  const move = [0, 0.2, 0];
+  await page.evaluate(async ({ a, radius, move }) => {
+    await window.anisoform.select({ sphere: { center: a, radius } });
+    await window.anisoform.deform({ method: 'arap', move });
+  }, { a, radius, move });
+  await page.evaluate(({ b, radius }) => window.anisoform.setRegion('op-1', [{ region: { sphere: { center: b, radius } } }]), { b, radius });
+  const moved = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  const near = (centre, i) => Math.hypot(...[0, 1, 2].map((k) => rest[3 * i + k] - centre[k])) < radius;
+  let inA = 0;
+  let inB = 0;
+  for (let i = 0; i < rest.length / 3; i++) {
+    const offset = [0, 1, 2].map((k) => moved[3 * i + k] - rest[3 * i + k]);
+    if (near(a, i)) {
+      inA++;
+      expect(Math.hypot(...offset)).toBe(0); // pinned: not selected any more
+    } else if (near(b, i)) {
+      inB++;
+      offset.forEach((value, k) => expect(value).toBeCloseTo(move[k], 6)); // a handle now (positions() is float32)
+    }
+  }
+  expect(inA).toBeGreaterThan(10);
+  expect(inB).toBeGreaterThan(10);
+
+  await page.evaluate(() => window.anisoform.setRegion('op-1', [{ region: { sphere: { center: [10, 10, 10], radius: 0.1 } } }]));
+  await expect(page.getByTestId('warning'))
+    .toContainText(/Move \(ARAP\): its region 'region-\d+' holds no vertex: the mesh is left unchanged/);
+  expect(await page.evaluate(() => Array.from(window.anisoform.positions()))).toEqual(rest);
   expect(pageErrors).toEqual([]);
 });

@@ -60,15 +60,21 @@ test('the amount shows beside the pointer during a drag and is the amount commit
   await page.mouse.up();
   await nearCorner();
 
-  // Esc during a drag: the readout goes with the edit.
+  // Esc during a drag: the readout goes with the edit, and the panel's
+  // amount is put back (it kept the dropped drag's, which Apply then used).
   const ops = await page.evaluate(() => window.anisoform.document().ops.length);
+  const along = page.getByLabel('Along ×');
+  await along.fill('1.2');
+  await along.press('Enter');
   await page.mouse.move(x, y);
   await page.mouse.down();
   await page.mouse.move(x + 50, y, { steps: 5 });
   await expect(readout).toBeVisible();
+  await expect(along).not.toHaveValue('1.2');
   await page.keyboard.press('Escape');
   await expect(readout).toHaveCount(0);
   await page.mouse.up();
+  await expect(along).toHaveValue('1.2');
   expect(await page.evaluate(() => window.anisoform.document().ops.length)).toBe(ops);
   expect(pageErrors).toEqual([]);
 });

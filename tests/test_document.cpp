@@ -255,7 +255,7 @@ TEST_CASE("document: a resolved screen drag replays as the solve it stands for",
       "transform":{"scale":1.25,"twist":{"axis":[0,1,0],"degreesPerUnit":20}},"warmStart":false})"));
   const DeformOp resolved = resolve_for_document(session, edit);
   CHECK(resolved.request.direction.kind == DirectionSource::Kind::Global);
-  CHECK(resolved.twist_origin_given);
+  CHECK_FALSE(resolved.twist_origin_given);  // the region's, worked out again by replay
   CHECK_FALSE(resolved.preview);
   const Json op = to_json(resolved);
   CHECK(op["direction"]["type"] == "global");
@@ -370,4 +370,66 @@ TEST_CASE("document: the CLI replays to the core's positions", "[document][cli]"
   const test::CliRun truncated =
       test::run_cli_expecting({"replay", doc_path, out, "--mesh", test::mesh_path("closed/spool.off")}, 2);
   CHECK_THAT(truncated.err, Catch::Contains("not valid JSON"));
+}
+
+TEST_CASE("document: an op given a new region is what a new edit of that region gives", "[document]") {
+  // The twist origin and ARAP's handles and pins follow from the region: a
+  // document stores them only when the edit gave them, so an op moved to
+  // another region twists about that region's axis, and an ARAP drag moves
+  // its vertices (it used to keep the old region's axis, and move the old
+  // region's handles while the Edits list showed the new one).
+  Region one, other;
+  one.kind = other.kind = Region::Kind::Sphere;
+  one.center = Eigen::Vector3d(0.3, 0.4, 0);
+  other.center = Eigen::Vector3d(-0.3, -0.4, 0);
+  one.radius = other.radius = 0.3;
+  const auto region_json = [](const Region& r) {
+    return Json{{"sphere", {{"center", {r.center.x(), r.center.y(), r.center.z()}}, {"radius", r.radius}}}};
+  };
+  for (const char* op_text : {R"({"transform":{"twist":{"axis":[0,1,0],"degreesPerUnit":60}}})",
+                              R"({"method":"arap","move":[0,0.2,0.1]})"}) {
+    INFO(op_text);
+    const DeformOp edit = deform_op_from_json(Json::parse(op_text));
+    Session made;
+    load_spool(made);
+    made.select(one, 0.05, SelectionMode::Replace);
+    const Json op = to_json(resolve_for_document(made, edit));
+    CHECK_FALSE(op.contains("handles"));
+    CHECK_FALSE(op.dump().find("origin") != std::string::npos);
+
+    Session fresh;
+    load_spool(fresh);
+    fresh.select(other, 0.05, SelectionMode::Replace);
+    fresh.deform(edit);
+    fresh.commit();
+
+    Session replaying;
+    load_spool(replaying);
+    Json document = {{"format", "anisoform-document"}, {"version", 1},
+                     {"mesh", {{"name", "spool.off"},
+                               {"vertices", replaying.rest().num_vertices()},
+                               {"triangles", replaying.rest().num_triangles()},
+                               {"hash", mesh_hash_text(replaying.mesh_hash())}}},
+                     {"regions", {{{"name", "moved"}, {"steps", {{{"region", region_json(other)}, {"falloff", 0.05}}}}}}},
+                     {"ops", {{{"id", "a"}, {"label", "edit"}, {"region", "moved"}, {"op", op}}}}};
+    CHECK(replay_document(replaying, document_from_json(document)).warnings.empty());
+    const double moved = (fresh.positions() - replaying.positions()).cwiseAbs().maxCoeff();
+    CHECK(moved < 1e-9);
+    CHECK((fresh.positions() - made.positions()).cwiseAbs().maxCoeff() > 1e-3);  // the edit does something there
+  }
+}
+
+TEST_CASE("document: an op whose region selects nothing is replayed with a warning naming it", "[document]") {
+  // It leaves the mesh unchanged: said, as the CLI's deform says it of an
+  // empty --select (the edit used to vanish with no word).
+  Session session;
+  load_spool(session);
+  Json document = spool_document(session);
+  document["regions"][0]["steps"][0]["region"] = Json::parse(R"({"sphere": {"center": [10, 10, 10], "radius": 0.1}})");
+  const ReplaySummary summary = replay_document(session, document_from_json(document));
+  REQUIRE(summary.warnings.size() == 1);
+  CHECK(summary.warnings[0] ==
+        "document.ops[0] (id 'stretch'): its region 'top' holds no vertex: the mesh is left unchanged");
+  CHECK(to_json(summary)["warnings"][0] == summary.warnings[0]);
+  CHECK(replay_document(session, document_from_json(spool_document(session))).warnings.empty());
 }

@@ -407,6 +407,11 @@ export interface ReplaySummary {
   replayed: number;
   /** Disabled ops. */
   skipped: number;
+  /**
+   * Ops that left the mesh unchanged, and why: "document.ops[1] (id 'b'):
+   * its region 'r' holds no vertex: the mesh is left unchanged".
+   */
+  warnings: string[];
   /** The last solve's result (null when no op ran). */
   last: DeformResult | null;
 }

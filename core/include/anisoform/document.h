@@ -14,8 +14,11 @@
 // step with a {vertices, weights} region.
 //
 // Ops are stored resolved and view-independent (resolve_for_document): a
-// screen drag as the global direction it produced, the twist origin and the
-// ARAP handles/pins as used, the iteration counts as used. Replay runs every
+// screen drag as the global direction it produced, the direction and the
+// iteration counts as used. What follows from the op's region on its input
+// pose (the twist origin, ARAP's handles and pins, unless the edit gave them)
+// is worked out there by replay, so that a changed region or an earlier op
+// changed or turned off gives what a new edit of that region would. Replay runs every
 // enabled op in order: the region's selection, a full solve (never a preview,
 // never warm-started, so the result does not depend on what the page
 // previewed before) and a commit.
@@ -87,7 +90,8 @@ void check_document(const EditDocument& document, const Session& session);
 // The request an edit means now, made view-independent for the document:
 // resolve_edit on the session's rest pose and selection, a screen drag turned
 // into the global vector it produced, preview and warm start off, everything
-// "given". What the page stores when it commits an op.
+// "given" but what the region decides (see above). What the page stores when
+// it commits an op.
 DeformOp resolve_for_document(const Session& session, const DeformOp& edit);
 
 // Which ops replay runs: [from, to) of the document's list. from == 0 starts
@@ -109,6 +113,9 @@ struct ReplaySummary {
   int replayed = 0;  // enabled ops solved
   int skipped = 0;   // disabled ops
   DeformOpResult last;  // the last solve's (what a page reports after committing one op)
+  // Ops that left the mesh unchanged, and why (unchanged_reason, op.h):
+  // "document.ops[2] (id 'b'): its region 'r' holds no vertex: ...".
+  std::vector<std::string> warnings;
 };
 
 // Checks the document (check_document), then replays the range on a scratch

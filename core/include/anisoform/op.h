@@ -119,6 +119,13 @@ ModelUnitGuess guess_model_unit(const BoundingBox& box);
 DeformRequest resolve_edit(const DeformOp& edit, const Positions& rest, const BoundingBox& loaded_box,
                            const Eigen::VectorXd& weights);
 
+// Why a resolved edit leaves the mesh unchanged, in words for a warning
+// ("the selection holds no vertex: the mesh is left unchanged", with
+// `selection` naming what selected), or "" when it can move something: no
+// selected vertex; ARAP with no handle (none selected with weight 1); every
+// selected vertex pinned.
+std::string unchanged_reason(const DeformRequest& resolved, const std::string& selection = "the selection");
+
 // A flattening's default direction: longest_axis of the positions it flattens.
 SessionFlatten resolve_flatten(const SessionFlatten& request, const Positions& positions);
 

@@ -164,6 +164,7 @@ ReplayRange replay_range_from_json(const Json& options) {
 Json to_json(const ReplaySummary& summary) {
   return {{"replayed", summary.replayed},
           {"skipped", summary.skipped},
+          {"warnings", summary.warnings},
           {"last", summary.replayed > 0 ? to_json(summary.last) : Json(nullptr)}};
 }
 

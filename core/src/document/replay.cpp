@@ -91,7 +91,16 @@ DeformOp resolve_for_document(const Session& session, const DeformOp& edit) {
     request.direction = DirectionSource();
     request.direction.vector = vector;
   }
-  out.twist_origin_given = request.transform.twist;
+  // What follows from the op's region on its input pose is left to replay
+  // to work out there (resolve_edit, as here): the twist origin and ARAP's
+  // handles and pins when the edit did not give them. Stored, they stayed
+  // those of the region and pose the op was made on, so a new region or an
+  // earlier op turned off kept the old twist axis, and an ARAP op its old handles.
+  out.twist_origin_given = edit.twist_origin_given;
+  if (edit.request.method == Method::Arap && edit.request.handles.empty()) {
+    request.handles.clear();
+    request.pins = edit.request.pins;
+  }
   out.direction_given = true;
   out.preview = false;
   return out;
@@ -125,6 +134,10 @@ ReplaySummary replay_document(Session& session, const EditDocument& document, co
       DeformOp edit = op.edit;
       edit.preview = range.preview;
       edit.request.warm_start = false;
+      const std::string unchanged = unchanged_reason(
+          resolve_edit(edit, scratch.rest().V, scratch.info().report.bbox, scratch.selection()),
+          "its region '" + op.region + "'");
+      if (!unchanged.empty()) summary.warnings.push_back(document_op_name(document, i) + ": " + unchanged);
       summary.last = scratch.deform(edit);
       scratch.commit();
     });

@@ -67,6 +67,30 @@ DeformRequest resolve_edit(const DeformOp& edit, const Positions& rest, const Bo
   return request;
 }
 
+std::string unchanged_reason(const DeformRequest& resolved, const std::string& selection) {
+  const Eigen::VectorXd& weights = resolved.selection;
+  const bool selected = (weights.array() > 0.0).any();
+  // ARAP moves its handles, given or taken from the selection (resolve_edit);
+  // the other methods the selected vertices.
+  if (resolved.method == Method::Arap) {
+    if (!resolved.handles.empty()) return "";
+    return selected ? "ARAP's handles are the vertices selected with weight 1; " + selection +
+                          " has none: the mesh is left unchanged (select the part to move fully, or give handles)"
+                    : selection + " holds no vertex: the mesh is left unchanged";
+  }
+  if (!selected) return selection + " holds no vertex: the mesh is left unchanged";
+  // The surface methods move only selected vertices; with all of them held,
+  // the edit has nothing to move (ARAP's handles move although pinned).
+  std::vector<char> pinned(static_cast<std::size_t>(weights.size()), 0);
+  for (const int p : resolved.pins) {
+    if (p >= 0 && p < weights.size()) pinned[static_cast<std::size_t>(p)] = 1;  // a bad index is the solve's to refuse
+  }
+  for (Eigen::Index i = 0; i < weights.size(); ++i) {
+    if (weights[i] > 0.0 && !pinned[static_cast<std::size_t>(i)]) return "";
+  }
+  return "every selected vertex is pinned: the mesh is left unchanged";
+}
+
 SessionFlatten resolve_flatten(const SessionFlatten& request, const Positions& positions) {
   SessionFlatten out = request;
   if (!out.direction_given) {

@@ -9,6 +9,7 @@
 // last put there.
 import { Request } from '../worker/protocol.js';
 import { SnapshotCache } from './snapshot-cache.js';
+import { inPageWords } from '../editor/edit-wording.js';
 
 export class OpRunner {
   #editor;
@@ -16,6 +17,10 @@ export class OpRunner {
   #document;
   #dropPattern;
   #chain = Promise.resolve();
+  // The core's word on ops of this operation's replays that left the mesh
+  // unchanged (an op's region selecting nothing after a change): said when
+  // the state is shown.
+  #unchanged = [];
   cache = new SnapshotCache();
   /** Bumped whenever the rest pose changes: a selection rule holds for one rest pose only. */
   restVersion = 0;
@@ -33,7 +38,10 @@ export class OpRunner {
   /** Runs `work` after every operation before it; busy from the call on (undo, redo and gestures wait). */
   run(work) {
     const done = this.#editor.beginBusy();
-    const running = this.#chain.then(work).finally(done);
+    const running = this.#chain.then(() => {
+      this.#unchanged = [];
+      return work();
+    }).finally(done);
     this.#chain = running.catch(() => {});
     return running;
   }
@@ -48,7 +56,11 @@ export class OpRunner {
     // The core's replay leaves the session with no selection (replay_document):
     // the page's goes again before the next edit or flattening that uses it.
     this.#editor.selectionState.forget();
-    return this.#client.request(Request.replay, { document: json, from, to, preview, distortion, label });
+    return this.#client.request(Request.replay, { document: json, from, to, preview, distortion, label })
+      .then((result) => {
+        if (!preview) this.#unchanged.push(...(result.summary?.warnings ?? []));
+        return result;
+      });
   }
 
   /** Puts positions (a cached state) in the worker as its rest pose. */
@@ -130,5 +142,10 @@ export class OpRunner {
     mesh.positions = positions;
     this.#editor.emit('positions', { positions, live: false, distortion });
     this.#editor.emit('change', { reason: 'positions' });
+    if (this.#unchanged.length === 0) return;
+    const document = this.#document();
+    const message = [...new Set(this.#unchanged)].map((text) => inPageWords(new Error(text), document).message).join(' ');
+    this.#unchanged = [];
+    this.#editor.emit('warning', { message, source: 'edit' });
   }
 }

@@ -11,7 +11,8 @@
 //                        coalesced, warm-started preview
 //                        and its amount is shown beside the pointer
 //   release            → the last op is solved fully and committed (one undo step)
-//   Esc                → the live edit is dropped
+//   Esc                → the live edit is dropped, and the amount the drag
+//                        wrote to the panel is put back (Apply would use it)
 //
 // With the method 'arap' (ARAP with handles) the drag moves the selection
 // instead: op.move = d.
@@ -46,7 +47,8 @@ export class TransformTool {
 
   start({ x, y, hit }) {
     if (!this.editor.beginGesture()) return;
-    this.gesture = { from: [x, y], anchor: hit.point, camera: this.viewer.cameraState(), op: null };
+    this.gesture = { from: [x, y], anchor: hit.point, camera: this.viewer.cameraState(), op: null,
+      amounts: structuredClone(this.settings.values[this.id]) };
   }
 
   move({ x, y, event }) {
@@ -75,7 +77,10 @@ export class TransformTool {
   }
 
   cancel() {
+    const gesture = this.gesture;
     this.gesture = null;
+    // The drag writes its amount to the tool's settings (its id's) as it goes.
+    if (gesture?.op && gesture.amounts) this.settings.update(this.id, gesture.amounts);
     this.dragReadout.hide();
     this.editor.cancelGesture();
   }

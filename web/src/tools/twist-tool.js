@@ -5,7 +5,6 @@
 // default) or through a point: typed, or clicked on the mesh.
 import { axisVector } from '../shared/settings.js';
 import { extentAlong } from '../interaction/screen-drag.js';
-import { round } from './stretch-tool.js';
 import { TransformTool } from './transform-tool.js';
 
 const QUARTER_TURN = 90;
@@ -74,7 +73,10 @@ export class TwistTool extends TransformTool {
   transformForDrag(amount, invert) {
     const axis = this.#axis();
     const length = Math.max(extentAlong(this.editor.document, axis), 1e-9);
-    const degreesPerUnit = round(((invert ? -1 : 1) * amount * 180) / length, 1);
+    // Three significant digits, not a fixed 0.1: a rate per unit depends on
+    // the mesh's size (on the 151-unit armadillo a step of 0.1 per unit was
+    // 15 degrees of twist, and its 0.59 default could not be dragged to).
+    const degreesPerUnit = Number((((invert ? -1 : 1) * amount * 180) / length).toPrecision(3));
     this.settings.update('twist', { degreesPerUnit });
     return { twist: this.#twist(degreesPerUnit) };
   }

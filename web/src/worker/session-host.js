@@ -142,8 +142,8 @@ export class SessionHost {
     const summary = this.session.replay(document, { from, to, preview });
     const positions = this.session.positions().slice();
     const exact = this.session.positionsExact();
-    const result = { positions, exact, summary: { replayed: summary.replayed, skipped: summary.skipped,
-      last: summary.last && plainStats(summary.last) } };
+    const { replayed, skipped, warnings } = summary;
+    const result = { positions, exact, summary: { replayed, skipped, warnings, last: summary.last && plainStats(summary.last) } };
     const transfer = [positions.buffer, exact.buffer];
     if (distortion) {
       result.distortion = this.session.distortion(distortion, 'loaded');
