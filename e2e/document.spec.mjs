@@ -264,6 +264,10 @@ test("an earlier op's method and direction from the Edits list: it re-runs as a 
   expect(await refusal({ direction: { type: 'screen', from: [0, 0], to: [1, 1] } })).toMatch(/screen drag cannot be stored/);
   expect(await refusal({})).toMatch(/changes nothing/);
   expect(await refusal({ method: 'magic' })).toMatch(/method/);
+  // An ARAP drag is another kind of edit: it used to be taken, and the stretch vanished.
+  expect(await refusal({ method: 'arap' })).toMatch(/method 'arap' is an ARAP drag, not a method of this op's transform/);
+  expect(await refusal({ move: [0, 1, 0] })).toMatch(/move is an ARAP drag's; this op is anarap/);
+  expect(await refusal({ transform: { scael: 2 } })).toMatch(/: Stretch \(AnARAP\): transform has an unknown field 'scael'/);
   expect(bitwise(await positions(), afterThree)).toBe(true);
 
   // The changed document replays to bitwise the positions the list gave.

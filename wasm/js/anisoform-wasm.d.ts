@@ -508,7 +508,10 @@ export interface Session {
    * the unit copy and its Laplacian, 0.35 after the workspace, the factorization from 0.35 to
    * 0.95 (0.56 once ordered and analysed, then by twentieths of the numeric work), 1 after the
    * iterations' structures; the parts already done report nothing), deform's iterations ('solve': iterations
-   * over the cap, then 1 when done) and flatten's ('flatten'). null stops it. It must not throw.
+   * over the cap, then 1 when done) and flatten's ('flatten'). null stops it. It runs inside the
+   * call: a Session call made from it (any session's; a new mesh or a delete would free memory the
+   * running call uses) throws 'bad-parameter'. What `report` throws does not stop the call: the
+   * call runs to its end, then throws it (its code kept, else 'bad-parameter').
    */
   setProgress(report: ((stage: 'load' | 'factorize' | 'solve' | 'flatten', fraction: number) => void) | null): void;
   /**

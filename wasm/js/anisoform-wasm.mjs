@@ -112,9 +112,23 @@ export async function instantiateAnisoform(factory, options = {}) {
     throw new AnisoformError('internal', `cannot load the WASM module: ${error?.message ?? error}`, { cause: error });
   }
   const rawSessions = new WeakMap();
+  // The Session call running now: a progress report runs inside it, and a
+  // call from there (a new mesh, a delete) freed memory the running solve
+  // still used; the module's memory was corrupt from then on, for every session.
+  let running = null;
+  const refuseInside = (method) => {
+    if (running) {
+      throw badParameter(`Session.${method}() was called while Session.${running}() runs (from its progress report): `
+        + `call it after ${running}() has returned`);
+    }
+  };
 
   class Session {
     #raw;
+    // What the progress report threw during the running call: kept, not let
+    // through the core's frames (which then never unwind), and thrown once
+    // the call has returned.
+    #reportError = null;
 
     constructor() {
       this.#raw = callModule(() => new module.Session());
@@ -123,11 +137,26 @@ export async function instantiateAnisoform(factory, options = {}) {
 
     #call(method, ...args) {
       if (this.#raw === null) throw badParameter('this Session has been deleted');
-      return callModule(() => this.#raw[method](...args));
+      refuseInside(method);
+      running = method;
+      this.#reportError = null;
+      let result;
+      try {
+        result = callModule(() => this.#raw[method](...args));
+      } finally {
+        running = null;
+      }
+      const thrown = this.#reportError;
+      if (thrown === null) return result;
+      this.#reportError = null;
+      const code = thrown instanceof AnisoformError ? thrown.code : 'bad-parameter';
+      throw new AnisoformError(code, `Session.${method}() has run to its end, but its progress report threw: ${thrown?.message ?? thrown}`,
+        { cause: thrown });
     }
 
     // Frees the WASM memory; the object is unusable afterwards.
     delete() {
+      refuseInside('delete');
       this.#raw?.delete();
       this.#raw = null;
     }
@@ -204,7 +233,14 @@ export async function instantiateAnisoform(factory, options = {}) {
     // flatten's ('flatten'); null stops it. It runs inside the call.
     setProgress(report) {
       if (report !== null && typeof report !== 'function') throw badParameter('setProgress: report must be a function or null');
-      return this.#call('setProgress', report);
+      const kept = report && ((stage, fraction) => {
+        try {
+          report(stage, fraction);
+        } catch (error) {
+          this.#reportError ??= error;
+        }
+      });
+      return this.#call('setProgress', kept);
     }
 
     // The edit document (core document.h): JSON text as it is, an object as JSON.

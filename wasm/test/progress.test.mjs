@@ -75,3 +75,52 @@ test('a load, a committed AnARAP stretch and a flatten report their stages with 
     session.delete();
   }
 });
+
+test('a Session call from inside a progress report is refused, and the module keeps working', () => {
+  // A setMesh or delete from there freed memory the running flatten/deform
+  // used: "memory access out of bounds", then every session of the module failed.
+  const plane = meshBytes('open/plane.off');
+  const session = new wasm.Session();
+  const other = new wasm.Session();
+  try {
+    session.loadMesh(plane, 'plane.off');
+    session.select({ all: true });
+    for (const [name, inside] of [
+      ['setMesh', () => session.setMesh([0, 0, 0, 1, 0, 0, 0, 1, 0], [0, 1, 2])],
+      ['delete', () => session.delete()],
+      ['loadMesh', () => other.loadMesh(plane, 'plane.off')],
+    ]) {
+      let refusal = null;
+      session.setProgress(() => {
+        if (refusal) return;
+        try {
+          inside();
+          refusal = 'none';
+        } catch (error) {
+          refusal = error;
+        }
+      });
+      const result = session.flatten({});
+      assert.ok(result.metrics.triangles > 0, name);
+      assert.ok(refusal instanceof AnisoformError, `${name}: ${refusal}`);
+      assert.equal(refusal.code, 'bad-parameter');
+      assert.match(refusal.message, new RegExp(`^Session\\.${name}\\(\\) was called while Session\\.flatten\\(\\) runs`));
+      assert.equal(session.isDeleted(), false);
+    }
+    // A report that throws: the call runs to its end, then says so.
+    session.setProgress(() => {
+      throw new Error('report broke');
+    });
+    assert.throws(() => session.deform({ transform: { scale: 1.2 } }),
+      (error) => error.code === 'bad-parameter' && /^Session\.deform\(\) has run to its end, but its progress report threw: report broke$/.test(error.message));
+    session.setProgress(null);
+    const fresh = new wasm.Session();
+    fresh.loadMesh(plane, 'plane.off');
+    fresh.select({ all: true });
+    assert.ok(fresh.deform({ transform: { scale: 1.2 } }).iterations > 0);
+    fresh.delete();
+  } finally {
+    session.delete();
+    other.delete();
+  }
+});

@@ -42,6 +42,22 @@ function patchProblem(patch) {
   return null;
 }
 
+// Why setParameter's `patch` cannot change op `op` (null if it can): an
+// ARAP drag (a move of handles) and a local transform are different edits;
+// method switches among the transform methods only (it was taken, and the
+// stretch silently became an ARAP drag of nothing).
+function kindProblem(op, patch) {
+  const drag = (op.method ?? 'anarap') === 'arap';
+  if ('method' in patch && (patch.method === 'arap') !== drag) {
+    return drag
+      ? "this op is an ARAP drag: its method stays 'arap' (make a new edit for a local transform)"
+      : "method 'arap' is an ARAP drag, not a method of this op's transform: choose 'anarap', 'andefgrad' or 'linear'";
+  }
+  if (drag && 'transform' in patch) return 'an ARAP drag has no transform: set its move';
+  if (!drag && 'move' in patch) return `move is an ARAP drag's; this op is ${op.method ?? 'anarap'}: set its transform`;
+  return null;
+}
+
 export class OpStack {
   #editor;
   #client;
@@ -277,6 +293,8 @@ export class OpStack {
     } catch (error) {
       return Promise.reject(error);
     }
+    const kind = kindProblem(this.document.ops[index].op, patch);
+    if (kind) return Promise.reject(badParameter(`setParameter(opId, patch): ${kind}`));
     if (preview && this.document.ops[index].enabled) return this.#live.preview(opId, index, op);
     const what = Object.keys(patch).map((key) => PATCH_WORDS[key]).join(' and ');
     return this.#changeOp(opId, 'op', op, (label) => `Change the ${what} of ${label}`);

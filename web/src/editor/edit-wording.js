@@ -59,8 +59,11 @@ export function inPageWords(error, document, { labelled = true } = {}) {
   if (typeof error?.message !== 'string' || !document) return error;
   const labelOf = (entry, fallback) => (entry ? entry.label || entry.id : fallback);
   const message = error.message
-    .replace(/document\.ops\[\d+\] \(id '([^']*)'\)(?:\.op)?(?:\.transform)?(?:\.|: )?/g,
-      (_, id) => (labelled ? `${labelOf(document.ops.find((entry) => entry.id === id), id)}: ` : ''))
+    // "…(id 'a').op.transform has an unknown field" keeps "transform" (else "Stretch:  has …").
+    .replace(/document\.ops\[\d+\] \(id '([^']*)'\)((?:\.op)?(?:\.transform)?)(\.|: )?/g, (_, id, path, separator) => {
+      const label = labelled ? `${labelOf(document.ops.find((entry) => entry.id === id), id)}: ` : '';
+      return separator || !path ? label : label + path.split('.').pop();
+    })
     .replace(/document\.regions\[\d+\] \(name '([^']*)'\)(?:\.steps\[(\d+)\])?\.?/g, (_, name, step) => {
       const owner = document.ops.find((entry) => entry.region === name);
       const which = step && step !== '0' ? ` (step ${Number(step) + 1})` : '';
