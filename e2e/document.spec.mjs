@@ -29,6 +29,21 @@ async function editSpot(page) {
 
 const bitwise = (a, b) => a.length === b.length && a.every((value, i) => Object.is(value, b[i]));
 
+// The autosaved work a new tab would restore, {meshName, document}: the
+// record of the tab that saved last (autosave.js).
+const savedWork = (page) => page.evaluate(() => new Promise((resolve) => {
+  const request = indexedDB.open('anisoform', 1);
+  request.onsuccess = () => {
+    const store = request.result.transaction('autosave').objectStore('autosave');
+    const latest = store.get('current');
+    latest.onsuccess = () => {
+      if (!latest.result) return resolve(null);
+      const get = store.get(latest.result.tab);
+      get.onsuccess = () => resolve(get.result && { meshName: get.result.meshName, document: get.result.document });
+    };
+  };
+}));
+
 test('a document replays on a fresh page to bitwise the same positions', async ({ page, browser }) => {
   const pageErrors = await openApp(page);
   const { afterThree, document } = await editSpot(page);
@@ -565,13 +580,7 @@ test('the work is autosaved and restored bitwise after a reload; reset clears th
   const pageErrors = await openApp(page);
   const { afterThree, document } = await editSpot(page);
   // The autosave of the last op is written after the commit resolves.
-  await expect.poll(() => page.evaluate(() => new Promise((resolve) => {
-    const request = indexedDB.open('anisoform', 1);
-    request.onsuccess = () => {
-      const get = request.result.transaction('autosave').objectStore('autosave').get('current');
-      get.onsuccess = () => resolve(get.result?.document.ops.length ?? 0);
-    };
-  }))).toBe(3);
+  await expect.poll(() => savedWork(page).then((record) => record?.document.ops.length ?? 0)).toBe(3);
 
   await page.reload();
   await page.evaluate(() => window.anisoform.ready);
@@ -603,13 +612,7 @@ test('the work is autosaved and restored bitwise after a reload; reset clears th
     api.reset();
     return before;
   });
-  await expect.poll(() => page.evaluate(() => new Promise((resolve) => {
-    const request = indexedDB.open('anisoform', 1);
-    request.onsuccess = () => {
-      const get = request.result.transaction('autosave').objectStore('autosave').get('current');
-      get.onsuccess = () => resolve(get.result && `${get.result.meshName} ${get.result.document.ops.length}`);
-    };
-  }))).toBe('torus.obj 0');
+  await expect.poll(() => savedWork(page).then((record) => record && `${record.meshName} ${record.document.ops.length}`)).toBe('torus.obj 0');
   await page.reload();
   await page.evaluate(() => window.anisoform.ready);
   const reloaded = await page.evaluate(() => ({ name: window.anisoform.document().mesh.name,
@@ -620,18 +623,46 @@ test('the work is autosaved and restored bitwise after a reload; reset clears th
   expect(pageErrors).toEqual([]);
 });
 
+test("two tabs keep their own autosaved work: a reload restores its own tab's, a new tab the latest", async ({ context }) => {
+  // One record for all tabs: a reload of one brought back the other's mesh
+  // and edits, and its own were gone. (The tabs of one context share the
+  // storage; the `page` fixture may come from another.)
+  const page = await context.newPage();
+  const pageErrors = await openApp(page, { navigate: true });
+  const stretch = (target) => target.evaluate(async () => {
+    const api = window.anisoform;
+    await api.select({ all: true });
+    await api.deform({ method: 'anarap', direction: { type: 'global', vector: [1, 0, 0] }, transform: { scale: [1.2, 1] } });
+  });
+  await stretch(page);
+  const spotName = await page.evaluate(() => window.anisoform.document().mesh.name);
+  const other = await context.newPage();
+  const otherErrors = await openApp(other, { navigate: true });
+  expect((await uploadFile(other, meshPath('closed/torus.obj'))).ok).toBe(true);
+  await stretch(other);
+  await expect.poll(() => savedWork(other).then((record) => record && `${record.meshName} ${record.document.ops.length}`))
+    .toBe('torus.obj 1');
+  await stretch(page); // the first tab saves last
+  await expect.poll(() => savedWork(page).then((record) => record && `${record.meshName} ${record.document.ops.length}`))
+    .toBe(`${spotName} 2`);
+
+  const work = (target) => target.evaluate(() => `${window.anisoform.document().mesh.name} ${window.anisoform.document().ops.length}`);
+  const third = await context.newPage();
+  await openApp(third, { navigate: true });
+  expect(await work(third)).toBe(`${spotName} 2`);
+  await other.reload();
+  await other.evaluate(() => window.anisoform.ready);
+  expect(await work(other)).toBe('torus.obj 1');
+  expect(pageErrors).toEqual([]);
+  expect(otherErrors).toEqual([]);
+});
+
 test('after a reload, undo first turns back on an op that was off, then takes the ops away', async ({ page }) => {
   const pageErrors = await openApp(page);
   const { afterTwo, afterThree, document } = await editSpot(page);
   const second = document.ops[1];
   await page.evaluate((id) => window.anisoform.setOpEnabled(id, false), second.id);
-  await expect.poll(() => page.evaluate(() => new Promise((resolve) => {
-    const request = indexedDB.open('anisoform', 1);
-    request.onsuccess = () => {
-      const get = request.result.transaction('autosave').objectStore('autosave').get('current');
-      get.onsuccess = () => resolve(get.result?.document.ops[1].enabled);
-    };
-  }))).toBe(false);
+  await expect.poll(() => savedWork(page).then((record) => record?.document.ops[1].enabled)).toBe(false);
 
   await page.reload();
   await page.evaluate(() => window.anisoform.ready);

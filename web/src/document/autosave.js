@@ -1,12 +1,37 @@
 // Autosave of the edit document and its base mesh's bytes in IndexedDB, so a
-// reload restores the work. One record: {document, meshName, meshBytes,
+// reload restores the work. A record: {document, meshName, meshBytes,
 // savedAt}; meshBytes is a Blob of the file (older records hold an
 // ArrayBuffer: editor.load reads both). A failed save (quota, private mode)
 // rejects with code 'storage' and a message that says the work in the page
 // is kept; it never touches the in-memory document.
+//
+// One record per browser tab (its id in sessionStorage, which a reload
+// keeps), and 'current' says which tab saved last: a reload restores its own
+// tab's work, a new tab the latest. With one record for all, a reload of one
+// tab brought back another tab's mesh and edits, and its own were gone.
 const DATABASE = 'anisoform';
 const STORE = 'autosave';
-const KEY = 'current';
+const LATEST = 'current';
+const TAB_KEYS = globalThis.IDBKeyRange?.bound('tab:', 'tab:\uffff');
+// The tabs' records kept besides the latest: each holds a mesh file.
+const KEEP_TABS = 4;
+
+// This tab's id, kept over reloads; without sessionStorage (a sandboxed
+// frame) one per page: its reload then restores the latest work.
+function tabKey() {
+  const random = () => globalThis.crypto?.randomUUID?.() ?? `${Date.now()}-${Math.random()}`;
+  try {
+    let id = sessionStorage.getItem('anisoform-tab');
+    if (!id) {
+      id = random();
+      sessionStorage.setItem('anisoform-tab', id);
+    }
+    return `tab:${id}`;
+  } catch {
+    tabKey.fallback ??= `tab:${random()}`;
+    return tabKey.fallback;
+  }
+}
 
 function storageError(action, error) {
   const reason = error?.name === 'QuotaExceededError' ? 'the browser storage quota is full' : error?.message ?? String(error);
@@ -54,7 +79,12 @@ export class Autosave {
     const record = { document, meshName, meshBytes, savedAt: Date.now() };
     // A save waiting in the chain is dropped if autosave ends before its turn
     // (a disposed modeller writes nothing after a new one has started).
-    const saving = this.#chain.then(() => this.enabled && transact('readwrite', (store) => store.put(record, KEY)));
+    const key = tabKey();
+    const saving = this.#chain.then(() => this.enabled && transact('readwrite', (store) => {
+      store.put(record, key);
+      store.put({ tab: key, savedAt: record.savedAt }, LATEST);
+      pruneTabs(store, key);
+    }));
     this.#chain = saving.catch(() => {});
     return saving.catch((error) => {
       throw storageError('save', error);
@@ -65,9 +95,27 @@ export class Autosave {
     if (!this.enabled) return null;
     await this.#chain;
     try {
-      return (await transact('readonly', (store) => store.get(KEY))) ?? null;
+      const own = await transact('readonly', (store) => store.get(tabKey()));
+      if (own) return own;
+      const latest = await transact('readonly', (store) => store.get(LATEST));
+      // A record of a build before the tabs' own: the work itself.
+      if (!latest?.tab) return latest ?? null;
+      return (await transact('readonly', (store) => store.get(latest.tab))) ?? null;
     } catch (error) {
       throw storageError('read the saved work', error);
     }
   }
+}
+
+// Deletes the oldest tabs' records beyond KEEP_TABS (never `own`).
+function pruneTabs(store, own) {
+  if (!TAB_KEYS) return;
+  const keys = store.getAllKeys(TAB_KEYS);
+  const records = store.getAll(TAB_KEYS);
+  records.onsuccess = () => {
+    const byAge = keys.result.map((key, i) => ({ key, savedAt: records.result[i]?.savedAt ?? 0 }))
+      .filter(({ key }) => key !== own)
+      .sort((a, b) => b.savedAt - a.savedAt);
+    byAge.slice(KEEP_TABS - 1).forEach(({ key }) => store.delete(key));
+  };
 }
