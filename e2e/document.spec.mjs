@@ -1025,3 +1025,30 @@ test('an op given a new region edits that region; a region that selects nothing 
   expect(await page.evaluate(() => Array.from(window.anisoform.positions()))).toEqual(rest);
   expect(pageErrors).toEqual([]);
 });
+
+test("the Edits list words an op as its tool does: a Thicken's one amount, a method and direction left to the defaults, a region stored as weights", async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const document = await page.evaluate(async () => {
+    const api = window.anisoform;
+    await api.select({ all: true });
+    await api.deform({ method: 'andefgrad', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1, 1.3] } });
+    const json = api.document();
+    // Written by hand: no method, no direction (the core's defaults); a region of weights.
+    json.regions.push({ name: 'weights', steps: [{ region: { vertices: [0, 1, 2], weights: [1, 0.5, 0.2] } }] });
+    json.ops.push({ id: 'by-hand', label: 'By hand', enabled: true, region: 'weights', op: { transform: { scale: 1.2 } } });
+    await api.open(json);
+    return api.document();
+  });
+  const [thicken] = document.ops;
+  await page.getByTestId(`op-select-${thicken.id}`).click();
+  // One amount, "Across ×", as the Thicken tool: "Stretch along 1" beside it was typed into for "thicker".
+  await expect(page.getByTestId(`op-amount-${thicken.id}-Stretch along`)).toHaveCount(0);
+  await expect(page.getByLabel('Across ×').last()).toHaveValue('1.3');
+  await page.getByTestId(`op-select-${thicken.id}`).click();
+
+  await page.getByTestId('op-select-by-hand').click();
+  await expect(page.getByTestId('op-method-by-hand')).toHaveValue('anarap');
+  await expect(page.locator('.op-direction-note')).toHaveText("Direction: the mesh's longest axis (none given)");
+  await expect(page.getByText('Extra soft border (units)')).toBeVisible();
+  expect(pageErrors).toEqual([]);
+});

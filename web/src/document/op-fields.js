@@ -6,18 +6,23 @@
 // value: the op's own shows again.
 import { h } from '../ui/dom.js';
 import { decimalInput, parseDecimal } from '../ui/decimal-input.js';
-import { METHOD_NAMES } from '../editor/edit-wording.js';
+import { METHOD_NAMES, describeEdit } from '../editor/edit-wording.js';
 import { transformUsesDirection } from '../tools/direction-source.js';
 
-// The amounts of a transform an op's row offers, as [label, read, write].
+// The amounts of a transform an op's row offers, as [test id, label, read,
+// write], labelled as the tools' panels label them. A Thicken op (a scale
+// [1, sv], describeEdit) shows its one amount, as its tool does: "Stretch
+// along" beside it read as "thicker" and turned it into a stretch.
 const AMOUNTS = [
-  ['Stretch along', (t) => t.scale?.[0] ?? t.scale, (t, v) => ({ scale: [v, t.scale?.[1] ?? 1] })],
-  ['Stretch across', (t) => t.scale?.[1], (t, v) => ({ scale: [t.scale?.[0] ?? t.scale ?? 1, v] })],
-  ['Thickness', (t) => t.thickness, (t, v) => ({ thickness: v })],
-  ['Shear', (t) => t.shear, (t, v) => ({ shear: v })],
-  ['Rotate (degrees)', (t) => t.rotate?.degrees, (t, v) => ({ rotate: { ...t.rotate, degrees: v } })],
-  ['Twist (degrees/unit)', (t) => t.twist?.degreesPerUnit, (t, v) => ({ twist: { ...t.twist, degreesPerUnit: v } })],
+  ['Stretch along', 'Along ×', (t) => (isThicken(t) ? undefined : t.scale?.[0] ?? t.scale), (t, v) => ({ scale: [v, t.scale?.[1] ?? 1] })],
+  ['Stretch across', 'Across ×', (t) => t.scale?.[1], (t, v) => ({ scale: [t.scale?.[0] ?? t.scale ?? 1, v] })],
+  ['Thickness', 'Thickness', (t) => t.thickness, (t, v) => ({ thickness: v })],
+  ['Shear', 'Shear', (t) => t.shear, (t, v) => ({ shear: v })],
+  ['Rotate (degrees)', 'Rotate (degrees)', (t) => t.rotate?.degrees, (t, v) => ({ rotate: { ...t.rotate, degrees: v } })],
+  ['Twist (degrees/unit)', 'Twist (degrees/unit)', (t) => t.twist?.degreesPerUnit, (t, v) => ({ twist: { ...t.twist, degreesPerUnit: v } })],
 ];
+
+const isThicken = (transform) => describeEdit({ transform }) === 'Thicken';
 
 // The methods an op can switch between: the ones that take any transform on
 // a region (ARAP with handles moves a dragged part instead).
@@ -77,15 +82,17 @@ export function opFields(entry, { change, preview, dropPreview, redraw }) {
       }));
   };
 
-  const amounts = AMOUNTS.filter(([, read]) => typeof read(transform) === 'number').map(([label, read, write]) =>
-    number(label, read(transform), `op-amount-${entry.id}-${label}`, (value, send) => send({ transform: write(transform, value) })));
+  const amounts = AMOUNTS.filter(([, , read]) => typeof read(transform) === 'number').map(([key, label, read, write]) =>
+    number(label, read(transform), `op-amount-${entry.id}-${key}`, (value, send) => send({ transform: write(transform, value) })));
 
-  const method = SWITCHABLE.includes(op.method)
+  // An op written without a method has the core's default, AnARAP.
+  const methodName = op.method ?? 'anarap';
+  const method = SWITCHABLE.includes(methodName)
     ? h('label', { className: 'field op-amount' }, 'Method',
       h('select', {
         'data-testid': `op-method-${entry.id}`,
         onchange: (event) => change({ method: event.target.value }),
-      }, SWITCHABLE.map((name) => h('option', { value: name, selected: name === op.method }, METHOD_NAMES[name]))))
+      }, SWITCHABLE.map((name) => h('option', { value: name, selected: name === methodName }, METHOD_NAMES[name]))))
     : null;
 
   // x, y, z fields of a vector: a value typed in one goes with the values in
@@ -132,9 +139,11 @@ function directionFields(entry, xyz, change) {
       }, [['min', 'Min curvature'], ['max', 'Max curvature']].map(([value, text]) =>
         h('option', { value, selected: value === direction.which }, text))));
   }
-  const described = direction?.type === 'constraints'
-    ? `${direction.constraints.length} arrow${direction.constraints.length === 1 ? '' : 's'}, propagated`
-    : 'a direction per vertex';
+  // Not given: the core's default (op.h), the loaded mesh's longest axis.
+  const described = direction === undefined ? "the mesh's longest axis (none given)"
+    : direction.type === 'constraints'
+      ? `${direction.constraints.length} arrow${direction.constraints.length === 1 ? '' : 's'}, propagated`
+      : 'a direction per vertex';
   return h('p', { className: 'op-direction-note' }, `Direction: ${described}`);
 }
 
@@ -144,8 +153,13 @@ function directionFields(entry, xyz, change) {
  * same steps with that falloff, through setRegion(steps).
  */
 export function falloffField(entry, steps, { setRegion, redraw }) {
-  return h('label', { className: 'field op-amount', title: "The width of the soft border around the edit's region, in model units along the surface" },
-    'Soft border (units)',
+  // A brushed or edited selection is stored as its weights, soft edge and
+  // all; a width adds a border beyond them ("Soft border 0" read as "hard").
+  const weighted = steps.some((step) => step.region?.vertices);
+  return h('label', { className: 'field op-amount', title: weighted
+    ? 'The region is stored as its weights, with their own soft edge; this width adds a soft border beyond them, in model units along the surface'
+    : "The width of the soft border around the edit's region, in model units along the surface" },
+    weighted ? 'Extra soft border (units)' : 'Soft border (units)',
     decimalInput({
       value: String(steps[0]?.falloff ?? 0),
       'data-testid': `op-falloff-${entry.id}`,
