@@ -4,7 +4,7 @@
 import { readFileSync, writeFileSync } from 'node:fs';
 
 import { dracoGlb, instancedGlb, meshoptGlb, quantizedGlb, skinnedGlb } from './compressed-gltf.mjs';
-import { glbChunks, meshesByName, parseGlb, spotSceneGlb, worldPositions } from './gltf-scene.mjs';
+import { assembledGlb, glbChunks, glbWithJson, meshesByName, parseGlb, spotSceneGlb, worldPositions } from './gltf-scene.mjs';
 import { expect, meshPath, openApp, rangeAlong, stretchUpperHalfAndExport, test, uploadFile } from './support.mjs';
 
 const SPOT = meshPath('formats/spot_lowres.glb');
@@ -167,17 +167,7 @@ test('a GLB using an extension the app does not read says which, and still opens
   const glb = readFileSync(SPOT);
   const { json, bin } = glbChunks(glb);
   json.extensionsUsed = ['KHR_texture_basisu', 'KHR_materials_unlit'];
-  const text = Buffer.from(JSON.stringify(json).padEnd(Math.ceil(JSON.stringify(json).length / 4) * 4, ' '));
-  const header = Buffer.alloc(20);
-  header.write('glTF', 0);
-  header.writeUInt32LE(2, 4);
-  header.writeUInt32LE(20 + text.length + 8 + bin.length, 8);
-  header.writeUInt32LE(text.length, 12);
-  header.writeUInt32LE(0x4e4f534a, 16);
-  const chunk = Buffer.alloc(8);
-  chunk.writeUInt32LE(bin.length, 0);
-  chunk.writeUInt32LE(0x004e4942, 4);
-  const loaded = await open(page, Buffer.concat([header, text, chunk, bin]), 'spot-basisu.glb');
+  const loaded = await open(page, assembledGlb(json, bin), 'spot-basisu.glb');
   expect(loaded.ok).toBe(true);
   expect(loaded.notice).toContain(
     'The file uses glTF extensions this app does not read (KHR_texture_basisu): what they add is not shown, and a GLB export leaves it out.',
@@ -201,6 +191,21 @@ test('a damaged Draco or meshopt GLB is refused, saying what failed, and the mes
     expect(outcome.ok, name).toBe(false);
     expect(outcome.message).toMatch(message);
     expect(outcome.message).toContain('The current mesh (spot_triangulated.obj) is unchanged.');
+    expect(outcome.positions).toEqual(before);
+  }
+  // No scene (GLTFLoader gives none: a TypeError was shown), and a bufferView's
+  // stride of 0.5 (its positions read as NaN, said of a merged vertex number).
+  const malformed = [
+    ['no-scene.glb', glbWithJson(glb, (json) => { json.scenes = []; delete json.scene; }),
+      /no-scene\.glb: the glTF file has no scene \(its "scenes" list is empty or missing\)/],
+    ['half-stride.glb', glbWithJson(glb, (json) => {
+      json.bufferViews[json.accessors[json.meshes[0].primitives[0].attributes.POSITION].bufferView].byteStride = 0.5;
+    }), /half-stride\.glb: mesh '.*' has a non-finite position at its vertex \d+ \(its POSITION accessor or bufferView is malformed\)/],
+  ];
+  for (const [name, bytes, message] of malformed) {
+    const outcome = await open(page, bytes, name);
+    expect(outcome.ok, name).toBe(false);
+    expect(outcome.message).toMatch(message);
     expect(outcome.positions).toEqual(before);
   }
   expect(pageErrors).toEqual([]);

@@ -132,15 +132,28 @@ export function withBaseColorTexture(glb, png) {
   for (const material of json.materials) {
     material.pbrMetallicRoughness = { ...material.pbrMetallicRoughness, baseColorTexture: { index: 0 } };
   }
+  return assembledGlb(json, binary);
+}
+
+/** The GLB of this JSON and binary chunk. */
+export function assembledGlb(json, binary) {
   const text = padded(Buffer.from(JSON.stringify(json)), 0x20);
+  const bin = padded(binary, 0);
   const header = Buffer.alloc(20);
   header.write('glTF', 0);
   header.writeUInt32LE(2, 4);
-  header.writeUInt32LE(12 + 8 + text.length + 8 + binary.length, 8);
+  header.writeUInt32LE(12 + 8 + text.length + 8 + bin.length, 8);
   header.writeUInt32LE(text.length, 12);
   header.writeUInt32LE(0x4e4f534a, 16); // 'JSON'
   const binHeader = Buffer.alloc(8);
-  binHeader.writeUInt32LE(binary.length, 0);
+  binHeader.writeUInt32LE(bin.length, 0);
   binHeader.writeUInt32LE(0x004e4942, 4); // 'BIN\0'
-  return Buffer.concat([header, text, binHeader, binary]);
+  return Buffer.concat([header, text, binHeader, bin]);
+}
+
+/** The GLB with its JSON changed by edit(json). */
+export function glbWithJson(glb, edit) {
+  const { json, bin } = glbChunks(glb);
+  edit(json);
+  return assembledGlb(json, bin);
 }

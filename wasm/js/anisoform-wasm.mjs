@@ -76,9 +76,19 @@ function toJson(value, what) {
 }
 
 // Bulk arrays go to the module as they are; a plain array becomes a typed one.
+const describe = (value) => (value === undefined ? 'missing' : typeof value === 'string' ? JSON.stringify(value) : String(value));
+const isBigIntArray = (value) => value instanceof BigInt64Array || value instanceof BigUint64Array;
+
 function numbers(value, Type, what) {
+  if (isBigIntArray(value)) throw badParameter(`${what} must hold numbers, not BigInts (a ${value.constructor.name})`);
   if (isTypedArray(value)) return value;
-  if (Array.isArray(value)) return Type.from(value);
+  if (Array.isArray(value)) {
+    // Type.from would read '1' as 1, null as 0 and a hole as NaN.
+    for (let i = 0; i < value.length; i++) {
+      if (typeof value[i] !== 'number') throw badParameter(`${what}[${i}] is ${describe(value[i])}, not a number`);
+    }
+    return Type.from(value);
+  }
   throw badParameter(`${what} must be a typed array or an array of numbers`);
 }
 
@@ -143,6 +153,10 @@ export async function instantiateAnisoform(factory, options = {}) {
       let result;
       try {
         result = callModule(() => this.#raw[method](...args));
+      } catch (error) {
+        // embind's own refusal of an argument ("Cannot pass non-string to std::string") names no call.
+        if (error.cause?.name !== 'BindingError') throw error;
+        throw new AnisoformError('bad-parameter', `Session.${method}(): an argument has the wrong type: ${error.message}`, { cause: error.cause });
       } finally {
         running = null;
       }
@@ -171,6 +185,7 @@ export async function instantiateAnisoform(factory, options = {}) {
     }
 
     setMesh(positions, triangles, options = {}) {
+      if (isBigIntArray(triangles)) throw badParameter(`setMesh: triangles must hold numbers, not BigInts (a ${triangles.constructor.name})`);
       return this.#call('setMesh', numbers(positions, Float64Array, 'setMesh: positions'), triangles,
         toJson(options, 'setMesh options'));
     }

@@ -184,3 +184,19 @@ test('out of memory is its own code, names the limit, and leaves the session and
     session.deform({ method: 'andefgrad', direction: { type: 'global', vector: [1, 0, 0] }, transform: { scale: 1.2 } });
   }, benchWasm);
 });
+
+test('arguments of the wrong type are refused naming the call and the element', () => {
+  // Strings were read as numbers, null as 0; embind's own refusal named no call.
+  const session = sessionWith(wasm, 'open/plane.off');
+  try {
+    const P = [0, 0, 0, 1, 0, 0, 0, 1, 0];
+    expectError(() => session.setMesh(['0', ...P.slice(1)], [0, 1, 2]), 'bad-parameter', /^setMesh: positions\[0\] is "0", not a number$/);
+    expectError(() => session.setMesh([null, ...P.slice(1)], [0, 1, 2]), 'bad-parameter', /^setMesh: positions\[0\] is null, not a number$/);
+    expectError(() => session.setMesh(P, new BigUint64Array([0n, 1n, 2n])), 'bad-parameter', /^setMesh: triangles must hold numbers, not BigInts/);
+    expectError(() => session.exportMesh(null), 'bad-parameter', /^Session\.exportMesh\(\): an argument has the wrong type: Cannot pass non-string/);
+    expectError(() => session.distortion(0), 'bad-parameter', /^Session\.distortion\(\): an argument has the wrong type/);
+    assert.equal(session.setMesh(P, [0, 1, 2]).vertices, 3);
+  } finally {
+    session.delete();
+  }
+});

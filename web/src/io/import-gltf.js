@@ -38,6 +38,8 @@ export async function importGltf(bytes, name) {
   } finally {
     decoders?.dispose();
   }
+  // A file may list no scene (GLTFLoader then gives none): nothing is placed to show.
+  if (!gltf.scene) throw new GltfImportError(`${name}: the glTF file has no scene (its "scenes" list is empty or missing), so no mesh is placed to show.`);
   // GLTFLoader's scene is a Group, which GLTFExporter would write as a node
   // of a new scene: one more wrapper node at every round trip.
   const scene = Object.assign(new Scene(), { name: gltf.scene.name });
@@ -86,7 +88,14 @@ export async function importGltf(bytes, name) {
     const position = geometry.getAttribute('position');
     toWorld.copy(mesh.matrixWorld);
     for (let i = 0; i < position.count; i++) {
-      point.fromBufferAttribute(position, i).applyMatrix4(toWorld);
+      point.fromBufferAttribute(position, i);
+      // A malformed accessor or bufferView (a byteStride of 0.5) reads as NaN:
+      // said of the mesh and its POSITION, not of a merged vertex number.
+      if (!Number.isFinite(point.x + point.y + point.z)) {
+        throw new GltfImportError(`${name}: mesh '${mesh.name || mesh.uuid.slice(0, 8)}' has a non-finite position at its vertex ${i} ` +
+          '(its POSITION accessor or bufferView is malformed).');
+      }
+      point.applyMatrix4(toWorld);
       const at = (vertexOffset + i) * 3;
       positions[at] = point.x;
       positions[at + 1] = point.y;
