@@ -25,9 +25,18 @@ struct ReplayArguments {
   bool ascii = false;
 };
 
+// The file `name` (a document's mesh.name) beside `path`: its file name
+// only. A name with folders ("../../x.off", "/etc/x") named any file
+// anywhere for the reader to quote; the page stores file names.
 std::string path_beside(const std::string& path, const std::string& name) {
+  const std::size_t folder = name.find_last_of("/\\");
+  const std::string file = folder == std::string::npos ? name : name.substr(folder + 1);
+  if (file.empty() || file == "." || file == ".." || file.find('\0') != std::string::npos) {
+    throw Error(ErrorCode::BadParameter, "DOC: document.mesh.name " + Json(name).dump() +
+                                             " is no file name to look for beside DOC: give the mesh with --mesh");
+  }
   const std::size_t slash = path.find_last_of('/');
-  return slash == std::string::npos ? name : path.substr(0, slash + 1) + name;
+  return slash == std::string::npos ? file : path.substr(0, slash + 1) + file;
 }
 
 int run_replay(const ReplayArguments& args) {

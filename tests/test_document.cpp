@@ -3,6 +3,7 @@
 // refused naming the op or field and leaves the session as it was, and the
 // CLI's `replay` writes the positions the core computes, digit for digit.
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <string>
@@ -370,6 +371,25 @@ TEST_CASE("document: the CLI replays to the core's positions", "[document][cli]"
   const test::CliRun truncated =
       test::run_cli_expecting({"replay", doc_path, out, "--mesh", test::mesh_path("closed/spool.off")}, 2);
   CHECK_THAT(truncated.err, Catch::Contains("not valid JSON"));
+
+  // Without --mesh, the file of mesh.name's file name beside DOC, wherever
+  // the name points (an absolute path or ../ named any file anywhere).
+  Json elsewhere = document;
+  elsewhere["mesh"]["name"] = test::mesh_path("closed/spool.off");
+  std::ofstream(doc_path) << elsewhere.dump();
+  const std::string beside_doc = doc_path.substr(0, doc_path.find_last_of('/') + 1) + "spool.off";
+  std::remove(beside_doc.c_str());  // a run before this one left it
+  const test::CliRun not_beside = test::run_cli_expecting({"replay", doc_path, out}, 3);
+  CHECK_THAT(not_beside.err, Catch::Contains("spool.off"));
+  CHECK_THAT(not_beside.err, !Catch::Contains("meshes/closed"));
+  std::ofstream(beside_doc) << test::slurp(test::mesh_path("closed/spool.off"));
+  const test::CliRun beside = test::run_cli_expecting({"replay", doc_path, out}, 0);
+  CHECK(positions_bitwise_equal(read_mesh(out).mesh.V, replayed_spool(document)));
+  elsewhere["mesh"]["name"] = "../";
+  std::ofstream(doc_path) << elsewhere.dump();
+  CHECK_THAT(test::run_cli_expecting({"replay", doc_path, out}, 2).err,
+             Catch::Contains("document.mesh.name \"../\" is no file name to look for beside DOC"));
+  std::remove(beside_doc.c_str());
 }
 
 TEST_CASE("document: an op given a new region is what a new edit of that region gives", "[document]") {
