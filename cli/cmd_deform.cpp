@@ -231,7 +231,8 @@ std::string op_direction_description(const DirectionSource& source) {
 
 double max_displacement(const Positions& rest, const Positions& deformed) {
   if (rest.rows() == 0) return 0.0;
-  return (deformed - rest).rowwise().norm().maxCoeff();
+  // stableNorm: the squares of a mesh in units of 1e-200 underflow to 0.
+  return (deformed - rest).rowwise().stableNorm().maxCoeff();
 }
 
 int run_deform(const DeformArguments& args) {
