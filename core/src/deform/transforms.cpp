@@ -69,6 +69,10 @@ void validate_scale(double value, const std::string& name) {
   require_in_range(value, limits::kMinScale, limits::kMaxScale, name.c_str());
 }
 
+void validate_rotation_coupling(double value, const std::string& name) {
+  require_in_range(value, limits::kMinRotationCoupling, limits::kMaxRotationCoupling, name.c_str());
+}
+
 void validate(const TransformSpec& spec) {
   validate_scale(spec.su, "scale su");
   validate_scale(spec.sv, "scale sv");
