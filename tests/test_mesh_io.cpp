@@ -11,6 +11,7 @@
 #include <fstream>
 #include <map>
 #include <random>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <string>
@@ -519,6 +520,60 @@ TEST_CASE("mesh_io: a PLY's other vertex properties are read and written again i
   }
   // A plain PLY has none.
   CHECK(aniso::read_mesh(mesh_path("formats/spot_lowres_ascii.ply")).attributes.vertex_properties.empty());
+}
+
+TEST_CASE("mesh_io: a vertex colour or property that is not finite is dropped with a note naming it", "[io]") {
+  // NaN and inf in them were read and written out again ('v 0 0 0 nan inf -1',
+  // a PLY's quality column of nan): no NaN or inf reaches an output file. The
+  // positions are kept, and the attribute goes, as a malformed texture
+  // coordinate does.
+  const Mesh spot = load("formats/spot_lowres.obj");
+  for (const char* bad : {"nan", "inf", "-inf", "1e999"}) {
+    INFO(bad);
+    std::string text;
+    for (Eigen::Index i = 0; i < spot.V.rows(); ++i) {
+      text += "v " + std::to_string(spot.V(i, 0)) + " " + std::to_string(spot.V(i, 1)) + " " +
+              std::to_string(spot.V(i, 2)) + (i == 5 ? std::string(" 0.5 ") + bad + " 0.5\n" : " 0.5 0.5 0.5\n");
+    }
+    for (Eigen::Index f = 0; f < spot.F.rows(); ++f) {
+      text += "f " + std::to_string(spot.F(f, 0) + 1) + " " + std::to_string(spot.F(f, 1) + 1) + " " +
+              std::to_string(spot.F(f, 2) + 1) + "\n";
+    }
+    const ReadResult read = read_text(text, MeshFormat::Obj);
+    CHECK(read.mesh.num_vertices() == spot.num_vertices());
+    CHECK(read.attributes.vertex_colors.rows() == 0);
+    REQUIRE(read.report.notes.size() == 1);
+    CHECK(read.report.notes[0] == "vertex colours ignored (vertex 5 has a colour value that is not a finite number "
+                                  "(line 6))");
+    aniso::WriteOptions options;
+    options.attributes = &read.attributes;
+    CHECK_THAT(aniso::write_mesh_to_memory(read.mesh, MeshFormat::Obj, options),
+               !Catch::Contains("nan") && !Catch::Contains("inf"));
+  }
+  // A PLY's quality of inf at vertex 7, NaN at 9: that property goes, the others stay.
+  aniso::VertexProperties properties = scan_properties(spot);
+  properties[3].values[7] = std::numeric_limits<double>::infinity();
+  properties[3].values[9] = std::numeric_limits<double>::quiet_NaN();
+  for (const bool binary : {true, false}) {
+    INFO("binary " << binary);
+    aniso::SurfaceAttributes attributes;
+    attributes.vertex_properties = properties;
+    aniso::WriteOptions options;
+    options.binary = binary;
+    options.attributes = &attributes;
+    const ReadResult read = read_text(aniso::write_mesh_to_memory(spot, MeshFormat::Ply, options), MeshFormat::Ply);
+    REQUIRE(read.attributes.vertex_properties.size() == properties.size() - 1);
+    for (const aniso::VertexProperty& property : read.attributes.vertex_properties) CHECK(property.name != "quality");
+    REQUIRE(read.report.notes.size() == 1);
+    // Vertex 7 is on the 8th line after the header (binary files have no lines).
+    CHECK(read.report.notes[0] == std::string("vertex property 'quality' ignored (vertex 7 has inf") +
+                                      (binary ? "" : " (line 8 after the header)") + ", not a finite number)");
+    aniso::WriteOptions again;
+    again.binary = false;
+    again.attributes = &read.attributes;
+    CHECK_THAT(aniso::write_mesh_to_memory(read.mesh, MeshFormat::Ply, again),
+               !Catch::Contains("nan") && !Catch::Contains("inf"));
+  }
 }
 
 TEST_CASE("mesh_io: vertex colours go from a PLY to an OBJ and from an OBJ to a PLY", "[io]") {

@@ -8,6 +8,7 @@
 // the kept vertex properties in their declared types.
 #include <algorithm>
 #include <climits>
+#include <cmath>
 #include <cstdint>
 
 #include <optional>
@@ -174,6 +175,7 @@ class BinaryValues {
     p_ += bytes;
     return true;
   }
+  std::string where() const { return ""; }  // a binary body has no lines
 
  private:
   const char* p_;
@@ -219,8 +221,12 @@ class AsciiValues {
     rest_.remove_prefix(end);
     return token;
   }
+
+ public:
+  // Where the value last read is, for messages.
   std::string where() const { return " (line " + std::to_string(line_) + " after the header)"; }
 
+ private:
   std::string_view rest_;
   int line_ = 1;
 };
@@ -257,6 +263,10 @@ class PlyBodyReader {
       // The count is the header's, checked against the body's size already.
       kept.back().values.reserve(static_cast<std::size_t>(element.count));
     }
+    // A kept property with a non-finite value is dropped (below): no NaN or
+    // inf reaches an output file. Positions keep theirs, for the mesh check
+    // to name the vertex.
+    std::vector<std::string> non_finite(kept.size());
     for (long long v = 0; v < element.count; ++v) {
       double xyz[3] = {0, 0, 0};
       for (std::size_t p = 0; p < element.properties.size(); ++p) {
@@ -270,12 +280,29 @@ class PlyBodyReader {
           for (int axis = 0; axis < 3; ++axis) {
             if (axis_of[axis] == static_cast<int>(p)) xyz[axis] = value;
           }
-          if (complete && column_of[p] >= 0) kept[column_of[p]].values.push_back(value);
+          if (complete && column_of[p] >= 0) {
+            kept[column_of[p]].values.push_back(value);
+            if (!std::isfinite(value) && non_finite[column_of[p]].empty()) {
+              std::string text;
+              append_number(text, value);
+              non_finite[column_of[p]] = "vertex " + std::to_string(v) + " has " + text + values_.where();
+            }
+          }
         }
         if (!complete) fail_file(truncated_message(v, element.count, "vertices"));
       }
       polygons_.add_vertex(xyz[0], xyz[1], xyz[2]);
     }
+    VertexProperties finite;
+    for (std::size_t c = 0; c < kept.size(); ++c) {
+      if (non_finite[c].empty()) {
+        finite.push_back(std::move(kept[c]));
+      } else {
+        notes.push_back("vertex property '" + kept[c].name + "' ignored (" + non_finite[c] +
+                        ", not a finite number)");
+      }
+    }
+    kept = std::move(finite);
   }
 
   void read_faces(const PlyElement& element) {
@@ -354,6 +381,7 @@ class PlyBodyReader {
  public:
   VertexProperties kept;       // the vertex element's other scalar properties
   int dropped_properties = 0;   // beyond kMaxKeptVertexProperties
+  std::vector<std::string> notes;  // properties dropped for a non-finite value
 };
 
 template <class Values>
@@ -390,6 +418,7 @@ ReadResult read_body(Values& values, const PlyHeader& header, std::size_t body_b
                    "'" + element.name + "' elements");
     }
   }
+  for (std::string& note : reader.notes) report.notes.push_back(std::move(note));
   if (reader.dropped_properties > 0) {
     report.notes.push_back("kept the first " + std::to_string(kMaxKeptVertexProperties) +
                            " vertex properties besides x, y, z; dropped " +
