@@ -86,7 +86,7 @@ FlattenPlan plan_flatten(const FlattenArguments& args) {
   plan.format = check_pattern_output(args.output);
   plan.selection = naming_option("--select", [&] { return parse_region(args.select); });
   if (!args.compress.empty()) {
-    const std::vector<double> amounts = parse_number_list(args.compress, "--compress");
+    const std::vector<double> amounts = parse_number_list(args.compress, "--compress", 0, {"SU", "SV"});
     if (amounts.empty() || amounts.size() > 2) {
       fail(ErrorCode::BadParameter, "--compress: expected SU or SU,SV, got '" + args.compress + "'");
     }
