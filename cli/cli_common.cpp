@@ -89,7 +89,7 @@ int parse_integer(const std::string& text, const std::string& option) {
 }
 
 std::vector<double> parse_number_list(const std::string& text, const std::string& option,
-                                      int expected) {
+                                      int expected, const std::vector<std::string>& names) {
   const std::vector<std::string> parts = split_commas(text);
   if (expected > 0 && static_cast<int>(parts.size()) != expected) {
     fail_value(option, "needs " + std::to_string(expected) + " comma-separated numbers, got " +
@@ -97,12 +97,20 @@ std::vector<double> parse_number_list(const std::string& text, const std::string
   }
   std::vector<double> values;
   values.reserve(parts.size());
-  for (const std::string& part : parts) values.push_back(parse_number(part, option));
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    double value = 0.0;
+    if (const char* problem = parse_strict_number(parts[i], value)) {
+      if (parts.size() == 1) fail_value(option, number_problem(parts[i], problem));
+      const std::string name = i < names.size() ? names[i] : "number " + std::to_string(i + 1);
+      fail_value(option, name + ": " + number_problem(parts[i], problem));
+    }
+    values.push_back(value);
+  }
   return values;
 }
 
 Eigen::Vector3d parse_vector3(const std::string& text, const std::string& option) {
-  const std::vector<double> xyz = parse_number_list(text, option, 3);
+  const std::vector<double> xyz = parse_number_list(text, option, 3, {"X", "Y", "Z"});
   return {xyz[0], xyz[1], xyz[2]};
 }
 
@@ -124,7 +132,7 @@ Prefixed split_prefixed(const std::string& text, const std::string& option,
 }
 
 void parse_scale(const std::string& text, TransformSpec& spec) {
-  const std::vector<double> scales = parse_number_list(text, "--scale");
+  const std::vector<double> scales = parse_number_list(text, "--scale", 0, {"SU", "SV"});
   if (scales.size() > 2) {
     fail_value("--scale", "needs SU or SU,SV, got " + std::to_string(scales.size()) + " numbers");
   }

@@ -61,8 +61,11 @@ double parse_number(const std::string& text, const std::string& option);
 // The whole text as an integer that fits in an int.
 int parse_integer(const std::string& text, const std::string& option);
 // Comma-separated finite numbers; `expected` > 0 demands exactly that many.
+// A number that is not one is named by `names` (the option's own words: SU,
+// SV), or by its place when the list has several: "--scale: SV: '' is
+// empty", as a field file's "line 2: DX: '0x1p0' is a hexadecimal number".
 std::vector<double> parse_number_list(const std::string& text, const std::string& option,
-                                      int expected = 0);
+                                      int expected = 0, const std::vector<std::string>& names = {});
 Eigen::Vector3d parse_vector3(const std::string& text, const std::string& option);
 // A non-zero vector, normalised.
 Eigen::Vector3d parse_unit_vector3(const std::string& text, const std::string& option);

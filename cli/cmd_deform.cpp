@@ -167,9 +167,7 @@ DeformOp edit_from_flags(const DeformArguments& args, DeformPlan& plan) {
   if (!args.acceleration.empty()) request.acceleration = acceleration_from_name(args.acceleration, "--acceleration");
   if (!args.rotation_coupling.empty()) {
     request.rotation_coupling = parse_number(args.rotation_coupling, "--rotation-coupling");
-    if (!(request.rotation_coupling > 0.0)) {
-      fail(ErrorCode::BadParameter, "--rotation-coupling: must be > 0, got " + args.rotation_coupling);
-    }
+    validate_rotation_coupling(request.rotation_coupling, "--rotation-coupling");
   }
   return edit;
 }
@@ -231,7 +229,8 @@ std::string op_direction_description(const DirectionSource& source) {
 
 double max_displacement(const Positions& rest, const Positions& deformed) {
   if (rest.rows() == 0) return 0.0;
-  return (deformed - rest).rowwise().norm().maxCoeff();
+  // stableNorm: the squares of a mesh in units of 1e-200 underflow to 0.
+  return (deformed - rest).rowwise().stableNorm().maxCoeff();
 }
 
 int run_deform(const DeformArguments& args) {
@@ -391,7 +390,7 @@ void add_deform_options(CLI::App& deform, DeformArguments& args) {
                     "tied, converges) | steps (the paper's scheme: --iterations steps from the rest pose)")
       ->type_name("SCHEME");
   deform.add_option("--rotation-coupling", args.rotation_coupling,
-                    "coupled rotations: how strongly neighbours are tied, > 0 (default 1)")
+                    "coupled rotations: how strongly neighbours are tied, 0.0001 to 10000 (default 1)")
       ->type_name("ALPHA");
   deform.add_option("--acceleration", args.acceleration,
                     "AnARAP/ARAP iterations: lbfgs (default: L-BFGS preconditioned by the Laplacian, same "

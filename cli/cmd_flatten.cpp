@@ -75,18 +75,12 @@ PatternFormat check_pattern_output(const std::string& path) {
   return format;
 }
 
-double positive_number(const std::string& text, const std::string& option) {
-  const double value = parse_number(text, option);
-  if (!(value > 0.0)) fail(ErrorCode::BadParameter, option + ": must be > 0, got " + text);
-  return value;
-}
-
 FlattenPlan plan_flatten(const FlattenArguments& args) {
   FlattenPlan plan;
   plan.format = check_pattern_output(args.output);
   plan.selection = naming_option("--select", [&] { return parse_region(args.select); });
   if (!args.compress.empty()) {
-    const std::vector<double> amounts = parse_number_list(args.compress, "--compress");
+    const std::vector<double> amounts = parse_number_list(args.compress, "--compress", 0, {"SU", "SV"});
     if (amounts.empty() || amounts.size() > 2) {
       fail(ErrorCode::BadParameter, "--compress: expected SU or SU,SV, got '" + args.compress + "'");
     }
@@ -120,7 +114,13 @@ FlattenPlan plan_flatten(const FlattenArguments& args) {
     }
     plan.request.method = FlattenMethod::UniformBaseline;
   }
-  if (!args.mm_per_unit.empty()) plan.mm_per_unit = positive_number(args.mm_per_unit, "--mm-per-unit");
+  if (!args.mm_per_unit.empty()) {
+    plan.mm_per_unit = parse_number(args.mm_per_unit, "--mm-per-unit");
+    // Before the solve, whatever the output (an .obj pattern reports it too):
+    // 1e308 was taken for .obj, and refused for .svg and .dxf only after
+    // the flattening, without naming the option.
+    naming_option("--mm-per-unit", [&] { validate_mm_per_unit(plan.mm_per_unit); });
+  }
   if (!args.iterations.empty()) {
     plan.request.max_iterations = parse_integer(args.iterations, "--iterations");
     check_iteration_count(plan.request.max_iterations, "--iterations");
@@ -299,7 +299,7 @@ void add_flatten_options(CLI::App& command, FlattenArguments& args) {
                      "each piece along its mean flattened direction)")
       ->type_name("uniform");
   command.add_option("--mm-per-unit", args.mm_per_unit,
-                     "Millimetres per model unit for SVG/DXF (default 1)")
+                     "Millimetres per model unit for SVG/DXF, 0.001 to 1000000 (default 1)")
       ->type_name("K");
   command.add_option("--iterations", args.iterations,
                      "Iteration cap of the ARAP iterations and the stretch refinement together, >= 1 (default " +

@@ -172,6 +172,13 @@ TEST_CASE("cli robustness: empty, hexadecimal values and unreadable files are re
       {{"deform", in, out, "--rotate", ""}, "--rotate: needs a value, got an empty one"},
       {{"flatten", in, dir.file("p.svg"), "--compress", ""}, "--compress: needs a value, got an empty one"},
       {{"deform", in, out, "--scale", "0x1p1"}, "--scale: '0x1p1' is a hexadecimal number"},
+      // A list names the number that is not one (it said "--scale: '' is empty").
+      {{"deform", in, out, "--scale", "1,"}, "deform: error: --scale: SV: '' is empty"},
+      {{"flatten", in, dir.file("p.svg"), "--compress", "0.8,x"}, "flatten: error: --compress: SV: 'x' is not a number"},
+      {{"deform", in, out, "--method", "arap", "--move", "0,,1"}, "deform: error: --move: Y: '' is empty"},
+      // Out of range by less than the sixth digit: printed so that it shows.
+      {{"deform", in, out, "--rotate", "n:3600.0001"},
+       "deform: error: --rotate: rotation angle (degrees) = 3600.0001 is out of range (-3600 .. 3600)"},
       {{"deform", in, out, "--iterations", "0x10"}, "--iterations: '0x10' is not an integer"},
       {{"deform", in, out, "--direction", "field:" + hex_field},
        "--direction: " + hex_field + " line 2: DX: '0x1p0' is a hexadecimal number"},

@@ -5,6 +5,7 @@
 // tests get a ctest TIMEOUT (tests/CMakeLists.txt), so a return of the old
 // behaviour fails instead of hanging. Today each takes well under 2 s.
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -63,6 +64,45 @@ std::string written_cycling_polygon(int corners) {
   std::string text = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n" + std::to_string(corners);
   for (int i = 0; i < corners; ++i) text += " " + std::to_string(i % 3);
   const std::string path = temp_path("cycling_polygon_" + std::to_string(corners) + ".off");
+  std::ofstream(path) << text << "\n";
+  return path;
+}
+
+// The concave 66-gon of formats/concave_polygon.obj (a rim and a hole joined
+// by a bridge edge 31-32 walked both ways), each edge but the bridge cut into
+// `pieces`: one polygon of 66 + 64 (pieces - 1) corners. Every corner has a
+// texture coordinate of its own, the corners' coordinates listed backwards
+// (vt i is not corner i), u, v = corner number, 1000 + corner number.
+// Returns the path; `corners` gets the polygon's 0-based vertices in order.
+std::string written_textured_concave_polygon(int pieces, std::vector<int>& corners) {
+  const Mesh mesh = aniso::test::load("formats/concave_polygon.obj");
+  const std::vector<int> rim = {27, 23, 19, 15, 11, 5,  2,  1,  3,  6,  12, 16, 20, 24, 28, 34, 38,
+                                42, 46, 50, 54, 60, 63, 64, 62, 59, 53, 49, 45, 41, 37, 31, 32, 35,
+                                39, 43, 47, 51, 55, 57, 61, 58, 56, 52, 48, 44, 40, 36, 33, 30, 26,
+                                22, 18, 14, 10, 8,  4,  7,  9,  13, 17, 21, 25, 29, 32, 31};
+  std::vector<Eigen::RowVector3d> points;
+  for (int v = 0; v < mesh.num_vertices(); ++v) points.push_back(mesh.V.row(v));
+  corners.clear();
+  for (std::size_t i = 0; i < rim.size(); ++i) {
+    const int a = rim[i] - 1, b = rim[(i + 1) % rim.size()] - 1;
+    corners.push_back(a);
+    if ((a == 30 && b == 31) || (a == 31 && b == 30)) continue;  // the bridge, walked twice
+    for (int j = 1; j < pieces; ++j) {
+      corners.push_back(static_cast<int>(points.size()));
+      points.push_back(mesh.V.row(a) + (mesh.V.row(b) - mesh.V.row(a)) * (static_cast<double>(j) / pieces));
+    }
+  }
+  const int n = static_cast<int>(corners.size());
+  std::string text;
+  char line[96];
+  for (const Eigen::RowVector3d& p : points) {
+    std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", p.x(), p.y(), p.z());
+    text += line;
+  }
+  for (int c = n - 1; c >= 0; --c) text += "vt " + std::to_string(c) + " " + std::to_string(1000 + c) + "\n";
+  text += "f";
+  for (int c = 0; c < n; ++c) text += " " + std::to_string(corners[c] + 1) + "/" + std::to_string(n - c);
+  const std::string path = temp_path("textured_concave_polygon_" + std::to_string(n) + ".obj");
   std::ofstream(path) << text << "\n";
   return path;
 }
@@ -139,4 +179,32 @@ TEST_CASE("complexity: a polygon of 5000 corners triangulates into 4998 triangle
   // before the adjacency was linear).
   aniso::test::run_cli_expecting({"deform", written_star_polygon(5000), temp_path("star_polygon_out.obj")}, 0);
   aniso::test::run_cli_expecting({"deform", written_cycling_polygon(5000), temp_path("cycling_polygon_out.obj")}, 0);
+}
+
+TEST_CASE("complexity: a textured polygon of 400k corners loads with each corner's texture coordinate",
+          "[complexity]") {
+  // Each triangle corner looked its texture coordinate up by a scan of the
+  // polygon: 100k corners took 9.3 s, 400k over 120 s.
+  std::vector<int> corners;
+  const std::string path = written_textured_concave_polygon(6250, corners);
+  const int n = static_cast<int>(corners.size());
+  REQUIRE(n == 66 + 64 * 6249);
+  const aniso::ReadResult read = aniso::read_mesh(path);
+  REQUIRE(read.mesh.num_triangles() == n - 2);
+  const aniso::CornerTexture& texture = read.attributes.texture;
+  REQUIRE(texture.faces.rows() == n - 2);
+  REQUIRE(texture.uv.rows() == n);
+  // A vertex's first corner in the polygon gives its coordinate (the
+  // bridge's two vertices are corners twice).
+  std::vector<int> first_corner(read.mesh.num_vertices(), -1);
+  for (int c = n - 1; c >= 0; --c) first_corner[corners[c]] = c;
+  int wrong = 0;
+  for (Eigen::Index f = 0; f < texture.faces.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int corner = first_corner[read.mesh.F(f, k)];
+      const Eigen::RowVector2d uv = texture.uv.row(texture.faces(f, k));
+      if (uv != Eigen::RowVector2d(corner, 1000 + corner)) ++wrong;
+    }
+  }
+  CHECK(wrong == 0);
 }

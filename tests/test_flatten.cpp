@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <sstream>
@@ -656,6 +657,28 @@ TEST_CASE("flatten CLI: pattern files, JSON keys and exit statuses", "[flatten][
     const CliRun run = run_cli({"flatten", test::mesh_path("malformed/degtri_sliding.off"), temp_file("degenerate.svg")});
     CHECK(run.exit_status == 3);
     CHECK(run.err.find("(LSCM): the patch has 4 zero-area triangle(s) (faces 2, 3, 4 ...)") != std::string::npos);
+  }
+
+  SECTION("--mm-per-unit out of range is refused up front, naming it, whatever the output") {
+    // 1e308 and 1e-320 were taken for an .obj pattern (exit 0), and refused
+    // for .svg and .dxf only after the flattening, without the option's name.
+    const std::string plane = test::mesh_path("open/plane.off");
+    for (const std::string& name : {"scale.obj", "scale.svg", "scale.dxf"}) {
+      for (const auto& [given, shown] : std::vector<std::pair<std::string, std::string>>{
+               {"1e308", "1e+308"}, {"1e-320", "9.99989e-321"}, {"1000000.5", "1000000.5"}}) {
+        INFO(name << " " << given);
+        const std::string out = temp_file(name);
+        std::filesystem::remove(out);
+        const CliRun run = run_cli({"flatten", plane, out, "--mm-per-unit", given});
+        CHECK(run.exit_status == 2);
+        CHECK(run.err.find("flatten: error: --mm-per-unit: millimetres per unit must be a number from 0.001 to "
+                           "1000000, got " + shown) != std::string::npos);
+        CHECK(run.out.empty());
+        CHECK_FALSE(std::filesystem::exists(out));
+      }
+      // Before the mesh is read.
+      CHECK(run_cli({"flatten", temp_file("none.obj"), temp_file(name), "--mm-per-unit", "1e308"}).exit_status == 2);
+    }
   }
 
   SECTION("bad parameters exit 2") {

@@ -64,6 +64,11 @@ TEST_CASE("limits: huge amounts on the command line are refused by name with exi
       {{"flatten", aniso::test::mesh_path("open/spothead.obj"), temp_path("limits_pattern.obj"), "--compress",
         "1e300"},
        "su = 1e+300 is out of range (0.01 .. 100)"},
+      {{"deform", aniso::test::mesh_path("open/plane.off"), out, "--select", "sphere:0,0,0,0.3", "--rotate", "n:10",
+        "--rotation-coupling", "1e308"},
+       "--rotation-coupling = 1e+308 is out of range (0.0001 .. 10000)"},
+      {{"deform", in, out, "--rotate", "n:10", "--rotation-coupling", "1e-9"},
+       "--rotation-coupling = 1e-09 is out of range (0.0001 .. 10000)"},
       {{"deform", in, out, "--scale", "1.2", "--iterations", "10001"},
        "--iterations must be an integer from 1 to 10000, got 10001"},
       {{"deform", in, out, "--scale", "1.2", "--iterations", "0"},
@@ -129,6 +134,46 @@ TEST_CASE("limits: spot scaled by 1e78 deforms like spot, scaled", "[limits]") {
   // And through the CLI: no null in the JSON.
   run_limits_case({"deform", spot_scaled_by(1e78, "spot_1e78.obj"), temp_path("spot_1e78_out.obj"), "--scale", "1.3"},
                   0);
+}
+
+TEST_CASE("limits: spot in units of 1e-200 or 9e149 deforms like spot, scaled, and has no zero-area faces",
+          "[limits]") {
+  // The squares of such a mesh's lengths underflow (or overflow): the
+  // bounding-box diagonal was 0, so the solve ran on the mesh as it was and
+  // came back unmoved (max_displacement 0, exit 0), and every face was
+  // reported as of zero area.
+  const aniso::Mesh spot = aniso::test::load("formats/spot_lowres.obj");
+  aniso::DeformRequest request;
+  request.transform.su = 1.5;
+  request.direction.vector = Eigen::Vector3d(0, 0, 1);
+  const aniso::DeformResult expected = aniso::Deformer(spot).deform(request);
+  const double diagonal = aniso::bounding_box(spot.V).diagonal();
+  REQUIRE(aniso::check_mesh(spot).degenerate_triangles == 0);
+  // 9e149: Spot reaches 1.08 from its origin, and coordinates up to 1e150 are read.
+  for (const double factor : {1e-200, 1e-160, 9e149}) {
+    INFO("factor " << factor);
+    const aniso::Mesh scaled{spot.V * factor, spot.F};
+    CHECK(aniso::bounding_box(scaled.V).diagonal() / factor == Approx(diagonal).epsilon(1e-12));
+    CHECK(aniso::check_mesh(scaled).degenerate_triangles == 0);
+    const aniso::DeformResult result = aniso::Deformer(scaled).deform(request);
+    CHECK((result.V / factor - expected.V).cwiseAbs().maxCoeff() <= 1e-9 * diagonal);
+    // A sphere and a falloff scaled with the mesh give the same weights.
+    aniso::Region sphere;
+    sphere.kind = aniso::Region::Kind::Sphere;
+    sphere.center = Eigen::Vector3d(0, 0.5, 0);
+    sphere.radius = 0.4;
+    const Eigen::VectorXd weights = aniso::selection_weights(spot, sphere, 0.2);
+    REQUIRE(weights.sum() > 10);
+    sphere.center *= factor;
+    sphere.radius *= factor;
+    CHECK((aniso::selection_weights(scaled, sphere, 0.2 * factor) - weights).cwiseAbs().maxCoeff() <= 1e-9);
+  }
+  // Through the CLI: moved by half the extent, no zero-area warning.
+  const CliRun run = run_limits_case(
+      {"deform", spot_scaled_by(1e-200, "spot_1e-200.obj"), temp_path("spot_1e-200_out.obj"), "--scale", "1.5"}, 0);
+  const nlohmann::json result = nlohmann::json::parse(run.out);
+  CHECK(result["max_displacement"].get<double>() > 0.1e-200);
+  CHECK(result["warnings"].dump().find("zero-area") == std::string::npos);
 }
 
 TEST_CASE("limits: a twist's range is relative to the mesh size", "[limits]") {

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <map>
 #include <random>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <string>
@@ -191,7 +192,9 @@ TEST_CASE("mesh_io: malformed files fail with a message naming the problem", "[i
   const std::string obj_index = read_error("malformed/bad_index_out_of_range.obj");
   CHECK_THAT(obj_index, Catch::Contains("face 21 references vertex 840, but the file has 829 vertices (line 852)"));
   const std::string off_index = read_error("malformed/bad_index_out_of_range.off");
-  CHECK_THAT(off_index, Catch::Contains("face 31 references vertex 829, but the file has 829 vertices"));
+  // From 0, as the file numbers its vertices (MANIFEST: the 31st face).
+  CHECK_THAT(off_index, Catch::Contains("face 30 references vertex 829, but the file has 829 vertices "
+                                        "(OFF numbers vertices and faces from 0) (line 862)"));
   CHECK_THAT(off_index, Catch::Contains("line 862"));
   const std::string stl = read_error("malformed/truncated_binary.stl");
   CHECK_THAT(stl, Catch::Contains("truncated") && Catch::Contains("1654 triangles") &&
@@ -521,6 +524,60 @@ TEST_CASE("mesh_io: a PLY's other vertex properties are read and written again i
   CHECK(aniso::read_mesh(mesh_path("formats/spot_lowres_ascii.ply")).attributes.vertex_properties.empty());
 }
 
+TEST_CASE("mesh_io: a vertex colour or property that is not finite is dropped with a note naming it", "[io]") {
+  // NaN and inf in them were read and written out again ('v 0 0 0 nan inf -1',
+  // a PLY's quality column of nan): no NaN or inf reaches an output file. The
+  // positions are kept, and the attribute goes, as a malformed texture
+  // coordinate does.
+  const Mesh spot = load("formats/spot_lowres.obj");
+  for (const char* bad : {"nan", "inf", "-inf", "1e999"}) {
+    INFO(bad);
+    std::string text;
+    for (Eigen::Index i = 0; i < spot.V.rows(); ++i) {
+      text += "v " + std::to_string(spot.V(i, 0)) + " " + std::to_string(spot.V(i, 1)) + " " +
+              std::to_string(spot.V(i, 2)) + (i == 5 ? std::string(" 0.5 ") + bad + " 0.5\n" : " 0.5 0.5 0.5\n");
+    }
+    for (Eigen::Index f = 0; f < spot.F.rows(); ++f) {
+      text += "f " + std::to_string(spot.F(f, 0) + 1) + " " + std::to_string(spot.F(f, 1) + 1) + " " +
+              std::to_string(spot.F(f, 2) + 1) + "\n";
+    }
+    const ReadResult read = read_text(text, MeshFormat::Obj);
+    CHECK(read.mesh.num_vertices() == spot.num_vertices());
+    CHECK(read.attributes.vertex_colors.rows() == 0);
+    REQUIRE(read.report.notes.size() == 1);
+    CHECK(read.report.notes[0] == "vertex colours ignored (vertex 5 has a colour value that is not a finite number "
+                                  "(line 6))");
+    aniso::WriteOptions options;
+    options.attributes = &read.attributes;
+    CHECK_THAT(aniso::write_mesh_to_memory(read.mesh, MeshFormat::Obj, options),
+               !Catch::Contains("nan") && !Catch::Contains("inf"));
+  }
+  // A PLY's quality of inf at vertex 7, NaN at 9: that property goes, the others stay.
+  aniso::VertexProperties properties = scan_properties(spot);
+  properties[3].values[7] = std::numeric_limits<double>::infinity();
+  properties[3].values[9] = std::numeric_limits<double>::quiet_NaN();
+  for (const bool binary : {true, false}) {
+    INFO("binary " << binary);
+    aniso::SurfaceAttributes attributes;
+    attributes.vertex_properties = properties;
+    aniso::WriteOptions options;
+    options.binary = binary;
+    options.attributes = &attributes;
+    const ReadResult read = read_text(aniso::write_mesh_to_memory(spot, MeshFormat::Ply, options), MeshFormat::Ply);
+    REQUIRE(read.attributes.vertex_properties.size() == properties.size() - 1);
+    for (const aniso::VertexProperty& property : read.attributes.vertex_properties) CHECK(property.name != "quality");
+    REQUIRE(read.report.notes.size() == 1);
+    // Vertex 7 is on line 26, after the header's 18 (binary files have no lines).
+    CHECK(read.report.notes[0] == std::string("vertex property 'quality' ignored (vertex 7 has inf") +
+                                      (binary ? "" : " (line 26)") + ", not a finite number)");
+    aniso::WriteOptions again;
+    again.binary = false;
+    again.attributes = &read.attributes;
+    CHECK_THAT(aniso::write_mesh_to_memory(read.mesh, MeshFormat::Ply, again),
+               !Catch::Contains("nan") && !Catch::Contains("inf"));
+  }
+}
+
 TEST_CASE("mesh_io: vertex colours go from a PLY to an OBJ and from an OBJ to a PLY", "[io]") {
   const Mesh spot = aniso::read_mesh(mesh_path("formats/spot_lowres_binary.ply")).mesh;
   const int n = static_cast<int>(spot.V.rows());
@@ -619,6 +676,42 @@ TEST_CASE("mesh_io: OBJ accepts every corner form, relative indices, CRLF and no
              Catch::Contains("binary data"));
 }
 
+TEST_CASE("mesh_io: lines ending in a lone CR (old Mac OS) read as lines in every text format", "[io]") {
+  // An OBJ of such lines was one line: "'v' is not a number (line 1)".
+  const struct {
+    const char* file;
+    MeshFormat format;
+  } files[] = {{"formats/spot_lowres.obj", MeshFormat::Obj},
+               {"formats/spot_lowres.off", MeshFormat::Off},
+               {"formats/spot_lowres_ascii.ply", MeshFormat::Ply},
+               {"formats/spot_lowres_ascii.stl", MeshFormat::Stl}};
+  for (const auto& f : files) {
+    INFO(f.file);
+    const std::string unix_text = file_bytes(f.file);
+    std::string mac_text;
+    for (std::size_t i = 0; i < unix_text.size(); ++i) {
+      if (unix_text[i] == '\r' && i + 1 < unix_text.size() && unix_text[i + 1] == '\n') continue;
+      mac_text += unix_text[i] == '\n' ? '\r' : unix_text[i];
+    }
+    REQUIRE(mac_text.find('\n') == std::string::npos);
+    const ReadResult expected = read_text(unix_text, f.format);
+    const ReadResult read = read_text(mac_text, f.format);
+    CHECK(read.mesh.V == expected.mesh.V);
+    CHECK(read.mesh.F == expected.mesh.F);
+  }
+  // Line numbers count them: the OFF's bad index on its line 862, the PLY's
+  // on line 13 (from 0, as the file numbers vertices), CR, LF and CRLF mixed.
+  std::string off = file_bytes("malformed/bad_index_out_of_range.off");
+  for (char& c : off) c = c == '\n' ? '\r' : c;
+  CHECK_THAT(error_message([&] { read_text(off, MeshFormat::Off); }),
+             Catch::Contains("face 30 references vertex 829") && Catch::Contains("(line 862)"));
+  const std::string ply = "ply\rformat ascii 1.0\r\nelement vertex 3\nproperty float x\rproperty float y\r"
+                          "property float z\relement face 3\rproperty list uchar int vertex_indices\rend_header\r"
+                          "0 0 0\r1 0 0\r\n0 1 0\n3 0 1 2\r3 0 2 1\r3 0 1 7\r";
+  CHECK(error_message([&] { read_text(ply, MeshFormat::Ply); }) ==
+        "face 2 references vertex 7, but the file has 3 vertices (PLY numbers vertices and faces from 0) (line 15)");
+}
+
 TEST_CASE("mesh_io: numbers are parsed strictly, with the unusual valid spellings accepted", "[io]") {
   const ReadResult read =
       read_text("v +1 2. -3.0\nv 1e2 +2.e+1 .5E-1\nv nan inf -inf\nf 1 2 3\n", MeshFormat::Obj);
@@ -683,7 +776,8 @@ TEST_CASE("mesh_io: PLY reads either byte order and any types, skipping other pr
         "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
         "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
     CHECK_THAT(error_message([&] { read_text(header + "3 0 1 3\n", MeshFormat::Ply); }),
-               Catch::Contains("face 1 references vertex 3, but the file has 3 vertices"));
+               Catch::Contains("face 0 references vertex 3, but the file has 3 vertices (PLY numbers vertices and "
+                               "faces from 0) (line 13)"));
     CHECK_THAT(error_message([&] { read_text(header + "3 0 1\n", MeshFormat::Ply); }),
                Catch::Contains("ends after 0 of 1 faces"));
     CHECK_THAT(error_message([&] { read_text("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"

@@ -147,7 +147,9 @@ TEST_CASE("op: refusals name the field and quote the value", "[op]") {
   CHECK(refusal_of_op(R"({"maxIterations":0})") == "op.maxIterations must be an integer >= 1, got 0");
   CHECK(refusal_of_op(R"({"rotationSteps":1.5})") == "op.rotationSteps must be an integer >= 1, got 1.5");
   CHECK(refusal_of_op(R"({"rotations":"spin"})") == "op.rotations must be one of coupled, steps, got 'spin'");
-  CHECK(refusal_of_op(R"({"rotationCoupling":0})") == "op.rotationCoupling must be > 0, got 0");
+  CHECK(refusal_of_op(R"({"rotationCoupling":0})") == "op.rotationCoupling = 0 is out of range (0.0001 .. 10000)");
+  CHECK(refusal_of_op(R"({"rotationCoupling":1e308})") ==
+        "op.rotationCoupling = 1e+308 is out of range (0.0001 .. 10000)");
   CHECK(refusal_of_op(R"({"acceleration":"fast"})") == "op.acceleration must be one of lbfgs, anderson, none, got 'fast'");
   CHECK(refusal_of_op(R"({"preview":"yes"})") == "op.preview must be true or false, got 'yes'");
   CHECK(refusal_of_op(R"({"pins":[1,"3"]})") == "op.pins element 1 must be a number, got '3'");

@@ -195,7 +195,7 @@ export interface DeformOp {
    * 'steps': the paper's scheme, which has no fixed point: exactly `rotationSteps` steps from the rest pose.
    */
   rotations?: 'coupled' | 'steps';
-  /** 'coupled': how strongly neighbouring rotations are tied (default 1; larger keeps the turn more exactly). */
+  /** 'coupled': how strongly neighbouring rotations are tied, 0.0001 to 10000 (default 1; larger keeps the turn more exactly). */
   rotationCoupling?: number;
   /** 'steps': the number of steps from the rest pose (default 1). */
   rotationSteps?: number;

@@ -23,7 +23,10 @@ struct Mesh {
 struct BoundingBox {
   Eigen::Vector3d min = Eigen::Vector3d::Zero();
   Eigen::Vector3d max = Eigen::Vector3d::Zero();
-  double diagonal() const { return (max - min).norm(); }
+  // stableNorm: the plain norm's square underflows to 0 below ~1e-154 (a
+  // mesh in units of 1e-200 had no extent, and no unit-size copy) and
+  // overflows above ~1e154.
+  double diagonal() const { return (max - min).stableNorm(); }
 };
 
 // Axis-aligned bounding box of the vertices (zero box for an empty mesh).

@@ -46,6 +46,12 @@ struct PatternExportOptions {
 // positive finite number.
 std::string write_pattern_svg(const Pattern& pattern, const PatternExportOptions& options);
 
+// The one rule for a pattern's scale, wherever it is given (the writers
+// below, the CLI's --mm-per-unit before it flattens): a finite number within
+// limits.h [kMinMmPerUnit, kMaxMmPerUnit]; Error(BadParameter) "millimetres
+// per unit must be a number from 0.001 to 1000000, got 1e+308" otherwise.
+void validate_mm_per_unit(double mm_per_unit);
+
 // ASCII DXF R12 (AC1009, the version garment CAD and cutters import; units
 // millimetres, also stated as $INSUNITS 4): one closed POLYLINE (VERTEX ...
 // SEQEND) per outline on layer OUTLINE, one LINE per piece on layer

@@ -67,6 +67,11 @@ void validate(const TransformSpec& spec);
 // otherwise.
 void validate_scale(double value, const std::string& name);
 
+// The rotation coupling (limits.h [kMinRotationCoupling, kMaxRotationCoupling]),
+// wherever it comes from (the deformer's request, an op, the CLI):
+// Error(BadParameter) "NAME = 1e+308 is out of range (0.0001 .. 10000)".
+void validate_rotation_coupling(double value, const std::string& name);
+
 // The twist's range depends on the mesh's size (limits.h kMaxTwistDegrees):
 // Error(BadParameter) when |rate| * mesh_diagonal exceeds it.
 void validate_twist(const TransformSpec& spec, double mesh_diagonal);

@@ -144,9 +144,7 @@ void validate_request(const DeformRequest& request, int n) {
   }
   check_iteration_count(request.max_iterations, "iterations");
   check_iteration_count(request.rotation_steps, "rotation steps");
-  if (!(request.rotation_coupling > 0.0) || !std::isfinite(request.rotation_coupling)) {
-    fail(ErrorCode::BadParameter, "the rotation coupling must be a finite number > 0");
-  }
+  validate_rotation_coupling(request.rotation_coupling, "rotation coupling");
   if (!(request.tolerance >= 0.0) || !std::isfinite(request.tolerance)) {
     fail(ErrorCode::BadParameter, "tolerance must be a finite number >= 0");
   }

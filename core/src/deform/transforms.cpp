@@ -20,10 +20,16 @@ void require_finite(double value, const char* name) {
   }
 }
 
+// Six significant digits, or as many more as it takes to read back as the
+// value itself: 3600.0001 printed as "3600" said "rotation angle = 3600 is out
+// of range (-3600 .. 3600)".
 std::string range_number_text(double value) {
-  std::ostringstream text;
-  text << value;
-  return text.str();
+  for (int digits = 6;; ++digits) {
+    std::ostringstream text;
+    text.precision(digits);
+    text << value;
+    if (digits >= 17 || std::stod(text.str()) == value) return text.str();
+  }
 }
 
 // "scale su = 1e+300 is out of range (0.01 .. 100)".
@@ -67,6 +73,10 @@ void validate_scale(double value, const std::string& name) {
   require_finite(value, name.c_str());
   if (value <= 0.0) fail(ErrorCode::BadParameter, name + " must be positive, got " + range_number_text(value));
   require_in_range(value, limits::kMinScale, limits::kMaxScale, name.c_str());
+}
+
+void validate_rotation_coupling(double value, const std::string& name) {
+  require_in_range(value, limits::kMinRotationCoupling, limits::kMaxRotationCoupling, name.c_str());
 }
 
 void validate(const TransformSpec& spec) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -29,15 +30,26 @@ struct Box {
   bool empty() const { return !(min.x() <= max.x()); }
 };
 
-void require_scale(const PatternExportOptions& options) {
-  if (!(options.mm_per_unit >= limits::kMinMmPerUnit && options.mm_per_unit <= limits::kMaxMmPerUnit)) {
-    // %.15g: 0.001 and 1000000 as written, not 1e-03 and 1e+06.
-    char text[96];
-    std::snprintf(text, sizeof text, "millimetres per unit must be a number from %.15g to %.15g, got %g",
-                  limits::kMinMmPerUnit, limits::kMaxMmPerUnit, options.mm_per_unit);
-    fail(ErrorCode::BadParameter, text);
+void require_scale(const PatternExportOptions& options) { validate_mm_per_unit(options.mm_per_unit); }
+
+}  // namespace
+
+void validate_mm_per_unit(double mm_per_unit) {
+  if (mm_per_unit >= limits::kMinMmPerUnit && mm_per_unit <= limits::kMaxMmPerUnit) return;
+  // %.15g: 0.001 and 1000000 as written, not 1e-03 and 1e+06. The value
+  // given: %g, with more digits when six do not show it (1000000.1).
+  char given[40];
+  for (int digits = 6; digits <= 17; ++digits) {
+    std::snprintf(given, sizeof given, "%.*g", digits, mm_per_unit);
+    if (!std::isfinite(mm_per_unit) || std::strtod(given, nullptr) == mm_per_unit) break;
   }
+  char text[160];
+  std::snprintf(text, sizeof text, "millimetres per unit must be a number from %.15g to %.15g, got %s",
+                limits::kMinMmPerUnit, limits::kMaxMmPerUnit, given);
+  fail(ErrorCode::BadParameter, text);
 }
+
+namespace {
 
 // Millimetres to three decimals (micrometres): plenty for a cutter, and
 // independent of the C++ locale. Room for any double's digits (DBL_MAX

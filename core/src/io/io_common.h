@@ -46,23 +46,25 @@ inline bool is_blank(char c) {
   return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
 }
 
-// Yields the lines of a text buffer (without "\n" or "\r\n") and their 1-based
-// numbers. A last line without a newline is a line like any other.
+// Yields the lines of a text buffer (without their ending) and their 1-based
+// numbers. A line ends with "\n" (Unix), "\r\n" (Windows) or a lone "\r" (old
+// Mac OS: an OBJ of such lines was one line, "'v' is not a number (line 1)").
+// A last line without an ending is a line like any other.
 class LineReader {
  public:
   explicit LineReader(std::string_view text) : rest_(text) {}
 
   bool next(std::string_view& line) {
     if (rest_.empty()) return false;
-    const std::size_t end = rest_.find('\n');
+    const std::size_t end = rest_.find_first_of("\r\n");
     if (end == std::string_view::npos) {
       line = rest_;
       rest_ = {};
     } else {
       line = rest_.substr(0, end);
-      rest_.remove_prefix(end + 1);
+      const bool crlf = rest_[end] == '\r' && end + 1 < rest_.size() && rest_[end + 1] == '\n';
+      rest_.remove_prefix(end + (crlf ? 2 : 1));
     }
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     ++line_number_;
     return true;
   }

@@ -70,6 +70,9 @@ class ObjParser {
     }
     check_indices();
     check_texture(report);
+    if (!colors_dropped_.empty()) {
+      report.notes.push_back("vertex colours ignored (" + colors_dropped_ + ")");
+    }
     note_skipped(report, skipped_elements_, "point, line or curve elements (p, l, curv, surf)");
     if (unknown_statements_ > 0) {
       report.notes.push_back("ignored " + std::to_string(unknown_statements_) +
@@ -101,7 +104,15 @@ class ObjParser {
       }
       ++extra;
     }
-    if (extra == 3 && polygons_.all_colored) {
+    if (extra == 3 && polygons_.all_colored && colors_dropped_.empty() &&
+        !(std::isfinite(values[0]) && std::isfinite(values[1]) && std::isfinite(values[2]))) {
+      // Dropped with a note, as a malformed texture coordinate is: no NaN or
+      // inf reaches an output file. (A non-finite position is kept, for the
+      // mesh check to name the vertex.)
+      colors_dropped_ = "vertex " + std::to_string(polygons_.num_vertices()) + " has a colour value that is not a "
+                        "finite number" + at_line(line_);
+    }
+    if (extra == 3 && polygons_.all_colored && colors_dropped_.empty()) {
       polygons_.colors.insert(polygons_.colors.end(), values, values + 3);
     } else {
       polygons_.all_colored = false;
@@ -268,6 +279,7 @@ class ObjParser {
   PolygonMesh polygons_;
   std::size_t corners_with_uv_ = 0;
   std::string texture_dropped_;  // why the texture coordinates are not kept ("" while they are)
+  std::string colors_dropped_;   // why the vertex colours are not kept, when one was not finite
   std::vector<int> face_lines_;
   int line_ = 0;
   int skipped_elements_ = 0;

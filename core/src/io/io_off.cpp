@@ -136,7 +136,7 @@ ReadResult read_off(const char* data, std::size_t size) {
     for (double& value : xyz) {
       const std::string_view token = next_token(line);
       if (token.empty()) {
-        fail_file("vertex " + std::to_string(v + 1) + " has fewer than 3 coordinates" +
+        fail_file("vertex " + std::to_string(v) + " has fewer than 3 coordinates" +
                   at_line(lines.line_number()));
       }
       if (const char* problem = parse_coordinate(token, value)) {
@@ -151,7 +151,8 @@ ReadResult read_off(const char* data, std::size_t size) {
   for (long long f = 0; f < num_faces; ++f) {
     if (!lines.next(line)) fail_file(truncated_message(f, num_faces, "faces"));
     const int line_number = lines.line_number();
-    const std::string face = "face " + std::to_string(f + 1);
+    // From 0, as OFF numbers the vertices its faces reference.
+    const std::string face = "face " + std::to_string(f);
     long long corners = 0;
     const std::string_view count_token = next_token(line);
     if (!parse_integer(count_token, corners) || corners < 3 || corners > INT32_MAX) {
@@ -170,7 +171,7 @@ ReadResult read_off(const char* data, std::size_t size) {
       }
       if (index < 0 || index >= num_vertices) {
         fail_file(face + " references vertex " + std::to_string(index) + ", but the file has " +
-                  std::to_string(num_vertices) + " vertices (OFF numbers them from 0)" +
+                  std::to_string(num_vertices) + " vertices (OFF numbers vertices and faces from 0)" +
                   at_line(line_number));
       }
       polygons.corners.push_back(static_cast<int>(index));

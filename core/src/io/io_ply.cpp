@@ -8,6 +8,7 @@
 // the kept vertex properties in their declared types.
 #include <algorithm>
 #include <climits>
+#include <cmath>
 #include <cstdint>
 
 #include <optional>
@@ -46,6 +47,7 @@ struct PlyHeader {
   PlyEncoding encoding = PlyEncoding::Ascii;
   std::vector<PlyElement> elements;
   std::size_t body_offset = 0;  // first byte after "end_header\n"
+  int body_first_line = 1;      // the file's line number there
 };
 
 bool is_integer_type(PlyType type) { return type != PlyType::Float32 && type != PlyType::Float64; }
@@ -136,6 +138,7 @@ PlyHeader parse_header(const char* data, std::size_t size) {
   // By length, not by pointer: when the header is the whole file, the rest
   // is an empty view whose data() may be null (fuzz/regressions/ply_header_only_no_newline).
   header.body_offset = text.size() - lines.rest().size();
+  header.body_first_line = lines.line_number() + 1;
   return header;
 }
 
@@ -174,6 +177,7 @@ class BinaryValues {
     p_ += bytes;
     return true;
   }
+  std::string where() const { return ""; }  // a binary body has no lines
 
  private:
   const char* p_;
@@ -181,10 +185,11 @@ class BinaryValues {
   bool little_endian_;
 };
 
-// Values from an ASCII body: blank- or newline-separated tokens.
+// Values from an ASCII body: blank- or newline-separated tokens (lines end
+// as LineReader's do), with the file's line numbers from `first_line`.
 class AsciiValues {
  public:
-  explicit AsciiValues(std::string_view body) : rest_(body) {}
+  AsciiValues(std::string_view body, int first_line) : rest_(body), line_(first_line) {}
 
   bool read(PlyType, double& value) {
     const std::string_view token = next();
@@ -210,7 +215,8 @@ class AsciiValues {
   std::string_view next() {
     std::size_t i = 0;
     while (i < rest_.size() && (is_blank(rest_[i]) || rest_[i] == '\n')) {
-      if (rest_[i] == '\n') ++line_;
+      const bool lone_cr = rest_[i] == '\r' && (i + 1 == rest_.size() || rest_[i + 1] != '\n');
+      if (rest_[i] == '\n' || lone_cr) ++line_;
       ++i;
     }
     std::size_t end = i;
@@ -219,10 +225,14 @@ class AsciiValues {
     rest_.remove_prefix(end);
     return token;
   }
-  std::string where() const { return " (line " + std::to_string(line_) + " after the header)"; }
 
+ public:
+  // Where the value last read is, for messages.
+  std::string where() const { return at_line(line_); }
+
+ private:
   std::string_view rest_;
-  int line_ = 1;
+  int line_;
 };
 
 template <class Values>
@@ -257,6 +267,10 @@ class PlyBodyReader {
       // The count is the header's, checked against the body's size already.
       kept.back().values.reserve(static_cast<std::size_t>(element.count));
     }
+    // A kept property with a non-finite value is dropped (below): no NaN or
+    // inf reaches an output file. Positions keep theirs, for the mesh check
+    // to name the vertex.
+    std::vector<std::string> non_finite(kept.size());
     for (long long v = 0; v < element.count; ++v) {
       double xyz[3] = {0, 0, 0};
       for (std::size_t p = 0; p < element.properties.size(); ++p) {
@@ -270,12 +284,29 @@ class PlyBodyReader {
           for (int axis = 0; axis < 3; ++axis) {
             if (axis_of[axis] == static_cast<int>(p)) xyz[axis] = value;
           }
-          if (complete && column_of[p] >= 0) kept[column_of[p]].values.push_back(value);
+          if (complete && column_of[p] >= 0) {
+            kept[column_of[p]].values.push_back(value);
+            if (!std::isfinite(value) && non_finite[column_of[p]].empty()) {
+              std::string text;
+              append_number(text, value);
+              non_finite[column_of[p]] = "vertex " + std::to_string(v) + " has " + text + values_.where();
+            }
+          }
         }
         if (!complete) fail_file(truncated_message(v, element.count, "vertices"));
       }
       polygons_.add_vertex(xyz[0], xyz[1], xyz[2]);
     }
+    VertexProperties finite;
+    for (std::size_t c = 0; c < kept.size(); ++c) {
+      if (non_finite[c].empty()) {
+        finite.push_back(std::move(kept[c]));
+      } else {
+        notes.push_back("vertex property '" + kept[c].name + "' ignored (" + non_finite[c] +
+                        ", not a finite number)");
+      }
+    }
+    kept = std::move(finite);
   }
 
   void read_faces(const PlyElement& element) {
@@ -312,14 +343,17 @@ class PlyBodyReader {
   }
 
  private:
-  // `kind` and the 0-based `item` name the element in messages ("face 31").
+  // `kind` and the 0-based `item` name the element in messages ("face 30"):
+  // from 0, as PLY numbers the vertices its faces reference.
   static std::string name(const char* kind, long long item) {
-    return std::string(kind) + " " + std::to_string(item + 1);
+    return std::string(kind) + " " + std::to_string(item);
   }
 
   bool read_list_count(const PlyProperty& property, const char* kind, long long item, long long& count) {
     if (!values_.read_integer(property.count_type, count)) return false;
-    if (count < 0) fail_file(name(kind, item) + " has a negative list length " + std::to_string(count));
+    if (count < 0) {
+      fail_file(name(kind, item) + " has a negative list length " + std::to_string(count) + values_.where());
+    }
     return true;
   }
 
@@ -332,14 +366,16 @@ class PlyBodyReader {
     long long corners = 0;
     if (!read_list_count(property, "face", face, corners)) return false;
     if (corners < 3) {
-      fail_file(name("face", face) + " has " + std::to_string(corners) + " corners; a face needs at least 3");
+      fail_file(name("face", face) + " has " + std::to_string(corners) + " corners; a face needs at least 3" +
+                values_.where());
     }
     for (long long c = 0; c < corners; ++c) {
       long long index = 0;
       if (!values_.read_integer(property.type, index)) return false;
       if (index < 0 || index >= num_vertices_) {
         fail_file(name("face", face) + " references vertex " + std::to_string(index) + ", but the file has " +
-                  std::to_string(num_vertices_) + " vertices (PLY numbers them from 0)");
+                  std::to_string(num_vertices_) + " vertices (PLY numbers vertices and faces from 0)" +
+                  values_.where());
       }
       polygons_.corners.push_back(static_cast<int>(index));
     }
@@ -354,6 +390,7 @@ class PlyBodyReader {
  public:
   VertexProperties kept;       // the vertex element's other scalar properties
   int dropped_properties = 0;   // beyond kMaxKeptVertexProperties
+  std::vector<std::string> notes;  // properties dropped for a non-finite value
 };
 
 template <class Values>
@@ -390,6 +427,7 @@ ReadResult read_body(Values& values, const PlyHeader& header, std::size_t body_b
                    "'" + element.name + "' elements");
     }
   }
+  for (std::string& note : reader.notes) report.notes.push_back(std::move(note));
   if (reader.dropped_properties > 0) {
     report.notes.push_back("kept the first " + std::to_string(kMaxKeptVertexProperties) +
                            " vertex properties besides x, y, z; dropped " +
@@ -456,7 +494,7 @@ ReadResult read_ply(const char* data, std::size_t size) {
   const std::size_t body_bytes = size - header.body_offset;
   check_counts_against_body(header, body_bytes);
   if (header.encoding == PlyEncoding::Ascii) {
-    AsciiValues values(std::string_view(body, body_bytes));
+    AsciiValues values(std::string_view(body, body_bytes), header.body_first_line);
     return read_body(values, header, body_bytes);
   }
   BinaryValues values(body, body + body_bytes, header.encoding == PlyEncoding::BinaryLittleEndian);

@@ -274,6 +274,10 @@ ReadResult assemble_mesh(const PolygonMesh& polygons, ReadReport report) {
   std::size_t next_run = 0;  // the next material run, by its first polygon
   Eigen::Index row = 0;
   std::vector<int> polygon;
+  // A textured polygon's (vertex, corner) pairs, by vertex then corner: a
+  // triangle corner finds its texture coordinate by binary search, not by a
+  // scan of the polygon (a 100k-corner polygon took 9.3 s, 400k over 120 s).
+  std::vector<std::pair<int, int>> corner_of_vertex;
   for (int p = 0; p < num_polygons; ++p) {
     const int begin = polygons.offsets[p];
     const int end = polygons.offsets[p + 1];
@@ -294,12 +298,18 @@ ReadResult assemble_mesh(const PolygonMesh& polygons, ReadReport report) {
       continue;
     }
     polygon.assign(polygons.corners.begin() + begin, polygons.corners.begin() + end);
+    if (textured) {
+      corner_of_vertex.clear();
+      for (int c = 0; c < end - begin; ++c) corner_of_vertex.emplace_back(polygon[c], c);
+      std::sort(corner_of_vertex.begin(), corner_of_vertex.end());
+    }
     for (const auto& triangle : triangulate_polygon(result.mesh.V, polygon)) {
       if (textured) {
         // The triangle's corners are the polygon's vertices: each takes the
         // texture coordinate of its (first) corner in the polygon.
         for (int k = 0; k < 3; ++k) {
-          const auto corner = std::find(polygon.begin(), polygon.end(), triangle[k]) - polygon.begin();
+          const int corner = std::lower_bound(corner_of_vertex.begin(), corner_of_vertex.end(),
+                                              std::make_pair(triangle[k], 0))->second;
           texture.faces(row, k) = polygons.corner_uv[begin + corner];
         }
       }

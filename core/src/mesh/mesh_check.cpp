@@ -108,12 +108,21 @@ void check_faces(const Mesh& mesh, MeshReport& report, ProblemList& problems) {
     if (!is_finite_vertex(mesh.V, a) || !is_finite_vertex(mesh.V, b) || !is_finite_vertex(mesh.V, c)) {
       continue;  // no area to speak of; the vertex is reported
     }
-    const Eigen::RowVector3d ab = mesh.V.row(b) - mesh.V.row(a);
-    const Eigen::RowVector3d ac = mesh.V.row(c) - mesh.V.row(a);
-    const Eigen::RowVector3d bc = mesh.V.row(c) - mesh.V.row(b);
+    Eigen::RowVector3d ab = mesh.V.row(b) - mesh.V.row(a);
+    Eigen::RowVector3d ac = mesh.V.row(c) - mesh.V.row(a);
+    Eigen::RowVector3d bc = mesh.V.row(c) - mesh.V.row(b);
+    // Relative to the face's own size, so the test does not depend on units:
+    // the sides divided by their largest coordinate first (the squares and
+    // the cross product of a face 1e-160 across underflowed to 0, and Spot
+    // in units of 1e-200 had 9024 "zero-area" faces; above 1e154 they overflow).
+    const double largest = std::max({ab.cwiseAbs().maxCoeff(), ac.cwiseAbs().maxCoeff(), bc.cwiseAbs().maxCoeff()});
+    if (largest > 0.0) {
+      ab /= largest;
+      ac /= largest;
+      bc /= largest;
+    }
     const double longest_squared = std::max({ab.squaredNorm(), ac.squaredNorm(), bc.squaredNorm()});
-    // Relative to the face's own size, so the test does not depend on units.
-    if (ab.cross(ac).norm() <= 1e-12 * longest_squared) {
+    if (largest == 0.0 || ab.cross(ac).norm() <= 1e-12 * longest_squared) {
       ++report.degenerate_triangles;
       problems.add(ProblemKind::ZeroAreaTriangle, f,
                    "face " + std::to_string(f) + " " + corners_text(mesh.F, f) +

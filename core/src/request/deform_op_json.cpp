@@ -102,9 +102,7 @@ DeformOp deform_op_from_json(const Json& op) {
   if (has(op, "rotations")) request.rotations = rotation_scheme_from_json(op["rotations"], "op.rotations");
   if (has(op, "rotationCoupling")) {
     request.rotation_coupling = finite_number(op["rotationCoupling"], "op.rotationCoupling");
-    if (!(request.rotation_coupling > 0.0)) {
-      refuse("op.rotationCoupling", "must be > 0, got " + describe(op["rotationCoupling"]));
-    }
+    validate_rotation_coupling(request.rotation_coupling, "op.rotationCoupling");
   }
   if (has(op, "acceleration")) request.acceleration = acceleration_from_json(op["acceleration"], "op.acceleration");
   if (has(op, "rotationSteps")) request.rotation_steps = iteration_count(op["rotationSteps"], "op.rotationSteps");

@@ -114,7 +114,8 @@ Eigen::VectorXd sphere_weights(const Mesh& mesh, const Region& region) {
   if (region.radius < 0.0) bad_region_parameter("sphere radius is negative (" + std::to_string(region.radius) + ")");
   Eigen::VectorXd weights = Eigen::VectorXd::Zero(mesh.num_vertices());
   for (int i = 0; i < mesh.num_vertices(); ++i) {
-    if ((mesh.V.row(i).transpose() - region.center).norm() <= region.radius) weights[i] = 1.0;
+    // stableNorm: in units of 1e-200 every plain distance underflows to 0.
+    if ((mesh.V.row(i).transpose() - region.center).stableNorm() <= region.radius) weights[i] = 1.0;
   }
   return weights;
 }
@@ -185,7 +186,10 @@ DistanceResult edge_path_distances(const Mesh& mesh, const VertexAdjacency& adja
     if (distance > result.distance[i]) continue;  // a stale entry
     for (int k = adjacency.offsets[i]; k < adjacency.offsets[i + 1]; ++k) {
       const int j = adjacency.neighbors[k];
-      const double length = (mesh.V.row(j) - mesh.V.row(i)).norm();
+      const Eigen::RowVector3d edge = mesh.V.row(j) - mesh.V.row(i);
+      double length = edge.norm();
+      // Its square underflows for a mesh in units of 1e-200: stableNorm then.
+      if (length < 1e-150) length = edge.stableNorm();
       if (!std::isfinite(length)) continue;
       const double candidate = distance + length;
       if (candidate < result.distance[j] && candidate < limit) {
