@@ -755,14 +755,17 @@ test('a bad document is refused with its code and the work is kept', async ({ pa
   const withOtherMesh = await page.evaluate(async ({ good, bytes }) => {
     const api = window.anisoform;
     let code = null;
+    let message = null;
     try {
       await api.open({ ...good, mesh: { ...good.mesh, name: 'knot1.off' } }, new Uint8Array(bytes));
     } catch (error) {
-      code = error.code;
+      ({ code, message } = error);
     }
-    return { code, positions: Array.from(api.positions()), ops: api.document().ops.length, vertices: api.info().vertices };
+    return { code, message, positions: Array.from(api.positions()), ops: api.document().ops.length, vertices: api.info().vertices };
   }, { good: document, bytes: knot });
   expect(withOtherMesh.code).toBe('bad-mesh');
+  // The file given is named: "the loaded mesh" read as the one on screen, which is Spot again.
+  expect(withOtherMesh.message).toMatch(/does not match the mesh of knot1\.off fnv1a64:[0-9a-f]{16} \(\d+ vertices/);
   expect(withOtherMesh.ops).toBe(3);
   expect(bitwise(withOtherMesh.positions, afterThree)).toBe(true);
   expect(pageErrors).toEqual([]);

@@ -166,7 +166,14 @@ export interface Anisoform {
    * not committed: the document's shape shows again. False when there was neither.
    */
   cancel(): boolean;
-  /** Undo/redo move over the document's ops (and selection steps). */
+  /**
+   * Undo/redo move over the document's ops (and selection steps). An undo of
+   * an op re-runs the document's solve in the background: true when it
+   * started; false when there is nothing to undo/redo, a drag is on, or a
+   * solve (an edit, or an earlier undo's re-run) still runs (a notice says
+   * so). To take back several steps, call again after each one's 'document'
+   * event.
+   */
   undo(): boolean;
   redo(): boolean;
   /** Back to the mesh as loaded: the ops are cleared (undoable; the autosave keeps the mesh, without them); false if there were none. */

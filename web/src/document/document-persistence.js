@@ -55,7 +55,7 @@ export class DocumentPersistence {
         // page had none, the mesh loaded for this one, as loaded).
         if (meshBytes !== undefined && previous) await this.#reopen(previous);
         else if (this.#stack.document) await this.#runner.restore(this.#stack.document.ops.length).catch(() => {});
-        throw error;
+        throw meshBytes === undefined ? error : namingMeshFile(error, meshName ?? json.mesh?.name);
       }
       this.#adopt(meshBytes !== undefined ? withMeshFileName(json, meshName) : json, replayed);
     });
@@ -137,4 +137,11 @@ export class DocumentPersistence {
     await this.open(record.document).catch((error) => this.#editor.report(error, 'The saved work could not be replayed'));
     return true;
   }
+}
+
+// A refusal of the mesh file given with the document: "the loaded mesh" is
+// no longer on screen once the work is put back; the file is named instead.
+function namingMeshFile(error, fileName) {
+  if (typeof error?.message !== 'string' || !fileName || !error.message.includes('the loaded mesh')) return error;
+  return Object.assign(new Error(error.message.replace('the loaded mesh', `the mesh of ${fileName}`)), { code: error.code, cause: error });
 }
