@@ -124,3 +124,20 @@ test('a .gltf that keeps its geometry in another file is refused naming it, and 
   expect(fetched.filter((url) => url.endsWith('ext.bin'))).toEqual([]);
   expect(pageErrors).toEqual([]);
 });
+
+test('a mesh far from the origin for its size says that the view and GLB/STL files hold 32-bit floats', async ({ page }, testInfo) => {
+  // Spot 1.7 units across, moved 1e6 away: it drew as a stepped, torn cow
+  // (16 distinct x values) with no word of why.
+  const pageErrors = await openApp(page);
+  const far = testInfo.outputPath('spot_far.obj');
+  writeFileSync(far, readFileSync(meshPath('formats/spot_lowres.obj'), 'utf8').split('\n')
+    .map((line) => (line.startsWith('v ') ? `v ${line.slice(2).trim().split(/\s+/).map((x) => Number(x) + 1e6).join(' ')}` : line))
+    .join('\n'));
+  expect((await uploadFile(page, far)).ok).toBe(true);
+  await expect(page.getByTestId('notice')).toContainText(
+    'The mesh lies far from the origin for its size (1.00e+6 units away, 2.66 across): the view draws it in 32-bit floats');
+  // At home, no such word.
+  expect((await uploadFile(page, meshPath('formats/spot_lowres.obj'))).ok).toBe(true);
+  await expect(page.getByTestId('notice').filter({ hasText: 'far from the origin' })).toBeHidden();
+  expect(pageErrors).toEqual([]);
+});

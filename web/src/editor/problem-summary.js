@@ -34,6 +34,8 @@ export function describeProblems(info) {
     lines.push(`${problems.length} ${problems.length === 1 ? one : many}${elementList(problems, noun)}.`);
   }
   if (info.components > 1) lines.push(`${info.components} separate parts: each keeps its own place.`);
+  const far = farFromOrigin(info.bbox);
+  if (far) lines.push(far);
   // Whether the surface is open is no problem and not news: the status bar
   // says it (openSurface). As a notice it covered the top of every open
   // mesh's view, a third of a phone's in Flatten mode, until dismissed.
@@ -68,4 +70,21 @@ function problemDetails(problems) {
 function sentence(text) {
   const trimmed = String(text).trim();
   return `${trimmed.charAt(0).toUpperCase()}${trimmed.slice(1)}`.replace(/\.?$/, '.');
+}
+
+// The view and the GLB / binary STL files hold positions as 32-bit floats,
+// whose spacing grows with the distance from the origin: a mesh 1 unit
+// across at 1e6 drew as a stepped, torn cow of 16 distinct x values. Said
+// when that spacing is over a thousandth of the mesh's size (the core's
+// solve and the OBJ, OFF and PLY files keep doubles).
+const FLOAT32_STEP = 2 ** -23;
+export function farFromOrigin(bbox) {
+  if (!bbox) return null;
+  const { min, max } = bbox;
+  const farthest = Math.max(...min.map(Math.abs), ...max.map(Math.abs));
+  const size = Math.hypot(max[0] - min[0], max[1] - min[1], max[2] - min[2]);
+  if (!(size > 0) || farthest * FLOAT32_STEP <= 1e-3 * size) return null;
+  return `The mesh lies far from the origin for its size (${farthest.toPrecision(3)} units away, ${size.toPrecision(3)} across): ` +
+    'the view draws it in 32-bit floats, so it may look stepped or torn, and GLB and binary STL files hold 32-bit floats; ' +
+    'the edits and OBJ, OFF and PLY exports keep its full precision. Moving it near the origin in the program it came from avoids this.';
 }
