@@ -63,6 +63,7 @@ test('the amount shows beside the pointer during a drag and is the amount commit
   // Esc during a drag: the readout goes with the edit, and the panel's
   // amount is put back (it kept the dropped drag's, which Apply then used).
   const ops = await page.evaluate(() => window.anisoform.document().ops.length);
+  const solved = await page.getByTestId('status-solve').textContent();
   const along = page.getByLabel('Along ×');
   await along.fill('1.2');
   await along.press('Enter');
@@ -75,6 +76,8 @@ test('the amount shows beside the pointer during a drag and is the amount commit
   await expect(readout).toHaveCount(0);
   await page.mouse.up();
   await expect(along).toHaveValue('1.2');
+  // The status bar shows the last committed solve again, not the dropped drag's preview.
+  await expect(page.getByTestId('status-solve')).toHaveText(solved);
   expect(await page.evaluate(() => window.anisoform.document().ops.length)).toBe(ops);
   expect(pageErrors).toEqual([]);
 });
