@@ -677,7 +677,7 @@ test('<anisoform-modeller edits>: saved edits open with src, alone on the mesh l
     window.element.setAttribute('edits', '../spool-one.json');
   });
   // The refusal names the mesh the edits were made on, as they name it.
-  expect(await failed).toMatch(/\('spool\.off', 649 vertices, \d+ triangles\) does not match the loaded mesh/);
+  expect(await failed).toMatch(/\('spool\.off', 649 vertices, \d+ triangles\) does not match the mesh of spot_triangulated\.obj/);
   await expect.poll(async () => (await state()).vertices).toBe(2930);
   expect((await state()).ops).toBe(0);
 
@@ -859,5 +859,29 @@ test('a mesh that is neither a URL nor bytes is refused by its type, not for a m
   expect(refusals[0]).toBe(`bad-parameter: Could not load the file: ${expected('a number')}`);
   expect(refusals.slice(1)).toEqual(['null', 'an array', 'an object'].map((what) =>
     `bad-parameter: Could not load part.obj: ${expected(what)}`));
+  expect(pageErrors).toEqual([]);
+});
+
+test("a load asked for while the starting mesh downloads is the mesh shown; a load replaced by a later one is 'cancelled'", async ({ page }) => {
+  // The starting mesh, downloaded last, replaced the page's own load while
+  // both promises said the page's mesh was in (from an embedder's session).
+  const pageErrors = await openExample(page);
+  const outcome = await page.evaluate(async () => {
+    const { createModeller } = window.anisoformExample;
+    const host = Object.assign(document.createElement('div'), { style: 'height: 200px' });
+    document.body.append(host);
+    const modeller = createModeller(host, { ui: 'none', mesh: '../spool.off' });
+    const loaded = await modeller.load('../spot_triangulated.obj');
+    await modeller.api.ready;
+    await new Promise((resolve) => setTimeout(resolve, 300));
+    const afterStart = modeller.api.info().vertices;
+    // Two loads in a row: the first is replaced, the second shown.
+    const first = modeller.load('../spool.off').then((result) => result.vertices, (error) => error.code);
+    const second = await modeller.load('../spot_triangulated.obj');
+    const result = { loaded: loaded.vertices, afterStart, first: await first, second: second.vertices, shown: modeller.api.info().vertices };
+    modeller.dispose();
+    return result;
+  });
+  expect(outcome).toEqual({ loaded: 2930, afterStart: 2930, first: 'cancelled', second: 2930, shown: 2930 });
   expect(pageErrors).toEqual([]);
 });

@@ -123,7 +123,7 @@ test('saved edits on another mesh, a file that is not saved edits, two meshes: r
   // Opened with another mesh file, the edits are refused naming the mesh they were made on.
   await page.getByTestId('file-input').setInputFiles([saved, meshPath('closed/torus.obj')]);
   await replaceWorkIfAsked(page);
-  await expect(banner).toContainText("('spot_triangulated.obj', 2930 vertices, 5856 triangles) does not match the loaded mesh");
+  await expect(banner).toContainText("('spot_triangulated.obj', 2930 vertices, 5856 triangles) does not match the mesh of torus.obj");
 
   const messages = await page.evaluate(() => window.__errors);
   expect(messages).toHaveLength(4);

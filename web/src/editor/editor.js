@@ -73,6 +73,8 @@ export class Editor extends EventEmitter {
   #preparation = 0; // counts prepareSolver() calls: the latest one goes on
   #prepared = Promise.resolve();
   #meshBound = [];
+  #loadRequests = 0;
+  #loadChain = Promise.resolve();
   #report = reporter((event, payload) => this.emit(event, payload));
   #gestures;
   #patterns;
@@ -171,8 +173,30 @@ export class Editor extends EventEmitter {
     this.#meshBound.push(reset);
   }
 
-  /** Loads a File, Blob or ArrayBuffer; on failure the current mesh stays. */
-  async load(source, name) {
+  /**
+   * Loads a File, Blob or ArrayBuffer; on failure the current mesh stays.
+   * Loads run one after another, and one asked for while another waits or
+   * runs replaces the waiting one (rejected 'cancelled'): the mesh shown,
+   * and the worker's, is the last asked for (a product page's own load right
+   * after its modeller's starting mesh ended with the starting mesh).
+   */
+  /** How many loads were asked for so far (a host's own, started later, wins over one of its downloads). */
+  get loadsAsked() {
+    return this.#loadRequests;
+  }
+
+  load(source, name) {
+    const request = ++this.#loadRequests;
+    const run = () => {
+      if (request !== this.#loadRequests) throw Object.assign(new Error('A later load replaced this one.'), { code: 'cancelled' });
+      return this.#load(source, name);
+    };
+    const loading = this.#loadChain.then(run, run);
+    this.#loadChain = loading.catch(() => {});
+    return loading;
+  }
+
+  async #load(source, name) {
     try {
       name = fileNameOf(source, name);
       this.emit('loading', { name });

@@ -165,7 +165,15 @@ export function createModeller(container, options = {}) {
     performance.mark('anisoform:interactive');
   }
 
+  // Meshes asked for (the starting one, load(), open() with a mesh), counted
+  // when asked: one whose download ends after a later one was asked for is
+  // not loaded (the starting mesh, downloaded last, replaced the product
+  // page's own load while both promises said the page's mesh was in).
+  let meshRequests = 0;
+  const superseded = () => Object.assign(new Error('A later load replaced this one.'), { code: 'cancelled' });
   // The mesh download overlaps with compiling the WASM in the worker.
+  const startingRequest = mesh === undefined ? 0 : ++meshRequests;
+  const loadsBeforeStart = editor.loadsAsked;
   const meshSource = mesh === undefined ? null : resolveMeshSource(mesh, meshName);
   meshSource?.catch(() => {}); // reported through `ready`
   const documentSource = editDocument === undefined ? undefined : resolveDocumentSource(editDocument);
@@ -184,6 +192,8 @@ export function createModeller(container, options = {}) {
       if (editDocument !== undefined) throw openWithoutMesh();
       return;
     }
+    // A load() or open() asked for since (api.load too): its mesh is shown.
+    if (startingRequest !== meshRequests || editor.loadsAsked !== loadsBeforeStart) return;
     if (editDocument === undefined) {
       await editor.load(source.data, source.name);
     } else {
@@ -224,12 +234,14 @@ export function createModeller(container, options = {}) {
 
   /** Loads a URL as well as what api.load takes; failures are reported as 'error' events too. */
   async function load(source, name) {
+    const request = ++meshRequests;
     let resolved;
     try {
       resolved = await resolveMeshSource(source, name);
     } catch (error) {
       throw reportError(error, 'Could not load the mesh');
     }
+    if (request !== meshRequests) throw superseded();
     return api.load(resolved.data, resolved.name);
   }
 
@@ -238,6 +250,7 @@ export function createModeller(container, options = {}) {
    * (as load takes it) as its base; failures are reported as 'error' events too.
    */
   async function open(documentSource, mesh, name) {
+    const request = mesh === undefined ? null : ++meshRequests;
     let json;
     let resolved;
     try {
@@ -246,6 +259,7 @@ export function createModeller(container, options = {}) {
     } catch (error) {
       throw reportError(error, 'Could not open the edits');
     }
+    if (request !== null && request !== meshRequests) throw superseded();
     return resolved ? api.open(json, resolved.data, resolved.name) : api.open(json);
   }
 
