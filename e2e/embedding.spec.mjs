@@ -690,6 +690,23 @@ test('<anisoform-modeller edits>: saved edits open with src, alone on the mesh l
   await expect.poll(async () => (await state()).ops).toBe(1);
   expect(bitwise((await state()).positions, made.one.positions)).toBe(true);
   expect(await page.evaluate(() => window.loads)).toBe(loadsBefore + 1);
+
+  // A src that is not there, with edits: fetched once, one error, about the
+  // mesh (it was fetched twice, and the first error blamed the edits).
+  const fetches = [];
+  page.on('request', (request) => request.url().includes('missing-mesh.obj') && fetches.push(request.url()));
+  await page.evaluate(() => {
+    window.errors = [];
+    window.element.addEventListener('error', (event) => window.errors.push(event.detail.message));
+    window.element.setAttribute('src', '../missing-mesh.obj');
+  });
+  await expect.poll(() => page.evaluate(() => window.errors.length)).toBe(1);
+  await page.waitForTimeout(500);
+  const errors = await page.evaluate(() => window.errors);
+  expect(errors).toHaveLength(1);
+  expect(errors[0]).toMatch(/^Could not load the mesh: .*missing-mesh\.obj/);
+  expect(fetches).toHaveLength(1);
+  expect((await state()).ops).toBe(1);
   await page.evaluate(() => window.element.remove());
   expect(pageErrors).toEqual([]);
 });
@@ -883,5 +900,40 @@ test("a load asked for while the starting mesh downloads is the mesh shown; a lo
     return result;
   });
   expect(outcome).toEqual({ loaded: 2930, afterStart: 2930, first: 'cancelled', second: 2930, shown: 2930 });
+  expect(pageErrors).toEqual([]);
+});
+
+test("the package's styles keep to the modeller, and the element can be registered under a name of the page's", async ({ page }) => {
+  // style.css styled the host page's own .button, .row, .field and .message
+  // (a Bootstrap .row became a flex row); defineModellerElement('my-modeller')
+  // always threw, the class being registered already (from an embedder's session).
+  const pageErrors = await openExample(page);
+  const outcome = await page.evaluate(async () => {
+    const host = document.createElement('div');
+    host.innerHTML = '<div class="row">a</div><p class="message">b</p><button class="button">c</button>';
+    document.body.append(host);
+    const [row, message, button] = host.children;
+    const inApp = document.querySelector('.app .row');
+    const styles = {
+      row: getComputedStyle(row).display,
+      message: getComputedStyle(message).display,
+      buttonPadding: getComputedStyle(button).padding,
+      appRow: getComputedStyle(inApp).display,
+    };
+    window.anisoformExample.defineModellerElement('my-modeller');
+    const element = document.createElement('my-modeller');
+    element.setAttribute('ui', 'none');
+    element.style.height = '200px';
+    element.setAttribute('src', '../spool.off');
+    document.body.append(element);
+    await element.api.ready;
+    return { styles, vertices: element.api.info().vertices, same: customElements.get('anisoform-modeller') !== customElements.get('my-modeller') };
+  });
+  expect(outcome.styles.row).toBe('block');
+  expect(outcome.styles.message).toBe('block');
+  expect(outcome.styles.buttonPadding).not.toBe('5px 11px');
+  expect(outcome.styles.appRow).toBe('flex');
+  expect(outcome.vertices).toBe(649);
+  expect(outcome.same).toBe(true);
   expect(pageErrors).toEqual([]);
 });

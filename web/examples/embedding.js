@@ -1,9 +1,9 @@
 // Two modellers on one page through the anisoform package: the spool with no
 // panel, Spot with the full UI. Each "Dispose" button ends one of them
 // (worker, pending frame, observers, listeners). window.anisoformExample holds
-// both, createModeller and createSolverPool, for the console and the
+// both, createModeller, createSolverPool and defineModellerElement, for the console and the
 // end-to-end tests.
-import { createModeller, createSolverPool } from 'anisoform';
+import { createModeller, createSolverPool, defineModellerElement } from 'anisoform';
 import 'anisoform/style.css';
 
 const modellers = {
@@ -16,4 +16,4 @@ for (const button of document.querySelectorAll('[data-dispose]')) {
     button.disabled = true;
   });
 }
-window.anisoformExample = { createModeller, createSolverPool, modellers };
+window.anisoformExample = { createModeller, createSolverPool, defineModellerElement, modellers };

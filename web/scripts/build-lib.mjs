@@ -94,7 +94,7 @@ if (withoutGlobal === apiTypes) throw new Error('build-lib: anisoform.d.ts no lo
 // Its request and result types are the module's (the one contract), shipped beside it.
 const moduleTypes = "'../wasm/anisoform-wasm'";
 if (!withoutGlobal.includes(moduleTypes)) throw new Error(`build-lib: anisoform.d.ts no longer imports ${moduleTypes}`);
-await writeFile(`${outDir}/api.d.ts`, withoutGlobal.replaceAll(moduleTypes, "'./anisoform-wasm'"));
+await writeFile(`${outDir}/api.d.ts`, withoutGlobal.replaceAll(moduleTypes, "'./anisoform-wasm.js'")); // NodeNext wants the extension
 await copyFile(`${web}src/wasm/anisoform-wasm.d.ts`, `${outDir}/anisoform-wasm.d.ts`);
 const app = JSON.parse(await readFile(`${web}package.json`, 'utf8'));
 const manifest = {

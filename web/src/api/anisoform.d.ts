@@ -24,7 +24,12 @@ import type {
   Vec3,
 } from '../wasm/anisoform-wasm';
 
-export type { FlattenMetrics, FlattenOptions, Region, SelectOptions, Transform, Vec3 } from '../wasm/anisoform-wasm';
+// What an embedder's calls are written in (setRegion's steps, exportPattern's
+// options, the document's ops and regions, each direction).
+export type {
+  ConstraintsDirection, CurvatureDirection, DocumentOp, DocumentRegion, DocumentSelectStep, FlattenMetrics, FlattenOptions,
+  GlobalDirection, PatternOptions, Region, SelectOptions, Transform, Vec3,
+} from '../wasm/anisoform-wasm';
 
 export type Pixel = [number, number];
 

@@ -253,10 +253,15 @@ export function createModeller(container, options = {}) {
     const request = mesh === undefined ? null : ++meshRequests;
     let json;
     let resolved;
+    // A mesh that cannot be fetched is said as such ('meshFailed'): it used
+    // to be "Could not open the edits", and the element fetched it again.
+    const meshPart = mesh === undefined ? undefined : resolveMeshSource(mesh, name).catch((error) => {
+      throw Object.assign(reportError(error, 'Could not load the mesh'), { meshFailed: true });
+    });
     try {
-      [json, resolved] = await Promise.all([resolveDocumentSource(documentSource),
-        mesh === undefined ? undefined : resolveMeshSource(mesh, name)]);
+      [json, resolved] = await Promise.all([resolveDocumentSource(documentSource), meshPart]);
     } catch (error) {
+      if (error.meshFailed) throw error;
       throw reportError(error, 'Could not open the edits');
     }
     if (request !== null && request !== meshRequests) throw superseded();

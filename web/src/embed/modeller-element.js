@@ -118,7 +118,7 @@ export class AnisoformModellerElement extends HTMLElement {
       // A new product whose edits cannot be opened is shown without them (as
       // at the start), not the product before: open() put that one back.
       loading = modeller.open(edits, src).catch((error) => {
-        if (modeller !== this.#modeller) throw error;
+        if (modeller !== this.#modeller || error.meshFailed) throw error; // the mesh itself failed: said once
         return modeller.load(src);
       });
     } else if (edits) {
@@ -188,7 +188,14 @@ export class AnisoformModellerElement extends HTMLElement {
   }
 }
 
-/** Registers the element as <anisoform-modeller> (once per page). */
+/**
+ * Registers the element as <anisoform-modeller> (once per page), or under
+ * another name: a class is registered under one name only, so each other
+ * name gets a subclass of its own (the package's import has registered
+ * the class itself, and a custom name always threw).
+ */
 export function defineModellerElement(name = 'anisoform-modeller') {
-  if (!customElements.get(name)) customElements.define(name, AnisoformModellerElement);
+  if (customElements.get(name)) return;
+  const registered = customElements.getName?.(AnisoformModellerElement) ?? (customElements.get('anisoform-modeller') === AnisoformModellerElement ? 'anisoform-modeller' : null);
+  customElements.define(name, registered ? class extends AnisoformModellerElement {} : AnisoformModellerElement);
 }
