@@ -200,9 +200,12 @@ export interface Anisoform {
    * op a warm-started solver iteration (while no new value comes for 120 ms, the value goes on
    * iterating for up to 3 s, each step a live 'positions' event), on an earlier op a quick replay of
    * the ops from it on (each a few-iteration preview). Call again without it on release to commit the
-   * value (a step of the history). A preview a newer value superseded resolves with null.
+   * value (a step of the history). Resolves: a commit with nothing; a preview of the last op with
+   * its solve's {iterations, ms}, of an earlier op with {replayed} (the ops re-run); a preview a
+   * newer value superseded with null.
    */
-  setParameter(opId: string, patch: OpPatch, options?: { preview?: boolean }): Promise<unknown>;
+  setParameter(opId: string, patch: OpPatch, options?: { preview?: boolean }):
+    Promise<void | null | { iterations: number; ms: number } | { replayed: number }>;
   /** Toggles an op off or on; the later ops re-run. A step of the history (undo turns it back). */
   setOpEnabled(opId: string, enabled: boolean): Promise<void>;
   /** Deletes an op; the later ops re-run on its input. A step of the history (undo puts it back). */
