@@ -653,6 +653,20 @@ test("two tabs keep their own autosaved work: a reload restores its own tab's, a
   await other.reload();
   await other.evaluate(() => window.anisoform.ready);
   expect(await work(other)).toBe('torus.obj 1');
+
+  // A tab opened from the page starts with a copy of its sessionStorage (its
+  // id): it shows a copy of the work, then saves apart (the two shared one
+  // record, and a reload brought back the other tab's mesh).
+  const [twin] = await Promise.all([context.waitForEvent('page'), page.evaluate(() => window.open(location.href))]);
+  await twin.waitForFunction(() => window.anisoform?.ready);
+  await twin.evaluate(() => window.anisoform.ready);
+  expect(await work(twin)).toBe(`${spotName} 2`);
+  await stretch(twin);
+  await expect.poll(() => work(twin)).toBe(`${spotName} 3`);
+  await page.waitForTimeout(500); // its autosave written
+  await page.reload();
+  await page.evaluate(() => window.anisoform.ready);
+  expect(await work(page)).toBe(`${spotName} 2`);
   expect(pageErrors).toEqual([]);
   expect(otherErrors).toEqual([]);
 });
@@ -748,6 +762,11 @@ test('a bad document is refused with its code and the work is kept', async ({ pa
   await expect(page.getByTestId('error')).toContainText('does not match the loaded mesh');
   expect(refusals.ops).toBe(3);
   expect(bitwise(refusals.positions, afterThree)).toBe(true);
+  // The good document opened after them puts the refusal behind, and the
+  // status bar shows its last solve (the error stayed over the opened edits).
+  await page.evaluate((good) => window.anisoform.open(good), document);
+  await expect(page.getByTestId('error')).toBeHidden();
+  await expect(page.getByTestId('status-solve')).toHaveText(/^solve [\d.]+ ms · \d+ it/);
 
   // With other mesh bytes: the mesh is loaded, the hash refuses, and the
   // work (Spot and its three ops) comes back.

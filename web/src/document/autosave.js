@@ -18,19 +18,46 @@ const KEEP_TABS = 4;
 
 // This tab's id, kept over reloads; without sessionStorage (a sandboxed
 // frame) one per page: its reload then restores the latest work.
+//
+// A tab duplicated, or opened from the page (window.open), starts with a
+// copy of this tab's sessionStorage, so with its id: it restores this tab's
+// work (a copy), and once it learns that a live tab holds that id
+// (BroadcastChannel) it takes an id of its own before saving. With one id,
+// the two overwrote each other's work.
+const TAB_ID = 'anisoform-tab';
+let tabId = null;
+let tabs = null;
+const randomId = () => globalThis.crypto?.randomUUID?.() ?? `${Date.now()}-${Math.random()}`;
+
 function tabKey() {
-  const random = () => globalThis.crypto?.randomUUID?.() ?? `${Date.now()}-${Math.random()}`;
-  try {
-    let id = sessionStorage.getItem('anisoform-tab');
-    if (!id) {
-      id = random();
-      sessionStorage.setItem('anisoform-tab', id);
+  if (tabId === null) {
+    try {
+      tabId = sessionStorage.getItem(TAB_ID) ?? randomId();
+      sessionStorage.setItem(TAB_ID, tabId);
+    } catch {
+      tabId = randomId();
     }
-    return `tab:${id}`;
-  } catch {
-    tabKey.fallback ??= `tab:${random()}`;
-    return tabKey.fallback;
+    watchForTwins();
   }
+  return `tab:${tabId}`;
+}
+
+function watchForTwins() {
+  if (typeof BroadcastChannel !== 'function') return;
+  tabs = new BroadcastChannel('anisoform-autosave-tabs');
+  tabs.onmessage = ({ data }) => {
+    if (data?.claim === tabId) {
+      tabs.postMessage({ taken: tabId }); // a tab started with my id: it must move
+    } else if (data?.taken === tabId) {
+      tabId = randomId();
+      try {
+        sessionStorage.setItem(TAB_ID, tabId);
+      } catch {
+        // the id lives for this page only
+      }
+    }
+  };
+  tabs.postMessage({ claim: tabId });
 }
 
 function storageError(action, error) {

@@ -12,6 +12,7 @@ export class DocumentPersistence {
   #run;
   #stack;
   #rebuildHistory;
+  #reportSolved;
   #autosave = new Autosave();
   /** The base mesh as loaded: {name, bytes: a Blob of the file}. */
   mesh = null;
@@ -23,7 +24,8 @@ export class DocumentPersistence {
    * its OpRunner; run(work): its one-at-a-time runner; rebuildHistory():
    * makes the history of the document just adopted.
    */
-  constructor({ editor, stack, runner, run, rebuildHistory }) {
+  constructor({ editor, stack, runner, run, rebuildHistory, reportSolved }) {
+    this.#reportSolved = reportSolved;
     this.#editor = editor;
     this.#stack = stack;
     this.#runner = runner;
@@ -95,6 +97,9 @@ export class DocumentPersistence {
     this.#runner.show(document.ops.length, result);
     this.#rebuildHistory();
     this.changed();
+    // As a commit does: the status bar's figures, a fold-over warning, and an
+    // earlier error put behind (a refused open's stayed over the opened edits).
+    this.#reportSolved(result.summary?.last ?? null);
   }
 
   /** Announces the document ('document', and a 'change' unless change is false). */

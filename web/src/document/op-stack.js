@@ -78,7 +78,7 @@ export class OpStack {
     this.#runner = new OpRunner({ editor, client, document, dropPattern });
     this.#live = new LivePreview({ editor, client, runner: this.#runner, run, document });
     this.#persistence = new DocumentPersistence({ editor, stack: this, runner: this.#runner, run,
-      rebuildHistory: () => this.#rebuildHistory() });
+      rebuildHistory: () => this.#rebuildHistory(), reportSolved: (stats) => this.#reportSolved(stats) });
   }
 
   /** Whether a slider's live preview holds the worker's state (live-preview.js). */
