@@ -488,17 +488,22 @@ aniso::VertexProperties scan_properties(const Mesh& mesh) {
   return properties;
 }
 
+// `mesh` written as PLY (binary or text) with these vertex properties.
+std::string ply_with_properties(const Mesh& mesh, const aniso::VertexProperties& properties, bool binary) {
+  aniso::SurfaceAttributes attributes;
+  attributes.vertex_properties = properties;
+  aniso::WriteOptions options;
+  options.binary = binary;
+  options.attributes = &attributes;
+  return aniso::write_mesh_to_memory(mesh, MeshFormat::Ply, options);
+}
+
 TEST_CASE("mesh_io: a PLY's other vertex properties are read and written again in their types", "[io]") {
   const Mesh spot = aniso::read_mesh(mesh_path("formats/spot_lowres_binary.ply")).mesh;
   const aniso::VertexProperties given = scan_properties(spot);
   for (const bool binary : {true, false}) {
     INFO("binary " << binary);
-    aniso::SurfaceAttributes attributes;
-    attributes.vertex_properties = given;
-    aniso::WriteOptions options;
-    options.binary = binary;
-    options.attributes = &attributes;
-    const std::string written = aniso::write_mesh_to_memory(spot, MeshFormat::Ply, options);
+    const std::string written = ply_with_properties(spot, given, binary);
     CHECK_THAT(written, Catch::Contains("property uchar red\nproperty uint8 green") &&
                             Catch::Contains("property int label\nelement face"));
     const ReadResult back = read_text(written, MeshFormat::Ply);
@@ -558,12 +563,7 @@ TEST_CASE("mesh_io: a vertex colour or property that is not finite is dropped wi
   properties[3].values[9] = std::numeric_limits<double>::quiet_NaN();
   for (const bool binary : {true, false}) {
     INFO("binary " << binary);
-    aniso::SurfaceAttributes attributes;
-    attributes.vertex_properties = properties;
-    aniso::WriteOptions options;
-    options.binary = binary;
-    options.attributes = &attributes;
-    const ReadResult read = read_text(aniso::write_mesh_to_memory(spot, MeshFormat::Ply, options), MeshFormat::Ply);
+    const ReadResult read = read_text(ply_with_properties(spot, properties, binary), MeshFormat::Ply);
     REQUIRE(read.attributes.vertex_properties.size() == properties.size() - 1);
     for (const aniso::VertexProperty& property : read.attributes.vertex_properties) CHECK(property.name != "quality");
     REQUIRE(read.report.notes.size() == 1);
