@@ -70,7 +70,7 @@ void register_info(CLI::App& app, Action& action) {
       "Report a mesh's size, topology and problems as JSON. Keys: vertices, triangles, "
       "components, boundary_loops, edge_manifold, vertex_manifold, consistently_oriented, "
       "degenerate_triangles, duplicate_faces, non_manifold_edges, non_manifold_vertices, "
-      "non_finite_vertices, unreferenced_vertices, triangle_soup, solvable, bbox {min, max}, "
+      "non_finite_vertices, unreferenced_vertices, triangle_soup, solvable, bbox {min, max} (of the vertices faces use), "
       "problem_count, problems (the first 100 of {kind, element, message}), read (what the "
       "reader did: polygons triangulated, vertices welded, elements skipped, notes). "
       "A mesh that parses always gives exit 0; its problems are reported.");

@@ -48,7 +48,7 @@ struct MeshReport {
   int non_manifold_vertices = 0;
   int non_finite_vertices = 0;
   int unreferenced_vertices = 0;
-  BoundingBox bbox;               // over finite vertices
+  BoundingBox bbox;               // shape_bounding_box: finite vertices a face references
   std::vector<Problem> problems;  // every problem, in element order per kind
 
   // No problem that makes solving impossible: not empty, all coordinates finite

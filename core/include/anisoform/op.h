@@ -126,8 +126,9 @@ DeformRequest resolve_edit(const DeformOp& edit, const Positions& rest, const Bo
 // selected vertex pinned.
 std::string unchanged_reason(const DeformRequest& resolved, const std::string& selection = "the selection");
 
-// A flattening's default direction: longest_axis of the positions it flattens.
-SessionFlatten resolve_flatten(const SessionFlatten& request, const Positions& positions);
+// A flattening's default direction: longest_axis of the positions it flattens
+// (their shape_bounding_box, mesh.h).
+SessionFlatten resolve_flatten(const SessionFlatten& request, const Positions& positions, const Triangles& faces);
 
 // ---- results -> JSON (the keys the JS API returns) -------------------------
 

@@ -289,7 +289,7 @@ Eigen::Vector3d unit_origin(const BoundingBox& box, double scale) {
 Deformer::Deformer(Mesh rest, std::shared_ptr<LaplacianPatterns> patterns)
     : rest_(std::move(rest)), patterns_(std::move(patterns)) {
   require_solvable(rest_);  // also bounds the coordinates (limits.h), so the diagonal is finite
-  const BoundingBox box = bounding_box(rest_.V);
+  const BoundingBox box = shape_bounding_box(rest_);
   diagonal_ = box.diagonal();
   scale_ = unit_scale(diagonal_);
   origin_ = unit_origin(box, scale_);
@@ -461,7 +461,7 @@ double Deformer::prepare_step() {
       workspace_->inversions.build_adjacency(rest_);
       DirectionSource along_longest;
       along_longest.kind = DirectionSource::Kind::Global;
-      along_longest.vector = longest_axis(bounding_box(rest_.V));
+      along_longest.vector = longest_axis(shape_bounding_box(rest_));
       const SideFrames frames = side_frames(workspace_->targets, along_longest);
       iterations->warm_up(*solvers_.at(pins), frames.frames.u, frames.frames.v);
     } catch (const std::bad_alloc&) {

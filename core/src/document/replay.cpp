@@ -63,7 +63,7 @@ void check_document(const EditDocument& document, const Session& session) {
                            [&] { region_weights(loaded, region.steps[k].region); });
     }
   }
-  const double diagonal = bounding_box(loaded.V).diagonal();
+  const double diagonal = shape_bounding_box(loaded).diagonal();
   for (std::size_t i = 0; i < document.ops.size(); ++i) {
     const DocumentOp& op = document.ops[i];
     naming_document_part(document_op_name(document, i), [&] {

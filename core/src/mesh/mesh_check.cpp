@@ -434,17 +434,10 @@ MeshReport check_mesh(const Mesh& mesh) {
   report.triangles = mesh.num_triangles();
   ProblemList problems;
   find_blocking_problems(mesh, problems);
-  bool any_finite = false;
   for (int v = 0; v < mesh.num_vertices(); ++v) {
-    if (!is_finite_vertex(mesh.V, v)) {
-      ++report.non_finite_vertices;
-      continue;
-    }
-    const Eigen::Vector3d p = mesh.V.row(v).transpose();
-    report.bbox.min = any_finite ? Eigen::Vector3d(report.bbox.min.cwiseMin(p)) : p;
-    report.bbox.max = any_finite ? Eigen::Vector3d(report.bbox.max.cwiseMax(p)) : p;
-    any_finite = true;
+    if (!is_finite_vertex(mesh.V, v)) ++report.non_finite_vertices;
   }
+  report.bbox = shape_bounding_box(mesh);
   check_faces(mesh, report, problems);
   const VertexFaces vertex_faces(mesh);
   check_duplicate_faces(mesh, vertex_faces, report, problems);
