@@ -23,12 +23,25 @@ constexpr std::size_t kHeaderBytes = 80;
 constexpr std::size_t kPreambleBytes = 84;   // header + triangle count
 constexpr std::size_t kTriangleBytes = 50;   // normal, 3 corners, attribute
 
-// ASCII STL starts with "solid" and its first bytes are all text; a binary
-// header may start with "solid" but is followed by binary floats.
+// An ASCII STL keyword, in any case: exporters write `SOLID`, `FACET`,
+// `VERTEX` too (as many readers take them, so do we; such a file was read as
+// binary and refused as "truncated: its header declares 774909216
+// triangles").
+bool is_keyword(std::string_view token, std::string_view keyword) {
+  if (token.size() != keyword.size()) return false;
+  for (std::size_t k = 0; k < token.size(); ++k) {
+    const char c = token[k];
+    if ((c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c) != keyword[k]) return false;
+  }
+  return true;
+}
+
+// ASCII STL starts with "solid" (any case) and its first bytes are all text;
+// a binary header may start with "solid" but is followed by binary floats.
 bool looks_like_ascii(const char* data, std::size_t size) {
   std::size_t i = 0;
   while (i < size && (is_blank(data[i]) || data[i] == '\n')) ++i;
-  if (std::string_view(data + i, std::min<std::size_t>(5, size - i)) != "solid") return false;
+  if (!is_keyword(std::string_view(data + i, std::min<std::size_t>(5, size - i)), "solid")) return false;
   const std::size_t probe = std::min<std::size_t>(size, 512);
   for (std::size_t k = 0; k < probe; ++k) {
     const unsigned char c = static_cast<unsigned char>(data[k]);
@@ -97,13 +110,13 @@ class AsciiStlParser {
         report.notes.push_back("the ASCII STL has no closing 'endsolid' line");
         break;
       }
-      if (token == "facet") {
+      if (is_keyword(token, "facet")) {
         read_facet();
-      } else if (token == "endsolid") {
+      } else if (is_keyword(token, "endsolid")) {
         tokens_.skip_rest_of_line();
         const std::string_view after = tokens_.next();
         if (after.empty()) break;
-        if (after != "solid") unexpected(after, "'solid' or the end of the file");
+        if (!is_keyword(after, "solid")) unexpected(after, "'solid' or the end of the file");
         tokens_.skip_rest_of_line();  // a further solid: its facets join the same mesh
       } else {
         unexpected(token, "'facet' or 'endsolid'");
@@ -122,7 +135,7 @@ class AsciiStlParser {
   }
   void expect(std::string_view keyword) {
     const std::string_view token = tokens_.next();
-    if (token != keyword) unexpected(token, "'" + std::string(keyword) + "'");
+    if (!is_keyword(token, keyword)) unexpected(token, "'" + std::string(keyword) + "'");
   }
   double number() {
     const std::string_view token = tokens_.next();
@@ -143,11 +156,11 @@ class AsciiStlParser {
       for (int k = 0; k < 3; ++k) soup_.push_back(number());
     }
     const std::string_view token = tokens_.next();
-    if (token == "vertex") {
+    if (is_keyword(token, "vertex")) {
       fail_file("facet " + std::to_string(facets_ + 1) + " has more than 3 vertices" +
                 at_line(tokens_.line()) + "; STL facets are triangles");
     }
-    if (token != "endloop") unexpected(token, "'endloop'");
+    if (!is_keyword(token, "endloop")) unexpected(token, "'endloop'");
     expect("endfacet");
     ++facets_;
   }
