@@ -3,6 +3,7 @@
 // non-finite is printed, and within them the result does not depend on the
 // mesh's units (the deformer solves on a unit-size copy).
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <vector>
@@ -112,6 +113,45 @@ TEST_CASE("limits: binary STL refuses a coordinate beyond float range", "[limits
   const CliRun run = run_cli({"deform", in, temp_path("spot_1e39_out.stl")}, 60);
   CHECK(run.exit_status != 0);
   CHECK_THAT(run.err, Catch::Contains("binary STL"));
+}
+
+TEST_CASE("limits: binary STL refuses a mesh whose shape its 32-bit floats cannot keep", "[limits]") {
+  // Spot scaled by 1e-4 and moved by 1e6: 32-bit floats there are 0.0625
+  // apart, 240 times the mesh's size. It was written without a word and
+  // read back as one vertex.
+  const aniso::Mesh spot = aniso::test::load("formats/spot_lowres.obj");
+  aniso::Mesh far{(spot.V * 1e-4).array() + 1e6, spot.F};
+  try {
+    aniso::write_mesh_to_memory(far, aniso::MeshFormat::Stl);
+    FAIL("spot moved 1e6 away at 1e-4 of its size was written to binary STL");
+  } catch (const aniso::Error& e) {
+    CHECK(e.code() == aniso::ErrorCode::BadMesh);
+    CHECK_THAT(e.what(), Catch::Contains("binary STL stores 32-bit floats") && Catch::Contains("0.0625 apart") &&
+                             Catch::Contains("of face 0") && Catch::Contains("1654 of 1654 faces") &&
+                             Catch::Contains("--ascii"));
+  }
+  // ASCII STL keeps it.
+  aniso::WriteOptions ascii;
+  ascii.binary = false;
+  const std::string text = aniso::write_mesh_to_memory(far, aniso::MeshFormat::Stl, ascii);
+  CHECK(aniso::read_mesh_from_memory(text.data(), text.size(), aniso::MeshFormat::Stl).mesh.num_vertices() == 829);
+  // A mesh its floats do keep is written: Spot moved by 1000 (rounded, but
+  // every edge kept), and, read back from that, written again as it is.
+  const aniso::Mesh moved{spot.V.array() + 1000.0, spot.F};
+  const std::string binary = aniso::write_mesh_to_memory(moved, aniso::MeshFormat::Stl);
+  const aniso::Mesh back = aniso::read_mesh_from_memory(binary.data(), binary.size(), aniso::MeshFormat::Stl).mesh;
+  CHECK(back.num_vertices() == 829);
+  const std::string again = aniso::write_mesh_to_memory(back, aniso::MeshFormat::Stl);
+  CHECK(aniso::read_mesh_from_memory(again.data(), again.size(), aniso::MeshFormat::Stl).mesh.V == back.V);
+  // The CLI: exit 3 naming the way out, no file.
+  const std::string in = temp_path("spot_tiny_far.obj");
+  aniso::write_mesh(in, far);
+  const std::string out = temp_path("spot_tiny_far_out.stl");
+  std::remove(out.c_str());
+  const CliRun run = run_cli({"deform", in, out, "--select", "all", "--scale", "1,1"}, 60);
+  CHECK(run.exit_status == 3);
+  CHECK_THAT(run.err, Catch::Contains("32-bit floats") && Catch::Contains("--ascii"));
+  CHECK(aniso::test::slurp(out).empty());
 }
 
 TEST_CASE("limits: spot scaled by 1e78 deforms like spot, scaled", "[limits]") {
