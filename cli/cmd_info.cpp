@@ -48,7 +48,7 @@ Json info_json(const std::string& path, const ReadResult& read,
       {"triangle_soup", is_triangle_soup(read.mesh)},
       {"solvable", report.solvable()},
       {"bbox", to_json(report.bbox)},
-      {"problem_count", report.problems.size()},
+      {"problem_count", report.problem_count()},
       {"problems_listed", std::min(report.problems.size(), kMaxListedProblems)},
       {"problems", problems_json(report.problems)},
       {"read", to_json(read.report)},
@@ -71,7 +71,7 @@ void register_info(CLI::App& app, Action& action) {
       "components, boundary_loops, edge_manifold, vertex_manifold, consistently_oriented, "
       "degenerate_triangles, duplicate_faces, non_manifold_edges, non_manifold_vertices, "
       "non_finite_vertices, unreferenced_vertices, triangle_soup, solvable, bbox {min, max} (of the vertices faces use), "
-      "problem_count, problems (the first 100 of {kind, element, message}), read (what the "
+      "problem_count (all), problems (the first 100 of {kind, element, message}), read (what the "
       "reader did: polygons triangulated, vertices welded, elements skipped, notes). "
       "A mesh that parses always gives exit 0; its problems are reported.");
   info->add_option("MESH", *path, "Mesh file: .obj .off .ply .stl")->required();

@@ -26,6 +26,10 @@ enum class ProblemKind {
   UnreferencedVertex,       // element = vertex used by no face (a warning)
 };
 const char* problem_kind_name(ProblemKind kind);
+constexpr int kProblemKinds = static_cast<int>(ProblemKind::UnreferencedVertex) + 1;
+// Of each kind, the problems with the lowest elements kept with their
+// message; all are counted (MeshReport::problem_counts).
+constexpr std::size_t kMaxProblemsKept = 1000;
 
 struct Problem {
   ProblemKind kind;
@@ -49,7 +53,12 @@ struct MeshReport {
   int non_finite_vertices = 0;
   int unreferenced_vertices = 0;
   BoundingBox bbox;               // shape_bounding_box: finite vertices a face references
-  std::vector<Problem> problems;  // every problem, in element order per kind
+  // In element order per kind: the first kMaxProblemsKept of each kind (the
+  // counts above and problem_counts say how many there are).
+  std::vector<Problem> problems;
+  std::array<int, kProblemKinds> problem_counts{};  // every problem, by kind (index: ProblemKind)
+  int problem_count() const;
+  int count_of(ProblemKind kind) const { return problem_counts[static_cast<int>(kind)]; }
 
   // No problem that makes solving impossible: not empty, all coordinates finite
   // and within limits.h kMaxCoordinate, all indices in range. (Zero-area triangles, non-manifold elements and flipped

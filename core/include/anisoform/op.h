@@ -135,7 +135,8 @@ SessionFlatten resolve_flatten(const SessionFlatten& request, const Positions& p
 // {vertices, triangles, components, boundaryLoops, edgeManifold, vertexManifold,
 //  consistentlyOriented, degenerateTriangles, duplicateFaces, unreferencedVertices,
 //  bbox: {min, max}, unitGuess: {name, mmPerUnit} (guess_model_unit),
-//  problems: [{kind, element, message}], notes}
+//  problems: [{kind, element, message}] (the first kMaxProblemsKept of each kind),
+//  problemCounts: {kind: how many, for each kind found}, notes}
 Json to_json(const SessionMeshInfo& info);
 // {selected, iterations, energy, energyHistory, converged, directionsFilled,
 //  inverted, factorizations, precomputeMs, solveMs, ms}
