@@ -621,6 +621,15 @@ Mesh weld_vertices(const Mesh& mesh, double tolerance, std::vector<int>* old_to_
   return welded;
 }
 
+bool weld_if_triangle_soup(Mesh& mesh, std::vector<std::string>& notes) {
+  if (!is_triangle_soup(mesh)) return false;
+  const int before = mesh.num_vertices();
+  mesh = weld_vertices(mesh);
+  notes.push_back("the file is a triangle soup (no shared vertices): welded by exact position, " +
+                  std::to_string(before) + " -> " + std::to_string(mesh.num_vertices()) + " vertices");
+  return true;
+}
+
 bool is_triangle_soup(const Mesh& mesh) {
   if (mesh.num_triangles() <= 1) return false;
   std::vector<int> owner(static_cast<std::size_t>(mesh.num_vertices()), -1);
