@@ -196,11 +196,8 @@ void warn_about_solvable_problems(const MeshReport& report, std::vector<std::str
   warn_count(report.non_manifold_edges, "non-manifold edge(s)");
   warn_count(report.non_manifold_vertices, "non-manifold vertex(es)");
   if (!report.consistently_oriented) {
-    int flipped = 0;
-    for (const Problem& problem : report.problems) {
-      if (problem.kind == ProblemKind::InconsistentOrientation) ++flipped;
-    }
-    warn_count(flipped, "face(s) wound against a neighbour (inconsistent orientation)");
+    warn_count(report.count_of(ProblemKind::InconsistentOrientation),
+               "face(s) wound against a neighbour (inconsistent orientation)");
   }
   warn_count(report.unreferenced_vertices, "unreferenced vertex(es): left where they are");
 }

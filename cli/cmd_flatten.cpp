@@ -231,9 +231,9 @@ int run_flatten(const FlattenArguments& args) {
   const std::vector<char> mask = selection_mask(mesh, plan.selection);
 
   // The one-shot flatten (its patch is written out), with the Session's request rules.
-  const SessionFlatten request = resolve_flatten(plan.request, mesh.V);
+  const SessionFlatten request = resolve_flatten(plan.request, mesh.V, mesh.F);
   const std::string direction =
-      plan.direction_description.empty() ? longest_axis_description(bounding_box(mesh.V)) : plan.direction_description;
+      plan.direction_description.empty() ? longest_axis_description(shape_bounding_box(mesh)) : plan.direction_description;
   const FlattenOutput flattened = flatten(mesh, mask, flatten_options(request));
 
   PatternExportOptions pattern_options;

@@ -27,8 +27,7 @@ Json problems_json(const std::vector<Problem>& problems) {
   return listed;
 }
 
-Json info_json(const std::string& path, const ReadResult& read,
-                         const MeshReport& report) {
+Json info_json(const std::string& path, const ReadResult& read, bool soup, const MeshReport& report) {
   return {
       {"file", path},
       {"format", format_name(format_from_path(path))},
@@ -45,10 +44,10 @@ Json info_json(const std::string& path, const ReadResult& read,
       {"non_manifold_vertices", report.non_manifold_vertices},
       {"non_finite_vertices", report.non_finite_vertices},
       {"unreferenced_vertices", report.unreferenced_vertices},
-      {"triangle_soup", is_triangle_soup(read.mesh)},
+      {"triangle_soup", soup},
       {"solvable", report.solvable()},
       {"bbox", to_json(report.bbox)},
-      {"problem_count", report.problems.size()},
+      {"problem_count", report.problem_count()},
       {"problems_listed", std::min(report.problems.size(), kMaxListedProblems)},
       {"problems", problems_json(report.problems)},
       {"read", to_json(read.report)},
@@ -56,8 +55,13 @@ Json info_json(const std::string& path, const ReadResult& read,
 }
 
 int run_info(const std::string& path) {
-  const ReadResult read = read_input_mesh(path);
-  print_json(info_json(path, read, check_mesh(read.mesh)));
+  ReadResult read = read_input_mesh(path);
+  // The mesh a session edits: a soup welded as the Session welds it (deform,
+  // replay, the browser), counted among the read's welds as deform counts it.
+  const int read_vertices = read.mesh.num_vertices();
+  const bool soup = weld_if_triangle_soup(read.mesh, read.report.notes);
+  read.report.vertices_welded += read_vertices - read.mesh.num_vertices();
+  print_json(info_json(path, read, soup, check_mesh(read.mesh)));
   return kExitSuccess;
 }
 
@@ -70,8 +74,9 @@ void register_info(CLI::App& app, Action& action) {
       "Report a mesh's size, topology and problems as JSON. Keys: vertices, triangles, "
       "components, boundary_loops, edge_manifold, vertex_manifold, consistently_oriented, "
       "degenerate_triangles, duplicate_faces, non_manifold_edges, non_manifold_vertices, "
-      "non_finite_vertices, unreferenced_vertices, triangle_soup, solvable, bbox {min, max}, "
-      "problem_count, problems (the first 100 of {kind, element, message}), read (what the "
+      "non_finite_vertices, unreferenced_vertices, triangle_soup (the file is one: reported welded, as "
+      "deform and the browser edit it), solvable, bbox {min, max} (of the vertices faces use), "
+      "problem_count (all), problems (the first 100 of {kind, element, message}), read (what the "
       "reader did: polygons triangulated, vertices welded, elements skipped, notes). "
       "A mesh that parses always gives exit 0; its problems are reported.");
   info->add_option("MESH", *path, "Mesh file: .obj .off .ply .stl")->required();

@@ -15,6 +15,7 @@
 #include "anisoform/deform_request.h"
 #include "anisoform/flatten.h"
 #include "anisoform/mesh_io.h"
+#include "anisoform/session.h"
 #include "cli_runner.h"
 #include "test_support.h"
 
@@ -121,8 +122,8 @@ std::vector<MalformedCase> malformed_cases() {
        }},
       {"bad_triangle_soup.obj", 0, 0, "",
        [](const json& info) {
-         CHECK(info["vertices"] == 4962);
-         CHECK(info["components"] == 1654);
+         CHECK(info["vertices"] == 829);  // welded, as deform welds it
+         CHECK(info["components"] == 1);
          CHECK(info["triangle_soup"] == true);
        }},
       // GLB is not one of the formats we read: an unknown extension is a bad
@@ -301,6 +302,41 @@ TEST_CASE("cli: deform keeps a PLY's vertex colours", "[cli]") {
     }
     CHECK((deformed.mesh.V - spot.V).cwiseAbs().maxCoeff() > 0.05);
   }
+}
+
+TEST_CASE("cli: info reports a triangle soup as deform and the browser edit it: welded", "[cli]") {
+  // spot_lowres as an OBJ soup (each face its own 3 vertices): info said
+  // 4962 vertices in 1654 components, deform edited 829 in one.
+  const aniso::Mesh spot = aniso::test::load("formats/spot_lowres.obj");
+  aniso::Mesh soup;
+  soup.V.resize(3 * spot.num_triangles(), 3);
+  soup.F.resize(spot.num_triangles(), 3);
+  for (int f = 0; f < spot.num_triangles(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      soup.V.row(3 * f + k) = spot.V.row(spot.F(f, k));
+      soup.F(f, k) = 3 * f + k;
+    }
+  }
+  const std::string path = temp_path("spot_soup.obj");
+  aniso::write_mesh(path, soup);
+  const json info = info_of(path);
+  const json deformed =
+      stdout_json(run_expecting({"deform", path, temp_path("spot_soup_out.obj"), "--scale", "1.2"}, 0));
+  CHECK(info["vertices"] == 829);
+  CHECK(info["vertices"] == deformed["vertices"]);
+  CHECK(info["components"] == 1);
+  CHECK(info["boundary_loops"] == 0);
+  CHECK(info["triangle_soup"] == true);
+  CHECK(info["read"]["vertices_welded"] == deformed["read"]["vertices_welded"]);
+  CHECK(info["read"]["notes"].dump().find("4962 -> 829") != std::string::npos);
+  // The browser's session says the same.
+  const std::string bytes = aniso::test::slurp(path);
+  aniso::Session session;
+  const aniso::SessionMeshInfo& loaded =
+      session.load_mesh(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(), "spot_soup.obj");
+  CHECK(loaded.report.vertices == 829);
+  const std::string weld_note = info["read"]["notes"].back().get<std::string>();
+  CHECK(std::find(loaded.notes.begin(), loaded.notes.end(), weld_note) != loaded.notes.end());
 }
 
 TEST_CASE("cli: deform welds a triangle soup and says so", "[cli]") {

@@ -453,3 +453,49 @@ TEST_CASE("document: an op whose region selects nothing is replayed with a warni
   CHECK(to_json(summary)["warnings"][0] == summary.warnings[0]);
   CHECK(replay_document(session, document_from_json(spool_document(session))).warnings.empty());
 }
+
+TEST_CASE("document: stated counts, a malformed hash and a screen drag are refused naming document.mesh or the op",
+          "[document]") {
+  // check_document said it checked the counts, but checked only the hash: a
+  // document stating 3000 vertices for the spool's 649 replayed (exit 0). A
+  // hash "abc" was "does not match the loaded mesh" (exit 3), and a screen
+  // drag "direction.camera is missing".
+  Session session;
+  load_spool(session);
+  const Json good = spool_document(session);
+  Json vertices = good;
+  vertices["mesh"]["vertices"] = 3000;
+  CHECK_THAT(refusal_of_document(vertices, ErrorCode::BadMesh),
+             Catch::StartsWith("document.mesh.vertices is 3000, but the loaded mesh, whose hash fnv1a64:") &&
+                 Catch::EndsWith("is the document's, has 649 vertices: the document's counts do not describe its mesh"));
+  Json triangles = good;
+  triangles["mesh"]["triangles"] = 1;
+  CHECK_THAT(refusal_of_document(triangles, ErrorCode::BadMesh),
+             Catch::StartsWith("document.mesh.triangles is 1, but") && Catch::Contains("has 1294 triangles"));
+
+  for (const char* hash : {"abc", "fnv1a64:0123456789ABCDEF", "fnv1a64:0123456789abcde", "sha1:0123456789abcdef"}) {
+    Json malformed = good;
+    malformed["mesh"]["hash"] = hash;
+    CHECK(refusal_of_document(malformed, ErrorCode::BadParameter) ==
+          "document.mesh.hash must be 'fnv1a64:<16 hex digits>' (as mesh_hash_text writes it), got '" +
+              std::string(hash) + "'");
+  }
+
+  Json screen = good;
+  screen["ops"][0]["op"]["direction"] = Json::parse(R"({"type": "screen", "from": [0, 0], "to": [10, 0]})");
+  CHECK_THAT(refusal_of_document(screen, ErrorCode::BadParameter),
+             Catch::StartsWith("document.ops[0] (id 'stretch').op.direction is a screen drag, which a document "
+                               "does not store: store the global vector it gives"));
+
+  // Through the CLI: a mismatch of the mesh is exit 3, a malformed document exit 2.
+  const std::string doc_path = test::temp_path("spool-doc-counts.json");
+  const std::string out = test::temp_path("spool-doc-counts.obj");
+  std::ofstream(doc_path) << vertices.dump();
+  CHECK_THAT(test::run_cli_expecting({"replay", doc_path, out, "--mesh", test::mesh_path("closed/spool.off")}, 3).err,
+             Catch::Contains("document.mesh.vertices is 3000") && Catch::Contains("has 649 vertices"));
+  Json malformed = good;
+  malformed["mesh"]["hash"] = "abc";
+  std::ofstream(doc_path) << malformed.dump();
+  CHECK_THAT(test::run_cli_expecting({"replay", doc_path, out, "--mesh", test::mesh_path("closed/spool.off")}, 2).err,
+             Catch::Contains("document.mesh.hash must be 'fnv1a64:<16 hex digits>'"));
+}

@@ -2,6 +2,8 @@
 // refused by name (CLI exit 2 for parameters, 3 for the mesh), nothing
 // non-finite is printed, and within them the result does not depend on the
 // mesh's units (the deformer solves on a unit-size copy).
+#include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <vector>
@@ -111,6 +113,45 @@ TEST_CASE("limits: binary STL refuses a coordinate beyond float range", "[limits
   const CliRun run = run_cli({"deform", in, temp_path("spot_1e39_out.stl")}, 60);
   CHECK(run.exit_status != 0);
   CHECK_THAT(run.err, Catch::Contains("binary STL"));
+}
+
+TEST_CASE("limits: binary STL refuses a mesh whose shape its 32-bit floats cannot keep", "[limits]") {
+  // Spot scaled by 1e-4 and moved by 1e6: 32-bit floats there are 0.0625
+  // apart, 240 times the mesh's size. It was written without a word and
+  // read back as one vertex.
+  const aniso::Mesh spot = aniso::test::load("formats/spot_lowres.obj");
+  aniso::Mesh far{(spot.V * 1e-4).array() + 1e6, spot.F};
+  try {
+    aniso::write_mesh_to_memory(far, aniso::MeshFormat::Stl);
+    FAIL("spot moved 1e6 away at 1e-4 of its size was written to binary STL");
+  } catch (const aniso::Error& e) {
+    CHECK(e.code() == aniso::ErrorCode::BadMesh);
+    CHECK_THAT(e.what(), Catch::Contains("binary STL stores 32-bit floats") && Catch::Contains("0.0625 apart") &&
+                             Catch::Contains("of face 0") && Catch::Contains("1654 of 1654 faces") &&
+                             Catch::Contains("--ascii"));
+  }
+  // ASCII STL keeps it.
+  aniso::WriteOptions ascii;
+  ascii.binary = false;
+  const std::string text = aniso::write_mesh_to_memory(far, aniso::MeshFormat::Stl, ascii);
+  CHECK(aniso::read_mesh_from_memory(text.data(), text.size(), aniso::MeshFormat::Stl).mesh.num_vertices() == 829);
+  // A mesh its floats do keep is written: Spot moved by 1000 (rounded, but
+  // every edge kept), and, read back from that, written again as it is.
+  const aniso::Mesh moved{spot.V.array() + 1000.0, spot.F};
+  const std::string binary = aniso::write_mesh_to_memory(moved, aniso::MeshFormat::Stl);
+  const aniso::Mesh back = aniso::read_mesh_from_memory(binary.data(), binary.size(), aniso::MeshFormat::Stl).mesh;
+  CHECK(back.num_vertices() == 829);
+  const std::string again = aniso::write_mesh_to_memory(back, aniso::MeshFormat::Stl);
+  CHECK(aniso::read_mesh_from_memory(again.data(), again.size(), aniso::MeshFormat::Stl).mesh.V == back.V);
+  // The CLI: exit 3 naming the way out, no file.
+  const std::string in = temp_path("spot_tiny_far.obj");
+  aniso::write_mesh(in, far);
+  const std::string out = temp_path("spot_tiny_far_out.stl");
+  std::remove(out.c_str());
+  const CliRun run = run_cli({"deform", in, out, "--select", "all", "--scale", "1,1"}, 60);
+  CHECK(run.exit_status == 3);
+  CHECK_THAT(run.err, Catch::Contains("32-bit floats") && Catch::Contains("--ascii"));
+  CHECK(aniso::test::slurp(out).empty());
 }
 
 TEST_CASE("limits: spot scaled by 1e78 deforms like spot, scaled", "[limits]") {
@@ -321,4 +362,75 @@ TEST_CASE("limits: over half the vertex limit a session keeps one factorized pos
     CHECK(roomy.steps[s] == kept.steps[s]);
     CHECK(one_pose.steps[s] == kept.steps[s]);
   }
+}
+
+TEST_CASE("limits: spothead scaled by 1e-4 and moved 1e6 away deforms like spothead, scaled and moved",
+          "[limits]") {
+  // The unit-size copy was scaled but not centred: this mesh was solved at
+  // 2^33 of its sizes from the origin, where a coordinate keeps 20 bits fewer
+  // below the mesh's size. The stretch stopped at the 50-iteration cap,
+  // converged false, 1.2e-3 of the size off. The reference is the moved
+  // mesh brought back (so both start from the same rounded positions), and
+  // the tolerance is what a coordinate near 1e6 can hold (its unit in the
+  // last place, 1.2e-10, is 4.5e-7 of this mesh's diagonal) plus 1e-9 of the
+  // diagonal.
+  const aniso::Mesh head = aniso::test::load("open/spothead.obj");
+  const auto check_moved = [&](double factor, double offset) {
+    INFO("factor " << factor << ", moved by " << offset);
+    aniso::Mesh moved{(head.V * factor).array() + offset, head.F};
+    const aniso::Mesh back{(moved.V.array() - offset) / factor, head.F};
+    const double diagonal = aniso::bounding_box(back.V).diagonal();
+    const double tolerance = 1e-9 * diagonal + (std::nextafter(offset, 2.0 * offset) - offset) / factor;
+    const Eigen::Vector3d far(offset, offset, offset);
+    aniso::Deformer here(back), there(moved);
+    const auto compare = [&](const aniso::DeformRequest& request, const aniso::DeformRequest& moved_request,
+                             bool converges = false) {
+      const aniso::DeformResult expected = here.deform(request);
+      const aniso::DeformResult result = there.deform(moved_request);
+      if (converges) CHECK(expected.converged);
+      CHECK(result.converged == expected.converged);
+      CHECK(std::abs(result.iterations - expected.iterations) <= 2);
+      const double off = ((result.V.array() - offset) / factor - expected.V.array()).abs().maxCoeff();
+      CHECK(off <= tolerance);
+      CHECK(result.energy / (factor * factor) == Approx(expected.energy).epsilon(1e-5).margin(1e-12));
+      for (const int p : moved_request.pins) CHECK(result.V.row(p) == moved.V.row(p));
+    };
+    // The user's stretch: everything, along y, 1.3.
+    aniso::DeformRequest stretch;
+    stretch.direction.vector = Eigen::Vector3d(0, 1, 0);
+    stretch.transform.su = 1.3;
+    compare(stretch, stretch, true);
+    // A twist about an axis through a point: the point is moved and scaled, the rate per unit scaled.
+    aniso::DeformRequest twist;
+    twist.direction.vector = Eigen::Vector3d(0, 1, 0);
+    twist.selection = Eigen::VectorXd::Zero(head.num_vertices());
+    for (int v = 0; v < head.num_vertices(); ++v) twist.selection[v] = back.V(v, 1) > 0.2 ? 1.0 : 0.0;
+    for (int v = 0; v < head.num_vertices(); ++v) {
+      if (back.V(v, 1) < -0.2) twist.pins.push_back(v);
+    }
+    REQUIRE(twist.selection.sum() > 100);
+    REQUIRE(twist.pins.size() > 100);
+    twist.transform.twist = true;
+    twist.transform.twist_axis = Eigen::Vector3d(0, 1, 0);
+    twist.transform.twist_origin = Eigen::Vector3d(0.1, 0.3, 0.0);
+    twist.transform.twist_degrees_per_unit = 20.0;
+    aniso::DeformRequest moved_twist = twist;
+    moved_twist.transform.twist_origin = twist.transform.twist_origin * factor + far;
+    moved_twist.transform.twist_degrees_per_unit = 20.0 / factor;
+    compare(twist, moved_twist);
+    // ARAP: handles moved by an offset (a length), pins held to the bit.
+    aniso::DeformRequest arap;
+    arap.method = aniso::Method::Arap;
+    arap.pins = twist.pins;
+    for (int v = 0; v < head.num_vertices(); ++v) {
+      if (back.V(v, 1) > 0.3) arap.handles.push_back(v);
+    }
+    REQUIRE(!arap.handles.empty());
+    arap.handle_offset = Eigen::Vector3d(0.05, 0.1, 0.0);
+    aniso::DeformRequest moved_arap = arap;
+    moved_arap.handle_offset = arap.handle_offset * factor;
+    compare(arap, moved_arap);
+  };
+  check_moved(1e-4, 1e6);  // the user's spothead_tiny_far.obj
+  check_moved(1.0, 1e3);   // a millimetre mesh placed on a build plate
 }

@@ -11,9 +11,12 @@
 
 #include <Eigen/Geometry>
 
+#include "anisoform/deformer.h"
 #include "anisoform/error.h"
 #include "anisoform/mesh_check.h"
 #include "anisoform/mesh_io.h"
+#include "anisoform/op.h"
+#include "anisoform/session.h"
 #include "test_support.h"
 
 using aniso::Mesh;
@@ -309,4 +312,36 @@ TEST_CASE("triangulate_polygon: degenerate and self-intersecting polygons still 
 
   CHECK_THROWS_AS(aniso::triangulate_polygon(planar({{0, 0}, {1, 0}}), iota(2)), aniso::Error);
   CHECK_THROWS_AS(aniso::triangulate_polygon(planar({{0, 0}, {1, 0}, {0, 1}}), {0, 1, 3}), aniso::Error);
+}
+
+TEST_CASE("check_mesh: an unused vertex counts toward neither the box, the unit guess nor the mesh's size",
+          "[check]") {
+  // spothead (0.93 units wide: metres) plus one `v 10 10 10` that no face
+  // uses: the box reached 10, the unit guess said centimetres (a pattern 100
+  // times too small), and the move and twist limits grew with it.
+  std::string text = aniso::test::slurp(aniso::test::mesh_path("open/spothead.obj"));
+  REQUIRE(!text.empty());
+  const std::string plain = text;
+  text += "\nv 10 10 10\n";
+  aniso::Session session;
+  const aniso::SessionMeshInfo& info = session.load_mesh(reinterpret_cast<const std::uint8_t*>(text.data()),
+                                                         text.size(), "spothead_unused.obj");
+  REQUIRE(info.report.unreferenced_vertices == 1);
+  const Mesh head = load("open/spothead.obj");
+  const aniso::BoundingBox expected = aniso::bounding_box(head.V);
+  CHECK(info.report.bbox.min == expected.min);
+  CHECK(info.report.bbox.max == expected.max);
+  const aniso::Json json = aniso::to_json(info);
+  CHECK(json["unitGuess"]["name"] == "m");
+  CHECK(json["bbox"]["max"][0].get<double>() == expected.max.x());
+  // The deformer measures the same size: a move of 100 diagonals of spothead is the limit.
+  Mesh with_unused = head;
+  with_unused.V.conservativeResize(head.num_vertices() + 1, 3);
+  with_unused.V.row(head.num_vertices()) = Eigen::RowVector3d(10, 10, 10);
+  aniso::DeformRequest move;
+  move.method = aniso::Method::Arap;
+  move.handles = {0};
+  move.handle_offset = Eigen::Vector3d(101.0 * expected.diagonal(), 0, 0);
+  const std::string message = aniso::test::bad_parameter_message([&] { aniso::Deformer(with_unused).deform(move); });
+  CHECK_THAT(message, Catch::Contains("bounding-box diagonal of 1.5"));
 }

@@ -929,3 +929,37 @@ TEST_CASE("mesh_io: a COFF's vertex colours are read, and written to OFF (as COF
   CHECK(plain.attributes.vertex_colors.rows() == 0);
   CHECK(aniso::write_mesh_to_memory(plain.mesh, aniso::MeshFormat::Off).rfind("OFF\n", 0) == 0);
 }
+
+TEST_CASE("mesh_io: ASCII STL keywords are read in any case", "[io]") {
+  // SOLID / FACET / VERTEX (as some exporters write them) was read as binary
+  // and refused: "the binary STL is truncated: its header declares 774909216
+  // triangles".
+  const Mesh mesh = load("formats/spot_lowres.obj");
+  aniso::WriteOptions ascii;
+  ascii.binary = false;
+  const std::string lower = aniso::write_mesh_to_memory(mesh, MeshFormat::Stl, ascii);
+  const Mesh expected = read_text(lower, MeshFormat::Stl).mesh;
+  std::string upper = lower, mixed = lower;
+  for (const std::string keyword :
+       {"endsolid", "solid", "endfacet", "facet", "normal", "outer", "endloop", "loop", "vertex"}) {
+    std::string big = keyword;
+    for (char& c : big) c = static_cast<char>(c - 'a' + 'A');
+    std::string title = keyword;
+    title[0] = big[0];
+    for (std::size_t at = upper.find(keyword); at != std::string::npos; at = upper.find(keyword, at + 1)) {
+      upper.replace(at, keyword.size(), big);
+      mixed.replace(at, keyword.size(), title);
+    }
+  }
+  REQUIRE(upper.compare(0, 5, "SOLID") == 0);
+  REQUIRE(upper.find("ENDFACET") != std::string::npos);
+  REQUIRE(mixed.compare(0, 5, "Solid") == 0);
+  for (const std::string& text : {upper, mixed}) {
+    const Mesh back = read_text(text, MeshFormat::Stl).mesh;
+    CHECK(back.V == expected.V);
+    CHECK(back.F == expected.F);
+  }
+  // A word that is no keyword in any case is still named.
+  CHECK_THAT(error_message([&] { read_text(with_replaced(upper, "OUTER", "OTHER"), MeshFormat::Stl); }),
+             Catch::Contains("expected 'outer' but found 'OTHER'"));
+}

@@ -252,7 +252,7 @@ TEST_CASE("op: the mesh's defaults are resolved by the session's rule", "[op]") 
   CHECK(resolve_edit(arap, mesh.V, box, weights).final_energy);
   CHECK(turned.transform.twist_origin == default_twist_origin(mesh.V, weights, Eigen::Vector3d::UnitZ()));
 
-  const SessionFlatten flatten = resolve_flatten(flatten_options_from_json(Json::object()), mesh.V);
+  const SessionFlatten flatten = resolve_flatten(flatten_options_from_json(Json::object()), mesh.V, mesh.F);
   CHECK(flatten.directions.kind == FlattenDirections::Kind::Global);
   CHECK(flatten.directions.global == longest_axis(box));
 }

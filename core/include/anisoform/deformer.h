@@ -84,8 +84,12 @@ class Deformer {
   DeformResult deform_unit(const DeformRequest& request);  // on unit_, in its units
 
   Mesh rest_;
-  // rest_ divided by scale_, a power of two near its bounding-box diagonal:
-  // every solve runs on this unit-size copy (limits.h kMaxCoordinate). Its
+  // rest_ less origin_ (its bounding box's centre, rounded to a multiple of
+  // scale_), divided by scale_, a power of two near its bounding-box diagonal:
+  // every solve runs on this unit-size copy about the origin (limits.h
+  // kMaxCoordinate): a result does not depend on where the mesh is or on its
+  // units. Points (twist origin) are mapped on the way in, lengths (handle
+  // offset, twist rate) scaled. Its
   // vertices are renumbered breadth-first (order_[k]: the input vertex that
   // is its vertex k; rank_ the inverse), its faces sorted by their lowest vertex: the
   // iterations read each vertex's neighbours, and in a file's own numbering
@@ -95,6 +99,7 @@ class Deformer {
   Mesh unit_;
   std::vector<int> order_, rank_;
   double scale_ = 1.0;
+  Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
   double diagonal_ = 0.0;
   CotanWeights cotan_weights_;
   Eigen::SparseMatrix<double> laplacian_;

@@ -43,6 +43,8 @@ inline constexpr int kDocumentVersion = 1;
 std::uint64_t mesh_hash(const Positions& V, const Triangles& F);
 // "fnv1a64:" and 16 lower-case hex digits: JSON numbers cannot hold 64 bits.
 std::string mesh_hash_text(std::uint64_t hash);
+// Whether `text` has mesh_hash_text's form, 'fnv1a64:<16 hex digits>' (lower case).
+bool is_mesh_hash_text(const std::string& text);
 
 struct DocumentSelectStep {
   Region region;

@@ -32,4 +32,15 @@ struct BoundingBox {
 // Axis-aligned bounding box of the vertices (zero box for an empty mesh).
 BoundingBox bounding_box(const Positions& V);
 
+// The box of the shape: of the finite vertices that a face references (an
+// index out of range is skipped); of every finite vertex when no face
+// references one. An unreferenced vertex is not part of the surface and is
+// never moved: it does not count toward the mesh's size, and so neither
+// toward the unit guess (guess_model_unit), the deformer's unit-size copy,
+// the twist and move limits (limits.h) or the default direction
+// (longest_axis). spothead plus one unused `v 10 10 10` was guessed in
+// centimetres, its pattern 100 times too small. MeshReport::bbox is this box.
+BoundingBox shape_bounding_box(const Positions& V, const Triangles& F);
+inline BoundingBox shape_bounding_box(const Mesh& mesh) { return shape_bounding_box(mesh.V, mesh.F); }
+
 }  // namespace aniso

@@ -26,6 +26,10 @@ enum class ProblemKind {
   UnreferencedVertex,       // element = vertex used by no face (a warning)
 };
 const char* problem_kind_name(ProblemKind kind);
+constexpr int kProblemKinds = static_cast<int>(ProblemKind::UnreferencedVertex) + 1;
+// Of each kind, the problems with the lowest elements kept with their
+// message; all are counted (MeshReport::problem_counts).
+constexpr std::size_t kMaxProblemsKept = 1000;
 
 struct Problem {
   ProblemKind kind;
@@ -48,8 +52,13 @@ struct MeshReport {
   int non_manifold_vertices = 0;
   int non_finite_vertices = 0;
   int unreferenced_vertices = 0;
-  BoundingBox bbox;               // over finite vertices
-  std::vector<Problem> problems;  // every problem, in element order per kind
+  BoundingBox bbox;               // shape_bounding_box: finite vertices a face references
+  // In element order per kind: the first kMaxProblemsKept of each kind (the
+  // counts above and problem_counts say how many there are).
+  std::vector<Problem> problems;
+  std::array<int, kProblemKinds> problem_counts{};  // every problem, by kind (index: ProblemKind)
+  int problem_count() const;
+  int count_of(ProblemKind kind) const { return problem_counts[static_cast<int>(kind)]; }
 
   // No problem that makes solving impossible: not empty, all coordinates finite
   // and within limits.h kMaxCoordinate, all indices in range. (Zero-area triangles, non-manifold elements and flipped
@@ -80,6 +89,15 @@ Mesh weld_vertices(const Mesh& mesh, double tolerance = 0.0,
 // true when no two faces share a vertex and there is more than one face:
 // an STL-style soup that welding should repair.
 bool is_triangle_soup(const Mesh& mesh);
+
+// A triangle soup (is_triangle_soup) welded by exact position, with a note
+// saying so ("the file is a triangle soup (no shared vertices): welded by
+// exact position, 4962 -> 829 vertices"); any other mesh is left as it is.
+// Returns whether it welded. The one rule: the Session welds every mesh it
+// adopts so (the CLI's deform and replay, the browser), and `anisoform info`
+// reports the mesh so welded (it reported the soup's 4962 vertices and 1654
+// components while deform edited 829 vertices in one piece).
+bool weld_if_triangle_soup(Mesh& mesh, std::vector<std::string>& notes);
 
 // Triangulates one polygon (corner indices into V, in order) by ear clipping in
 // its best-fit plane (Newell normal); works for concave polygons and for

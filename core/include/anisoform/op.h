@@ -126,15 +126,17 @@ DeformRequest resolve_edit(const DeformOp& edit, const Positions& rest, const Bo
 // selected vertex pinned.
 std::string unchanged_reason(const DeformRequest& resolved, const std::string& selection = "the selection");
 
-// A flattening's default direction: longest_axis of the positions it flattens.
-SessionFlatten resolve_flatten(const SessionFlatten& request, const Positions& positions);
+// A flattening's default direction: longest_axis of the positions it flattens
+// (their shape_bounding_box, mesh.h).
+SessionFlatten resolve_flatten(const SessionFlatten& request, const Positions& positions, const Triangles& faces);
 
 // ---- results -> JSON (the keys the JS API returns) -------------------------
 
 // {vertices, triangles, components, boundaryLoops, edgeManifold, vertexManifold,
 //  consistentlyOriented, degenerateTriangles, duplicateFaces, unreferencedVertices,
 //  bbox: {min, max}, unitGuess: {name, mmPerUnit} (guess_model_unit),
-//  problems: [{kind, element, message}], notes}
+//  problems: [{kind, element, message}] (the first kMaxProblemsKept of each kind),
+//  problemCounts: {kind: how many, for each kind found}, notes}
 Json to_json(const SessionMeshInfo& info);
 // {selected, iterations, energy, energyHistory, converged, directionsFilled,
 //  inverted, factorizations, precomputeMs, solveMs, ms}

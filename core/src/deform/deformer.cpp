@@ -270,13 +270,29 @@ double unit_scale(double diagonal) {
   return diagonal > 0.0 && std::isfinite(diagonal) ? std::ldexp(1.0, std::ilogb(diagonal)) : 1.0;
 }
 
+// The point the unit-size copy is centred on: the bounding box's centre,
+// rounded to a multiple of `scale` (a power of two). A mesh about the origin
+// keeps the origin (its solve is unchanged); a mesh far from it is brought
+// within 1.5 units of it, where round-off is that of any unit-size mesh
+// (spot scaled by 1e-4 and moved by 1e6 was solved at 2^33 units from the
+// origin: its coordinates had 20 bits fewer below the mesh's size, the solve
+// stopped at its iteration cap, 1.2e-3 of the size off). The subtraction is
+// exact there (both terms are multiples of the smaller one's unit in the
+// last place and the difference is small), so is adding it back.
+Eigen::Vector3d unit_origin(const BoundingBox& box, double scale) {
+  const Eigen::Vector3d centre = 0.5 * box.min + 0.5 * box.max;  // no overflow near the coordinate bound
+  return Eigen::Vector3d((centre / scale).array().round() * scale);
+}
+
 }  // namespace
 
 Deformer::Deformer(Mesh rest, std::shared_ptr<LaplacianPatterns> patterns)
     : rest_(std::move(rest)), patterns_(std::move(patterns)) {
   require_solvable(rest_);  // also bounds the coordinates (limits.h), so the diagonal is finite
-  diagonal_ = bounding_box(rest_.V).diagonal();
+  const BoundingBox box = shape_bounding_box(rest_);
+  diagonal_ = box.diagonal();
   scale_ = unit_scale(diagonal_);
+  origin_ = unit_origin(box, scale_);
 }
 
 void Deformer::prepare() {
@@ -289,7 +305,7 @@ void Deformer::prepare() {
   for (int k = 0; k < n; ++k) rank[order[k]] = k;
   Mesh unit;
   unit.V.resize(n, 3);
-  for (int k = 0; k < n; ++k) unit.V.row(k) = rest_.V.row(order[k]) / scale_;
+  for (int k = 0; k < n; ++k) unit.V.row(k) = (rest_.V.row(order[k]) - origin_.transpose()) / scale_;
   // The faces in the order of their lowest (renumbered) vertex, so that the per-triangle
   // passes (targets, weights) read and write nearby vertices too. A counting sort on that
   // vertex, stable: a comparison sort took 4 % of a 200k mesh's first-edit set-up in WASM.
@@ -445,7 +461,7 @@ double Deformer::prepare_step() {
       workspace_->inversions.build_adjacency(rest_);
       DirectionSource along_longest;
       along_longest.kind = DirectionSource::Kind::Global;
-      along_longest.vector = longest_axis(bounding_box(rest_.V));
+      along_longest.vector = longest_axis(shape_bounding_box(rest_));
       const SideFrames frames = side_frames(workspace_->targets, along_longest);
       iterations->warm_up(*solvers_.at(pins), frames.frames.u, frames.frames.v);
     } catch (const std::bad_alloc&) {
@@ -473,7 +489,7 @@ DeformResult Deformer::deform(const DeformRequest& request) {
   // no overflow in squared areas) in its numbering, then scale lengths and
   // energies back and number the vertices as given.
   DeformRequest unit_request = renumbered(request, rank_);
-  unit_request.transform.twist_origin /= scale_;
+  unit_request.transform.twist_origin = (unit_request.transform.twist_origin - origin_) / scale_;
   unit_request.transform.twist_degrees_per_unit *= scale_;
   unit_request.handle_offset /= scale_;
   DeformResult result;
@@ -493,6 +509,10 @@ DeformResult Deformer::deform(const DeformRequest& request) {
   result.V.resize(n, 3);
   for (int k = 0; k < n; ++k) result.V.row(order_[k]) = solved.row(k);
   result.V *= scale_;
+  result.V.rowwise() += origin_.transpose();
+  // Pins are held at rest as given, to the bit (the way back rounds a
+  // coordinate far from origin_ only; a handle's offset is a length, scaled).
+  for (const int p : request.pins) result.V.row(p) = rest_.V.row(p);
   // Energies are sums of squares, but AnARAP's per fan is evaluated expanded
   // (|e'|^2 - 2 tr(R S) + |T e|^2), which round-off takes below 0 at a
   // perfect fit (-4.4e-17 on spot unchanged): reported as 0. (A NaN stays

@@ -206,7 +206,7 @@ PrincipalCurvature principal_curvature_in(const Mesh& mesh, const Positions& nor
 void refuse_without_principal_directions(const Mesh& mesh, const PrincipalCurvature& curvature) {
   const Eigen::Index n = curvature.k_max.size();
   if (n == 0) return;
-  const double size = bounding_box(mesh.V).diagonal();
+  const double size = shape_bounding_box(mesh).diagonal();
   double largest_gap = 0.0;
   for (Eigen::Index i = 0; i < n; ++i) {
     const double gap = curvature.k_max[i] - curvature.k_min[i];

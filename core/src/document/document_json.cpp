@@ -77,7 +77,17 @@ DocumentOp op_entry_from_json(const Json& value, const std::string& where) {
   if (has(value, "label")) op.label = text_field(value["label"], named + ".label");
   if (has(value, "enabled")) op.enabled = flag(value["enabled"], named + ".enabled");
   op.region = non_empty_text(member(value, "region", named + ".region"), named + ".region");
-  op.edit = inside_document(named, [&] { return deform_op_from_json(member(value, "op", named + ".op")); });
+  const Json& edit = member(value, "op", named + ".op");
+  // A document holds resolved ops (resolve_for_document): a screen drag is
+  // stored as the global vector it gave, never as the drag (which needs the
+  // camera of the moment). Said so, rather than "direction.camera is missing".
+  if (edit.is_object() && has(edit, "direction") && edit["direction"].is_object() &&
+      has(edit["direction"], "type") && edit["direction"]["type"] == "screen") {
+    refuse(named + ".op.direction",
+           "is a screen drag, which a document does not store: store the global vector it gives, "
+           "{\"type\": \"global\", \"vector\": [x, y, z]} (as Session.resolveOp writes it)");
+  }
+  op.edit = inside_document(named, [&] { return deform_op_from_json(edit); });
   return op;
 }
 
@@ -105,6 +115,11 @@ EditDocument document_from_json(const Json& document) {
   out.triangles =
       integer_at_least(member(mesh, "triangles", "document.mesh.triangles"), 0, "document.mesh.triangles");
   out.mesh_hash = text_field(member(mesh, "hash", "document.mesh.hash"), "document.mesh.hash");
+  // Its form, mesh_hash_text's: a malformed hash is the document's fault, not another mesh.
+  if (!is_mesh_hash_text(out.mesh_hash)) {
+    refuse("document.mesh.hash", "must be 'fnv1a64:<16 hex digits>' (as mesh_hash_text writes it), got " +
+                                     describe(mesh["hash"]));
+  }
 
   std::set<std::string> region_names;
   const Json& regions = member(document, "regions", "document.regions");

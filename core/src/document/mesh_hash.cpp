@@ -1,5 +1,6 @@
 // mesh_hash (document.h): FNV-1a 64 over explicit little-endian bytes, so
 // the number does not depend on the host's byte order or int width.
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 
@@ -36,6 +37,13 @@ std::uint64_t mesh_hash(const Positions& V, const Triangles& F) {
     for (int k = 0; k < 3; ++k) hash_bytes_le(hash, static_cast<std::uint32_t>(F(t, k)), 4);
   }
   return hash;
+}
+
+bool is_mesh_hash_text(const std::string& text) {
+  const std::string prefix = "fnv1a64:";
+  if (text.size() != prefix.size() + 16 || text.compare(0, prefix.size(), prefix) != 0) return false;
+  return std::all_of(text.begin() + static_cast<std::ptrdiff_t>(prefix.size()), text.end(),
+                     [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
 }
 
 std::string mesh_hash_text(std::uint64_t hash) {

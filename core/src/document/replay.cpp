@@ -54,6 +54,15 @@ void check_document(const EditDocument& document, const Session& session) {
                                  " triangles): saved edits replay only on the mesh they were made on; open them "
                                  "with '" + document.mesh_name + "'");
   }
+  // The same mesh (its hash matches), but counts the document states otherwise: it was edited by hand.
+  const auto check_count = [&](const char* field, int stated, int has, const char* what) {
+    if (stated == has) return;
+    fail(ErrorCode::BadMesh, std::string(field) + " is " + std::to_string(stated) + ", but the loaded mesh, whose hash " +
+                                 loaded_hash + " is the document's, has " + std::to_string(has) + " " + what +
+                                 ": the document's counts do not describe its mesh");
+  };
+  check_count("document.mesh.vertices", document.vertices, rest.num_vertices(), "vertices");
+  check_count("document.mesh.triangles", document.triangles, rest.num_triangles(), "triangles");
   const Mesh loaded{session.loaded_positions(), rest.F};
   for (std::size_t i = 0; i < document.regions.size(); ++i) {
     const DocumentRegion& region = document.regions[i];
@@ -63,7 +72,7 @@ void check_document(const EditDocument& document, const Session& session) {
                            [&] { region_weights(loaded, region.steps[k].region); });
     }
   }
-  const double diagonal = bounding_box(loaded.V).diagonal();
+  const double diagonal = shape_bounding_box(loaded).diagonal();
   for (std::size_t i = 0; i < document.ops.size(); ++i) {
     const DocumentOp& op = document.ops[i];
     naming_document_part(document_op_name(document, i), [&] {

@@ -4,6 +4,7 @@
 // separately; the reader welds them by exact position into an indexed mesh and
 // keeps every triangle, including those welding leaves with a repeated corner
 // (check_mesh reports them).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -23,12 +24,25 @@ constexpr std::size_t kHeaderBytes = 80;
 constexpr std::size_t kPreambleBytes = 84;   // header + triangle count
 constexpr std::size_t kTriangleBytes = 50;   // normal, 3 corners, attribute
 
-// ASCII STL starts with "solid" and its first bytes are all text; a binary
-// header may start with "solid" but is followed by binary floats.
+// An ASCII STL keyword, in any case: exporters write `SOLID`, `FACET`,
+// `VERTEX` too (as many readers take them, so do we; such a file was read as
+// binary and refused as "truncated: its header declares 774909216
+// triangles").
+bool is_keyword(std::string_view token, std::string_view keyword) {
+  if (token.size() != keyword.size()) return false;
+  for (std::size_t k = 0; k < token.size(); ++k) {
+    const char c = token[k];
+    if ((c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c) != keyword[k]) return false;
+  }
+  return true;
+}
+
+// ASCII STL starts with "solid" (any case) and its first bytes are all text;
+// a binary header may start with "solid" but is followed by binary floats.
 bool looks_like_ascii(const char* data, std::size_t size) {
   std::size_t i = 0;
   while (i < size && (is_blank(data[i]) || data[i] == '\n')) ++i;
-  if (std::string_view(data + i, std::min<std::size_t>(5, size - i)) != "solid") return false;
+  if (!is_keyword(std::string_view(data + i, std::min<std::size_t>(5, size - i)), "solid")) return false;
   const std::size_t probe = std::min<std::size_t>(size, 512);
   for (std::size_t k = 0; k < probe; ++k) {
     const unsigned char c = static_cast<unsigned char>(data[k]);
@@ -97,13 +111,13 @@ class AsciiStlParser {
         report.notes.push_back("the ASCII STL has no closing 'endsolid' line");
         break;
       }
-      if (token == "facet") {
+      if (is_keyword(token, "facet")) {
         read_facet();
-      } else if (token == "endsolid") {
+      } else if (is_keyword(token, "endsolid")) {
         tokens_.skip_rest_of_line();
         const std::string_view after = tokens_.next();
         if (after.empty()) break;
-        if (after != "solid") unexpected(after, "'solid' or the end of the file");
+        if (!is_keyword(after, "solid")) unexpected(after, "'solid' or the end of the file");
         tokens_.skip_rest_of_line();  // a further solid: its facets join the same mesh
       } else {
         unexpected(token, "'facet' or 'endsolid'");
@@ -122,7 +136,7 @@ class AsciiStlParser {
   }
   void expect(std::string_view keyword) {
     const std::string_view token = tokens_.next();
-    if (token != keyword) unexpected(token, "'" + std::string(keyword) + "'");
+    if (!is_keyword(token, keyword)) unexpected(token, "'" + std::string(keyword) + "'");
   }
   double number() {
     const std::string_view token = tokens_.next();
@@ -143,11 +157,11 @@ class AsciiStlParser {
       for (int k = 0; k < 3; ++k) soup_.push_back(number());
     }
     const std::string_view token = tokens_.next();
-    if (token == "vertex") {
+    if (is_keyword(token, "vertex")) {
       fail_file("facet " + std::to_string(facets_ + 1) + " has more than 3 vertices" +
                 at_line(tokens_.line()) + "; STL facets are triangles");
     }
-    if (token != "endloop") unexpected(token, "'endloop'");
+    if (!is_keyword(token, "endloop")) unexpected(token, "'endloop'");
     expect("endfacet");
     ++facets_;
   }
@@ -208,21 +222,66 @@ Eigen::Vector3d unit_normal(const Eigen::Vector3d& a, const Eigen::Vector3d& b, 
   return length > 0 && std::isfinite(length) ? Eigen::Vector3d(n / length) : Eigen::Vector3d::Zero();
 }
 
-// Binary STL stores 32-bit floats: a larger coordinate would be written as
-// inf. (ASCII STL and the other formats write doubles.)
-void require_float_range(const Mesh& mesh) {
+// Binary STL stores 32-bit floats. A larger coordinate would be written as
+// inf; and a mesh small for its distance from the origin loses its shape:
+// 32-bit floats near 1e6 are 0.0625 apart, so corners closer than that become
+// one point, which a reader welds (spot scaled by 1e-4 and moved by 1e6 was
+// written without a word and read back as 1 vertex). Refused when a face's
+// two distinct corners would become one, naming the face, the spacing and the
+// way out: what is written then keeps every edge (a mesh read from binary
+// STL writes back exactly). ASCII STL and the other formats write doubles.
+constexpr const char* kWriteDoublesInstead =
+    "write ASCII STL (the CLI's --ascii), OBJ, OFF or PLY instead, which keep 64-bit coordinates";
+
+std::string short_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", value);
+  return text;
+}
+
+void require_float32_keeps(const Mesh& mesh) {
+  double largest_used = 0.0;
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
     for (int k = 0; k < 3; ++k) {
       const Eigen::Index v = mesh.F(f, k);
       const double largest = mesh.V.row(v).cwiseAbs().maxCoeff();
+      largest_used = std::max(largest_used, largest);
       if (largest <= std::numeric_limits<float>::max()) continue;
       char text[32];
       std::snprintf(text, sizeof text, "%g", largest);
       fail(ErrorCode::BadMesh, "vertex " + std::to_string(v) + " has a coordinate of magnitude " + text +
-                                   ", beyond the 32-bit floats of binary STL (at most 3.4e38); "
-                                   "write ASCII STL, OBJ, OFF or PLY instead");
+                                   ", beyond the 32-bit floats of binary STL (at most 3.4e38); " +
+                                   kWriteDoublesInstead);
     }
   }
+  long long collapsed = 0;
+  Eigen::Index first_face = -1;
+  int first_a = 0, first_b = 0;
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    bool lost = false;
+    for (int k = 0; k < 3 && !lost; ++k) {
+      const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+      if (mesh.V.row(a) == mesh.V.row(b)) continue;  // one point already: kept as it is
+      if (mesh.V.row(a).cast<float>() != mesh.V.row(b).cast<float>()) continue;
+      lost = true;
+      if (first_face < 0) {
+        first_face = f;
+        first_a = a;
+        first_b = b;
+      }
+    }
+    collapsed += lost ? 1 : 0;
+  }
+  if (collapsed == 0) return;
+  const float at = static_cast<float>(largest_used);
+  const double spacing = static_cast<double>(std::nextafter(at, std::numeric_limits<float>::infinity())) - at;
+  fail(ErrorCode::BadMesh,
+       "binary STL stores 32-bit floats, which cannot keep this mesh's shape: near its largest coordinate, " +
+           short_number(largest_used) + ", they are " + short_number(spacing) + " apart, and vertices " +
+           std::to_string(first_a) + " and " + std::to_string(first_b) + " of face " + std::to_string(first_face) +
+           ", " + short_number((mesh.V.row(first_a) - mesh.V.row(first_b)).norm()) +
+           " apart, would become one point (" + std::to_string(collapsed) + " of " +
+           std::to_string(mesh.F.rows()) + " faces would lose a corner); " + kWriteDoublesInstead);
 }
 
 }  // namespace
@@ -246,7 +305,7 @@ ReadResult read_stl(const char* data, std::size_t size) {
 
 std::string write_stl(const Mesh& mesh, bool binary) {
   std::string out;
-  if (binary) require_float_range(mesh);
+  if (binary) require_float32_keeps(mesh);
   if (binary) {
     // The header must not start with "solid": some readers take that for ASCII.
     std::string header = "binary STL written by anisoform";

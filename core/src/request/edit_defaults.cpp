@@ -91,11 +91,11 @@ std::string unchanged_reason(const DeformRequest& resolved, const std::string& s
   return "every selected vertex is pinned: the mesh is left unchanged";
 }
 
-SessionFlatten resolve_flatten(const SessionFlatten& request, const Positions& positions) {
+SessionFlatten resolve_flatten(const SessionFlatten& request, const Positions& positions, const Triangles& faces) {
   SessionFlatten out = request;
   if (!out.direction_given) {
     out.directions = FlattenDirections();
-    out.directions.global = longest_axis(bounding_box(positions));
+    out.directions.global = longest_axis(shape_bounding_box(positions, faces));
     out.direction_given = true;
   }
   return out;

@@ -17,6 +17,10 @@ Json to_json(const SessionMeshInfo& info) {
   for (const Problem& p : r.problems) {
     problems.push_back({{"kind", problem_kind_name(p.kind)}, {"element", p.element}, {"message", p.message}});
   }
+  Json counts = Json::object();
+  for (int k = 0; k < kProblemKinds; ++k) {
+    if (r.problem_counts[k] > 0) counts[problem_kind_name(static_cast<ProblemKind>(k))] = r.problem_counts[k];
+  }
   const ModelUnitGuess unit = guess_model_unit(r.bbox);
   return {
       {"vertices", r.vertices},
@@ -32,6 +36,7 @@ Json to_json(const SessionMeshInfo& info) {
       {"bbox", {{"min", vector3_json(r.bbox.min)}, {"max", vector3_json(r.bbox.max)}}},
       {"unitGuess", {{"name", unit.name}, {"mmPerUnit", unit.mm_per_unit}}},
       {"problems", problems},
+      {"problemCounts", counts},
       {"notes", info.notes},
   };
 }

@@ -162,11 +162,9 @@ void Session::set_vertex_limit(int max_vertices, std::string why) {
 
 const SessionMeshInfo& Session::adopt_mesh(Mesh mesh, std::vector<std::string> notes, SurfaceAttributes attributes) {
   // A soup has no shared vertices, so no edit could spread over it: weld it,
-  // as the CLI does, and say so.
-  if (is_triangle_soup(mesh)) {
-    const int before = mesh.num_vertices();
-    const int faces_before = mesh.num_triangles();
-    mesh = weld_vertices(mesh);
+  // and say so (what `anisoform info` reports too).
+  const int faces_before = mesh.num_triangles();
+  if (weld_if_triangle_soup(mesh, notes)) {
     // Texture rows and material runs follow the faces: a face welding
     // collapsed shifts them. The vertices are others now.
     if (mesh.num_triangles() != faces_before) {
@@ -175,9 +173,6 @@ const SessionMeshInfo& Session::adopt_mesh(Mesh mesh, std::vector<std::string> n
     }
     attributes.vertex_properties.clear();
     attributes.vertex_colors.resize(0, 3);
-    notes.push_back("the file is a triangle soup (no shared vertices): welded by exact position, " +
-                    std::to_string(before) + " -> " + std::to_string(mesh.num_vertices()) +
-                    " vertices");
   }
   // Before the checks and the Laplacian: the refusal should come at once.
   if (vertex_limit_ > 0 && mesh.num_vertices() > vertex_limit_) {

@@ -96,7 +96,7 @@ SessionFlattenResult Session::flatten(const SessionFlatten& given) {
 
 SessionFlattenResult Session::flatten_once(const SessionFlatten& given) {
   require_mesh();
-  const SessionFlatten request = resolve_flatten(given, current_);
+  const SessionFlatten request = resolve_flatten(given, current_, rest().F);
   SessionFlattenState& state = *flatten_;
   std::vector<char> mask = patch_mask(weights_, request.use_selection);
 

@@ -31,7 +31,9 @@ export function describeProblems(info) {
   }
   for (const [kind, problems] of byKind) {
     const [one, many, noun] = KIND_WORDS[kind] ?? [kind, kind, 'element'];
-    lines.push(`${problems.length} ${problems.length === 1 ? one : many}${elementList(problems, noun)}.`);
+    // The core lists the first 1000 of a kind and counts them all (problemCounts).
+    const count = info.problemCounts?.[kind] ?? problems.length;
+    lines.push(`${count} ${count === 1 ? one : many}${elementList(problems, noun, count)}.`);
   }
   if (info.components > 1) lines.push(`${info.components} separate parts: each keeps its own place.`);
   const far = farFromOrigin(info.bbox);
@@ -40,7 +42,7 @@ export function describeProblems(info) {
   // says it (openSurface). As a notice it covered the top of every open
   // mesh's view, a third of a phone's in Flatten mode, until dismissed.
   if (lines.length === 0) return null;
-  return { message: lines.join(' '), details: problemDetails(info.problems ?? []) };
+  return { message: lines.join(' '), details: problemDetails(info.problems ?? [], info.problemCounts) };
 }
 
 /** The status bar's word on the surface: {text: ' · open', title: 'Open surface: 5 boundary loops'}, or none when closed. */
@@ -51,18 +53,19 @@ export function openSurface(info) {
 }
 
 // " (face 3)", " (faces 3, 17)", " (first: faces 3, 17, 40 …)", " (first at faces 3, 17, 40 …)".
-function elementList(problems, noun) {
+function elementList(problems, noun, count = problems.length) {
   const elements = problems.map((problem) => problem.element).filter((element) => element >= 0);
   if (elements.length === 0) return '';
   const shown = elements.slice(0, FIRST_ELEMENTS).join(', ');
   const name = elements.length === 1 ? noun : (PLURAL[noun] ?? `${noun}s`);
-  if (elements.length <= FIRST_ELEMENTS) return ` (${name} ${shown})`;
+  if (elements.length <= FIRST_ELEMENTS && count <= elements.length) return ` (${name} ${shown})`;
   return ` (first${name.startsWith('at ') ? ' ' : ': '}${name} ${shown} …)`;
 }
 
-function problemDetails(problems) {
+function problemDetails(problems, counts) {
   const details = problems.slice(0, MAX_DETAILS).map((problem) => sentence(problem.message));
-  if (problems.length > MAX_DETAILS) details.push(`… and ${problems.length - MAX_DETAILS} more.`);
+  const total = counts ? Object.values(counts).reduce((sum, count) => sum + count, 0) : problems.length;
+  if (total > details.length) details.push(`… and ${total - details.length} more.`);
   return details;
 }
 
