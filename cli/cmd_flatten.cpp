@@ -219,9 +219,17 @@ nlohmann::json result_json(const FlattenArguments& args, const FlattenPlan& plan
 }
 
 int run_flatten(const FlattenArguments& args) {
-  const FlattenPlan plan = plan_flatten(args);
+  FlattenPlan plan = plan_flatten(args);
   Session session;
   load_into_session(session, args.input);
+  // Without --mm-per-unit, the unit the core guesses from the mesh's size, as
+  // the app's pattern export takes it (info().unitGuess; guess_model_unit).
+  std::string unit_guess;
+  if (args.mm_per_unit.empty()) {
+    const ModelUnitGuess guess = guess_model_unit(session.info().report.bbox);
+    plan.mm_per_unit = guess.mm_per_unit;
+    unit_guess = guess.name;
+  }
   const Mesh& mesh = session.rest();
   std::vector<std::string> warnings = session.info().notes;
   if (session.info().report.unreferenced_vertices > 0) {
@@ -254,7 +262,17 @@ int run_flatten(const FlattenArguments& args) {
   }
   const std::string problem = flatten_problem(flattened.result.metrics);
   if (!problem.empty()) warnings.push_back(problem);
-  print_json(result_json(args, plan, direction, warnings, flattened.result));
+  if (plan.format != PatternFormat::Obj) {
+    std::string small = pattern_size_warning(make_pattern(flattened.patch, flattened.result), pattern_options);
+    if (!small.empty()) {
+      small += unit_guess.empty() ? " (--mm-per-unit)" : " (guessed from the mesh's size as " + unit_guess +
+                                                              "; give --mm-per-unit)";
+      warnings.push_back(small);
+    }
+  }
+  nlohmann::json result = result_json(args, plan, direction, warnings, flattened.result);
+  if (!unit_guess.empty()) result["unit_guess"] = unit_guess;  // mm_per_unit is the guess's
+  print_json(result);
   return kExitSuccess;
 }
 
@@ -269,7 +287,7 @@ constexpr const char* kFlattenHelp =
     "compression_error_mean, compression_error_max "
     "(|achieved along / su - 1| per triangle: area-weighted mean, max), cross_error_mean, "
     "cross_error_max (the same across, with sv), area_distortion_mean, iterations, converged, "
-    "energy, initialization, directions_filled, grainline, mm_per_unit, seconds, suggested_cuts "
+    "energy, initialization, directions_filled, grainline, mm_per_unit, unit_guess (when guessed), seconds, suggested_cuts "
     "(the regions that miss su or sv by too much, where a dart or a cut is needed; each: vertices, "
     "vertex (nearest the centroid), centroid, error_mean of max(|along/su - 1|, |across/sv - 1|), "
     "triangles; largest first), warnings.\n"
@@ -299,7 +317,9 @@ void add_flatten_options(CLI::App& command, FlattenArguments& args) {
                      "each piece along its mean flattened direction)")
       ->type_name("uniform");
   command.add_option("--mm-per-unit", args.mm_per_unit,
-                     "Millimetres per model unit for SVG/DXF, 0.001 to 1000000 (default 1)")
+                     "Millimetres per model unit for SVG/DXF, 0.001 to 1000000 (default: guessed from the mesh's "
+                     "largest side, as the app does: under 5 m (1000), under 500 cm (10), else mm (1); "
+                     "the output's unit_guess says which)")
       ->type_name("K");
   command.add_option("--iterations", args.iterations,
                      "Iteration cap of the ARAP iterations and the stretch refinement together, >= 1 (default " +

@@ -704,3 +704,61 @@ TEST_CASE("flatten CLI: pattern files, JSON keys and exit statuses", "[flatten][
     }
   }
 }
+
+TEST_CASE("flatten CLI: a pattern smaller than a millimetre keeps its shape, with a warning; the unit is guessed",
+          "[flatten][cli]") {
+  // Spothead at 1e-4 of its size, at the CLI's old default of 1 mm per unit:
+  // 0.0001 mm across, printed to 3 decimals, every outline point was
+  // "10.000 10.000", a pattern collapsed to a dot, exit 0 without a word.
+  // The app guesses the unit from the mesh's size (guess_model_unit): so does
+  // the CLI now without --mm-per-unit.
+  Mesh tiny = test::load("open/spothead.obj");
+  tiny.V *= 1e-4;
+  const std::string in = temp_file("spothead_tiny.obj");
+  write_mesh(in, tiny);
+  const auto distinct_points = [](const std::string& svg) {
+    std::vector<std::string> points;
+    const std::string start = "<path class=\"outline\" d=\"";
+    for (std::size_t at = svg.find(start); at != std::string::npos; at = svg.find(start, at + 1)) {
+      std::istringstream path(svg.substr(at + start.size(), svg.find('"', at + start.size()) - at - start.size()));
+      std::string command, x, y;
+      while (path >> command >> x >> y) points.push_back(x + " " + y);
+    }
+    const std::size_t all = points.size();
+    std::sort(points.begin(), points.end());
+    const auto distinct = static_cast<std::size_t>(std::unique(points.begin(), points.end()) - points.begin());
+    return std::make_pair(distinct, all);
+  };
+  const auto all_distinct = [&](const std::string& svg) {
+    const auto [distinct, all] = distinct_points(svg);
+    INFO(distinct << " distinct of " << all << " outline points");
+    CHECK(all > 20);  // spothead's neck: 32
+    CHECK(distinct == all);
+  };
+  const std::string out = temp_file("spothead_tiny.svg");
+  const std::vector<std::string> flatten{"flatten", in, out, "--compress", "0.8,1", "--direction", "global:0,1,0"};
+  std::vector<std::string> at_one = flatten;
+  at_one.insert(at_one.end(), {"--mm-per-unit", "1"});
+  const CliRun one = run_cli(at_one);
+  REQUIRE(one.exit_status == 0);
+  const nlohmann::json given = nlohmann::json::parse(one.out);
+  CHECK_THAT(given["warnings"].dump(), Catch::Contains("mm across at 1 mm per model unit (written with") &&
+                                           Catch::Contains("check the millimetres per unit (--mm-per-unit)"));
+  CHECK_FALSE(given.contains("unit_guess"));
+  all_distinct(test::slurp(out));
+  // Not given: metres (1000 mm per unit), as the app would export it.
+  const CliRun guessed = run_cli(flatten);
+  REQUIRE(guessed.exit_status == 0);
+  const nlohmann::json result = nlohmann::json::parse(guessed.out);
+  CHECK(result["unit_guess"] == "m");
+  CHECK(result["mm_per_unit"] == 1000.0);
+  CHECK_THAT(result["warnings"].dump(), Catch::Contains("guessed from the mesh's size as m; give --mm-per-unit"));
+  all_distinct(test::slurp(out));
+  // Spothead itself: a pattern of some 900 mm, no such warning, 3 decimals.
+  const std::string head = temp_file("spothead_m.svg");
+  const CliRun normal = run_cli({"flatten", test::mesh_path("open/spothead.obj"), head, "--compress", "0.8,1",
+                                 "--direction", "global:0,1,0"});
+  REQUIRE(normal.exit_status == 0);
+  CHECK(nlohmann::json::parse(normal.out)["warnings"].dump().find("mm across") == std::string::npos);
+  CHECK(test::slurp(head).find(".0000") == std::string::npos);
+}

@@ -46,6 +46,14 @@ struct PatternExportOptions {
 // positive finite number.
 std::string write_pattern_svg(const Pattern& pattern, const PatternExportOptions& options);
 
+// Under 1 mm across, a pattern is written with the decimals that keep four
+// significant digits across it (3 at 1 mm and above), and this says so: "the
+// pattern is 0.000148 mm across at 1 mm per model unit (written with 8
+// decimals): check the millimetres per unit"; "" for a pattern of 1 mm or
+// more. (Spothead at 1e-4 of its size, at 1 mm per unit, was written as
+// "10.000 10.000" at every point, without a word.)
+std::string pattern_size_warning(const Pattern& pattern, const PatternExportOptions& options);
+
 // The one rule for a pattern's scale, wherever it is given (the writers
 // below, the CLI's --mm-per-unit before it flattens): a finite number within
 // limits.h [kMinMmPerUnit, kMaxMmPerUnit]; Error(BadParameter) "millimetres

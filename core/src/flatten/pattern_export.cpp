@@ -53,11 +53,22 @@ namespace {
 
 // Millimetres to three decimals (micrometres): plenty for a cutter, and
 // independent of the C++ locale. Room for any double's digits (DBL_MAX
-// has 309): a coordinate is never cut short.
-std::string number(double value) {
+// has 309): a coordinate is never cut short. A pattern's coordinates take
+// pattern_decimals.
+std::string number(double value, int decimals = 3) {
   char text[400];
-  std::snprintf(text, sizeof text, "%.3f", value);
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
   return text;
+}
+
+// The decimals that keep four significant digits across a pattern under 1 mm
+// (three at 1 mm and above: micrometres). A pattern 0.0001 mm across was
+// written as "10.000 10.000" at every point: a dot.
+int pattern_decimals(const Box& box) {
+  const double extent = std::max(box.max.x() - box.min.x(), box.max.y() - box.min.y());
+  int decimals = 3;
+  for (double e = extent; e > 0.0 && e < 1.0 && decimals < 17; e *= 10.0) ++decimals;
+  return decimals;
 }
 
 Box piece_box(const PatternPiece& piece, double scale) {
@@ -165,6 +176,18 @@ Pattern make_pattern(const FlattenPatch& patch, const FlattenResult& result) {
   return pattern;
 }
 
+std::string pattern_size_warning(const Pattern& pattern, const PatternExportOptions& options) {
+  require_scale(options);
+  const Box box = pattern_box(pattern, options.mm_per_unit);
+  const double extent = std::max(box.max.x() - box.min.x(), box.max.y() - box.min.y());
+  if (!(extent < 1.0)) return "";
+  char text[160];
+  std::snprintf(text, sizeof text, "the pattern is %.3g mm across at %.6g mm per model unit", extent,
+                options.mm_per_unit);
+  return std::string(text) + " (written with " + std::to_string(pattern_decimals(box)) +
+         " decimals): check the millimetres per unit";
+}
+
 std::string write_pattern_svg(const Pattern& pattern, const PatternExportOptions& options) {
   require_scale(options);
   const double scale = options.mm_per_unit;
@@ -180,8 +203,9 @@ std::string write_pattern_svg(const Pattern& pattern, const PatternExportOptions
   const double width = std::max(box.max.x() - box.min.x(), note_width) + 2.0 * margin;
   const double height = box.max.y() - box.min.y() + 2.0 * margin + footer;
   // Pattern mm to SVG user units (mm), y pointing down.
-  const auto x = [&](double u) { return number(u - box.min.x() + margin); };
-  const auto y = [&](double v) { return number(box.max.y() - v + margin); };
+  const int decimals = pattern_decimals(box);
+  const auto x = [&](double u) { return number(u - box.min.x() + margin, decimals); };
+  const auto y = [&](double v) { return number(box.max.y() - v + margin, decimals); };
   const auto line = [&](const char* cls, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
     return "<line class=\"" + std::string(cls) + "\" x1=\"" + x(a.x()) + "\" y1=\"" + y(a.y()) +
            "\" x2=\"" + x(b.x()) + "\" y2=\"" + y(b.y()) + "\"/>\n";
@@ -241,9 +265,10 @@ std::string write_pattern_dxf(const Pattern& pattern, const PatternExportOptions
   const auto group = [&dxf](int code, const std::string& value) {
     dxf << code << "\n" << value << "\n";
   };
+  const int decimals = pattern_decimals(box);
   const auto point = [&](int code, const Eigen::Vector2d& p) {
-    group(code, number(p.x()));
-    group(code + 10, number(p.y()));
+    group(code, number(p.x(), decimals));
+    group(code + 10, number(p.y(), decimals));
     group(code + 20, number(0.0));
   };
 
