@@ -42,11 +42,14 @@ export interface MeshInfo {
   degenerateTriangles: number;
   duplicateFaces: number;
   unreferencedVertices: number;
+  /** Of the vertices the faces use (shape_bounding_box, mesh.h): an unused vertex does not count. */
   bbox: { min: Vec3; max: Vec3 };
   /** The unit the coordinates are most likely in (guess_model_unit, op.h): m, cm or mm. */
   unitGuess: { name: 'm' | 'cm' | 'mm'; mmPerUnit: number };
-  /** Problems the solver works through (the blocking ones make loading fail). */
+  /** Problems the solver works through (the blocking ones make loading fail): the first 1000 of each kind. */
   problems: MeshProblem[];
+  /** How many problems of each kind there are (kinds found only), listed in `problems` or not. */
+  problemCounts: Partial<Record<MeshProblem['kind'], number>>;
   /** What the reader and the session repaired (triangulated, welded...). */
   notes: string[];
 }
