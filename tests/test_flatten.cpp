@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "anisoform/error.h"
+#include "anisoform/op.h"
 #include "flatten/flatten_pipeline.h"
 #include "cli_runner.h"
 #include "figure_record.h"
@@ -431,10 +432,7 @@ TEST_CASE("flatten: L-BFGS reaches the plain iterations' energy in a fraction of
 TEST_CASE("flatten: with tolerance 0 the local/global stage stops at round-off, where a tolerance of 1e-11 does",
           "[flatten]") {
   const Mesh hemisphere = test::load("open/hemisphere.obj");
-  const Eigen::Vector3d extent = hemisphere.V.colwise().maxCoeff() - hemisphere.V.colwise().minCoeff();
-  Eigen::Index axis = 0;
-  extent.maxCoeff(&axis);
-  const ArapProblem problem(hemisphere, Eigen::Vector3d::Unit(axis), 0.8, 1.0);
+  const ArapProblem problem(hemisphere, longest_axis(bounding_box(hemisphere.V)), 0.8, 1.0);
   const auto& [patch, charts, targets, start] = problem;
   const ArapFlattening arap(patch, charts);
   for (const bool accelerate : {false, true}) {
@@ -465,10 +463,7 @@ TEST_CASE("flatten: with tolerance 0 the local/global stage stops at round-off, 
 TEST_CASE("flatten: where the fold guard cuts every step, L-BFGS ends no higher than the plain iterations",
           "[flatten]") {
   const Mesh hand = test::load("open/hand_lowres.obj");
-  const Eigen::Vector3d extent = hand.V.colwise().maxCoeff() - hand.V.colwise().minCoeff();
-  Eigen::Index axis = 0;
-  extent.maxCoeff(&axis);
-  const ArapProblem problem(hand, Eigen::Vector3d::Unit(axis), 0.8, 1.0);
+  const ArapProblem problem(hand, longest_axis(bounding_box(hand.V)), 0.8, 1.0);
   const auto& [patch, charts, targets, start] = problem;
   const ArapFlattening arap(patch, charts);
   ArapFlattenSettings settings;

@@ -7,11 +7,19 @@
 
 using namespace aniso;
 
+namespace {
+
+// Weight 1 on the vertices with x above `x`, 0 elsewhere.
+Eigen::VectorXd beyond_x(const Mesh& mesh, double x) {
+  return (mesh.V.col(0).array() > x).cast<double>().matrix();
+}
+
+}  // namespace
+
 TEST_CASE("gauge: unselected parts stay where they were", "[gauge]") {
   const Mesh mesh = test::load("closed/cat-low-resolution.obj");
-  Eigen::VectorXd w = Eigen::VectorXd::Zero(mesh.num_vertices());
   const double xmax = mesh.V.col(0).maxCoeff(), xmin = mesh.V.col(0).minCoeff();
-  for (int i = 0; i < mesh.num_vertices(); ++i) w[i] = mesh.V(i, 0) > xmin + 0.75 * (xmax - xmin) ? 1.0 : 0.0;
+  const Eigen::VectorXd w = beyond_x(mesh, xmin + 0.75 * (xmax - xmin));
   Deformer deformer(mesh);
   for (Method method : {Method::AnArap, Method::AnDefGrad}) {
     DeformRequest request = test::stretch_request(method, Eigen::Vector3d::UnitX(), 1.4);
@@ -35,8 +43,7 @@ TEST_CASE("gauge: each component of a multi-part mesh is solved and kept in plac
   const Mesh mesh = test::load("malformed/multi_component.obj");
   Deformer deformer(mesh);
   // Select the second part only (Blub, shifted +2 in x).
-  Eigen::VectorXd w(mesh.num_vertices());
-  for (int i = 0; i < mesh.num_vertices(); ++i) w[i] = mesh.V(i, 0) > 1.2 ? 1.0 : 0.0;
+  const Eigen::VectorXd w = beyond_x(mesh, 1.2);
   DeformRequest request = test::stretch_request(Method::AnArap, Eigen::Vector3d::UnitY(), 1.3);
   request.selection = w;
   const DeformResult r = deformer.deform(request);
@@ -71,10 +78,8 @@ TEST_CASE("gauge: a part wholly selected with part of its neighbour moves with i
   // Blub, held by nothing of its own, follows Spot's selected side out.
   const Mesh mesh = test::load("malformed/multi_component.obj");
   Deformer deformer(mesh);
-  Eigen::VectorXd w(mesh.num_vertices());
-  for (int i = 0; i < mesh.num_vertices(); ++i) w[i] = mesh.V(i, 0) > 0.1 ? 1.0 : 0.0;
   DeformRequest request = test::stretch_request(Method::AnDefGrad, Eigen::Vector3d::UnitX(), 1.5);
-  request.selection = w;
+  request.selection = beyond_x(mesh, 0.1);
   const DeformResult r = deformer.deform(request);
   double spot_side = -1e9, blub_from = 1e9, blub_moved = 0.0;
   for (int i = 0; i < mesh.num_vertices(); ++i) {

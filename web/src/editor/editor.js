@@ -45,7 +45,7 @@ import { PatternState } from './pattern-state.js';
 import { describeProblems } from './problem-summary.js';
 import { SelectionState } from './selection-state.js';
 import { toSolverOp } from './solver-op.js';
-import { badParameter } from '../shared/errors.js';
+import { badParameter, supersededLoadError } from '../shared/errors.js';
 
 /** How long the solver must be idle after a commit before it factorizes the new shape. */
 const PREPARE_AFTER_COMMIT_MS = 400;
@@ -188,7 +188,7 @@ export class Editor extends EventEmitter {
   load(source, name) {
     const request = ++this.#loadRequests;
     const run = () => {
-      if (request !== this.#loadRequests) throw Object.assign(new Error('A later load replaced this one.'), { code: 'cancelled' });
+      if (request !== this.#loadRequests) throw supersededLoadError();
       return this.#load(source, name);
     };
     const loading = this.#loadChain.then(run, run);

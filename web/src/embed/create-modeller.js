@@ -11,7 +11,7 @@ import { DragReadout } from '../interaction/drag-readout.js';
 import { installKeyboardShortcuts } from '../interaction/keyboard-shortcuts.js';
 import { Picker } from '../interaction/picker.js';
 import { PointerGestures } from '../interaction/pointer-gestures.js';
-import { badParameter } from '../shared/errors.js';
+import { badParameter, supersededLoadError } from '../shared/errors.js';
 import { Settings } from '../shared/settings.js';
 import { createTools } from '../tools/tool-registry.js';
 import { AxisGizmo } from '../viewer/axis-gizmo.js';
@@ -170,7 +170,6 @@ export function createModeller(container, options = {}) {
   // not loaded (the starting mesh, downloaded last, replaced the product
   // page's own load while both promises said the page's mesh was in).
   let meshRequests = 0;
-  const superseded = () => Object.assign(new Error('A later load replaced this one.'), { code: 'cancelled' });
   // The mesh download overlaps with compiling the WASM in the worker.
   const startingRequest = mesh === undefined ? 0 : ++meshRequests;
   const loadsBeforeStart = editor.loadsAsked;
@@ -241,7 +240,7 @@ export function createModeller(container, options = {}) {
     } catch (error) {
       throw reportError(error, 'Could not load the mesh');
     }
-    if (request !== meshRequests) throw superseded();
+    if (request !== meshRequests) throw supersededLoadError();
     return api.load(resolved.data, resolved.name);
   }
 
@@ -264,7 +263,7 @@ export function createModeller(container, options = {}) {
       if (error.meshFailed) throw error;
       throw reportError(error, 'Could not open the edits');
     }
-    if (request !== null && request !== meshRequests) throw superseded();
+    if (request !== null && request !== meshRequests) throw supersededLoadError();
     return resolved ? api.open(json, resolved.data, resolved.name) : api.open(json);
   }
 

@@ -11,3 +11,9 @@ export const CANCELLED_MESSAGE = 'Cancelled: the solve was stopped; the mesh and
 export function cancelledError() {
   return Object.assign(new Error(CANCELLED_MESSAGE), { code: 'cancelled' });
 }
+
+// What a load another one replaced rejects with (the last mesh asked for is
+// the one shown): no failure either.
+export function supersededLoadError() {
+  return Object.assign(new Error('A later load replaced this one.'), { code: 'cancelled' });
+}
