@@ -937,3 +937,36 @@ test("the package's styles keep to the modeller, and the element can be register
   expect(outcome.same).toBe(true);
   expect(pageErrors).toEqual([]);
 });
+
+test('the full UI in a narrow column of a wide page is laid out as on a phone: the view over a sheet of at most half the height', async ({ page }) => {
+  // The narrow layout followed the window (@media): a 400 px column on a
+  // 1280 px screen kept the 280 px panel beside a 20 px view.
+  await page.setViewportSize({ width: 1280, height: 900 });
+  const pageErrors = await openExample(page);
+  const boxes = await page.evaluate(async () => {
+    const layoutIn = async (width) => {
+      const host = Object.assign(document.createElement('div'), { style: `width: ${width}px; height: 640px` });
+      document.body.append(host);
+      const modeller = window.anisoformExample.createModeller(host, { ui: 'full', mesh: '../spool.off' });
+      await modeller.api.ready;
+      const box = (selector) => host.querySelector(selector).getBoundingClientRect().toJSON();
+      const result = { host: box('.app'), view: box('.viewport'), panel: box('.side-panel'),
+        toggle: getComputedStyle(host.querySelector('.sheet-toggle')).display };
+      modeller.dispose();
+      host.remove();
+      return result;
+    };
+    return { narrow: await layoutIn(400), wide: await layoutIn(1000) };
+  });
+  const { narrow, wide } = boxes;
+  expect(narrow.view.width).toBeCloseTo(narrow.host.width, 0);
+  expect(narrow.panel.top).toBeGreaterThanOrEqual(narrow.view.bottom - 1);
+  expect(narrow.panel.height).toBeLessThanOrEqual(narrow.host.height / 2 + 1);
+  expect(narrow.view.height).toBeGreaterThan(narrow.host.height / 3);
+  expect(narrow.toggle).not.toBe('none');
+  // A wide column keeps the panel beside the view.
+  expect(wide.panel.right).toBeLessThanOrEqual(wide.view.left + 1);
+  expect(wide.view.width).toBeGreaterThan(600);
+  expect(wide.toggle).toBe('none');
+  expect(pageErrors).toEqual([]);
+});

@@ -77,7 +77,7 @@ export function createModeller(container, options = {}) {
   const starting = editor.start().then(() => performance.mark('anisoform:solver-ready'));
 
   const layout = buildLayout(container, ui);
-  lifetime.defer(() => layout.root.remove());
+  lifetime.defer(() => layout.element.remove());
   const settings = new Settings();
   settings.values.display.materials = materials;
   const viewer = new Viewer(layout.viewport, lifetime);

@@ -2,7 +2,7 @@
 // modellers may share a page). 'full': the standalone site's layout (side
 // panel, viewport with messages and drop overlay, pattern pane, status bar;
 // styled by ui/styles.css). 'none': the viewport alone, styled inline so an
-// embedder needs no stylesheet.
+// embedder needs no stylesheet. `element` is what was added to the container.
 import { h } from '../ui/dom.js';
 
 export const UI_MODES = ['full', 'none'];
@@ -14,7 +14,7 @@ export function buildLayout(container, ui) {
       style: { position: 'relative', overflow: 'hidden', width: '100%', height: '100%' },
     });
     container.append(viewport);
-    return { root: viewport, viewport };
+    return { element: viewport, root: viewport, viewport };
   }
   const sidePanel = h('aside', { className: 'side-panel', 'aria-label': 'Tools and settings' },
     h('header', { className: 'brand' },
@@ -33,6 +33,11 @@ export function buildLayout(container, ui) {
   });
   const statusBar = h('footer', { className: 'status-bar', 'aria-label': 'Status' });
   const root = h('div', { className: 'app' }, sidePanel, viewport, patternPane, statusBar);
-  container.append(root);
-  return { root, viewport, sidePanel, dropOverlay, patternPane, statusBar };
+  // The narrow layout follows this frame's width, not the window's
+  // (narrow-layout.css): a 400 px container on a wide page is laid out as a
+  // phone, and the .app grid inside can change its columns (a container
+  // query styles the container's descendants only).
+  const frame = h('div', { className: 'app-frame' }, root);
+  container.append(frame);
+  return { element: frame, root, viewport, sidePanel, dropOverlay, patternPane, statusBar };
 }
