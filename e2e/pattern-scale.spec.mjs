@@ -69,5 +69,16 @@ test('the torso panel is guessed in metres, shown and exported at its real size,
   // The sheet is wide enough for the longest note line (0.6 em per character) plus its margins.
   const longest = Math.max(...centimetres.noteLines.map((line) => line.length));
   expect(centimetres.width).toBeGreaterThanOrEqual(0.6 * 4 * longest + 20 - 0.01);
+
+  // At a micrometre per unit the panel is under a millimetre: its size is
+  // said in significant digits (it said "0.00 mm × 0.00 mm").
+  await page.locator('#flatten-unit').selectOption('custom');
+  const perUnit = page.locator('#flatten-mmPerUnit');
+  await perUnit.fill('0.001');
+  await perUnit.press('Enter');
+  await expect(size).toContainText('1 unit = 0.001 mm');
+  const tinyWidth = Number(await size.getAttribute('data-width-mm'));
+  expect(tinyWidth).toBeCloseTo(shown[0] / 1e6, 9);
+  await expect(size).toContainText(`${Number(tinyWidth.toPrecision(3))} mm ×`);
   expect(pageErrors).toEqual([]);
 });

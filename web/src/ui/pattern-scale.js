@@ -83,7 +83,10 @@ export function patternScale({ editor, settings }) {
 function formatMm(mm) {
   if (mm >= 1000) return `${(mm / 1000).toFixed(2)} m`;
   if (mm >= 100) return `${(mm / 10).toFixed(1)} cm`;
-  return `${mm.toFixed(mm >= 10 ? 1 : 2)} mm`;
+  if (mm >= 1) return `${mm.toFixed(mm >= 10 ? 1 : 2)} mm`;
+  // Three significant digits under a millimetre, as the files are written
+  // (pattern_export.h): a pattern read at a wrong unit said "0.00 mm".
+  return `${formatNumber(mm)} mm`;
 }
 
 function formatNumber(value) {
