@@ -584,10 +584,10 @@ TEST_CASE("fig. 9: elongating the spool along x, AnDefGrad keeps the rims best, 
       // Where the surface contains the direction, the elongation is su.
       CHECK(new_core / core == Approx(1.5).epsilon(0.03));
     }
-    // AnARAP's whole height overshoots (x1.96): its targets are AnDefGrad's,
+    // AnARAP's whole height overshoots (x2.01): its targets are AnDefGrad's,
     // su = 1.5 along the direction projected on each face (paper eq. 5-6),
-    // also on the flanges and the top face, which are nearly perpendicular to
-    // x: their meridians are asked to grow by half with their circumferences
+    // also on the flanges' walls, nearly perpendicular to x (the faces square
+    // to x are kept: Frames::along_normal): their meridians are asked to grow by half with their circumferences
     // kept, and ARAP, free to rotate its fans, turns them up into cones (the
     // gradient domain cannot rotate them, and widens them instead). Measured
     // and explained in FIGURES-measured.md; the paper claims nothing about the

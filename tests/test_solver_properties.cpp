@@ -400,3 +400,32 @@ TEST_CASE("solvers: a new selection does not refactor", "[solver][method9]") {
     CHECK(deformer.deform(request).factorizations == 1);
   }
 }
+
+TEST_CASE("solvers: a box stretched or thickened along an axis keeps its faces square to the axis (AnARAP, AnDefGrad)",
+          "[solver][method9]") {
+  // The top face's normal is the direction: it gives the face no direction
+  // along it. Filled from a neighbour (the side walls' direction, normal to
+  // the top again) it fell back to a fixed world axis, and the top was
+  // stretched along that: ×1.5 along z made the box 1.28 wide in x, a capped
+  // cylinder elliptical. Square to the direction, a face is scaled across it
+  // only (Frames::along_normal), so the box is exactly diag(.., su, ..).
+  const Mesh mesh = test::load("open/cube_no_bottom.obj");
+  Deformer deformer(mesh);
+  const Eigen::RowVector3d rest_centre = mesh.V.colwise().mean();
+  for (int axis = 0; axis < 3; ++axis) {
+    for (const auto& [su, sv] : {std::pair{1.5, 1.0}, std::pair{1.0, 1.3}}) {
+      for (Method method : {Method::AnArap, Method::AnDefGrad}) {
+        DeformRequest request = test::stretch_request(method, Eigen::Vector3d::Unit(axis), su, sv);
+        request.tolerance = 1e-12;
+        const DeformResult result = deformer.deform(request);
+        Eigen::Vector3d factor = Eigen::Vector3d::Constant(sv);
+        factor[axis] = su;
+        const Positions wanted = (mesh.V.rowwise() - rest_centre) * factor.asDiagonal();
+        const Positions got = result.V.rowwise() - result.V.colwise().mean();
+        INFO("axis " << axis << " su " << su << " sv " << sv << " " << method_name(method));
+        CHECK(result.directions_filled > 0);
+        CHECK((got - wanted).rowwise().norm().maxCoeff() < 1e-6 * diagonal(mesh.V));
+      }
+    }
+  }
+}

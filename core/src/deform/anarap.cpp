@@ -398,8 +398,14 @@ struct SideShare {
   double w;
   const Eigen::Vector3d& e;
   Eigen::Vector3d u, v;
-  Eigen::Vector3d along() const { return (w * u.dot(e)) * u; }
-  Eigen::Vector3d across() const { return (w * v.dot(e)) * v; }
+  bool across_only = false;  // its triangle is square to the direction (Frames::along_normal)
+  Eigen::Vector3d along() const {
+    return across_only ? Eigen::Vector3d::Zero() : Eigen::Vector3d((w * u.dot(e)) * u);
+  }
+  // Across only: the edge's whole in-plane part (v's and u's), scaled by sv.
+  Eigen::Vector3d across() const {
+    return across_only ? Eigen::Vector3d(w * (v.dot(e) * v + u.dot(e) * u)) : Eigen::Vector3d((w * v.dot(e)) * v);
+  }
   // v turned to `orientation` (oriented_frame, element_targets.cpp).
   Eigen::Vector3d sheared(const Eigen::Vector3d& orientation) const {
     const Eigen::Vector3d oriented = v.dot(orientation) < 0.0 ? Eigen::Vector3d(-v) : v;
@@ -411,16 +417,17 @@ struct SideShare {
 
 template <typename Visit>
 void AnArapSolver::visit_side_shares(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight,
-                                     Visit&& visit) const {
+                                     Visit&& visit, const std::vector<char>* along_normal) const {
   // Directly, not through a 3x3 map per side as set_targets takes them: no
   // map or polar part per side (a slider's first value cost 5x a later one
   // through set_targets with unit steps).
   for (int s = 0; s < 3 * rest_.num_triangles(); ++s) {
     if (side_weight[s] == 0.0) continue;
     const Eigen::Vector3d a = u.row(s / 3).transpose(), b = v.row(s / 3).transpose();
+    const bool across_only = along_normal && (*along_normal)[static_cast<std::size_t>(s / 3)];
     if (elements_ == ArapElements::SpokesAndRims) {
       const Eigen::Vector3d e = side_edge_.row(s).transpose();
-      visit(s, SideShare{s, side_weight[s], e, a, b});
+      visit(s, SideShare{s, side_weight[s], e, a, b, across_only});
       continue;
     }
     // A spoke's map is the mean of its sides' (set_targets): each side adds
@@ -428,7 +435,7 @@ void AnArapSolver::visit_side_shares(const Positions& u, const Positions& v, con
     for (int k = side_spoke_offsets_[s]; k < side_spoke_offsets_[s + 1]; ++k) {
       const int q = side_spokes_[k];
       const Eigen::Vector3d e = spoke_share_[q] * spoke_edge_.row(q).transpose();
-      visit(q, SideShare{s, side_weight[s], e, a, b});
+      visit(q, SideShare{s, side_weight[s], e, a, b, across_only});
     }
   }
 }
@@ -446,13 +453,16 @@ Positions& AnArapSolver::rest_targets() {
   return target;
 }
 
-void AnArapSolver::set_scale_steps(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight) {
+void AnArapSolver::set_scale_steps(const Frames& frames, const Eigen::VectorXd& side_weight) {
   Positions& along = zeroed_step(scale_step_[0]);
   Positions& across = zeroed_step(scale_step_[1]);
-  visit_side_shares(u, v, side_weight, [&](int row, const SideShare& side) {
-    along.row(row) += side.along().transpose();
-    across.row(row) += side.across().transpose();
-  });
+  visit_side_shares(
+      frames.u, frames.v, side_weight,
+      [&](int row, const SideShare& side) {
+        along.row(row) += side.along().transpose();
+        across.row(row) += side.across().transpose();
+      },
+      &frames.along_normal);
 }
 
 void AnArapSolver::set_scale_targets(double su, double sv) {
@@ -463,12 +473,15 @@ void AnArapSolver::set_scale_targets(double su, double sv) {
   scale_targets_set();
 }
 
-void AnArapSolver::set_scale_targets(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight,
-                                     double su, double sv) {
+void AnArapSolver::set_scale_targets(const Frames& frames, const Eigen::VectorXd& side_weight, double su,
+                                     double sv) {
   Positions& target = rest_targets();
-  visit_side_shares(u, v, side_weight, [&target, su, sv](int row, const SideShare& side) {
-    target.row(row) += ((su - 1.0) * side.along() + (sv - 1.0) * side.across()).transpose();
-  });
+  visit_side_shares(
+      frames.u, frames.v, side_weight,
+      [&target, su, sv](int row, const SideShare& side) {
+        target.row(row) += ((su - 1.0) * side.along() + (sv - 1.0) * side.across()).transpose();
+      },
+      &frames.along_normal);
   scale_targets_set();
 }
 
@@ -562,12 +575,12 @@ void AnArapSolver::reset_rotations() {
   rotation_.assign(n_, Eigen::Quaterniond::Identity());
 }
 
-void AnArapSolver::warm_up(const LaplacianSolver& solver, const Positions& u, const Positions& v) {
+void AnArapSolver::warm_up(const LaplacianSolver& solver, const Frames& frames) {
   const Eigen::VectorXd every_side = Eigen::VectorXd::Ones(3 * rest_.num_triangles());
-  set_scale_targets(u, v, every_side, 1.0, 1.0);  // adds 0 * (the steps) to the rest edges
+  set_scale_targets(frames, every_side, 1.0, 1.0);  // adds 0 * (the steps) to the rest edges
   // The steps are zeroed first: at 200k vertices 58 MB, whose page faults
   // were a third of a first preview.
-  set_scale_steps(u, v, every_side);
+  set_scale_steps(frames, every_side);
   local_step(rest_.V);
   Positions b, V = rest_.V;
   global_rhs(b);

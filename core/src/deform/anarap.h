@@ -73,15 +73,17 @@ class AnArapSolver {
   // maps e to e + w (su - 1) u (u.e) + w (sv - 1) v (v.e) (transforms.h; the
   // normal's sn moves no edge lying in the surface, validate_request refuses
   // it), so per spoke (or side) t = e + (su - 1) U + (sv - 1) V.
+  // (A triangle square to the direction, Frames::along_normal, adds its
+  // whole in-plane edge to V and none to U: it is scaled by sv only.)
   // set_scale_steps keeps U and V, from each triangle's u and v (#F by 3) and
   // each side's weight (3 #F, side_weights); set_scale_targets(su, sv) then
   // sets the targets of any su, sv from the two: one pass over the spokes.
   // For frames used for one value only, set_scale_targets(u, v, weight, su,
   // sv) sets the same targets without keeping U and V: a copy of the rest
   // edges and a pass over the sides of positive weight.
-  void set_scale_steps(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight);
+  void set_scale_steps(const Frames& frames, const Eigen::VectorXd& side_weight);
   void set_scale_targets(double su, double sv);
-  void set_scale_targets(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight, double su,
+  void set_scale_targets(const Frames& frames, const Eigen::VectorXd& side_weight, double su,
                          double sv);
   // Shear-only targets (TransformSpec::shears_only) are linear in the shear
   // h: a side maps e to e + w h u (v.e), v turned to `orientation`
@@ -116,7 +118,7 @@ class AnArapSolver {
   // background preparation, so that a drag's first preview finds its memory
   // touched and, in WASM, its code compiled by the optimizing tier
   // (Deformer::prepare_step).
-  void warm_up(const LaplacianSolver& solver, const Positions& u, const Positions& v);
+  void warm_up(const LaplacianSolver& solver, const Frames& frames);
 
   // Fits the rotations to `V` and returns the energy E(V, R) with the new R.
   double local_step(const Positions& V);
@@ -174,10 +176,11 @@ class AnArapSolver {
   // Calls visit(row, side) for each side of positive weight and each target
   // row it adds to (its spokes, or itself with rims): `side` gives the
   // side's steps (w (u.e) u, w (v.e) v, w (v.e) u) for its share e of the
-  // row's rest edge.
+  // row's rest edge. With `along_normal` (Frames::along_normal) a side of a
+  // triangle square to the direction says so (SideShare::across_only).
   template <typename Visit>
   void visit_side_shares(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight,
-                         Visit&& visit) const;
+                         Visit&& visit, const std::vector<char>* along_normal = nullptr) const;
   // `step` zeroed in the layout of the targets; the targets set to the rest edges.
   Positions& zeroed_step(Positions& step) const;
   Positions& rest_targets();

@@ -463,7 +463,7 @@ double Deformer::prepare_step() {
       along_longest.kind = DirectionSource::Kind::Global;
       along_longest.vector = longest_axis(shape_bounding_box(rest_));
       const SideFrames frames = side_frames(workspace_->targets, along_longest);
-      iterations->warm_up(*solvers_.at(pins), frames.frames.u, frames.frames.v);
+      iterations->warm_up(*solvers_.at(pins), frames.frames);
     } catch (const std::bad_alloc&) {
       iterations->reset_rotations();
     }
@@ -648,7 +648,7 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
                                kept->weights.size() == w.size() && kept->weights == w;
       if ((scale_preview || shear_preview) && !screen && !steps_valid) {
         if (scale_preview) {
-          iterations->set_scale_steps(frames.frames.u, frames.frames.v, side_weights(unit_, w));
+          iterations->set_scale_steps(frames.frames, side_weights(unit_, w));
         } else {
           iterations->set_shear_steps(frames.frames.u, frames.frames.v, side_weights(unit_, w),
                                       shear_orientation(unit_, request.transform, w));
@@ -657,7 +657,7 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
       }
       const TransformSpec& spec = request.transform;
       if (scale_preview && screen) {
-        iterations->set_scale_targets(frames.frames.u, frames.frames.v, side_weights(unit_, w), spec.su, spec.sv);
+        iterations->set_scale_targets(frames.frames, side_weights(unit_, w), spec.su, spec.sv);
       } else if (scale_preview) {
         iterations->set_scale_targets(spec.su, spec.sv);
       } else if (shear_preview && screen) {

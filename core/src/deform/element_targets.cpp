@@ -139,6 +139,13 @@ Amounts amounts_at(const TransformSpec& spec, const Eigen::VectorXd& su, const E
   return {su[i], sv[i]};
 }
 
+// An element square to the direction is scaled across it only
+// (Frames::along_normal): sv along its u as well as its v.
+Amounts element_amounts(const Frames& frames, int e, Amounts amounts) {
+  if (frames.along_normal[static_cast<std::size_t>(e)]) amounts.su = amounts.sv;
+  return amounts;
+}
+
 // Element frame columns with cv oriented along `orientation` (shear_orientation):
 // flipping cv and n together keeps the frame right-handed.
 void oriented_frame(const Frames& frames, int e, const Eigen::Vector3d& orientation, Eigen::Vector3d& u,
@@ -171,7 +178,7 @@ ElementTargets vertex_targets(TargetContext& context, const DirectionSource& sou
   for (int i = 0; i < n; ++i) {
     oriented_frame(frames, i, orientation, u, v, normal);
     out.T[i] = element_transform(spec, u, v, normal, weights[i], mesh.V.row(i).transpose(),
-                                 amounts_at(spec, su, sv, i));
+                                 element_amounts(frames, i, amounts_at(spec, su, sv, i)));
   }
   return out;
 }
@@ -244,7 +251,7 @@ ElementTargets triangle_targets(TargetContext& context, const DirectionSource& s
     Amounts amounts{spec.su, spec.sv};
     if (su.size() > 0) amounts = {(su[a] + su[b] + su[c]) / 3.0, (sv[a] + sv[b] + sv[c]) / 3.0};
     oriented_frame(frames, t, orientation, u, v, normal);
-    out.T[t] = element_transform(spec, u, v, normal, w, centroid, amounts);
+    out.T[t] = element_transform(spec, u, v, normal, w, centroid, element_amounts(frames, t, amounts));
   }
   return out;
 }
@@ -277,6 +284,7 @@ void SideTargets::operator()(int t, Eigen::Matrix3d T[3]) const {
     const double w = side_weight(rest_, weights_, t, k);
     Amounts amounts{spec_.su, spec_.sv};
     if (frames_.su.size() > 0) amounts = {0.5 * (frames_.su[a] + frames_.su[b]), 0.5 * (frames_.sv[a] + frames_.sv[b])};
+    amounts = element_amounts(frames_.frames, t, amounts);
     if (k > 0 && !by_position && w == last_w && amounts.su == last_amounts.su && amounts.sv == last_amounts.sv) {
       T[k] = T[k - 1];
       continue;

@@ -102,6 +102,7 @@ Frames build_frames(const Positions& normals, const Positions& directions, const
   frames.v.resize(count, 3);
   frames.n = normals;
   std::vector<char> known(count, 0);
+  frames.along_normal.assign(count, 0);
   std::deque<int> pending;
   for (int e = 0; e < count; ++e) {
     const Eigen::Vector3d n = normals.row(e);
@@ -111,6 +112,7 @@ Frames build_frames(const Positions& normals, const Positions& directions, const
       known[e] = 1;
     } else {
       ++frames.filled;
+      frames.along_normal[e] = 1;
     }
   }
   if (count > 0 && frames.filled == count) {

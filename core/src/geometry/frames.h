@@ -27,6 +27,13 @@ struct Frames {
   Positions n;  // #E by 3: the element normal
   int filled = 0;  // elements whose projected direction was degenerate and
                    // were filled from their neighbours (METHOD §3)
+  // Per element, 1 where the wanted direction is (nearly) its normal: it
+  // gives the element no direction along its surface, and a scale acts on it
+  // across the direction only, by sv in every direction of its plane (as
+  // the 3D stretch along the direction does to a face square to it: a
+  // cylinder's flat cap keeps its shape when the cylinder is stretched along
+  // its axis). Its u is still filled, for a shear or a turn about u or v.
+  std::vector<char> along_normal;
 };
 
 // Frames for elements with normals `normals` and wanted directions
