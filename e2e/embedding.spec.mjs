@@ -970,3 +970,37 @@ test('the full UI in a narrow column of a wide page is laid out as on a phone: t
   expect(wide.toggle).toBe('none');
   expect(pageErrors).toEqual([]);
 });
+
+test('edits called without awaiting take the selection of their call; an edit still queued when a new mesh loads is not applied, and says so without an error', async ({ page }) => {
+  // deform, deform, select(B) without awaiting solved the second edit on B
+  // (the selection was read when the edit ran); deform then load refused the
+  // edit as "saved edits replay only on the mesh they were made on", an error.
+  const pageErrors = await openExample(page);
+  const outcome = await page.evaluate(async () => {
+    const api = window.anisoformExample.modellers.spot.api;
+    const errors = [];
+    const notices = [];
+    api.on('error', ({ message }) => errors.push(message));
+    const A = { sphere: { center: [0, 0.3, 0.5], radius: 0.4 } };
+    const B = { sphere: { center: [0, -0.6, 0], radius: 0.3 } };
+    const op = { method: 'andefgrad', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.2, 1] } };
+    await api.select(A);
+    await Promise.all([api.deform(op), api.deform(op), api.select(B)]);
+    const document = api.document();
+    const stepsOf = (opIndex) => document.regions.find((r) => r.name === document.ops[opIndex].region).steps;
+    const regions = [stepsOf(0), stepsOf(1)];
+    const selectedAfter = api.info().selected ?? null;
+
+    const bytes = await (await fetch('../spool.off')).arrayBuffer();
+    const queued = api.deform(op).then(() => 'applied', (error) => `${error.code}: ${error.message}`);
+    const loaded = await api.load(bytes, 'spool.off');
+    return { regions, selectedAfter, queued: await queued, loaded: loaded.vertices, ops: api.document().ops.length, errors, notices };
+  });
+  expect(outcome.regions[0]).toEqual([{ region: { sphere: { center: [0, 0.3, 0.5], radius: 0.4 } } }]);
+  expect(outcome.regions[1]).toEqual(outcome.regions[0]);
+  expect(outcome.queued).toBe('cancelled: A new mesh was loaded before this edit ran: it was not applied.');
+  expect(outcome.loaded).toBe(649);
+  expect(outcome.ops).toBe(0);
+  expect(outcome.errors).toEqual([]);
+  expect(pageErrors).toEqual([]);
+});

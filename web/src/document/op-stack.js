@@ -13,7 +13,7 @@ import { EditDocument, regionSteps } from './edit-document.js';
 import { OpRunner } from './op-runner.js';
 import { LivePreview } from './live-preview.js';
 import { DocumentPersistence } from './document-persistence.js';
-import { badParameter, cancelledError } from '../shared/errors.js';
+import { badParameter, cancelledError, editOfReplacedMeshError } from '../shared/errors.js';
 
 // An op's name is a list label, not a document: long enough for "Stretch the left sleeve, 2nd try".
 const MAX_NAME_LENGTH = 80;
@@ -153,15 +153,31 @@ export class OpStack {
     // A cancel() from here on stops it, even before its requests reach the
     // worker (the restarted worker would have solved and committed it).
     const cancels = editor.cancels;
+    const mesh = editor.document;
     const stillWanted = () => {
       if (editor.cancels !== cancels) throw cancelledError();
+      if (editor.document !== mesh) throw editOfReplacedMeshError();
+    };
+    // The selection of the call, not of when the edit runs (queued behind others).
+    let steps, selection;
+    try {
+      steps = this.#selectionSteps();
+      selection = editor.selectionState.snapshotForEdit();
+    } catch (error) {
+      return Promise.reject(error);
+    }
+    // A load may also arrive while the edit runs (it does not wait for the
+    // edits): the worker then holds the new mesh, and what failed there or
+    // was solved on the old one is not this edit's outcome.
+    const onThisMesh = (error) => {
+      if (editor.document !== mesh) throw editOfReplacedMeshError();
+      throw error;
     };
     return this.#run(async () => {
       stillWanted();
-      const steps = this.#selectionSteps();
-      editor.selectionState.syncForEdit();
+      editor.selectionState.syncForEdit(selection);
       const { op } = await this.#client.request(Request.resolveOp, { op: solverOp }).catch((error) => {
-        throw inPageWords(error, this.document, { labelled: false });
+        onThisMesh(inPageWords(error, this.document, { labelled: false }));
       });
       stillWanted();
       const index = this.document.ops.length;
@@ -174,9 +190,10 @@ export class OpStack {
           const worded = inPageWords(error, this.document, { labelled: false });
           this.document.dropLast(entry);
           this.document.undone = undone;
-          throw worded;
+          return onThisMesh(worded);
         }
       });
+      stillWanted();
       this.#runner.cache.dropAfter(index);
       this.#runner.show(index + 1, result);
       // The committed shape is the worker's new rest pose: it is factorized

@@ -91,10 +91,21 @@ export class SelectionState {
 
   // An empty selection means "the whole mesh": a first drag on a freshly
   // loaded mesh does something visible instead of nothing.
-  syncForEdit() {
+  syncForEdit(snapshot = this.snapshotForEdit()) {
+    this.#send(snapshot.key, snapshot.weightsOf);
+  }
+
+  /**
+   * The selection as an edit asked for now uses it, for syncForEdit when the
+   * edit runs: an edit queued behind others keeps the selection of its call
+   * (deform, deform, select without awaiting solved the second edit on the
+   * later selection).
+   */
+  snapshotForEdit() {
     const document = this.#editor.requireDocument();
-    if (document.selectionCount === 0) this.#send('whole', () => new Float32Array(document.vertexCount).fill(1));
-    else this.#send(document.selectionVersion, () => document.selection.slice());
+    if (document.selectionCount === 0) return { key: 'whole', weightsOf: () => new Float32Array(document.vertexCount).fill(1) };
+    const weights = document.selection.slice();
+    return { key: document.selectionVersion, weightsOf: () => weights.slice() };
   }
 
   // Requests are ordered, so the request that follows sees these weights.

@@ -17,3 +17,10 @@ export function cancelledError() {
 export function supersededLoadError() {
   return Object.assign(new Error('A later load replaced this one.'), { code: 'cancelled' });
 }
+
+// What an edit asked for on a mesh that a load replaced before the edit ran
+// rejects with: not applied, and no failure (it was refused as "saved edits
+// replay only on the mesh they were made on").
+export function editOfReplacedMeshError() {
+  return Object.assign(new Error('A new mesh was loaded before this edit ran: it was not applied.'), { code: 'cancelled' });
+}
