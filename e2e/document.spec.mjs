@@ -623,6 +623,46 @@ test('the work is autosaved and restored bitwise after a reload; reset clears th
   expect(pageErrors).toEqual([]);
 });
 
+test('a restore of the autosaved work stopped with Esc says the edits stay saved, and a reload puts them back', async ({ page }) => {
+  // The notice said "the mesh and its history are as they were" with no
+  // edit left, and the next edit saved over all of them.
+  const pageErrors = await openApp(page);
+  // Two edits that take a while to replay (a few hundred iterations each),
+  // so that the restore is still running when it is cancelled.
+  const document = await page.evaluate(async () => {
+    const api = window.anisoform;
+    await api.select({ sphere: { center: [0, 0.3, 0.5], radius: 0.4 } });
+    const slow = { method: 'anarap', tolerance: 1e-12, maxIterations: 400 };
+    await api.deform({ ...slow, direction: { type: 'global', vector: [0, 0, 1] }, transform: { scale: [1.4, 1] } });
+    await api.deform({ ...slow, direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.2, 1] } });
+    return api.document();
+  });
+  await expect.poll(() => savedWork(page).then((record) => record?.document.ops.length ?? 0)).toBe(2);
+  // Cancelled as soon as the first saved edit starts to replay (the first reload only).
+  await page.addInitScript(() => {
+    if (sessionStorage.getItem('restore-cancelled')) return;
+    const watch = setInterval(() => {
+      if (!window.anisoform) return;
+      clearInterval(watch);
+      const off = window.anisoform.on('progress', ({ message }) => {
+        if (!/^Edit \d of 2/.test(message)) return;
+        off();
+        sessionStorage.setItem('restore-cancelled', '1');
+        window.anisoform.cancel();
+      });
+    }, 1);
+  });
+  await page.reload();
+  await page.evaluate(() => window.anisoform.ready);
+  await expect(page.getByTestId('notice')).toContainText('Putting back the saved work was stopped: its 2 edits stay saved');
+  expect(await page.evaluate(() => window.anisoform.document().ops.length)).toBe(0);
+  expect((await savedWork(page)).document.ops.length).toBe(2);
+  await page.reload();
+  await page.evaluate(() => window.anisoform.ready);
+  expect(await page.evaluate(() => window.anisoform.document().ops)).toEqual(document.ops);
+  expect(pageErrors).toEqual([]);
+});
+
 test("two tabs keep their own autosaved work: a reload restores its own tab's, a new tab the latest", async ({ context }) => {
   // One record for all tabs: a reload of one brought back the other's mesh
   // and edits, and its own were gone. (The tabs of one context share the

@@ -139,9 +139,22 @@ export class DocumentPersistence {
     } finally {
       this.restoring = false;
     }
-    await this.open(record.document).catch((error) => this.#editor.report(error, 'The saved work could not be replayed'));
+    await this.open(record.document).catch((error) => {
+      // Stopped (Esc while it replays), the saved work is not lost yet: the
+      // record stays until the next change here is saved over it. The
+      // cancel's own words ("the history is as it was") hid that a first
+      // edit then replaced every saved edit.
+      if (error?.code === 'cancelled') this.#editor.report(restoreStoppedError(record.document?.ops?.length ?? 0));
+      else this.#editor.report(error, 'The saved work could not be replayed');
+    });
     return true;
   }
+}
+
+function restoreStoppedError(edits) {
+  const message = `Putting back the saved work was stopped: its ${edits} edit${edits === 1 ? '' : 's'} stay saved, and `
+    + 'reloading the page puts them back; the next edit made here replaces them.';
+  return Object.assign(new Error(message), { code: 'cancelled' });
 }
 
 // A refusal of the mesh file given with the document: "the loaded mesh" is
