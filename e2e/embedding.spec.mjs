@@ -387,10 +387,27 @@ test('<anisoform-modeller>: src loads, events come out as DOM events, .api works
   expect(recovered.failed).toContain('404');
   expect(recovered).toMatchObject({ ready: 'resolved', vertices: 2930 });
 
+  // Moved by code that awaits between removing and inserting it (an async
+  // framework hook): the same modeller goes on (a microtask teardown had
+  // disposed it, and it was built again from src, its edits gone).
+  const movedAwaiting = await page.evaluate(async () => {
+    const element = window.element;
+    const { api } = element;
+    const canvas = element.querySelector('canvas');
+    const parent = element.parentElement;
+    element.remove();
+    await Promise.resolve();
+    await Promise.resolve();
+    parent.append(element);
+    await new Promise((resolve) => setTimeout(resolve, 50));
+    return { sameApi: element.api === api, sameCanvas: element.querySelector('canvas') === canvas };
+  });
+  expect(movedAwaiting).toEqual({ sameApi: true, sameCanvas: true });
+
   // Removed from the page: disposed (at the end of the task).
   const afterRemoval = await page.evaluate(async () => {
     window.element.remove();
-    await null;
+    await new Promise((resolve) => setTimeout(resolve, 0));
     return { api: window.element.api, children: window.element.childElementCount };
   });
   expect(afterRemoval).toEqual({ api: null, children: 0 });
@@ -413,12 +430,12 @@ test('<anisoform-modeller>: src loads, events come out as DOM events, .api works
     };
     const created = window.__census().workersCreated;
     (await make()).remove();
-    await null; // disposed at the end of the task that removed it
+    await new Promise((resolve) => setTimeout(resolve, 0)); // disposed a task after the one that removed it
     const kept = { kept: solvers.size, workers: window.__census().workers };
     const second = await make();
     const taken = { kept: solvers.size, newWorkers: window.__census().workersCreated - created, vertices: second.api.info().vertices };
     second.remove();
-    await null;
+    await new Promise((resolve) => setTimeout(resolve, 0));
     solvers.dispose();
     let refusal = 'accepted';
     try {
@@ -1003,4 +1020,12 @@ test('edits called without awaiting take the selection of their call; an edit st
   expect(outcome.ops).toBe(0);
   expect(outcome.errors).toEqual([]);
   expect(pageErrors).toEqual([]);
+});
+
+test('the package imports outside a browser (a server render): no HTMLElement is needed until a modeller is made', async () => {
+  // `class ... extends HTMLElement` and its registration ran at import:
+  // "ReferenceError: HTMLElement is not defined" in Node.
+  const imported = await import('../web/dist-lib/anisoform.js');
+  expect(Object.keys(imported).sort()).toEqual(['AnisoformModellerElement', 'createModeller', 'createSolverPool', 'defineModellerElement']);
+  expect(() => imported.defineModellerElement()).not.toThrow();
 });

@@ -23,7 +23,12 @@ import { SolverPool } from '../worker/solver-pool.js';
 
 const RELAYED_EVENTS = ['change', 'error', 'progress'];
 
-export class AnisoformModellerElement extends HTMLElement {
+// Outside a browser (a server render, a Node script importing the package)
+// there is no HTMLElement: the class is then defined on a plain base and
+// never registered, so importing the package does not throw.
+const ElementBase = typeof HTMLElement === 'undefined' ? class {} : HTMLElement;
+
+export class AnisoformModellerElement extends ElementBase {
   static observedAttributes = ['src', 'edits', 'ui', 'materials'];
   #modeller = null;
   #offs = [];
@@ -72,12 +77,16 @@ export class AnisoformModellerElement extends HTMLElement {
   }
 
   disconnectedCallback() {
-    queueMicrotask(() => {
+    // A task later, not a microtask: a move whose code awaits between the
+    // removal and the insertion (an async framework hook, a transition)
+    // runs its continuation as a microtask, after a microtask teardown had
+    // disposed the modeller and its edits.
+    setTimeout(() => {
       if (this.isConnected) return;
       this.#teardown();
       this.#ownSolvers?.dispose();
       this.#ownSolvers = null;
-    });
+    }, 0);
   }
 
   attributeChangedCallback(name, previous, value) {
@@ -195,7 +204,7 @@ export class AnisoformModellerElement extends HTMLElement {
  * the class itself, and a custom name always threw).
  */
 export function defineModellerElement(name = 'anisoform-modeller') {
-  if (customElements.get(name)) return;
+  if (typeof customElements === 'undefined' || customElements.get(name)) return;
   const registered = customElements.getName?.(AnisoformModellerElement) ?? (customElements.get('anisoform-modeller') === AnisoformModellerElement ? 'anisoform-modeller' : null);
   customElements.define(name, registered ? class extends AnisoformModellerElement {} : AnisoformModellerElement);
 }
