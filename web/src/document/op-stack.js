@@ -13,7 +13,7 @@ import { EditDocument, regionSteps } from './edit-document.js';
 import { OpRunner } from './op-runner.js';
 import { LivePreview } from './live-preview.js';
 import { DocumentPersistence } from './document-persistence.js';
-import { badParameter, cancelledError, editOfReplacedMeshError } from '../shared/errors.js';
+import { badParameter, cancelledError, editOfReplacedMeshError, gestureInProgressError } from '../shared/errors.js';
 
 // An op's name is a list label, not a document: long enough for "Stretch the left sleeve, 2nd try".
 const MAX_NAME_LENGTH = 80;
@@ -289,6 +289,7 @@ export class OpStack {
 
   setEnabled(opId, enabled) {
     if (typeof enabled !== 'boolean') return Promise.reject(badParameter('setOpEnabled needs true or false'));
+    if (this.#editor.gestureActive) return this.#refusedDuringGesture();
     return this.#changeOp(opId, 'enabled', enabled, (label) => `Turn ${enabled ? 'on' : 'off'} ${label}`);
   }
 
@@ -300,6 +301,7 @@ export class OpStack {
    * again without it to commit.
    */
   setParameter(opId, patch, { preview = false } = {}) {
+    if (this.#editor.gestureActive) return this.#refusedDuringGesture();
     const problem = patchProblem(patch);
     if (problem) return Promise.reject(badParameter(`setParameter(opId, {transform?, method?, direction?, move?}): ${problem}`));
     let index;
@@ -354,6 +356,7 @@ export class OpStack {
 
   /** Op `opId`'s region becomes the one of these select steps ({region, falloff?, mode?}...); it and the later ops re-run. */
   setRegion(opId, steps) {
+    if (this.#editor.gestureActive) return this.#refusedDuringGesture();
     if (!Array.isArray(steps) || steps.length === 0 || steps.some((step) => typeof step?.region !== 'object' || step.region === null)) {
       return Promise.reject(badParameter('setRegion(opId, steps): steps must be a list of select steps, each {region, falloff?, mode?}'));
     }
@@ -397,6 +400,7 @@ export class OpStack {
 
   /** Deletes op `opId`: the later ops re-run on its input; a step of the history. */
   removeOp(opId) {
+    if (this.#editor.gestureActive) return this.#refusedDuringGesture();
     return this.#run(async () => {
       const index = this.#requireDocument().indexOf(opId);
       const entry = this.document.ops[index];
@@ -410,6 +414,7 @@ export class OpStack {
 
   /** Moves op `opId` to place `to` (0-based) in the list: the ops from the first place that changed re-run; a step of the history. */
   moveOp(opId, to) {
+    if (this.#editor.gestureActive) return this.#refusedDuringGesture();
     const count = this.document?.ops.length ?? 0;
     // The op first: with no such op, the index has no range to be in.
     try {
@@ -499,7 +504,13 @@ export class OpStack {
 
   /** Replays `json` on the current mesh, or on `meshBytes` (named json.mesh.name); on failure the current work stays. */
   open(json, meshBytes, meshName) {
+    if (this.#editor.gestureActive) return this.#refusedDuringGesture();
     return this.#persistence.open(json, meshBytes, meshName);
+  }
+
+  // The refusal of a change while a drag on the view edits the mesh (editor.refuseDuringGesture).
+  #refusedDuringGesture() {
+    return Promise.reject(gestureInProgressError());
   }
 
   /** From now on the work is autosaved (the standalone site; createModeller's `autosave`). */

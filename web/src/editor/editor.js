@@ -45,7 +45,7 @@ import { PatternState } from './pattern-state.js';
 import { describeProblems } from './problem-summary.js';
 import { SelectionState } from './selection-state.js';
 import { toSolverOp } from './solver-op.js';
-import { badParameter, supersededLoadError } from '../shared/errors.js';
+import { badParameter, gestureInProgressError, supersededLoadError } from '../shared/errors.js';
 
 /** How long the solver must be idle after a commit before it factorizes the new shape. */
 const PREPARE_AFTER_COMMIT_MS = 400;
@@ -154,6 +154,17 @@ export class Editor extends EventEmitter {
 
   get gestureActive() {
     return this.#gestures.active;
+  }
+
+  /**
+   * Throws while a drag on the view edits the mesh: what would change under
+   * it (the selection, the ops, an opened document) or read the worker's
+   * live preview as the committed mesh (an edit, an export) waits for its
+   * end. (select, removeOp and open were taken mid-drag, and the released
+   * drag committed on another region or base pose than it showed.)
+   */
+  refuseDuringGesture() {
+    if (this.gestureActive) throw gestureInProgressError();
   }
 
   /** The last flattening (see PatternState), or null. */
@@ -328,7 +339,7 @@ export class Editor extends EventEmitter {
     try {
       document = this.requireDocument();
       label ??= describeEdit(op);
-      if (this.gestureActive) throw badParameter('an interactive edit is in progress: finish the drag first');
+      this.refuseDuringGesture();
       solverOp = toSolverOp(op, document, this.view);
     } catch (error) {
       throw this.report(error, `${label ?? 'The edit'} was not applied`);
@@ -422,7 +433,7 @@ export class Editor extends EventEmitter {
     try {
       const document = this.requireDocument();
       // The worker holds the live preview during a drag, not the committed mesh.
-      if (this.gestureActive) throw badParameter('an interactive edit is in progress: finish the drag first');
+      this.refuseDuringGesture();
       return await exportMeshFile(this.#client, document, format);
     } catch (error) {
       throw this.report(error, `Export as ${format} failed`);

@@ -42,6 +42,7 @@ export class SelectionState {
     let document;
     try {
       document = editor.requireDocument();
+      editor.refuseDuringGesture();
       // add and subtract combine with the session's selection: it must be the page's.
       this.#send(document.selectionVersion, () => document.selection.slice());
       const restVersion = editor.ops.restVersion;

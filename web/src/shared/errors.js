@@ -12,6 +12,11 @@ export function cancelledError() {
   return Object.assign(new Error(CANCELLED_MESSAGE), { code: 'cancelled' });
 }
 
+// What is refused while a drag on the view edits the mesh (editor.refuseDuringGesture).
+export function gestureInProgressError() {
+  return badParameter('an interactive edit is in progress: finish the drag first');
+}
+
 // What a load another one replaced rejects with (the last mesh asked for is
 // the one shown): no failure either.
 export function supersededLoadError() {
