@@ -232,3 +232,32 @@ test('the Deform and Flatten tabs are one Tab stop, and the arrow keys switch be
   await expect(deform).toHaveAttribute('aria-selected', 'true');
   expect(pageErrors).toEqual([]);
 });
+
+test('C with no surface at the view centre says so and adds no undo step; selection buttons are off while an edit solves', async ({ page }) => {
+  // C selected nothing silently and still added "Undo Select"; All and Clear
+  // waited behind a solve while Invert acted at once (Clear, Invert ended
+  // as Invert, Clear).
+  await openApp(page);
+  await page.getByTestId('viewport').focus();
+  const centreMisses = () => page.evaluate(() => {
+    const canvas = document.querySelector('[data-testid=viewport]');
+    return window.anisoform.pick([canvas.clientWidth / 2, canvas.clientHeight / 2]) === null;
+  });
+  for (let i = 0; i < 40 && !(await centreMisses()); i++) await page.keyboard.press('ArrowRight');
+  expect(await centreMisses()).toBe(true);
+  await page.keyboard.press('c');
+  await expect(page.getByTestId('notice')).toContainText('Nothing to select at the view centre');
+  expect(await page.evaluate(() => window.anisoform.selection().some((w) => w > 0))).toBe(false);
+  await expect(page.getByTestId('undo')).toHaveAttribute('aria-disabled', 'true');
+  await page.getByTestId('select-clear').click();
+  await expect(page.getByTestId('undo')).toHaveAttribute('aria-disabled', 'true');
+
+  const solving = page.evaluate(() => window.anisoform.deform({ method: 'anarap', tolerance: 0, maxIterations: 10000,
+    direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.3, 1] } }).then(() => 'solved', (error) => error.code));
+  await expect(page.getByTestId('select-invert')).toHaveAttribute('aria-disabled', 'true');
+  await page.getByTestId('select-invert').click({ force: true }); // Playwright waits for an aria-disabled button otherwise
+  expect(await page.evaluate(() => window.anisoform.selection().some((w) => w > 0))).toBe(false);
+  await page.evaluate(() => window.anisoform.cancel());
+  expect(await solving).toBe('cancelled');
+  await expect(page.getByTestId('select-invert')).toHaveAttribute('aria-disabled', 'false');
+});

@@ -23,5 +23,16 @@ export function selectRegionAtViewCentre({ api, editor, viewer, picker, settings
     ? { box: { min: center.map((value) => value - hard), max: center.map((value) => value + hard) } }
     : { sphere: { center, radius: hard } };
   const subtract = (mode === 'subtract') !== invert;
-  return api.select(shape, { mode: subtract ? 'subtract' : 'add', falloff: soft });
+  const before = document.selection;
+  return api.select(shape, { mode: subtract ? 'subtract' : 'add', falloff: soft }).then((count) => {
+    // Nothing there (the orbit target in the air): said, not a silent no-op.
+    if (!hit && editor.document === document && document.selection === before) {
+      editor.emit('notice', {
+        message: 'Nothing to select at the view centre: no surface lies there or within the brush radius. '
+          + 'Move the mesh under the centre (F frames it) or paint on it.',
+        source: 'select',
+      });
+    }
+    return count;
+  });
 }

@@ -67,10 +67,15 @@ export class SelectionState {
     return this.#rule && this.#ruleVersion === restVersion ? this.#rule : null;
   }
 
-  /** Commits new weights as one undoable step; returns the selected count. */
+  /**
+   * Commits new weights as one undoable step; returns the selected count.
+   * Weights equal to the current ones add no step (C with nothing at the
+   * view centre, Clear of nothing: the next Undo seemed to do nothing).
+   */
   commit(weights, label, count) {
     const document = this.#editor.requireDocument();
     const before = document.selection;
+    if (sameWeights(before, weights)) return document.selectionCount;
     this.#apply(weights, count);
     this.#editor.history.push(new SelectionCommand(label, before, weights, (w) => this.#apply(w)));
     return document.selectionCount;
@@ -119,4 +124,10 @@ export class SelectionState {
       this.#editor.report(error, 'The selection could not be sent to the solver');
     });
   }
+}
+
+function sameWeights(a, b) {
+  if (a.length !== b.length) return false;
+  for (let i = 0; i < a.length; i++) if (a[i] !== b[i]) return false;
+  return true;
 }

@@ -55,7 +55,7 @@ export function installMessages(root, { editor, lifetime }) {
     notice.dataset.source = source;
   });
   // element.dataset.source: what put the message there (a notice: 'load',
-  // 'cancel', 'busy', 'save' or 'field'; a warning: 'edit', 'preview' or 'flatten').
+  // 'cancel', 'busy', 'save', 'select' or 'field'; a warning: 'edit', 'preview' or 'flatten').
   const hideFrom = (element, source) => {
     if (element.dataset.source === source) element.hidden = true;
   };
@@ -77,6 +77,8 @@ export function installMessages(root, { editor, lifetime }) {
   });
   // "Undo waits until the solve has ended" is moot once it has.
   editor.on('busy', (busy) => !busy && hideFrom(notice, 'busy'));
+  // "Nothing to select at the view centre" is moot once something is selected.
+  editor.on('selection', ({ live }) => !live && hideFrom(notice, 'select'));
   editor.on('warning', ({ message, source = 'edit' }) => warn(message, source));
   // The live preview warns while it folds; the commit's own warning follows its 'change'.
   editor.on('stats', ({ live, inverted }) => {

@@ -3,13 +3,22 @@
 // shrink and invert work on the page's weights (selection-morphology.js).
 import { growSelection, invertSelection, shrinkSelection } from '../selection/selection-morphology.js';
 import { h, section } from './dom.js';
+import { setOff, whenOn } from './focusable-disabled.js';
 
 export function selectionPanel({ api, editor }) {
   const count = h('p', { className: 'selection-count' });
   // The editor reports failures itself (the banner); a rejected select() needs no second word.
   const withDocument = (action) => () => editor.document && Promise.resolve(action(editor.document)).catch(() => {});
-  const button = (label, testId, action) =>
-    h('button', { className: 'button', 'data-testid': testId, onclick: withDocument(action) }, label);
+  // Off while a committed solve runs, as Apply and Undo are: All and Clear
+  // waited behind the solve while Invert, Grow and Shrink acted at once, so
+  // Clear then Invert ended as Invert then Clear.
+  const buttons = [];
+  const button = (label, testId, action) => {
+    const element = h('button', { className: 'button', 'data-testid': testId, onclick: whenOn(withDocument(action)) }, label);
+    buttons.push(element);
+    return element;
+  };
+  editor.on('busy', (busy) => buttons.forEach((element) => setOff(element, busy)));
 
   const sync = () => {
     const document = editor.document;
