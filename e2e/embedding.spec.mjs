@@ -1029,3 +1029,31 @@ test('the package imports outside a browser (a server render): no HTMLElement is
   expect(Object.keys(imported).sort()).toEqual(['AnisoformModellerElement', 'createModeller', 'createSolverPool', 'defineModellerElement']);
   expect(() => imported.defineModellerElement()).not.toThrow();
 });
+
+test('a lost WebGL context is said as an error, the restored one as a notice, and the view is drawn again', async ({ page }) => {
+  // Beyond about 16 live contexts a page, the browser takes the oldest: the
+  // view stayed blank without a word, and after a restore it was black.
+  const pageErrors = await openExample(page);
+  const outcome = await page.evaluate(async () => {
+    const { api } = window.anisoformExample.modellers.spot;
+    const canvas = document.querySelector('[data-testid="host-spot"] [data-testid="viewport"]');
+    const events = [];
+    api.on('error', ({ code, message }) => events.push(`${code}: ${message}`));
+    const lose = canvas.getContext('webgl2').getExtension('WEBGL_lose_context');
+    const lost = new Promise((resolve) => canvas.addEventListener('webglcontextlost', resolve, { once: true }));
+    lose.loseContext();
+    await lost;
+    await new Promise((resolve) => setTimeout(resolve, 100)); // a restore asked for within the loss's own task is not made
+    const restored = new Promise((resolve) => canvas.addEventListener('webglcontextrestored', resolve, { once: true }));
+    lose.restoreContext();
+    await restored;
+    return { events };
+  });
+  expect(outcome.events).toHaveLength(1);
+  expect(outcome.events[0]).toMatch(/^display: The 3D view lost its WebGL context/);
+  const spot = page.getByTestId('host-spot');
+  await expect(spot.getByTestId('notice')).toContainText('The 3D view has its WebGL context again.');
+  // It still draws and edits: a select works and a frame is drawn.
+  expect(await framesDuring(page, 300, () => page.evaluate(() => window.anisoformExample.modellers.spot.api.select({ all: true })))).toBeGreaterThan(0);
+  expect(pageErrors).toEqual([]);
+});

@@ -120,8 +120,12 @@ export type { EditDocument } from '../wasm/anisoform-wasm';
  * what the page's own buttons could not do. The message says what to do about it.
  */
 export interface ErrorEvent {
-  /** 'storage': an autosave failed (the work in the page is kept). */
-  code: 'bad-parameter' | 'bad-mesh' | 'bad-file' | 'numerical' | 'internal' | 'out-of-memory' | 'storage';
+  /**
+   * 'storage': an autosave failed (the work in the page is kept). 'display': the 3D view lost its
+   * WebGL context (a browser keeps about 16 a page); the work is kept, and the view is drawn again
+   * when the browser restores the context.
+   */
+  code: 'bad-parameter' | 'bad-mesh' | 'bad-file' | 'numerical' | 'internal' | 'out-of-memory' | 'storage' | 'display';
   message: string;
 }
 /**

@@ -81,6 +81,10 @@ export function createModeller(container, options = {}) {
   const settings = new Settings();
   settings.values.display.materials = materials;
   const viewer = new Viewer(layout.viewport, lifetime);
+  viewer.on('contextlost', () => editor.report(Object.assign(new Error('The 3D view lost its WebGL context: the '
+    + 'browser keeps about 16 a page and took this one (or its GPU was reset). The view comes back when the browser '
+    + 'gives it again; dispose() modellers that are not shown.'), { code: 'display' })));
+  viewer.on('contextrestored', () => editor.emit('notice', { message: 'The 3D view has its WebGL context again.', source: 'display' }));
   // The light drawing of a moving mesh on a CPU rasteriser is made in the
   // worker, once it has prepared the mesh or the mesh first moves: a select
   // right after a load waited for the simplification too (the 200k koala:

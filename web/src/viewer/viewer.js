@@ -38,13 +38,28 @@ export class Viewer extends EventEmitter {
     const antialias = !rendersInSoftware();
     this.renderer = new WebGLRenderer({ antialias });
     this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
-    this.renderer.setClearColor(new Color(0x1d2127));
     this.canvas = this.renderer.domElement;
     this.canvas.dataset.testid = 'viewport';
     this.canvas.dataset.antialias = String(antialias);
     this.canvas.setAttribute('aria-label', '3D viewport: drag on the mesh to use the tool, elsewhere to orbit');
     this.canvas.tabIndex = 0;
     container.prepend(this.canvas);
+    // A browser keeps about 16 live WebGL contexts a page and takes the
+    // oldest one's away beyond that (or after a GPU reset): the view then
+    // stayed blank without a word. Said ('contextlost'), and when the
+    // browser gives the context back three.js rebuilds its state, but not
+    // the clear colour (the view came back black).
+    const clearColor = new Color(0x1d2127);
+    this.renderer.setClearColor(clearColor);
+    this.canvas.addEventListener('webglcontextlost', (event) => {
+      event.preventDefault(); // asks the browser to restore it when it can
+      if (!this.#disposed) this.emit('contextlost'); // not the dispose's own forceContextLoss
+    });
+    this.canvas.addEventListener('webglcontextrestored', () => {
+      this.renderer.setClearColor(clearColor);
+      this.requestRender();
+      this.emit('contextrestored');
+    });
 
     this.scene = new Scene();
     this.camera = new PerspectiveCamera(35, 1, 0.01, 100);
