@@ -7,26 +7,31 @@
 // A value not taken (not a number, out of the field's bounds) is said in a
 // notice (settings 'refused').
 // A number field's min/max are the panel's own bounds (a brush radius in
-// percent). Amounts the core validates (limits.h: stretch, shear, angles,
+// percent); an `integer` field (the iteration cap) refuses a fraction: "2.5"
+// was kept, and every later edit failed in the core ("op.maxIterations must
+// be an integer"). `step` is only the keys' increment, no rule. Amounts the core validates (limits.h: stretch, shear, angles,
 // the twist rate) get none here: the core refuses an out-of-range value with
 // a message naming the field and its range, and the field keeps showing it.
 import { h } from './dom.js';
 import { decimalInput, parseDecimal } from './decimal-input.js';
 
-export function numberField(settings, sectionName, { key, label, min, max }) {
-  const input = decimalInput({ id: `${sectionName}-${key}` });
+export function numberField(settings, sectionName, { key, label, min, max, integer = false }) {
+  const input = decimalInput({ id: `${sectionName}-${key}`, inputMode: integer ? 'numeric' : 'decimal' });
   const sync = () => {
     if (document.activeElement !== input) input.value = settings.values[sectionName][key];
   };
   input.addEventListener('change', () => {
     const typed = input.value.trim();
     const value = parseDecimal(typed);
-    if (Number.isFinite(value)) settings.update(sectionName, { [key]: clamp(value, min, max) });
+    const fraction = integer && Number.isFinite(value) && !Number.isInteger(value);
+    const taken = Number.isFinite(value) && !fraction;
+    if (taken) settings.update(sectionName, { [key]: clamp(value, min, max) });
     const kept = settings.values[sectionName][key];
     input.value = kept;
     // Said, not only undone: "abc" used to put the old value back silently.
-    if (!Number.isFinite(value) && typed !== '') refused(settings, `${label}: '${typed}' is not a number; ${kept} is kept`);
-    else if (Number.isFinite(value) && value !== kept) refused(settings, `${label}: ${typed} is out of range (${rangeText(min, max)}); ${kept} is used`);
+    if (fraction) refused(settings, `${label}: '${typed}' is not a whole number; ${kept} is kept`);
+    else if (!taken && typed !== '') refused(settings, `${label}: '${typed}' is not a number; ${kept} is kept`);
+    else if (taken && value !== kept) refused(settings, `${label}: ${typed} is out of range (${rangeText(min, max)}); ${kept} is used`);
   });
   settings.on('change', ({ section }) => section === sectionName && sync());
   // A value set while the user was in the field (a new mesh's twist rate) shows once they leave it.
