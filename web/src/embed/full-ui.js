@@ -50,7 +50,7 @@ export function installFullUi(layout, { api, editor, settings, tools, viewer, pi
     inMode('flatten', flattenPanel({ api, editor, settings, reportError })),
     displayPanel({ settings }),
   );
-  panelSheetToggle(layout.sidePanel);
+  panelSheetToggle(layout.sidePanel, lifetime);
   patternPane(layout.patternPane, { editor, settings, lifetime });
   statusBar(layout.statusBar, { editor, viewer, lifetime });
   installAnnouncer(layout.statusBar, { editor });
