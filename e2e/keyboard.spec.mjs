@@ -232,3 +232,19 @@ test('the Deform and Flatten tabs are one Tab stop, and the arrow keys switch be
   await expect(deform).toHaveAttribute('aria-selected', 'true');
   expect(pageErrors).toEqual([]);
 });
+
+// Deleting the only edit from the keyboard took its row, and the focus fell
+// to <body>: the next Tab started at the top of the page.
+test('Delete on the last edit\'s name leaves the focus on the Edits heading, not the page', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  await page.evaluate(async () => {
+    await window.anisoform.select({ all: true });
+    await window.anisoform.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.2, 1] } });
+  });
+  const id = await page.evaluate(() => window.anisoform.document().ops[0].id);
+  await page.getByTestId(`op-select-${id}`).focus();
+  await page.keyboard.press('Delete');
+  await expect.poll(() => page.evaluate(() => window.anisoform.document().ops.length)).toBe(0);
+  await expect.poll(() => page.evaluate(() => `${document.activeElement.tagName} ${document.activeElement.textContent}`)).toBe('H2 Edits');
+  expect(pageErrors).toEqual([]);
+});
