@@ -248,3 +248,18 @@ test('Delete on the last edit\'s name leaves the focus on the Edits heading, not
   await expect.poll(() => page.evaluate(() => `${document.activeElement.tagName} ${document.activeElement.textContent}`)).toBe('H2 Edits');
   expect(pageErrors).toEqual([]);
 });
+
+// In a decimal-comma locale toLocaleString() wrote "2.930" in the status bar,
+// the selection panel and the announcer, beside fields and an Edits list
+// that write "2,930" and "1.5": one notation now (shared/number-format.js).
+test('a German browser sees the counts in the fields\' notation: status bar, selection panel, announcer', async ({ browser }) => {
+  const german = await browser.newPage({ locale: 'de-DE' });
+  const pageErrors = await openApp(german);
+  expect(await german.evaluate(() => (2930).toLocaleString())).toBe('2.930');
+  await expect(german.getByTestId('status-mesh')).toHaveText(/^2,930 vertices · 5,856 triangles/);
+  await expect(german.getByTestId('announcer')).toHaveText('Loaded spot_triangulated.obj: 2,930 vertices, 5,856 triangles');
+  await german.getByTestId('select-all').click();
+  await expect(german.locator('.selection-count')).toHaveText('2,930 of 2,930 vertices selected');
+  await german.close();
+  expect(pageErrors).toEqual([]);
+});

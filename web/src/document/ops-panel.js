@@ -8,6 +8,7 @@
 // looking is no step of the history, and "Use current selection" takes the
 // selection made before (or after) opening it. Closing the op shows the
 // selection again. Its soft border can be changed too.
+import { formatCount } from '../shared/number-format.js';
 import { h, section } from '../ui/dom.js';
 import { falloffField, opFields } from './op-fields.js';
 
@@ -102,7 +103,7 @@ export function opsPanel({ api, editor }) {
   // drawn again keep its count.
   let shown = null;
   const regionText = (entry) => (shown?.region === entry.region && shown.count !== null
-    ? `Region: ${entry.region} (${shown.count.toLocaleString('en-US')} vertices, shown on the mesh)`
+    ? `Region: ${entry.region} (${formatCount(shown.count)} vertices, shown on the mesh)`
     : `Region: ${entry.region}`);
   const showRegion = (entry) => {
     shown = { region: entry.region, count: null };

@@ -2,7 +2,7 @@
 // pattern flattened (errors and warnings have their own alert and status
 // regions, messages.js). The status bar shows these figures but is no live
 // region: it changes at every preview frame, which would talk over the user.
-import { formatPercent } from '../viewer/pattern-view.js';
+import { formatCount, formatPercent } from '../shared/number-format.js';
 import { h } from './dom.js';
 
 export function installAnnouncer(container, { editor }) {
@@ -12,8 +12,8 @@ export function installAnnouncer(container, { editor }) {
   const say = (text) => {
     region.textContent = region.textContent === text ? `${text}\u00a0` : text;
   };
-  editor.on('mesh', (document) => say(`Loaded ${document.name}: ${document.vertexCount.toLocaleString()} vertices, `
-    + `${document.triangleCount.toLocaleString()} triangles`));
+  editor.on('mesh', (document) => say(`Loaded ${document.name}: ${formatCount(document.vertexCount)} vertices, `
+    + `${formatCount(document.triangleCount)} triangles`));
   editor.on('stats', ({ live, ms, iterations, converged }) => {
     if (live) return;
     say(`Edit solved: ${iterations} iterations, ${ms.toFixed(0)} ms${converged === false ? ', stopped at the iteration cap' : ''}`);

@@ -6,7 +6,7 @@
 // (pattern-scale.js), and SVG / DXF export of the pattern.
 import { downloadBytes } from '../io/download.js';
 import { flattenDirectionFromSettings } from '../tools/direction-source.js';
-import { formatPercent } from '../viewer/pattern-view.js';
+import { formatPercent } from '../shared/number-format.js';
 import { decimalInput, parseDecimal } from './decimal-input.js';
 import { h, section } from './dom.js';
 import { mmPerUnitOf, patternScale } from './pattern-scale.js';

@@ -2,6 +2,7 @@
 // is one undo step. All and Clear are the core's regions (api.select); grow,
 // shrink and invert work on the page's weights (selection-morphology.js).
 import { growSelection, invertSelection, shrinkSelection } from '../selection/selection-morphology.js';
+import { formatCount } from '../shared/number-format.js';
 import { h, section } from './dom.js';
 
 export function selectionPanel({ api, editor }) {
@@ -17,7 +18,7 @@ export function selectionPanel({ api, editor }) {
       ? ''
       : document.selectionCount === 0
         ? 'Nothing selected: edits apply to the whole mesh.'
-        : `${document.selectionCount.toLocaleString()} of ${document.vertexCount.toLocaleString()} vertices selected`;
+        : `${formatCount(document.selectionCount)} of ${formatCount(document.vertexCount)} vertices selected`;
   };
   editor.on('selection', ({ live }) => !live && sync());
   editor.on('mesh', sync);

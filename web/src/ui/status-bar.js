@@ -3,6 +3,7 @@
 // factorizing (a bar with a fraction, or an indeterminate one when the
 // worker cannot tell how far it is).
 import { openSurface } from '../editor/problem-summary.js';
+import { formatCount } from '../shared/number-format.js';
 import { h } from './dom.js';
 
 export function statusBar(container, { editor, viewer, lifetime }) {
@@ -32,7 +33,7 @@ export function statusBar(container, { editor, viewer, lifetime }) {
     committed = { text: 'solve —', title: '' };
     showCommitted();
     const surface = openSurface(document.info);
-    mesh.textContent = `${document.vertexCount.toLocaleString()} vertices · ${document.triangleCount.toLocaleString()} triangles${surface.text}`;
+    mesh.textContent = `${formatCount(document.vertexCount)} vertices · ${formatCount(document.triangleCount)} triangles${surface.text}`;
     mesh.title = surface.title;
   });
   editor.on('stats', ({ ms, iterations, live, converged }) => {
