@@ -263,3 +263,42 @@ test('a German browser sees the counts in the fields\' notation: status bar, sel
   await german.close();
   expect(pageErrors).toEqual([]);
 });
+
+// The one polite region also says what changed without a solve: the
+// selection's count, a tool chosen by its key, an edit deleted, an undo and
+// a redo (none of them was said); the status bar's bar is a progressbar.
+test('a screen reader is told the selection count, the tool chosen by key, a deletion, undo and redo; the bar is a progressbar', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const announcer = page.getByTestId('announcer');
+  await page.getByTestId('select-all').click();
+  await expect(announcer).toHaveText('2,930 of 2,930 vertices selected');
+  await page.getByTestId('viewport').focus();
+  await page.keyboard.press('s');
+  await expect(announcer).toHaveText('Stretch tool');
+  await page.evaluate(() => window.anisoform.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.2, 1] } }));
+  const { id, label } = await page.evaluate(() => window.anisoform.document().ops[0]);
+  await page.getByTestId(`op-delete-${id}`).click();
+  await expect(announcer).toHaveText(`Delete ${label}`);
+  await page.getByTestId('viewport').focus();
+  await page.keyboard.press('Control+z');
+  await expect(announcer).toHaveText(`Undone: Delete ${label}`);
+  await page.keyboard.press('Control+Shift+z');
+  await expect(announcer).toHaveText(`Redone: Delete ${label}`);
+  expect(await page.locator('[role=status][aria-live=polite]').count()).toBe(1);
+
+  const bar = page.getByTestId('progress').getByRole('progressbar', { includeHidden: true });
+  await expect(bar).toHaveAttribute('aria-valuemin', '0');
+  await expect(bar).toHaveAttribute('aria-valuemax', '100');
+  // A flattening reports how far it is: the bar says it as a value.
+  await page.evaluate(() => {
+    window.__values = [];
+    const element = document.querySelector('[data-testid=progress] [role=progressbar]');
+    new MutationObserver(() => window.__values.push(element.getAttribute('aria-valuenow'))).observe(element, { attributes: true, attributeFilter: ['aria-valuenow'] });
+  });
+  expect((await uploadFile(page, meshPath('open/human_woman_torso_front_patch.obj'))).ok).toBe(true);
+  await page.evaluate(() => window.anisoform.flatten({ compress: 0.9, direction: { type: 'global', vector: [1, 0, 0] } }));
+  const values = await page.evaluate(() => window.__values.filter((value) => value !== null).map(Number));
+  expect(values.length).toBeGreaterThan(0);
+  expect(values.every((value) => value >= 0 && value <= 100)).toBe(true);
+  expect(pageErrors).toEqual([]);
+});

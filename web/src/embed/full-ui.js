@@ -53,12 +53,13 @@ export function installFullUi(layout, { api, editor, settings, tools, viewer, pi
   panelSheetToggle(layout.sidePanel, lifetime);
   patternPane(layout.patternPane, { editor, settings, lifetime });
   statusBar(layout.statusBar, { editor, viewer, lifetime });
-  installAnnouncer(layout.statusBar, { editor });
+  const announcer = installAnnouncer(layout.statusBar, { editor });
   installMessages(layout.viewport, { editor, lifetime });
   installDropZone(layout.root, layout.dropOverlay, { api, reportError, lifetime, mayReplace: files.mayReplace });
   frameButton(layout.viewport, { api });
   const dialog = shortcutDialog(layout.root, { tools });
-  installEditingKeys(keyTarget, lifetime, { settings, dialog, selectRegion, files });
+  const toolChosen = (id) => announcer.say(`${tools.get(id).label} tool`);
+  installEditingKeys(keyTarget, lifetime, { settings, dialog, selectRegion, files, toolChosen });
   claimUniqueIds(layout.root, lifetime);
   // A value a panel field did not take is said (ui/fields.js).
   settings.on('refused', ({ message }) => editor.emit('notice', { message, source: 'field' }));

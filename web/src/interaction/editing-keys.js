@@ -14,7 +14,9 @@ const RADIUS_FACTOR = 1.25;
 const RADIUS_MIN = 0.5;
 const RADIUS_MAX = 100;
 
-export function installEditingKeys(target, lifetime, { settings, dialog, selectRegion, files }) {
+// toolChosen(id): a tool chosen by its key is said (a screen reader heard
+// nothing: the key moves no focus to the tool's button).
+export function installEditingKeys(target, lifetime, { settings, dialog, selectRegion, files, toolChosen }) {
   const toolOfKey = new Map(Object.entries(TOOL_KEYS).map(([id, key]) => [key, id]));
   const fileActions = { o: files.open, s: files.save };
   lifetime.listen(target, 'keydown', (event) => {
@@ -34,6 +36,7 @@ export function installEditingKeys(target, lifetime, { settings, dialog, selectR
     } else if (tool && !event.shiftKey) {
       if (settings.values.mode === 'flatten' && !FLATTEN_MODE_TOOLS.includes(tool)) return;
       settings.update('tool', tool);
+      toolChosen(tool);
     } else if (event.key === '[' || event.key === ']') {
       const radius = settings.values.brush.radiusPercent * (event.key === ']' ? RADIUS_FACTOR : 1 / RADIUS_FACTOR);
       const rounded = Math.round(radius * 2) / 2;

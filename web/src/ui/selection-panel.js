@@ -5,6 +5,13 @@ import { growSelection, invertSelection, shrinkSelection } from '../selection/se
 import { formatCount } from '../shared/number-format.js';
 import { h, section } from './dom.js';
 
+/** What is selected, in words (the panel's line; the announcer says it too). */
+export function selectionText(document) {
+  return document.selectionCount === 0
+    ? 'Nothing selected: edits apply to the whole mesh.'
+    : `${formatCount(document.selectionCount)} of ${formatCount(document.vertexCount)} vertices selected`;
+}
+
 export function selectionPanel({ api, editor }) {
   const count = h('p', { className: 'selection-count' });
   // The editor reports failures itself (the banner); a rejected select() needs no second word.
@@ -12,14 +19,7 @@ export function selectionPanel({ api, editor }) {
   const button = (label, testId, action) =>
     h('button', { className: 'button', 'data-testid': testId, onclick: withDocument(action) }, label);
 
-  const sync = () => {
-    const document = editor.document;
-    count.textContent = !document
-      ? ''
-      : document.selectionCount === 0
-        ? 'Nothing selected: edits apply to the whole mesh.'
-        : `${formatCount(document.selectionCount)} of ${formatCount(document.vertexCount)} vertices selected`;
-  };
+  const sync = () => (count.textContent = editor.document ? selectionText(editor.document) : '');
   editor.on('selection', ({ live }) => !live && sync());
   editor.on('mesh', sync);
 

@@ -10,7 +10,18 @@ export function statusBar(container, { editor, viewer, lifetime }) {
   const mesh = h('span', { className: 'status-item status-mesh', 'data-testid': 'status-mesh' });
   const solve = h('span', { className: 'status-item status-solve', 'data-testid': 'status-solve' }, 'solve —');
   const fps = h('span', { className: 'status-item status-fps', 'data-testid': 'status-fps' });
-  const bar = h('span', { className: 'progress-bar' }, h('span', { className: 'progress-fill' }));
+  // A progressbar to assistive technology: how far when the worker can tell
+  // (aria-valuenow), busy without a value when it cannot.
+  const bar = h('span', {
+    className: 'progress-bar', role: 'progressbar', 'aria-label': 'Progress', 'aria-valuemin': '0', 'aria-valuemax': '100',
+  }, h('span', { className: 'progress-fill' }));
+  const showFraction = (fraction, text) => {
+    bar.classList.toggle('indeterminate', fraction === undefined);
+    bar.firstChild.style.width = fraction === undefined ? '' : `${Math.round(fraction * 100)}%`;
+    if (fraction === undefined) bar.removeAttribute('aria-valuenow');
+    else bar.setAttribute('aria-valuenow', String(Math.round(fraction * 100)));
+    bar.setAttribute('aria-valuetext', text);
+  };
   const progressText = h('span', { className: 'progress-text' });
   // Stops a committed solve (Esc does too): the state before it stays.
   const cancel = h('button', {
@@ -53,15 +64,14 @@ export function statusBar(container, { editor, viewer, lifetime }) {
     if (stage === 'done' && editor.busy) return;
     progress.hidden = stage === 'done';
     progressText.textContent = fraction === undefined ? message : `${message} ${Math.round(fraction * 100)} %`;
-    bar.classList.toggle('indeterminate', fraction === undefined);
-    bar.firstChild.style.width = fraction === undefined ? '' : `${Math.round(fraction * 100)}%`;
+    showFraction(fraction, progressText.textContent);
   });
   editor.on('busy', (busy) => {
     progress.hidden = !busy;
     cancel.hidden = !busy;
     if (busy) {
       progressText.textContent = 'Solving';
-      bar.classList.add('indeterminate');
+      showFraction(undefined, 'Solving');
     }
   });
   // Frames are drawn on demand, so an idle view draws none. The text is
