@@ -302,3 +302,23 @@ test('a screen reader is told the selection count, the tool chosen by key, a del
   expect(values.every((value) => value >= 0 && value <= 100)).toBe(true);
   expect(pageErrors).toEqual([]);
 });
+
+// A German or French keyboard types [ and ] with AltGr (Ctrl+Alt to the page
+// on Windows), a Mac's with Option: the keys were ignored as shortcuts with
+// modifiers. Ctrl+[ alone is still no brush key.
+test('[ and ] typed with AltGr or Option change the brush radius', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const radius = page.locator('#brush-radiusPercent');
+  await expect(radius).toHaveValue('8');
+  await page.getByTestId('viewport').focus();
+  await page.keyboard.press('Control+Alt+BracketRight'); // Windows AltGr
+  await expect(radius).toHaveValue('10');
+  await page.getByTestId('viewport').evaluate((canvas) => canvas.dispatchEvent(new KeyboardEvent('keydown', {
+    key: ']', code: 'Digit9', modifierAltGraph: true, bubbles: true, cancelable: true })));
+  await expect(radius).toHaveValue('12.5');
+  await page.keyboard.press('Alt+BracketLeft'); // Option on a Mac layout
+  await expect(radius).toHaveValue('10');
+  await page.keyboard.press('Control+BracketLeft');
+  await expect(radius).toHaveValue('10');
+  expect(pageErrors).toEqual([]);
+});
