@@ -322,3 +322,26 @@ test('[ and ] typed with AltGr or Option change the brush radius', async ({ page
   await expect(radius).toHaveValue('10');
   expect(pageErrors).toEqual([]);
 });
+
+// The focused 3D view panned and orbited by key but could not be zoomed.
+test('+, = and - zoom the focused 3D view; the shortcut list says so', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const distance = () => page.evaluate(() => {
+    const { position, target } = window.anisoform.camera();
+    return Math.hypot(...position.map((value, k) => value - target[k]));
+  });
+  await page.getByTestId('viewport').focus();
+  const start = await distance();
+  await page.keyboard.press('+');
+  const closer = await distance();
+  expect(closer).toBeCloseTo(start / 1.2, 6);
+  await page.keyboard.press('=');
+  expect(await distance()).toBeCloseTo(start / 1.44, 6);
+  await page.keyboard.press('-');
+  await page.keyboard.press('-');
+  expect(await distance()).toBeCloseTo(start, 6);
+  await page.keyboard.press('?');
+  await expect(page.getByTestId('shortcut-dialog')).toContainText('Zoom the view in / out (3D view focused)');
+  await page.keyboard.press('Escape');
+  expect(pageErrors).toEqual([]);
+});
