@@ -163,8 +163,10 @@ function arrowList(settings) {
         amountInput(index, 'su', 'stretch along'),
         amountInput(index, 'sv', 'stretch across'),
         h('button', {
+          type: 'button',
           className: 'dismiss',
           title: 'Remove this arrow',
+          'aria-label': `Remove arrow ${index + 1}`,
           onclick: () => settings.update('arrows', settings.values.arrows.filter((_, i) => i !== index)),
         }, '×'),
       )),

@@ -32,15 +32,16 @@ export function installMessages(root, { editor, lifetime }) {
     body.append(Object.assign(document.createElement('span'), { className: 'message-text', textContent: text }), more);
     if (details.length > 0) body.append(detailsList(details));
     element.classList.remove('expanded');
-    element.replaceChildren(
-      body,
-      Object.assign(document.createElement('button'), {
-        className: 'dismiss',
-        textContent: '×',
-        title: 'Dismiss',
-        onclick: () => (element.hidden = true),
-      }),
-    );
+    const dismiss = Object.assign(document.createElement('button'), {
+      className: 'dismiss',
+      type: 'button',
+      textContent: '×',
+      title: 'Dismiss',
+      onclick: () => (element.hidden = true),
+    });
+    // Named in words: a screen reader said "times" or "multiplication sign".
+    dismiss.setAttribute('aria-label', 'Dismiss message');
+    element.replaceChildren(body, dismiss);
     element.hidden = false;
     fitMoreButton(element);
   };
