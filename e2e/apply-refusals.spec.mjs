@@ -235,3 +235,23 @@ test('the Iterations field refuses a fraction, says so and keeps its value; the 
   await expect(page.getByTestId('error')).toBeHidden();
   expect(pageErrors).toEqual([]);
 });
+
+// "Radius %: '1,000.5' is not a number; 1 is kept" stood after the user typed
+// a value the field took; another field's value leaves it.
+test('a field\'s refused-value notice goes when that field takes a value, not when another does', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const radius = page.locator('#brush-radiusPercent');
+  const softness = page.locator('#brush-softnessPercent');
+  const notice = page.getByTestId('notice');
+  await radius.fill('1,000.5');
+  await radius.press('Tab');
+  await expect(notice).toContainText("Radius %: '1,000.5' is not a number; 8 is kept");
+  await softness.fill('40');
+  await softness.press('Tab');
+  await expect(notice).toBeVisible();
+  await radius.fill('12');
+  await radius.press('Tab');
+  await expect(radius).toHaveValue('12');
+  await expect(notice).toBeHidden();
+  expect(pageErrors).toEqual([]);
+});

@@ -54,13 +54,14 @@ export function installFullUi(layout, { api, editor, settings, tools, viewer, pi
   patternPane(layout.patternPane, { editor, settings, lifetime });
   statusBar(layout.statusBar, { editor, viewer, lifetime });
   const announcer = installAnnouncer(layout.statusBar, { editor });
-  installMessages(layout.viewport, { editor, lifetime });
+  const messages = installMessages(layout.viewport, { editor, lifetime });
   installDropZone(layout.root, layout.dropOverlay, { api, reportError, lifetime, mayReplace: files.mayReplace });
   frameButton(layout.viewport, { api });
   const dialog = shortcutDialog(layout.root, { tools });
   const toolChosen = (id) => announcer.say(`${tools.get(id).label} tool`);
   installEditingKeys(keyTarget, lifetime, { settings, dialog, selectRegion, files, toolChosen });
   claimUniqueIds(layout.root, lifetime);
-  // A value a panel field did not take is said (ui/fields.js).
-  settings.on('refused', ({ message }) => editor.emit('notice', { message, source: 'field' }));
+  // A value a panel field did not take is said (ui/fields.js), until that field takes one.
+  settings.on('refused', ({ message, field }) => editor.emit('notice', { message, source: 'field', field }));
+  settings.on('accepted', ({ field }) => messages.clearFieldNotice(field));
 }

@@ -5,7 +5,9 @@
 // the field never shows a number that is not the one used.
 //
 // A value not taken (not a number, out of the field's bounds) is said in a
-// notice (settings 'refused').
+// notice (settings 'refused'); a value the same field then takes as typed
+// says that notice is moot (settings 'accepted'): "'1,000.5' is not a
+// number; 1 is kept" stood beside the 2 typed next.
 // A number field's min/max are the panel's own bounds (a brush radius in
 // percent); an `integer` field (the iteration cap) refuses a fraction: "2.5"
 // was kept, and every later edit failed in the core ("op.maxIterations must
@@ -16,7 +18,8 @@ import { h } from './dom.js';
 import { decimalInput, parseDecimal } from './decimal-input.js';
 
 export function numberField(settings, sectionName, { key, label, min, max, integer = false }) {
-  const input = decimalInput({ id: `${sectionName}-${key}`, inputMode: integer ? 'numeric' : 'decimal' });
+  const field = `${sectionName}-${key}`;
+  const input = decimalInput({ id: field, inputMode: integer ? 'numeric' : 'decimal' });
   const sync = () => {
     if (document.activeElement !== input) input.value = settings.values[sectionName][key];
   };
@@ -29,9 +32,10 @@ export function numberField(settings, sectionName, { key, label, min, max, integ
     const kept = settings.values[sectionName][key];
     input.value = kept;
     // Said, not only undone: "abc" used to put the old value back silently.
-    if (fraction) refused(settings, `${label}: '${typed}' is not a whole number; ${kept} is kept`);
-    else if (!taken && typed !== '') refused(settings, `${label}: '${typed}' is not a number; ${kept} is kept`);
-    else if (taken && value !== kept) refused(settings, `${label}: ${typed} is out of range (${rangeText(min, max)}); ${kept} is used`);
+    if (fraction) refused(settings, field, `${label}: '${typed}' is not a whole number; ${kept} is kept`);
+    else if (!taken && typed !== '') refused(settings, field, `${label}: '${typed}' is not a number; ${kept} is kept`);
+    else if (taken && value !== kept) refused(settings, field, `${label}: ${typed} is out of range (${rangeText(min, max)}); ${kept} is used`);
+    else if (taken) settings.emit('accepted', { field });
   });
   settings.on('change', ({ section }) => section === sectionName && sync());
   // A value set while the user was in the field (a new mesh's twist rate) shows once they leave it.
@@ -76,9 +80,10 @@ export function vectorField(settings, sectionName, { key, label, point = false }
       const vector = inputs.map((field) => parseDecimal(field.value));
       if (vector.every(Number.isFinite) && (point || Math.hypot(...vector) > 0)) {
         settings.update(sectionName, { [key]: vector });
+        settings.emit('accepted', { field: `${sectionName}-${key}` });
       } else {
         const kept = settings.values[sectionName][key];
-        refused(settings, vector.every(Number.isFinite)
+        refused(settings, `${sectionName}-${key}`, vector.every(Number.isFinite)
           ? `${label}: (0, 0, 0) is no direction; (${kept.join(', ')}) is kept`
           : `${label}: every component must be a number; (${kept.join(', ')}) is kept`);
       }
@@ -99,10 +104,10 @@ export function showWhen(settings, sectionName, element, predicate) {
   return element;
 }
 
-// A value a field did not take, for the page to say (settings 'refused',
-// shown as a notice by the full UI).
-function refused(settings, message) {
-  settings.emit('refused', { message });
+// A value field `field` (its section-key) did not take, for the page to
+// say (settings 'refused', shown as a notice by the full UI).
+function refused(settings, field, message) {
+  settings.emit('refused', { message, field });
 }
 
 function rangeText(min, max) {

@@ -51,9 +51,10 @@ export function installMessages(root, { editor, lifetime }) {
     warning.hidden = true;
   };
   editor.on('error', ({ message }) => show(error, message.replace(/\.?\s*$/, '.')));
-  editor.on('notice', ({ message, details, source }) => {
+  editor.on('notice', ({ message, details, source, field }) => {
     show(notice, message, details);
     notice.dataset.source = source;
+    notice.dataset.field = field ?? '';
   });
   // element.dataset.source: what put the message there (a notice: 'load',
   // 'cancel', 'busy', 'save' or 'field'; a warning: 'edit', 'preview' or 'flatten').
@@ -102,7 +103,11 @@ export function installMessages(root, { editor, lifetime }) {
   // comes after) or fails (its error comes after).
   editor.on('loading', hideAll);
   editor.on('mesh', hideAll);
-  return { showError: (text) => show(error, text) };
+  return {
+    showError: (text) => show(error, text),
+    // A field's refused value is moot once the field takes one (ui/fields.js 'accepted').
+    clearFieldNotice: (field) => notice.dataset.field === field && hideFrom(notice, 'field'),
+  };
 }
 
 // More while the text is cut short (only where the layout clamps it), Less once opened.
