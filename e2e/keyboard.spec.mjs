@@ -230,6 +230,17 @@ test('the Deform and Flatten tabs are one Tab stop, and the arrow keys switch be
   await page.keyboard.press('Home');
   await expect(deform).toBeFocused();
   await expect(deform).toHaveAttribute('aria-selected', 'true');
+  // Each tab controls its mode's panel (there was no aria-controls, no tabpanel).
+  const panelOf = async (tab) => page.locator(`#${await tab.getAttribute('aria-controls')}`);
+  const deformPanel = await panelOf(deform);
+  await expect(deformPanel).toHaveAttribute('role', 'tabpanel');
+  await expect(deformPanel.locator('#direction-source')).toBeVisible();
+  await expect(page.getByRole('tabpanel', { name: 'Deform' })).toBeVisible();
+  const flattenPanel = await panelOf(flatten);
+  await expect(flattenPanel).toBeHidden();
+  await flatten.click();
+  await expect(page.getByRole('tabpanel', { name: 'Flatten' }).getByTestId('flatten-run')).toBeVisible();
+  await expect(deformPanel).toBeHidden();
   expect(pageErrors).toEqual([]);
 });
 

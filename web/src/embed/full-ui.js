@@ -22,7 +22,7 @@ import { frameButton } from '../ui/frame-button.js';
 import { historyButtons } from '../ui/history-panel.js';
 import { installMessages } from '../ui/messages.js';
 import { methodPanel } from '../ui/method-panel.js';
-import { modeSwitch } from '../ui/mode-switch.js';
+import { modePanel, modeSwitch } from '../ui/mode-switch.js';
 import { panelSheetToggle } from '../ui/panel-sheet.js';
 import { patternPane } from '../ui/pattern-pane.js';
 import { selectionPanel } from '../ui/selection-panel.js';
@@ -45,9 +45,8 @@ export function installFullUi(layout, { api, editor, settings, tools, viewer, pi
     opsPanel({ api, editor }),
     toolPanel({ editor, settings, tools, reportError, selectRegion }),
     selectionPanel({ api, editor }),
-    inMode('deform', directionPanel({ settings })),
-    inMode('deform', methodPanel({ settings })),
-    inMode('flatten', flattenPanel({ api, editor, settings, reportError })),
+    inMode('deform', modePanel('deform', directionPanel({ settings }), methodPanel({ settings }))),
+    inMode('flatten', modePanel('flatten', flattenPanel({ api, editor, settings, reportError }))),
     displayPanel({ settings }),
   );
   panelSheetToggle(layout.sidePanel, lifetime);
