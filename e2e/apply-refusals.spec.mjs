@@ -213,3 +213,45 @@ test('a value a field does not take is said, not only put back', async ({ page }
   await expect(notice).toContainText('Radius %: 500 is out of range (0.5 to 100); 100 is used');
   expect(pageErrors).toEqual([]);
 });
+
+// The iteration cap is a whole number: "2.5" (or "2,5") was kept without a
+// word, and every later edit failed "op.maxIterations must be an integer".
+test('the Iterations field refuses a fraction, says so and keeps its value; the next edit runs', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const iterations = page.locator('#solver-iterations');
+  await expect(iterations).toHaveValue('50');
+  const notice = page.getByTestId('notice');
+  for (const typed of ['2.5', '2,5']) {
+    await iterations.fill(typed);
+    await iterations.press('Tab');
+    await expect(iterations).toHaveValue('50');
+    await expect(notice).toHaveText(new RegExp(`Iterations: '${typed}' is not a whole number; 50 is kept`));
+  }
+  await page.getByTestId('tool-thicken').click();
+  await page.locator('#direction-source').selectOption('global');
+  await page.getByTestId('apply-thicken').click();
+  await expect.poll(() => page.evaluate(() => window.anisoform.document().ops.length)).toBe(1);
+  expect(await page.evaluate(() => window.anisoform.document().ops[0].op.maxIterations)).toBe(50);
+  await expect(page.getByTestId('error')).toBeHidden();
+  expect(pageErrors).toEqual([]);
+});
+
+// "Radius %: '1,000.5' is not a number; 1 is kept" stood after the user typed
+// a value the field took; another field's value leaves it.
+test('a field\'s refused-value notice goes when that field takes a value, not when another does', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const radius = page.locator('#brush-radiusPercent');
+  const softness = page.locator('#brush-softnessPercent');
+  const notice = page.getByTestId('notice');
+  await radius.fill('1,000.5');
+  await radius.press('Tab');
+  await expect(notice).toContainText("Radius %: '1,000.5' is not a number; 8 is kept");
+  await softness.fill('40');
+  await softness.press('Tab');
+  await expect(notice).toBeVisible();
+  await radius.fill('12');
+  await radius.press('Tab');
+  await expect(radius).toHaveValue('12');
+  await expect(notice).toBeHidden();
+  expect(pageErrors).toEqual([]);
+});

@@ -60,3 +60,45 @@ test('brushing with the mouse selects the vertices under the cursor', async ({ p
   expect(await page.evaluate(() => window.anisoform.undo())).toBe(true);
   expect(await page.evaluate(() => window.anisoform.selection().some((w) => w > 0))).toBe(false);
 });
+
+// CSS zoom on the page (a page that scales its content, or a user style):
+// the canvas's client rect is zoomed, its clientWidth is not. The pointer's
+// offset was used as canvas pixels as it was, so a press at a quarter of the
+// view picked and painted at its middle, and the outline was drawn at twice
+// the distance from the view's corner.
+test('under CSS zoom 2 the brush paints and draws its outline where the pointer is', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  await page.getByTestId('tool-select').click();
+  await page.evaluate(() => (document.documentElement.style.zoom = '2'));
+  try {
+    const rect = await page.getByTestId('viewport').evaluate((canvas) => {
+      const box = canvas.getBoundingClientRect();
+      return { left: box.left, top: box.top, width: box.width, height: box.height };
+    });
+    const stroke = async (x, y) => {
+      await page.mouse.move(x, y);
+      await page.mouse.down();
+      await page.mouse.move(x + 4, y, { steps: 2 });
+      await page.mouse.up();
+    };
+    // Empty background a quarter into the view (the old mapping hit the cow in the middle).
+    const quarter = [rect.left + rect.width / 4, rect.top + rect.height / 4];
+    await stroke(...quarter);
+    expect(await page.evaluate(() => window.anisoform.selection().some((w) => w > 0))).toBe(false);
+    // The middle of the view: the cow, and the outline is centred on the pointer.
+    const middle = [rect.left + rect.width / 2, rect.top + rect.height / 2];
+    await page.mouse.move(middle[0] - 3, middle[1]);
+    await page.mouse.move(...middle);
+    const outline = await page.locator('.brush-cursor').evaluate((element) => {
+      const box = element.getBoundingClientRect();
+      return [box.left + box.width / 2, box.top + box.height / 2];
+    });
+    expect(outline[0]).toBeCloseTo(middle[0], 0);
+    expect(outline[1]).toBeCloseTo(middle[1], 0);
+    await stroke(...middle);
+    await expect.poll(() => page.evaluate(() => window.anisoform.selection().some((w) => w > 0))).toBe(true);
+  } finally {
+    await page.evaluate(() => (document.documentElement.style.zoom = ''));
+  }
+  expect(pageErrors).toEqual([]);
+});

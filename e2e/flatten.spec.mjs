@@ -61,6 +61,8 @@ test('arrows placed with the mouse drive the flattening, with their own compress
   await expect(page.locator('#flatten-source')).toHaveValue('arrows');
   const rows = page.getByTestId('arrow-list').locator('.arrow-row');
   await expect(rows).toHaveCount(1);
+  // Its remove button is named in words, not "×".
+  await expect(rows.getByRole('button', { name: 'Remove arrow 1', exact: true })).toBeVisible();
   await page.getByLabel('Arrow 1 stretch along').fill('0.75');
   await page.getByLabel('Arrow 1 stretch along').press('Enter');
 

@@ -230,6 +230,130 @@ test('the Deform and Flatten tabs are one Tab stop, and the arrow keys switch be
   await page.keyboard.press('Home');
   await expect(deform).toBeFocused();
   await expect(deform).toHaveAttribute('aria-selected', 'true');
+  // Each tab controls its mode's panel (there was no aria-controls, no tabpanel).
+  const panelOf = async (tab) => page.locator(`#${await tab.getAttribute('aria-controls')}`);
+  const deformPanel = await panelOf(deform);
+  await expect(deformPanel).toHaveAttribute('role', 'tabpanel');
+  await expect(deformPanel.locator('#direction-source')).toBeVisible();
+  await expect(page.getByRole('tabpanel', { name: 'Deform' })).toBeVisible();
+  const flattenPanel = await panelOf(flatten);
+  await expect(flattenPanel).toBeHidden();
+  await flatten.click();
+  await expect(page.getByRole('tabpanel', { name: 'Flatten' }).getByTestId('flatten-run')).toBeVisible();
+  await expect(deformPanel).toBeHidden();
+  expect(pageErrors).toEqual([]);
+});
+
+// Deleting the only edit from the keyboard took its row, and the focus fell
+// to <body>: the next Tab started at the top of the page.
+test('Delete on the last edit\'s name leaves the focus on the Edits heading, not the page', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  await page.evaluate(async () => {
+    await window.anisoform.select({ all: true });
+    await window.anisoform.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.2, 1] } });
+  });
+  const id = await page.evaluate(() => window.anisoform.document().ops[0].id);
+  await page.getByTestId(`op-select-${id}`).focus();
+  await page.keyboard.press('Delete');
+  await expect.poll(() => page.evaluate(() => window.anisoform.document().ops.length)).toBe(0);
+  await expect.poll(() => page.evaluate(() => `${document.activeElement.tagName} ${document.activeElement.textContent}`)).toBe('H2 Edits');
+  expect(pageErrors).toEqual([]);
+});
+
+// In a decimal-comma locale toLocaleString() wrote "2.930" in the status bar,
+// the selection panel and the announcer, beside fields and an Edits list
+// that write "2,930" and "1.5": one notation now (shared/number-format.js).
+test('a German browser sees the counts in the fields\' notation: status bar, selection panel, announcer', async ({ browser }) => {
+  const german = await browser.newPage({ locale: 'de-DE' });
+  const pageErrors = await openApp(german);
+  expect(await german.evaluate(() => (2930).toLocaleString())).toBe('2.930');
+  await expect(german.getByTestId('status-mesh')).toHaveText(/^2,930 vertices · 5,856 triangles/);
+  await expect(german.getByTestId('announcer')).toHaveText('Loaded spot_triangulated.obj: 2,930 vertices, 5,856 triangles');
+  await german.getByTestId('select-all').click();
+  await expect(german.locator('.selection-count')).toHaveText('2,930 of 2,930 vertices selected');
+  await german.close();
+  expect(pageErrors).toEqual([]);
+});
+
+// The one polite region also says what changed without a solve: the
+// selection's count, a tool chosen by its key, an edit deleted, an undo and
+// a redo (none of them was said); the status bar's bar is a progressbar.
+test('a screen reader is told the selection count, the tool chosen by key, a deletion, undo and redo; the bar is a progressbar', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const announcer = page.getByTestId('announcer');
+  await page.getByTestId('select-all').click();
+  await expect(announcer).toHaveText('2,930 of 2,930 vertices selected');
+  await page.getByTestId('viewport').focus();
+  await page.keyboard.press('s');
+  await expect(announcer).toHaveText('Stretch tool');
+  await page.evaluate(() => window.anisoform.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.2, 1] } }));
+  const { id, label } = await page.evaluate(() => window.anisoform.document().ops[0]);
+  await page.getByTestId(`op-delete-${id}`).click();
+  await expect(announcer).toHaveText(`Delete ${label}`);
+  await page.getByTestId('viewport').focus();
+  await page.keyboard.press('Control+z');
+  await expect(announcer).toHaveText(`Undone: Delete ${label}`);
+  await page.keyboard.press('Control+Shift+z');
+  await expect(announcer).toHaveText(`Redone: Delete ${label}`);
+  expect(await page.locator('[role=status][aria-live=polite]').count()).toBe(1);
+
+  const bar = page.getByTestId('progress').getByRole('progressbar', { includeHidden: true });
+  await expect(bar).toHaveAttribute('aria-valuemin', '0');
+  await expect(bar).toHaveAttribute('aria-valuemax', '100');
+  // A flattening reports how far it is: the bar says it as a value.
+  await page.evaluate(() => {
+    window.__values = [];
+    const element = document.querySelector('[data-testid=progress] [role=progressbar]');
+    new MutationObserver(() => window.__values.push(element.getAttribute('aria-valuenow'))).observe(element, { attributes: true, attributeFilter: ['aria-valuenow'] });
+  });
+  expect((await uploadFile(page, meshPath('open/human_woman_torso_front_patch.obj'))).ok).toBe(true);
+  await page.evaluate(() => window.anisoform.flatten({ compress: 0.9, direction: { type: 'global', vector: [1, 0, 0] } }));
+  const values = await page.evaluate(() => window.__values.filter((value) => value !== null).map(Number));
+  expect(values.length).toBeGreaterThan(0);
+  expect(values.every((value) => value >= 0 && value <= 100)).toBe(true);
+  expect(pageErrors).toEqual([]);
+});
+
+// A German or French keyboard types [ and ] with AltGr (Ctrl+Alt to the page
+// on Windows), a Mac's with Option: the keys were ignored as shortcuts with
+// modifiers. Ctrl+[ alone is still no brush key.
+test('[ and ] typed with AltGr or Option change the brush radius', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const radius = page.locator('#brush-radiusPercent');
+  await expect(radius).toHaveValue('8');
+  await page.getByTestId('viewport').focus();
+  await page.keyboard.press('Control+Alt+BracketRight'); // Windows AltGr
+  await expect(radius).toHaveValue('10');
+  await page.getByTestId('viewport').evaluate((canvas) => canvas.dispatchEvent(new KeyboardEvent('keydown', {
+    key: ']', code: 'Digit9', modifierAltGraph: true, bubbles: true, cancelable: true })));
+  await expect(radius).toHaveValue('12.5');
+  await page.keyboard.press('Alt+BracketLeft'); // Option on a Mac layout
+  await expect(radius).toHaveValue('10');
+  await page.keyboard.press('Control+BracketLeft');
+  await expect(radius).toHaveValue('10');
+  expect(pageErrors).toEqual([]);
+});
+
+// The focused 3D view panned and orbited by key but could not be zoomed.
+test('+, = and - zoom the focused 3D view; the shortcut list says so', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  const distance = () => page.evaluate(() => {
+    const { position, target } = window.anisoform.camera();
+    return Math.hypot(...position.map((value, k) => value - target[k]));
+  });
+  await page.getByTestId('viewport').focus();
+  const start = await distance();
+  await page.keyboard.press('+');
+  const closer = await distance();
+  expect(closer).toBeCloseTo(start / 1.2, 6);
+  await page.keyboard.press('=');
+  expect(await distance()).toBeCloseTo(start / 1.44, 6);
+  await page.keyboard.press('-');
+  await page.keyboard.press('-');
+  expect(await distance()).toBeCloseTo(start, 6);
+  await page.keyboard.press('?');
+  await expect(page.getByTestId('shortcut-dialog')).toContainText('Zoom the view in / out (3D view focused)');
+  await page.keyboard.press('Escape');
   expect(pageErrors).toEqual([]);
 });
 

@@ -38,6 +38,9 @@ test('a notice is sentences, and a failed load clears the old one', async ({ pag
   expect(await noticeSummary(page)).toBe(
     'Skipped 12 point, line or curve elements (p, l, curv, surf). Triangulated 6 polygons with more than 3 corners.',
   );
+  // Its dismiss button is named in words, not "×".
+  const dismiss = page.getByTestId('notice').getByRole('button', { name: 'Dismiss message', exact: true });
+  await expect(dismiss).toBeVisible();
 
   expect((await uploadFile(page, meshPath('malformed/empty.obj'))).ok).toBe(false);
   await expect(page.getByTestId('error')).toContainText('The current mesh (testmixed.obj) is unchanged.');

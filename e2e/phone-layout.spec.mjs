@@ -197,3 +197,42 @@ test('390 px: a long warning shows three lines and More, which opens the rest an
   expect(await heightOf()).toBeLessThanOrEqual(3 * lineHeight + 1);
   expect(pageErrors).toEqual([]);
 });
+
+// 400 % zoom of a 1280 × 800 window is 320 × 200 CSS px, 200 % is 640 × 400.
+// The sheet's header sticks to its top: a control Tab or Shift+Tab focuses
+// is scrolled in below it, not under it; and the visually hidden file input
+// (outside the sheet's scroller) made the page itself scroll 87 px.
+for (const [zoom, width, height] of [['400 %', 320, 200], ['200 %', 640, 400]]) {
+  test(`${zoom} zoom (${width} × ${height}): no control is focused under the sheet's header, the page does not scroll`, async ({ page }) => {
+    await page.setViewportSize({ width, height });
+    const pageErrors = await openApp(page);
+    const overflow = await page.evaluate(() => ({
+      height: document.documentElement.scrollHeight - window.innerHeight,
+      width: document.documentElement.scrollWidth - window.innerWidth,
+    }));
+    expect(overflow).toEqual({ height: 0, width: 0 });
+    const hidden = [];
+    const focusedUnderHeader = () => page.evaluate(() => {
+      const element = document.activeElement;
+      const panel = element?.closest('.side-panel');
+      if (!panel || element.closest('.brand')) return null;
+      const header = panel.querySelector('.brand').getBoundingClientRect();
+      const box = element.getBoundingClientRect();
+      return box.top < header.bottom - 0.5 ? `${element.id || element.dataset.testid || element.textContent.trim().slice(0, 20)} top ${box.top.toFixed(0)} < header ${header.bottom.toFixed(0)}` : null;
+    });
+    await page.getByTestId('mode-deform').focus();
+    for (let step = 0; step < 25; step++) {
+      await page.keyboard.press('Tab');
+      const under = await focusedUnderHeader();
+      if (under) hidden.push(`Tab: ${under}`);
+    }
+    for (let step = 0; step < 25; step++) {
+      await page.keyboard.press('Shift+Tab');
+      const under = await focusedUnderHeader();
+      if (under) hidden.push(`Shift+Tab: ${under}`);
+    }
+    expect(hidden).toEqual([]);
+    expect(await page.evaluate(() => [window.scrollX, window.scrollY])).toEqual([0, 0]);
+    expect(pageErrors).toEqual([]);
+  });
+}

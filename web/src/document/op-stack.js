@@ -489,7 +489,9 @@ export class OpStack {
     this.document.undone = [];
     const step = (work) => () => this.#run(work)
       .catch((error) => this.#editor.report(error, `${label} could not be taken back or done again`));
-    this.#editor.history.push({ label, undo: step(undo), redo: step(redo) });
+    // Announced (ui/announcer.js): a deletion, a move, an edit turned off
+    // change nothing a screen reader otherwise says. A commit says its solve.
+    this.#editor.history.push({ label, undo: step(undo), redo: step(redo), announce: true });
   }
 
   // A committed solve's figures (the status bar's) and its fold-over

@@ -8,6 +8,7 @@
 // looking is no step of the history, and "Use current selection" takes the
 // selection made before (or after) opening it. Closing the op shows the
 // selection again. Its soft border can be changed too.
+import { formatCount } from '../shared/number-format.js';
 import { h, section } from '../ui/dom.js';
 import { falloffField, opFields } from './op-fields.js';
 
@@ -15,8 +16,9 @@ import { falloffField, opFields } from './op-fields.js';
 // (an op's name, an amount, Move up, the toggle) gets it back in the new
 // rows; when it is gone or disabled (Move up at the top), its op's name; when
 // the op is gone (deleted), the name of the op now in its place: a keyboard
-// user carries on where they were.
-function focusWithin(list) {
+// user carries on where they were. With no op left, the Edits heading (the
+// focus fell to <body>, and the next Tab started at the top of the page).
+function focusWithin(list, heading) {
   const focused = list.contains(globalThis.document.activeElement) ? globalThis.document.activeElement : null;
   if (!focused) return { restore: () => {} };
   const find = (testId) => (testId ? list.querySelector(`[data-testid="${CSS.escape(testId)}"]`) : null);
@@ -28,8 +30,9 @@ function focusWithin(list) {
       const same = find(testId);
       const target = same && !same.disabled ? same
         : find(row?.dataset.op && `op-select-${row.dataset.op}`)
-          ?? list.querySelectorAll('.op-label')[Math.min(rowIndex, list.children.length - 1)];
-      target?.focus();
+          ?? list.querySelectorAll('.op-label')[Math.min(rowIndex, list.children.length - 1)]
+          ?? heading;
+      target.focus();
     },
   };
 }
@@ -100,7 +103,7 @@ export function opsPanel({ api, editor }) {
   // drawn again keep its count.
   let shown = null;
   const regionText = (entry) => (shown?.region === entry.region && shown.count !== null
-    ? `Region: ${entry.region} (${shown.count.toLocaleString('en-US')} vertices, shown on the mesh)`
+    ? `Region: ${entry.region} (${formatCount(shown.count)} vertices, shown on the mesh)`
     : `Region: ${entry.region}`);
   const showRegion = (entry) => {
     shown = { region: entry.region, count: null };
@@ -178,7 +181,7 @@ export function opsPanel({ api, editor }) {
       selected = null; // its op is gone (deleted, undone): the selection shows again
       showSelectionAgain();
     }
-    const focus = focusWithin(list);
+    const focus = focusWithin(list, heading);
     list.replaceChildren(...ops.map(row));
     const open = ops.find((entry) => entry.id === selected);
     if (open && shown?.region !== open.region) showRegion(open);
@@ -188,5 +191,8 @@ export function opsPanel({ api, editor }) {
   editor.on('document', render);
   editor.on('mesh', render);
 
-  return section('Edits', empty, list);
+  const panel = section('Edits', empty, list);
+  const heading = panel.querySelector('h2');
+  heading.tabIndex = -1; // focusable by script only: no Tab stop
+  return panel;
 }

@@ -89,6 +89,7 @@ export class Editor extends EventEmitter {
     this.selectionState = new SelectionState({ editor: this, client, beforeChange: () => this.#patterns.selectionChanged() });
     client.on('progress', (progress) => this.emit('progress', progress));
     this.history.on('change', (state) => this.emit('history', state));
+    this.history.on('step', (step) => this.emit('step', step));
   }
 
   attachView(view) {

@@ -9,6 +9,7 @@ import { Editor } from '../editor/editor.js';
 import { BrushCursor } from '../interaction/brush-cursor.js';
 import { DragReadout } from '../interaction/drag-readout.js';
 import { installKeyboardShortcuts } from '../interaction/keyboard-shortcuts.js';
+import { installKeyboardZoom } from '../interaction/keyboard-zoom.js';
 import { Picker } from '../interaction/picker.js';
 import { PointerGestures } from '../interaction/pointer-gestures.js';
 import { badParameter, supersededLoadError } from '../shared/errors.js';
@@ -233,6 +234,7 @@ export function createModeller(container, options = {}) {
   // (about 9° a press on a 400 px high view).
   viewer.controls.listenToKeyEvents(viewer.canvas);
   viewer.controls.keyRotateSpeed = 10;
+  installKeyboardZoom(viewer, lifetime);
   if (ui === 'full') installFullUi(layout, { api, editor, settings, tools, viewer, picker, reportError, lifetime, keyTarget });
 
   /** Loads a URL as well as what api.load takes; failures are reported as 'error' events too. */

@@ -22,7 +22,7 @@ import { frameButton } from '../ui/frame-button.js';
 import { historyButtons } from '../ui/history-panel.js';
 import { installMessages } from '../ui/messages.js';
 import { methodPanel } from '../ui/method-panel.js';
-import { modeSwitch } from '../ui/mode-switch.js';
+import { modePanel, modeSwitch } from '../ui/mode-switch.js';
 import { panelSheetToggle } from '../ui/panel-sheet.js';
 import { patternPane } from '../ui/pattern-pane.js';
 import { selectionPanel } from '../ui/selection-panel.js';
@@ -45,21 +45,22 @@ export function installFullUi(layout, { api, editor, settings, tools, viewer, pi
     opsPanel({ api, editor }),
     toolPanel({ editor, settings, tools, reportError, selectRegion }),
     selectionPanel({ api, editor }),
-    inMode('deform', directionPanel({ settings })),
-    inMode('deform', methodPanel({ settings })),
-    inMode('flatten', flattenPanel({ api, editor, settings, reportError })),
+    inMode('deform', modePanel('deform', directionPanel({ settings }), methodPanel({ settings }))),
+    inMode('flatten', modePanel('flatten', flattenPanel({ api, editor, settings, reportError }))),
     displayPanel({ settings }),
   );
-  panelSheetToggle(layout.sidePanel);
+  panelSheetToggle(layout.sidePanel, lifetime);
   patternPane(layout.patternPane, { editor, settings, lifetime });
   statusBar(layout.statusBar, { editor, viewer, lifetime });
-  installAnnouncer(layout.statusBar, { editor });
-  installMessages(layout.viewport, { editor, lifetime });
+  const announcer = installAnnouncer(layout.statusBar, { editor });
+  const messages = installMessages(layout.viewport, { editor, lifetime });
   installDropZone(layout.root, layout.dropOverlay, { api, reportError, lifetime, mayReplace: files.mayReplace });
   frameButton(layout.viewport, { api });
   const dialog = shortcutDialog(layout.root, { tools });
-  installEditingKeys(keyTarget, lifetime, { settings, dialog, selectRegion, files });
+  const toolChosen = (id) => announcer.say(`${tools.get(id).label} tool`);
+  installEditingKeys(keyTarget, lifetime, { settings, dialog, selectRegion, files, toolChosen });
   claimUniqueIds(layout.root, lifetime);
-  // A value a panel field did not take is said (ui/fields.js).
-  settings.on('refused', ({ message }) => editor.emit('notice', { message, source: 'field' }));
+  // A value a panel field did not take is said (ui/fields.js), until that field takes one.
+  settings.on('refused', ({ message, field }) => editor.emit('notice', { message, source: 'field', field }));
+  settings.on('accepted', ({ field }) => messages.clearFieldNotice(field));
 }

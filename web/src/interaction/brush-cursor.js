@@ -15,7 +15,10 @@ export class BrushCursor {
     viewer.container.append(this.element);
   }
 
-  /** Shows the outline around canvas pixel (x, y) for a world-space brush at `point`. */
+  /**
+   * Shows the outline around canvas pixel (x, y) (viewer.canvasPoint's, the
+   * unzoomed CSS px its container's layout uses) for a world-space brush at `point`.
+   */
   show(x, y, point, radius) {
     const camera = this.viewer.camera;
     centre.fromArray(point);

@@ -41,8 +41,7 @@ export class PointerGestures {
   }
 
   #position(event) {
-    const rect = this.viewer.canvas.getBoundingClientRect();
-    return { x: event.clientX - rect.left, y: event.clientY - rect.top };
+    return this.viewer.canvasPoint(event.clientX, event.clientY);
   }
 
   #down(event) {

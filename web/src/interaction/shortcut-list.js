@@ -25,6 +25,7 @@ export function shortcutRows(tools) {
     ['Shift+C', 'The same, with the brush mode inverted (add ↔ subtract)'],
     ['F or Home', 'Frame the whole mesh'],
     ['Arrow keys', 'Pan the view (3D view focused); Shift+arrows orbit'],
+    ['+ (or =) and −', 'Zoom the view in / out (3D view focused)'],
     ['Ctrl+O', 'Open a mesh, or saved edits (with their mesh)'],
     ['Ctrl+S', 'Save the edits as a file (.json)'],
     ['Delete', 'Delete the edit whose name has the focus in the Edits list'],

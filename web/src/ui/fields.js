@@ -5,28 +5,37 @@
 // the field never shows a number that is not the one used.
 //
 // A value not taken (not a number, out of the field's bounds) is said in a
-// notice (settings 'refused').
+// notice (settings 'refused'); a value the same field then takes as typed
+// says that notice is moot (settings 'accepted'): "'1,000.5' is not a
+// number; 1 is kept" stood beside the 2 typed next.
 // A number field's min/max are the panel's own bounds (a brush radius in
-// percent). Amounts the core validates (limits.h: stretch, shear, angles,
+// percent); an `integer` field (the iteration cap) refuses a fraction: "2.5"
+// was kept, and every later edit failed in the core ("op.maxIterations must
+// be an integer"). `step` is only the keys' increment, no rule. Amounts the core validates (limits.h: stretch, shear, angles,
 // the twist rate) get none here: the core refuses an out-of-range value with
 // a message naming the field and its range, and the field keeps showing it.
 import { h } from './dom.js';
 import { decimalInput, parseDecimal } from './decimal-input.js';
 
-export function numberField(settings, sectionName, { key, label, min, max }) {
-  const input = decimalInput({ id: `${sectionName}-${key}` });
+export function numberField(settings, sectionName, { key, label, min, max, integer = false }) {
+  const field = `${sectionName}-${key}`;
+  const input = decimalInput({ id: field, inputMode: integer ? 'numeric' : 'decimal' });
   const sync = () => {
     if (document.activeElement !== input) input.value = settings.values[sectionName][key];
   };
   input.addEventListener('change', () => {
     const typed = input.value.trim();
     const value = parseDecimal(typed);
-    if (Number.isFinite(value)) settings.update(sectionName, { [key]: clamp(value, min, max) });
+    const fraction = integer && Number.isFinite(value) && !Number.isInteger(value);
+    const taken = Number.isFinite(value) && !fraction;
+    if (taken) settings.update(sectionName, { [key]: clamp(value, min, max) });
     const kept = settings.values[sectionName][key];
     input.value = kept;
     // Said, not only undone: "abc" used to put the old value back silently.
-    if (!Number.isFinite(value) && typed !== '') refused(settings, `${label}: '${typed}' is not a number; ${kept} is kept`);
-    else if (Number.isFinite(value) && value !== kept) refused(settings, `${label}: ${typed} is out of range (${rangeText(min, max)}); ${kept} is used`);
+    if (fraction) refused(settings, field, `${label}: '${typed}' is not a whole number; ${kept} is kept`);
+    else if (!taken && typed !== '') refused(settings, field, `${label}: '${typed}' is not a number; ${kept} is kept`);
+    else if (taken && value !== kept) refused(settings, field, `${label}: ${typed} is out of range (${rangeText(min, max)}); ${kept} is used`);
+    else if (taken) settings.emit('accepted', { field });
   });
   settings.on('change', ({ section }) => section === sectionName && sync());
   // A value set while the user was in the field (a new mesh's twist rate) shows once they leave it.
@@ -71,9 +80,10 @@ export function vectorField(settings, sectionName, { key, label, point = false }
       const vector = inputs.map((field) => parseDecimal(field.value));
       if (vector.every(Number.isFinite) && (point || Math.hypot(...vector) > 0)) {
         settings.update(sectionName, { [key]: vector });
+        settings.emit('accepted', { field: `${sectionName}-${key}` });
       } else {
         const kept = settings.values[sectionName][key];
-        refused(settings, vector.every(Number.isFinite)
+        refused(settings, `${sectionName}-${key}`, vector.every(Number.isFinite)
           ? `${label}: (0, 0, 0) is no direction; (${kept.join(', ')}) is kept`
           : `${label}: every component must be a number; (${kept.join(', ')}) is kept`);
       }
@@ -94,10 +104,10 @@ export function showWhen(settings, sectionName, element, predicate) {
   return element;
 }
 
-// A value a field did not take, for the page to say (settings 'refused',
-// shown as a notice by the full UI).
-function refused(settings, message) {
-  settings.emit('refused', { message });
+// A value field `field` (its section-key) did not take, for the page to
+// say (settings 'refused', shown as a notice by the full UI).
+function refused(settings, field, message) {
+  settings.emit('refused', { message, field });
 }
 
 function rangeText(min, max) {

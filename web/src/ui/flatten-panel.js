@@ -6,7 +6,7 @@
 // (pattern-scale.js), and SVG / DXF export of the pattern.
 import { downloadBytes } from '../io/download.js';
 import { flattenDirectionFromSettings } from '../tools/direction-source.js';
-import { formatPercent } from '../viewer/pattern-view.js';
+import { formatPercent } from '../shared/number-format.js';
 import { decimalInput, parseDecimal } from './decimal-input.js';
 import { h, section } from './dom.js';
 import { mmPerUnitOf, patternScale } from './pattern-scale.js';
@@ -163,8 +163,10 @@ function arrowList(settings) {
         amountInput(index, 'su', 'stretch along'),
         amountInput(index, 'sv', 'stretch across'),
         h('button', {
+          type: 'button',
           className: 'dismiss',
           title: 'Remove this arrow',
+          'aria-label': `Remove arrow ${index + 1}`,
           onclick: () => settings.update('arrows', settings.values.arrows.filter((_, i) => i !== index)),
         }, '×'),
       )),

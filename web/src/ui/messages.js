@@ -32,15 +32,16 @@ export function installMessages(root, { editor, lifetime }) {
     body.append(Object.assign(document.createElement('span'), { className: 'message-text', textContent: text }), more);
     if (details.length > 0) body.append(detailsList(details));
     element.classList.remove('expanded');
-    element.replaceChildren(
-      body,
-      Object.assign(document.createElement('button'), {
-        className: 'dismiss',
-        textContent: '×',
-        title: 'Dismiss',
-        onclick: () => (element.hidden = true),
-      }),
-    );
+    const dismiss = Object.assign(document.createElement('button'), {
+      className: 'dismiss',
+      type: 'button',
+      textContent: '×',
+      title: 'Dismiss',
+      onclick: () => (element.hidden = true),
+    });
+    // Named in words: a screen reader said "times" or "multiplication sign".
+    dismiss.setAttribute('aria-label', 'Dismiss message');
+    element.replaceChildren(body, dismiss);
     element.hidden = false;
     fitMoreButton(element);
   };
@@ -50,9 +51,10 @@ export function installMessages(root, { editor, lifetime }) {
     warning.hidden = true;
   };
   editor.on('error', ({ message }) => show(error, message.replace(/\.?\s*$/, '.')));
-  editor.on('notice', ({ message, details, source }) => {
+  editor.on('notice', ({ message, details, source, field }) => {
     show(notice, message, details);
     notice.dataset.source = source;
+    notice.dataset.field = field ?? '';
   });
   // element.dataset.source: what put the message there (a notice: 'load',
   // 'cancel', 'busy', 'save', 'select' or 'field'; a warning: 'edit', 'preview' or 'flatten').
@@ -103,7 +105,11 @@ export function installMessages(root, { editor, lifetime }) {
   // comes after) or fails (its error comes after).
   editor.on('loading', hideAll);
   editor.on('mesh', hideAll);
-  return { showError: (text) => show(error, text) };
+  return {
+    showError: (text) => show(error, text),
+    // A field's refused value is moot once the field takes one (ui/fields.js 'accepted').
+    clearFieldNotice: (field) => notice.dataset.field === field && hideFrom(notice, 'field'),
+  };
 }
 
 // More while the text is cut short (only where the layout clamps it), Less once opened.

@@ -17,7 +17,7 @@ export function methodPanel({ settings }) {
         ['linear', 'Linear'],
       ],
     }),
-    numberField(settings, 'solver', { key: 'iterations', label: 'Iterations', min: 1, max: 500, step: 1 }),
+    numberField(settings, 'solver', { key: 'iterations', label: 'Iterations', min: 1, max: 500, step: 1, integer: true }),
     showWhen(settings, 'solver', arapNote, (s) => s.method === 'arap'),
   );
 }

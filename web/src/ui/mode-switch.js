@@ -10,13 +10,25 @@ const MODES = [
 ];
 
 // A tab list as the ARIA pattern has it: one Tab stop (the selected tab),
-// the arrow keys, Home and End move between the tabs and select them.
+// the arrow keys, Home and End move between the tabs and select them; each
+// tab controls its mode's panel (modePanel: role=tabpanel), which a screen
+// reader can move to from it.
+
+/** The id of mode `mode`'s tab panel. */
+export const modePanelId = (mode) => `mode-panel-${mode}`;
+
+/** Mode `mode`'s sections as its tab panel (shown while the mode is on: the caller's showWhen). */
+export function modePanel(mode, ...sections) {
+  return h('div', { id: modePanelId(mode), role: 'tabpanel', 'aria-labelledby': `mode-tab-${mode}` }, sections);
+}
 const ARROWS = { ArrowLeft: -1, ArrowUp: -1, ArrowRight: 1, ArrowDown: 1 };
 
 export function modeSwitch({ settings, app }) {
   const tabs = MODES.map(([mode, label, title]) => h('button', {
     className: 'mode-tab',
     role: 'tab',
+    id: `mode-tab-${mode}`,
+    'aria-controls': modePanelId(mode),
     title,
     'data-testid': `mode-${mode}`,
     onclick: () => settings.update('mode', mode),

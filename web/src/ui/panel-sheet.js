@@ -4,7 +4,7 @@
 // is not shown and the panel is always open.
 import { h } from './dom.js';
 
-export function panelSheetToggle(sidePanel) {
+export function panelSheetToggle(sidePanel, lifetime) {
   const button = h('button', {
     className: 'button sheet-toggle',
     type: 'button',
@@ -18,6 +18,13 @@ export function panelSheetToggle(sidePanel) {
     button.title = open ? 'Fold the panel down to give the view more room' : 'Open the tools and settings';
   };
   setOpen(true);
-  sidePanel.querySelector('.brand').append(button);
+  const header = sidePanel.querySelector('.brand');
+  header.append(button);
+  // The header sticks to the sheet's top (narrow-layout.css): a control
+  // focused by Tab scrolled to the top edge sat under it at 200 % and 400 %
+  // zoom. Its height (it wraps when narrow) is the sheet's scroll padding.
+  const measure = new ResizeObserver(() => sidePanel.style.setProperty('--sheet-header-height', `${Math.ceil(header.getBoundingClientRect().height)}px`));
+  measure.observe(header);
+  lifetime.defer(() => measure.disconnect());
   return button;
 }

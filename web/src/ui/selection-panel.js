@@ -2,8 +2,16 @@
 // is one undo step. All and Clear are the core's regions (api.select); grow,
 // shrink and invert work on the page's weights (selection-morphology.js).
 import { growSelection, invertSelection, shrinkSelection } from '../selection/selection-morphology.js';
+import { formatCount } from '../shared/number-format.js';
 import { h, section } from './dom.js';
 import { setOff, whenOn } from './focusable-disabled.js';
+
+/** What is selected, in words (the panel's line; the announcer says it too). */
+export function selectionText(document) {
+  return document.selectionCount === 0
+    ? 'Nothing selected: edits apply to the whole mesh.'
+    : `${formatCount(document.selectionCount)} of ${formatCount(document.vertexCount)} vertices selected`;
+}
 
 export function selectionPanel({ api, editor }) {
   const count = h('p', { className: 'selection-count' });
@@ -20,14 +28,7 @@ export function selectionPanel({ api, editor }) {
   };
   editor.on('busy', (busy) => buttons.forEach((element) => setOff(element, busy)));
 
-  const sync = () => {
-    const document = editor.document;
-    count.textContent = !document
-      ? ''
-      : document.selectionCount === 0
-        ? 'Nothing selected: edits apply to the whole mesh.'
-        : `${document.selectionCount.toLocaleString()} of ${document.vertexCount.toLocaleString()} vertices selected`;
-  };
+  const sync = () => (count.textContent = editor.document ? selectionText(editor.document) : '');
   editor.on('selection', ({ live }) => !live && sync());
   editor.on('mesh', sync);
 

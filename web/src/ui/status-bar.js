@@ -3,13 +3,25 @@
 // factorizing (a bar with a fraction, or an indeterminate one when the
 // worker cannot tell how far it is).
 import { openSurface } from '../editor/problem-summary.js';
+import { formatCount } from '../shared/number-format.js';
 import { h } from './dom.js';
 
 export function statusBar(container, { editor, viewer, lifetime }) {
   const mesh = h('span', { className: 'status-item status-mesh', 'data-testid': 'status-mesh' });
   const solve = h('span', { className: 'status-item status-solve', 'data-testid': 'status-solve' }, 'solve —');
   const fps = h('span', { className: 'status-item status-fps', 'data-testid': 'status-fps' });
-  const bar = h('span', { className: 'progress-bar' }, h('span', { className: 'progress-fill' }));
+  // A progressbar to assistive technology: how far when the worker can tell
+  // (aria-valuenow), busy without a value when it cannot.
+  const bar = h('span', {
+    className: 'progress-bar', role: 'progressbar', 'aria-label': 'Progress', 'aria-valuemin': '0', 'aria-valuemax': '100',
+  }, h('span', { className: 'progress-fill' }));
+  const showFraction = (fraction, text) => {
+    bar.classList.toggle('indeterminate', fraction === undefined);
+    bar.firstChild.style.width = fraction === undefined ? '' : `${Math.round(fraction * 100)}%`;
+    if (fraction === undefined) bar.removeAttribute('aria-valuenow');
+    else bar.setAttribute('aria-valuenow', String(Math.round(fraction * 100)));
+    bar.setAttribute('aria-valuetext', text);
+  };
   const progressText = h('span', { className: 'progress-text' });
   // Stops a committed solve (Esc does too): the state before it stays.
   const cancel = h('button', {
@@ -32,7 +44,7 @@ export function statusBar(container, { editor, viewer, lifetime }) {
     committed = { text: 'solve —', title: '' };
     showCommitted();
     const surface = openSurface(document.info);
-    mesh.textContent = `${document.vertexCount.toLocaleString()} vertices · ${document.triangleCount.toLocaleString()} triangles${surface.text}`;
+    mesh.textContent = `${formatCount(document.vertexCount)} vertices · ${formatCount(document.triangleCount)} triangles${surface.text}`;
     mesh.title = surface.title;
   });
   editor.on('stats', ({ ms, iterations, live, converged }) => {
@@ -52,15 +64,14 @@ export function statusBar(container, { editor, viewer, lifetime }) {
     if (stage === 'done' && editor.busy) return;
     progress.hidden = stage === 'done';
     progressText.textContent = fraction === undefined ? message : `${message} ${Math.round(fraction * 100)} %`;
-    bar.classList.toggle('indeterminate', fraction === undefined);
-    bar.firstChild.style.width = fraction === undefined ? '' : `${Math.round(fraction * 100)}%`;
+    showFraction(fraction, progressText.textContent);
   });
   editor.on('busy', (busy) => {
     progress.hidden = !busy;
     cancel.hidden = !busy;
     if (busy) {
       progressText.textContent = 'Solving';
-      bar.classList.add('indeterminate');
+      showFraction(undefined, 'Solving');
     }
   });
   // Frames are drawn on demand, so an idle view draws none. The text is

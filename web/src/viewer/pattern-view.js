@@ -8,6 +8,7 @@
 // most some 100k triangles, and the canvas needs no second GL context beside
 // the 3D view's (SwiftShader runs them on the CPU).
 import { heatColor } from './pattern-colors.js';
+import { formatPercent } from '../shared/number-format.js';
 
 const PADDING_PX = 24;
 // The colour legend (#drawLegend): its bar's top this far above the bottom
@@ -273,10 +274,6 @@ export class PatternView {
   }
 }
 
-export function formatPercent(value) {
-  if (!Number.isFinite(value)) return '—';
-  return `${(100 * value).toFixed(value < 0.01 ? 2 : 1)} %`;
-}
 
 function summary(metrics) {
   return `Compression error: mean ${formatPercent(metrics.compressionErrorMean)}, ` +

@@ -188,6 +188,20 @@ export class Viewer extends EventEmitter {
     };
   }
 
+  /**
+   * A pointer's client position as a canvas pixel (CSS px, y down, as
+   * clientWidth counts them): what picking, painting, toNdc and the brush
+   * outline all take. Under CSS `zoom` on the page the client rect is
+   * zoomed and clientWidth is not; the raw offset from the rect landed
+   * picks and paint at twice the distance from the view's corner.
+   */
+  canvasPoint(clientX, clientY) {
+    const rect = this.canvas.getBoundingClientRect();
+    const scaleX = rect.width > 0 ? this.canvas.clientWidth / rect.width : 1;
+    const scaleY = rect.height > 0 ? this.canvas.clientHeight / rect.height : 1;
+    return { x: (clientX - rect.left) * scaleX, y: (clientY - rect.top) * scaleY };
+  }
+
   /** Canvas pixel (CSS px, y down) to normalized device coordinates. */
   toNdc(x, y) {
     return { x: (x / this.canvas.clientWidth) * 2 - 1, y: -(y / this.canvas.clientHeight) * 2 + 1 };
