@@ -1057,3 +1057,29 @@ test('a lost WebGL context is said as an error, the restored one as a notice, an
   expect(await framesDuring(page, 300, () => page.evaluate(() => window.anisoformExample.modellers.spot.api.select({ all: true })))).toBeGreaterThan(0);
   expect(pageErrors).toEqual([]);
 });
+
+test('a second modeller in a container that holds one is refused until the first is disposed', async ({ page }) => {
+  const pageErrors = await openExample(page);
+  const outcome = await page.evaluate(async () => {
+    const { createModeller } = window.anisoformExample;
+    const host = Object.assign(document.createElement('div'), { style: 'height: 300px' });
+    document.body.append(host);
+    const first = createModeller(host, { ui: 'none', mesh: '../spool.off' });
+    await first.api.ready;
+    let refusal = 'accepted';
+    try {
+      createModeller(host, { ui: 'none' });
+    } catch (error) {
+      refusal = `${error.code}: ${error.message}`;
+    }
+    first.dispose();
+    const second = createModeller(host, { ui: 'none', mesh: '../spool.off' });
+    await second.api.ready;
+    const views = host.querySelectorAll('canvas').length;
+    second.dispose();
+    return { refusal, views };
+  });
+  expect(outcome.refusal).toBe('bad-parameter: createModeller: this container holds a modeller already: dispose() it first, or give each modeller its own container');
+  expect(outcome.views).toBe(1);
+  expect(pageErrors).toEqual([]);
+});

@@ -68,6 +68,8 @@ export function createModeller(container, options = {}) {
   const { ui = 'full', mesh, meshName, document: editDocument, keyboard = 'focus', autosave = false, workerUrl, wasmUrl, solvers, materials = false } = checkOptions(container, options);
 
   const lifetime = new Lifetime();
+  holding.add(container);
+  lifetime.defer(() => holding.delete(container));
   const client = new SolverClient({ workerUrl, wasmUrl, pool: solvers });
   lifetime.defer(() => client.dispose());
   const editor = new Editor(client);
@@ -297,8 +299,13 @@ export function createModeller(container, options = {}) {
   return modeller;
 }
 
+// The containers that hold a live modeller: a second one in the same
+// container stacked its view under the first's and overflowed it.
+const holding = new WeakSet();
+
 function checkOptions(container, options) {
   if (!(container instanceof HTMLElement)) throw badParameter('createModeller: container must be an HTML element');
+  if (holding.has(container)) throw badParameter('createModeller: this container holds a modeller already: dispose() it first, or give each modeller its own container');
   if (options === null || typeof options !== 'object') throw badParameter('createModeller: options must be an object');
   for (const key of Object.keys(options)) {
     if (!OPTIONS.includes(key)) throw badParameter(`createModeller: unknown option '${key}' (options: ${OPTIONS.join(', ')})`);

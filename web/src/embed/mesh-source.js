@@ -12,12 +12,20 @@ async function fetched(source, what) {
   try {
     response = await fetch(url);
   } catch (error) {
-    throw Object.assign(new Error(`${what} ${url.pathname} could not be fetched: ${error.message}`), { code: 'bad-file' });
+    throw Object.assign(new Error(`${what} ${shownUrl(url)} could not be fetched: ${error.message}`), { code: 'bad-file' });
   }
   if (!response.ok) {
-    throw Object.assign(new Error(`${what} ${url.pathname} could not be fetched (HTTP ${response.status})`), { code: 'bad-file' });
+    throw Object.assign(new Error(`${what} ${shownUrl(url)} could not be fetched (HTTP ${response.status})`), { code: 'bad-file' });
   }
   return { url, response };
+}
+
+// A URL as a message names it: the page's own files by their path, another
+// site's with its host; a blob: or data: URL by its kind (its path was a
+// random id, or the data itself, and the host was dropped).
+function shownUrl(url) {
+  if (url.protocol === 'blob:' || url.protocol === 'data:') return `(a ${url.protocol} URL)`;
+  return url.origin === location.origin ? url.pathname : `${url.host}${url.pathname}`;
 }
 
 export async function resolveMeshSource(source, name) {
@@ -35,6 +43,6 @@ export async function resolveDocumentSource(source) {
   try {
     return JSON.parse(text);
   } catch (error) {
-    throw Object.assign(new Error(`The edit document ${url.pathname} is not JSON: ${error.message}`), { code: 'bad-file' });
+    throw Object.assign(new Error(`The edit document ${shownUrl(url)} is not JSON: ${error.message}`), { code: 'bad-file' });
   }
 }
