@@ -269,4 +269,14 @@ void print_json(const Json& result) {
             << std::flush;
 }
 
+void print_warnings(const std::string& command, const std::vector<std::string>& warnings) {
+  for (const std::string& warning : warnings) std::cerr << "anisoform " << command << ": warning: " << warning << '\n';
+  std::cerr << std::flush;
+}
+
+std::string field_amounts_replace(const std::string& option, const std::string& value, const std::string& path) {
+  return option + " " + value + " is not used: the field file " + path +
+         " gives amounts (its SU SV columns), which replace it everywhere; give the amounts in one place only";
+}
+
 }  // namespace aniso::cli

@@ -164,5 +164,14 @@ Json to_json(const BoundingBox& box);
 Json to_json(const ReadReport& report);
 // The result object as one line plus a newline on stdout.
 void print_json(const Json& result);
+// Each warning of the result's `warnings` as a line on stderr too
+// ("anisoform COMMAND: warning: ..."), where a person running the command
+// sees it without reading the JSON.
+void print_warnings(const std::string& command, const std::vector<std::string>& warnings);
+
+// The warning for an option's amounts (deform's --scale, flatten's
+// --compress) beside a field file that carries its own (SU SV columns):
+// the file's replace the option's everywhere (the core's rule, any_amounts).
+std::string field_amounts_replace(const std::string& option, const std::string& value, const std::string& path);
 
 }  // namespace aniso::cli

@@ -58,6 +58,7 @@ struct DeformPlan {
   Region selection;
   double falloff = 0.0;
   std::string direction_description;  // empty: the mesh's longest axis
+  std::string field_path;             // --direction field:PATH
   std::optional<Region> pins;
   std::optional<Region> handles;
   WriteOptions write;
@@ -136,6 +137,7 @@ DeformOp edit_from_flags(const DeformArguments& args, DeformPlan& plan) {
     request.direction.kind = choice.kind;
     request.direction.vector = choice.vector;
     if (choice.kind == DirectionSource::Kind::Constraints) {
+      plan.field_path = choice.field_path;
       request.direction.constraints = read_direction_field(choice.field_path);
     }
   }
@@ -245,6 +247,9 @@ int run_deform(const DeformArguments& args) {
   DeformOp& edit = plan.edit;
   if (plan.pins) edit.request.pins = region_vertices(mesh, *plan.pins, "--pin");
   if (plan.handles) edit.request.handles = region_vertices(mesh, *plan.handles, "--handle");
+  if (!args.scale.empty() && any_amounts(edit.request.direction.constraints)) {
+    warnings.push_back(field_amounts_replace("--scale", args.scale, plan.field_path));
+  }
   if (edit.request.method == Method::Arap && !edit.request.transform.is_identity()) {
     warnings.push_back("--method arap is isotropic ARAP with handles: the local transform "
                        "(--scale, --shear, --rotate, --twist, --thicken) is not used");
@@ -281,6 +286,7 @@ int run_deform(const DeformArguments& args) {
 
   // An OBJ keeps the input OBJ's texture coordinates, a PLY the input PLY's vertex properties.
   write_mesh(args.output, Mesh{session.positions(), mesh.F}, session.write_options(plan.write.binary));
+  print_warnings("deform", warnings);
   std::string direction = plan.direction_description;
   if (direction.empty()) {
     direction = edit.direction_given ? op_direction_description(edit.request.direction)
@@ -345,7 +351,8 @@ void add_deform_options(CLI::App& deform, DeformArguments& args) {
       ->type_name("D");
   deform.add_option("--direction", args.direction,
                     "global:X,Y,Z | curvature:min | curvature:max | field:PATH (lines \"INDEX DX "
-                    "DY DZ [SU [SV]]\": constraints propagated to a smooth line field). Default: "
+                    "DY DZ [SU [SV]]\": constraints propagated to a smooth line field; amounts in the file "
+                    "replace --scale everywhere, and a warning says so when both are given). Default: "
                     "global along the longest bounding-box axis")
       ->type_name("SOURCE");
   deform.add_option("--scale", args.scale,

@@ -48,6 +48,7 @@ struct FlattenPlan {
   Region selection;
   SessionFlatten request;            // the Session's request; its options are built by the core
   std::string direction_description; // empty: the mesh's longest axis
+  std::string field_path;            // --direction field:PATH
   double mm_per_unit = 1.0;
 };
 
@@ -100,6 +101,7 @@ FlattenPlan plan_flatten(const FlattenArguments& args) {
     FlattenDirections& directions = plan.request.directions;
     if (direction.kind == DirectionSource::Kind::Constraints) {
       directions.kind = FlattenDirections::Kind::Constraints;
+      plan.field_path = direction.field_path;
       directions.constraints = read_direction_field(direction.field_path);
     } else if (direction.kind == DirectionSource::Kind::Global) {
       directions.global = direction.vector;
@@ -236,6 +238,9 @@ int run_flatten(const FlattenArguments& args) {
     warnings.push_back(std::to_string(session.info().report.unreferenced_vertices) +
                        " unreferenced vertex(es): not part of the pattern");
   }
+  if (!args.compress.empty() && any_amounts(plan.request.directions.constraints)) {
+    warnings.push_back(field_amounts_replace("--compress", args.compress, plan.field_path));
+  }
   const std::vector<char> mask = selection_mask(mesh, plan.selection);
 
   // The one-shot flatten (its patch is written out), with the Session's request rules.
@@ -270,6 +275,7 @@ int run_flatten(const FlattenArguments& args) {
       warnings.push_back(small);
     }
   }
+  print_warnings("flatten", warnings);
   nlohmann::json result = result_json(args, plan, direction, warnings, flattened.result);
   if (!unit_guess.empty()) result["unit_guess"] = unit_guess;  // mm_per_unit is the guess's
   print_json(result);
@@ -309,7 +315,8 @@ void add_flatten_options(CLI::App& command, FlattenArguments& args) {
       ->type_name("SU[,SV]");
   command.add_option("--direction", args.direction,
                      "global:X,Y,Z | field:PATH (lines \"INDEX DX DY DZ [SU [SV]]\": propagated "
-                     "over the patch; amounts in the file override --compress). Default: global "
+                     "over the patch; amounts in the file replace --compress everywhere, and a warning says so when both "
+                     "are given). Default: global "
                      "along the longest bounding-box axis")
       ->type_name("SOURCE");
   command.add_option("--baseline", args.baseline,

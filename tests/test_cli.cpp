@@ -449,6 +449,33 @@ TEST_CASE("cli: field-file amounts SU/SV <= 0 are refused like --scale -1, namin
                  "must be positive, got -1"));
 }
 
+TEST_CASE("cli: a field file's amounts replace --scale and --compress, and a warning says so", "[cli]") {
+  // Without the warning, --scale 1.3 and --scale 2 gave the same mesh, warnings [].
+  const std::string with_amounts = write_temp_text("amounts.txt", "0 1 0 0 0.8\n100 1 0 0 0.9\n");
+  const std::string without = write_temp_text("no_amounts.txt", "0 1 0 0\n100 1 0 0\n");
+  const struct {
+    std::string command, in, out, option, value;
+  } cases[] = {
+      {"deform", mesh("formats/spot_lowres.obj"), temp_path("amounts.obj"), "--scale", "1.3"},
+      {"flatten", mesh("open/hemisphere.obj"), temp_path("amounts_pattern.obj"), "--compress", "0.7"},
+  };
+  for (const auto& c : cases) {
+    const std::string expected = c.option + " " + c.value + " is not used: the field file " + with_amounts +
+                                 " gives amounts (its SU SV columns), which replace it everywhere";
+    const CliRun replaced =
+        run_expecting({c.command, c.in, c.out, c.option, c.value, "--direction", "field:" + with_amounts}, 0);
+    INFO(c.command << ": " << replaced.err);
+    const json result = stdout_json(replaced);
+    REQUIRE(result["warnings"].size() == 1);
+    CHECK(contains(result["warnings"][0].get<std::string>(), expected));
+    CHECK(contains(replaced.err, "anisoform " + c.command + ": warning: " + expected));
+    // A file without amounts leaves the option its say: no warning.
+    const CliRun kept = run_expecting({c.command, c.in, c.out, c.option, c.value, "--direction", "field:" + without}, 0);
+    CHECK(stdout_json(kept)["warnings"].empty());
+    CHECK_FALSE(contains(kept.err, "is not used"));
+  }
+}
+
 TEST_CASE("cli: a missing input says cannot open and exits 3", "[cli]") {
   for (const std::string& command : {"info", "deform"}) {
     std::vector<std::string> args{command, "/nonexistent/mesh.obj"};

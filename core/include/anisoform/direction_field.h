@@ -29,6 +29,11 @@ inline bool operator==(const DirectionConstraint& a, const DirectionConstraint& 
          a.has_amounts == b.has_amounts;
 }
 
+// Whether any constraint carries amounts: then the field's interpolated
+// amounts replace the edit's own (a deform's scale su, sv; a flatten's
+// compression), everywhere on the mesh.
+bool any_amounts(const std::vector<DirectionConstraint>& constraints);
+
 struct DirectionField {
   Positions direction;  // #V by 3 unit tangent vectors (zero outside the region)
   Eigen::VectorXd su;   // #V amounts along (1 where no amounts were given)

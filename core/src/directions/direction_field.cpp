@@ -219,6 +219,13 @@ field::ValueMatrix<double> interpolated_amounts(const std::vector<DirectionConst
 
 }  // namespace
 
+bool any_amounts(const std::vector<DirectionConstraint>& constraints) {
+  for (const DirectionConstraint& c : constraints) {
+    if (c.has_amounts) return true;
+  }
+  return false;
+}
+
 void validate_direction_constraints(const std::vector<DirectionConstraint>& constraints, int n) {
   for (std::size_t k = 0; k < constraints.size(); ++k) {
     const DirectionConstraint& c = constraints[k];
