@@ -381,7 +381,8 @@ void add_deform_options(CLI::App& deform, DeformArguments& args) {
   deform.add_option("--iterations", args.iterations,
                     "AnARAP/ARAP iteration cap, >= 1 (default " +
                         std::to_string(aniso::DeformRequest().max_iterations) +
-                        "); with --rotations steps and a rotation, twist or shear, the number of steps")
+                        "); with --rotations steps and a rotation, twist or shear, the number of steps (default " +
+                        std::to_string(aniso::DeformRequest().rotation_steps) + ", as an op's rotationSteps)")
       ->type_name("N");
   deform.add_option("--tolerance", args.tolerance,
                     "Relative energy change that ends the iterations, >= 0 (default 1e-6)")
@@ -391,7 +392,8 @@ void add_deform_options(CLI::App& deform, DeformArguments& args) {
       ->type_name("KIND");
   deform.add_option("--rotations", args.rotations,
                     "AnARAP with a rotation, twist or shear: coupled (default: neighbouring rotations "
-                    "tied, converges) | steps (the paper's scheme: --iterations steps from the rest pose)")
+                    "tied, converges) | steps (the paper's scheme: --iterations steps from the rest pose, default " +
+                        std::to_string(aniso::DeformRequest().rotation_steps) + ")")
       ->type_name("SCHEME");
   deform.add_option("--rotation-coupling", args.rotation_coupling,
                     "coupled rotations: how strongly neighbours are tied, 0.0001 to 10000 (default 1)")

@@ -476,6 +476,29 @@ TEST_CASE("cli: a field file's amounts replace --scale and --compress, and a war
   }
 }
 
+TEST_CASE("cli: --rotations steps without --iterations runs the number of steps --help states", "[cli]") {
+  // --help said the steps were --iterations' default 50; one step ran.
+  const CliRun help = run_expecting({"deform", "--help"}, 0);
+  std::string text;
+  std::istringstream words(help.out);
+  for (std::string word; words >> word;) text += word + " ";  // however CLI11 wraps it
+  const std::string stated = "the number of steps (default ";
+  const std::size_t at = text.find(stated);
+  REQUIRE(at != std::string::npos);
+  const int steps = std::stoi(text.substr(at + stated.size()));
+  const std::string in = mesh("formats/spot_lowres.obj");
+  const std::vector<std::string> edit{"--select", "box:-1,-1,0.5,1,2,2", "--rotate", "n:30", "--rotations", "steps"};
+  std::vector<std::string> by_default{"deform", in, temp_path("steps_default.obj")};
+  by_default.insert(by_default.end(), edit.begin(), edit.end());
+  std::vector<std::string> stated_count{"deform", in, temp_path("steps_stated.obj"), "--iterations", std::to_string(steps)};
+  stated_count.insert(stated_count.end(), edit.begin(), edit.end());
+  const json unset = stdout_json(run_expecting(by_default, 0));
+  const json given = stdout_json(run_expecting(stated_count, 0));
+  CHECK(unset["iterations"] == steps);
+  CHECK(given["iterations"] == steps);
+  CHECK(slurp(temp_path("steps_default.obj")) == slurp(temp_path("steps_stated.obj")));
+}
+
 TEST_CASE("cli: a missing input says cannot open and exits 3", "[cli]") {
   for (const std::string& command : {"info", "deform"}) {
     std::vector<std::string> args{command, "/nonexistent/mesh.obj"};
