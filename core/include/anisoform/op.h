@@ -112,9 +112,13 @@ ModelUnitGuess guess_model_unit(const BoundingBox& box);
 //   direction not given: global along longest_axis(loaded_box), the mesh as loaded;
 //   twist origin not given: default_twist_origin (transforms.h) of the rest pose;
 //   Arap with no handles (none would move: the edit would do nothing): handles
-//     are the vertices with selection weight >= 0.999 and, unless pins are
-//     given, pins those with weight 0 (the soft border in between deforms as
-//     rigidly as possible); nothing selected: no handle (nothing moves);
+//     are the vertices with selection weight >= 0.999 (the soft border in
+//     between deforms as rigidly as possible); nothing selected: no handle
+//     (nothing moves);
+//   Arap without pins (handles given or not): pins are the vertices with
+//     weight 0 that are not handles; given handles and a move with nothing
+//     unselected to hold the mesh (a rigid translation of all of it) are
+//     refused, Error(BadParameter);
 //   preview: max_iterations capped at kPreviewIterations.
 DeformRequest resolve_edit(const DeformOp& edit, const Positions& rest, const BoundingBox& loaded_box,
                            const Eigen::VectorXd& weights);
