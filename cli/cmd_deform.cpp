@@ -114,13 +114,7 @@ DeformOp edit_from_op_file(const DeformArguments& args) {
                                         args.op + " gives the whole edit");
     }
   }
-  const std::string text = read_text_file(args.op, "--op");
-  Json op;
-  try {
-    op = Json::parse(text);
-  } catch (const Json::parse_error& e) {
-    fail(ErrorCode::BadParameter, "--op: " + args.op + " is not valid JSON: " + e.what());
-  }
+  const Json op = json_from_text(read_text_file(args.op, "--op"), "--op: " + args.op);
   return naming_option("--op", [&] { return deform_op_from_json(op); });
 }
 

@@ -45,6 +45,13 @@ using Json = nlohmann::ordered_json;
 
 // ---- JSON -> request ------------------------------------------------------
 
+// A JSON text (an edit document, the CLI's --op file) as JSON, every failure
+// Error(BadParameter) starting with `what` ("the document", "--op: op.json"):
+// "WHAT is not valid JSON: ..." for a syntax error, "WHAT holds a number out
+// of range: 1e400 ..." for a number no double holds (nlohmann reports it as
+// out_of_range, which the CLI took for an internal error, exit 3).
+Json json_from_text(const std::string& text, const std::string& what);
+
 DeformOp deform_op_from_json(const Json& op);
 // {compress?: su|[su]|[su,sv], direction?: global or constraints (as an op's),
 //  baseline?: 'uniform', patch?: 'mesh'|'selection', maxIterations?, tolerance?, refine?}
