@@ -152,7 +152,8 @@ ReadReport load_into_session(Session& session, const std::string& path);
 // directory, else Error(BadParameter). Returns the format.
 MeshFormat check_output_path(const std::string& path);
 // Checks OUT's location before any work is done: not a directory, in a
-// directory that exists; else Error(BadParameter) (exit 2). OUT itself is
+// directory that exists and takes a new file (temporary_file_error_next_to);
+// else Error(BadParameter) (exit 2). OUT itself is
 // written with write_file_atomically (write_mesh does too): a write that
 // fails later is Error(BadFile) (exit 3) and leaves an existing OUT as it was.
 void check_output_location(const std::string& path);

@@ -326,7 +326,7 @@ constexpr const char* kDeformHelp =
 void add_deform_options(CLI::App& deform, DeformArguments& args) {
   deform.add_option("IN", args.input, "Input mesh (.obj .off .ply .stl)")->required();
   deform.add_option("OUT", args.output,
-                    "Output mesh; its extension sets the format (unknown, or no such directory: exit 2; "
+                    "Output mesh; its extension sets the format (unknown, or no such or no writable directory: exit 2; "
                     "a failed write: exit 3, an existing OUT left unchanged)")
       ->required();
   deform.add_option("--op", args.op,

@@ -24,7 +24,7 @@ int parse_and_run(int argc, char** argv) {
       "Results are one JSON object on stdout; messages go to stderr (warnings too,\n"
       "each also in the JSON's warnings).\n"
       "Exit status: 0 success, 2 bad command line or parameter (including an\n"
-      "unknown-format OUT or one in a missing directory), 3 bad or unreadable input\n"
+      "unknown-format OUT or one in a missing or unwritable directory), 3 bad or unreadable input\n"
       "mesh, or OUT could not be written (an existing OUT is then left unchanged).");
 
   aniso::cli::Action action;

@@ -97,6 +97,15 @@ std::string resolve_symlink(const std::string& path) {
 
 }  // namespace
 
+int temporary_file_error_next_to(const std::string& path) {
+  std::string temporary;
+  const int fd = create_temporary_next_to(resolve_symlink(path), temporary);
+  if (fd < 0) return errno != 0 ? errno : EEXIST;
+  ::close(fd);
+  ::unlink(temporary.c_str());
+  return 0;
+}
+
 std::string read_regular_file(const std::string& path, ErrorCode code) {
   struct stat info {};
   // stat first: a FIFO or a device is refused before it is opened at all.
@@ -132,12 +141,14 @@ std::string read_regular_file(const std::string& path, ErrorCode code) {
 void write_file_atomically(const std::string& path, std::string_view bytes) {
   // A symlink keeps pointing where it did: replace its target, not the link.
   const std::string target = resolve_symlink(path);
-  const auto fail_write = [&path](const std::string& reason) {
-    fail(ErrorCode::BadFile, "could not write " + path + ": " + reason + " (an existing " + path +
-                                 " is left unchanged)");
-  };
   struct stat existing {};
   const bool exists = ::stat(target.c_str(), &existing) == 0;
+  // "An existing PATH is left unchanged" only where there is one (it was
+  // said of a new file in an unwritable directory too).
+  const auto fail_write = [&path, exists](const std::string& reason) {
+    fail(ErrorCode::BadFile, "could not write " + path + ": " + reason +
+                                 (exists ? " (an existing " + path + " is left unchanged)" : std::string()));
+  };
   if (exists && !S_ISREG(existing.st_mode)) {
     fail_write(S_ISDIR(existing.st_mode) ? std::string("it is a directory")
                                          : std::string("it is not a regular file (") +
