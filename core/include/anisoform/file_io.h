@@ -30,7 +30,9 @@ std::string read_regular_file(const std::string& path, ErrorCode code = ErrorCod
 // at `path` is followed and its target replaced. An existing file keeps its
 // permissions. Throws Error(BadFile, "could not write PATH: <reason>").
 // "could not write PATH: <reason>" ends "(an existing PATH is left
-// unchanged)" when there is one.
+// unchanged)" when there is one. Natively, SIGTERM, SIGINT and SIGHUP during
+// the write (when their disposition is the default) remove the temporary
+// file before the process ends by the signal as it would have.
 void write_file_atomically(const std::string& path, std::string_view bytes);
 
 // Whether write_file_atomically could create its temporary file next to
