@@ -24,11 +24,12 @@ int exit_status_for(ErrorCode code) {
   return kExitBadMesh;
 }
 
+void report_error(const std::string& command, const std::string& message) {
+  std::cerr << (command.empty() ? "anisoform" : "anisoform " + command) << ": error: " << message << std::endl;
+}
+
 int run_reporting_errors(const std::string& command, const std::function<int()>& body) {
-  const std::string prefix = command.empty() ? "anisoform" : "anisoform " + command;
-  const auto report = [&prefix](const std::string& message) {
-    std::cerr << prefix << ": error: " << message << std::endl;
-  };
+  const auto report = [&command](const std::string& message) { report_error(command, message); };
   try {
     return body();
   } catch (const Error& e) {

@@ -43,6 +43,10 @@ constexpr int kExitBadMesh = 3;   // bad input mesh, or a numerical failure it c
 
 int exit_status_for(ErrorCode code);
 
+// One error line on stderr: "anisoform COMMAND: error: MESSAGE" (COMMAND may
+// be empty), for every error, CLI11's parse errors included.
+void report_error(const std::string& command, const std::string& message);
+
 // Runs a subcommand's body and turns every exception into one line on stderr
 // ("anisoform COMMAND: error: ...", COMMAND may be empty) and the contract's
 // exit status:

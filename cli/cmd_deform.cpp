@@ -237,6 +237,12 @@ int run_deform(const DeformArguments& args) {
   std::vector<std::string> warnings = info.notes;
   warn_about_solvable_problems(info.report, warnings);
 
+  // A field file's vertices against the mesh, named by the file's lines.
+  if (!plan.field_path.empty()) {
+    naming_option("--direction", [&] {
+      validate_direction_constraints(plan.edit.request.direction.constraints, mesh.num_vertices(), plan.field_path);
+    });
+  }
   naming_option("--select", [&] { session.select(plan.selection, plan.falloff, SelectionMode::Replace); });
   DeformOp& edit = plan.edit;
   if (plan.pins) edit.request.pins = region_vertices(mesh, *plan.pins, "--pin");

@@ -241,6 +241,12 @@ int run_flatten(const FlattenArguments& args) {
   if (!args.compress.empty() && any_amounts(plan.request.directions.constraints)) {
     warnings.push_back(field_amounts_replace("--compress", args.compress, plan.field_path));
   }
+  // A field file's vertices against the mesh, named by the file's lines.
+  if (!plan.field_path.empty()) {
+    naming_option("--direction", [&] {
+      validate_direction_constraints(plan.request.directions.constraints, mesh.num_vertices(), plan.field_path);
+    });
+  }
   const std::vector<char> mask = selection_mask(mesh, plan.selection);
 
   // The one-shot flatten (its patch is written out), with the Session's request rules.

@@ -417,7 +417,33 @@ TEST_CASE("cli: bad command lines and parameters exit with status 2", "[cli]") {
     const CliRun run = run_expecting(args, 2);
     INFO(describe(args, run));
     CHECK_FALSE(run.err.empty());
+    // Every error in one form, CLI11's own ("--scale: At Most 1 required") too.
+    const bool command = !args.empty() && (args[0] == "info" || args[0] == "deform" || args[0] == "flatten");
+    CHECK(run.err.rfind(command ? "anisoform " + args[0] + ": error: " : "anisoform: error: ", 0) == 0);
     CHECK(run.out.empty());
+  }
+}
+
+TEST_CASE("cli: command-line errors name the command, an unknown one included, and field files their line", "[cli]") {
+  const std::string in = mesh("formats/spot_lowres.obj");
+  const std::string out = temp_path("out.obj");
+  CHECK(run_expecting({"deform", in, out, "--scale", "1.2", "--scale", "1.3"}, 2).err ==
+        "anisoform deform: error: --scale: At Most 1 required but received 2 (see anisoform deform --help)\n");
+  CHECK(run_expecting({"deform", in}, 2).err == "anisoform deform: error: OUT is required (see anisoform deform --help)\n");
+  // It said "A subcommand is required".
+  CHECK(run_expecting({"bogus", in}, 2).err ==
+        "anisoform: error: unknown command 'bogus' (the commands are info, deform, flatten, replay; see anisoform "
+        "--help)\n");
+  CHECK(contains(run_expecting({}, 2).err, "anisoform: error: A subcommand is required (see anisoform --help)"));
+  // It said "direction constraint 2 (vertex 5000): ..." without the file or the line.
+  const std::string field = write_temp_text("far_field.txt", "0 1 0 0\n\n5000 0 0 1\n");
+  for (const std::string command : {"deform", "flatten"}) {
+    const std::string target = command == "deform" ? in : mesh("open/hemisphere.obj");
+    const std::string result = temp_path(command == "deform" ? "far.obj" : "far.svg");
+    const CliRun run = run_expecting({command, target, result, "--direction", "field:" + field}, 2);
+    CHECK(run.err.rfind("anisoform " + command + ": error: --direction: " + field +
+                            " line 3 (vertex 5000): vertex index out of range, the mesh has ",
+                        0) == 0);
   }
 }
 
