@@ -168,6 +168,20 @@ std::string patch_obj_in_input_order(const FlattenPatch& patch, const Eigen::Mat
   return write_obj_with_uv(mesh, sorted_uv);
 }
 
+// The guessed unit in words, with the size it came from and the option that
+// sets it: "the mesh's unit was guessed as cm (10 mm per unit) from its
+// largest side, 450 units; give --mm-per-unit if it is in another unit (1
+// for mm, 10 for cm, 1000 for m, 25.4 for inches)".
+std::string unit_guess_warning(const ModelUnitGuess& guess) {
+  char size[32];
+  std::snprintf(size, sizeof size, "%g", guess.largest_side);
+  char scale[32];
+  std::snprintf(scale, sizeof scale, "%g", guess.mm_per_unit);
+  return "the mesh's unit was guessed as " + guess.name + " (" + scale + " mm per unit) from its largest side, " +
+         size + " units; give --mm-per-unit if it is in another unit (1 for mm, 10 for cm, 1000 for m, 25.4 for "
+         "inches)";
+}
+
 // A wanted amount: one number, or [min, max] when a field's amounts vary.
 nlohmann::json amount_json(double low, double high) {
   return low == high ? nlohmann::json(low) : nlohmann::json::array({low, high});
@@ -227,13 +241,17 @@ int run_flatten(const FlattenArguments& args) {
   // Without --mm-per-unit, the unit the core guesses from the mesh's size, as
   // the app's pattern export takes it (info().unitGuess; guess_model_unit).
   std::string unit_guess;
+  std::vector<std::string> warnings = session.info().notes;
   if (args.mm_per_unit.empty()) {
     const ModelUnitGuess guess = guess_model_unit(session.info().report.bbox);
     plan.mm_per_unit = guess.mm_per_unit;
     unit_guess = guess.name;
+    // A guess decides the pattern's size in mm: said, as the app shows it
+    // beside its export (a 450 mm panel was taken as cm and written 10x too
+    // large, a 520 mm one as mm, with no word of it).
+    if (plan.format != PatternFormat::Obj) warnings.push_back(unit_guess_warning(guess));
   }
   const Mesh& mesh = session.rest();
-  std::vector<std::string> warnings = session.info().notes;
   if (session.info().report.unreferenced_vertices > 0) {
     warnings.push_back(std::to_string(session.info().report.unreferenced_vertices) +
                        " unreferenced vertex(es): not part of the pattern");
@@ -332,7 +350,7 @@ void add_flatten_options(CLI::App& command, FlattenArguments& args) {
   command.add_option("--mm-per-unit", args.mm_per_unit,
                      "Millimetres per model unit for SVG/DXF, 0.001 to 1000000 (default: guessed from the mesh's "
                      "largest side, as the app does: under 5 m (1000), under 500 cm (10), else mm (1); "
-                     "the output's unit_guess says which)")
+                     "the output's unit_guess says which, and for SVG/DXF a warning)")
       ->type_name("K");
   command.add_option("--iterations", args.iterations,
                      "Iteration cap of the ARAP iterations and the stretch refinement together, >= 1 (default " +

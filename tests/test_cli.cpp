@@ -525,6 +525,49 @@ TEST_CASE("cli: --rotations steps without --iterations runs the number of steps 
   CHECK(slurp(temp_path("steps_default.obj")) == slurp(temp_path("steps_stated.obj")));
 }
 
+// A flat panel `length` units long (x) and 100 wide (y), as an OBJ grid.
+static std::string panel_obj(double length) {
+  std::string text;
+  const int columns = 10, rows = 3;
+  for (int j = 0; j < rows; ++j) {
+    for (int i = 0; i < columns; ++i) {
+      text += "v " + std::to_string(length * i / (columns - 1)) + " " + std::to_string(100.0 * j / (rows - 1)) + " 0\n";
+    }
+  }
+  for (int j = 0; j + 1 < rows; ++j) {
+    for (int i = 0; i + 1 < columns; ++i) {
+      const int a = j * columns + i + 1, b = a + 1, c = a + columns, d = c + 1;
+      text += "f " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(d) + "\n";
+      text += "f " + std::to_string(a) + " " + std::to_string(d) + " " + std::to_string(c) + "\n";
+    }
+  }
+  return text;
+}
+
+// The guess decides the pattern's size in mm: a 450 mm panel was written as
+// 450 cm (10x too large), a 520 mm one right, both with warnings [].
+TEST_CASE("cli: flatten says which unit it guessed, from which size, and how to set it", "[cli]") {
+  const struct {
+    double length;
+    std::string guessed;
+  } panels[] = {{450, "the mesh's unit was guessed as cm (10 mm per unit) from its largest side, 450 units"},
+                {520, "the mesh's unit was guessed as mm (1 mm per unit) from its largest side, 520 units"}};
+  for (const auto& panel : panels) {
+    const std::string in = write_temp_text("panel.obj", panel_obj(panel.length));
+    const CliRun guessed = run_expecting({"flatten", in, temp_path("panel.svg"), "--direction", "global:1,0,0"}, 0);
+    const json result = stdout_json(guessed);
+    INFO(guessed.err);
+    REQUIRE(result["warnings"].size() == 1);
+    CHECK(result["warnings"][0].get<std::string>() ==
+          panel.guessed + "; give --mm-per-unit if it is in another unit (1 for mm, 10 for cm, 1000 for m, 25.4 for "
+                          "inches)");
+    CHECK(contains(guessed.err, "anisoform flatten: warning: " + panel.guessed));
+    const json given = stdout_json(run_expecting(
+        {"flatten", in, temp_path("panel.svg"), "--direction", "global:1,0,0", "--mm-per-unit", "1"}, 0));
+    CHECK(given["warnings"].empty());
+  }
+}
+
 TEST_CASE("cli: a missing input says cannot open and exits 3", "[cli]") {
   for (const std::string& command : {"info", "deform"}) {
     std::vector<std::string> args{command, "/nonexistent/mesh.obj"};

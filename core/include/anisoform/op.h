@@ -111,6 +111,7 @@ Eigen::Vector3d longest_axis(const BoundingBox& box);
 struct ModelUnitGuess {
   std::string name;  // "m" | "cm" | "mm"
   double mm_per_unit = 1.0;
+  double largest_side = 0.0;  // the size it was guessed from, in model units
 };
 ModelUnitGuess guess_model_unit(const BoundingBox& box);
 

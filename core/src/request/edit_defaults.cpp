@@ -19,9 +19,9 @@ Eigen::Vector3d longest_axis(const BoundingBox& box) {
 
 ModelUnitGuess guess_model_unit(const BoundingBox& box) {
   const double largest = (box.max - box.min).maxCoeff();
-  if (!(largest >= 5.0)) return {"m", 1000.0};  // an empty box (NaN) too
-  if (largest < 500.0) return {"cm", 10.0};
-  return {"mm", 1.0};
+  if (!(largest >= 5.0)) return {"m", 1000.0, largest};  // an empty box (NaN) too
+  if (largest < 500.0) return {"cm", 10.0, largest};
+  return {"mm", 1.0, largest};
 }
 
 namespace {
