@@ -43,6 +43,10 @@ constexpr int kExitBadMesh = 3;   // bad input mesh, or a numerical failure it c
 
 int exit_status_for(ErrorCode code);
 
+// One error line on stderr: "anisoform COMMAND: error: MESSAGE" (COMMAND may
+// be empty), for every error, CLI11's parse errors included.
+void report_error(const std::string& command, const std::string& message);
+
 // Runs a subcommand's body and turns every exception into one line on stderr
 // ("anisoform COMMAND: error: ...", COMMAND may be empty) and the contract's
 // exit status:
@@ -152,7 +156,8 @@ ReadReport load_into_session(Session& session, const std::string& path);
 // directory, else Error(BadParameter). Returns the format.
 MeshFormat check_output_path(const std::string& path);
 // Checks OUT's location before any work is done: not a directory, in a
-// directory that exists; else Error(BadParameter) (exit 2). OUT itself is
+// directory that exists and takes a new file (temporary_file_error_next_to);
+// else Error(BadParameter) (exit 2). OUT itself is
 // written with write_file_atomically (write_mesh does too): a write that
 // fails later is Error(BadFile) (exit 3) and leaves an existing OUT as it was.
 void check_output_location(const std::string& path);
@@ -164,5 +169,14 @@ Json to_json(const BoundingBox& box);
 Json to_json(const ReadReport& report);
 // The result object as one line plus a newline on stdout.
 void print_json(const Json& result);
+// Each warning of the result's `warnings` as a line on stderr too
+// ("anisoform COMMAND: warning: ..."), where a person running the command
+// sees it without reading the JSON.
+void print_warnings(const std::string& command, const std::vector<std::string>& warnings);
+
+// The warning for an option's amounts (deform's --scale, flatten's
+// --compress) beside a field file that carries its own (SU SV columns):
+// the file's replace the option's everywhere (the core's rule, any_amounts).
+std::string field_amounts_replace(const std::string& option, const std::string& value, const std::string& path);
 
 }  // namespace aniso::cli

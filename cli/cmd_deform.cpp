@@ -58,6 +58,7 @@ struct DeformPlan {
   Region selection;
   double falloff = 0.0;
   std::string direction_description;  // empty: the mesh's longest axis
+  std::string field_path;             // --direction field:PATH
   std::optional<Region> pins;
   std::optional<Region> handles;
   WriteOptions write;
@@ -113,13 +114,7 @@ DeformOp edit_from_op_file(const DeformArguments& args) {
                                         args.op + " gives the whole edit");
     }
   }
-  const std::string text = read_text_file(args.op, "--op");
-  Json op;
-  try {
-    op = Json::parse(text);
-  } catch (const Json::parse_error& e) {
-    fail(ErrorCode::BadParameter, "--op: " + args.op + " is not valid JSON: " + e.what());
-  }
+  const Json op = json_from_text(read_text_file(args.op, "--op"), "--op: " + args.op);
   return naming_option("--op", [&] { return deform_op_from_json(op); });
 }
 
@@ -136,6 +131,7 @@ DeformOp edit_from_flags(const DeformArguments& args, DeformPlan& plan) {
     request.direction.kind = choice.kind;
     request.direction.vector = choice.vector;
     if (choice.kind == DirectionSource::Kind::Constraints) {
+      plan.field_path = choice.field_path;
       request.direction.constraints = read_direction_field(choice.field_path);
     }
   }
@@ -241,10 +237,19 @@ int run_deform(const DeformArguments& args) {
   std::vector<std::string> warnings = info.notes;
   warn_about_solvable_problems(info.report, warnings);
 
+  // A field file's vertices against the mesh, named by the file's lines.
+  if (!plan.field_path.empty()) {
+    naming_option("--direction", [&] {
+      validate_direction_constraints(plan.edit.request.direction.constraints, mesh.num_vertices(), plan.field_path);
+    });
+  }
   naming_option("--select", [&] { session.select(plan.selection, plan.falloff, SelectionMode::Replace); });
   DeformOp& edit = plan.edit;
   if (plan.pins) edit.request.pins = region_vertices(mesh, *plan.pins, "--pin");
   if (plan.handles) edit.request.handles = region_vertices(mesh, *plan.handles, "--handle");
+  if (!args.scale.empty() && any_amounts(edit.request.direction.constraints)) {
+    warnings.push_back(field_amounts_replace("--scale", args.scale, plan.field_path));
+  }
   if (edit.request.method == Method::Arap && !edit.request.transform.is_identity()) {
     warnings.push_back("--method arap is isotropic ARAP with handles: the local transform "
                        "(--scale, --shear, --rotate, --twist, --thicken) is not used");
@@ -281,6 +286,7 @@ int run_deform(const DeformArguments& args) {
 
   // An OBJ keeps the input OBJ's texture coordinates, a PLY the input PLY's vertex properties.
   write_mesh(args.output, Mesh{session.positions(), mesh.F}, session.write_options(plan.write.binary));
+  print_warnings("deform", warnings);
   std::string direction = plan.direction_description;
   if (direction.empty()) {
     direction = edit.direction_given ? op_direction_description(edit.request.direction)
@@ -326,7 +332,7 @@ constexpr const char* kDeformHelp =
 void add_deform_options(CLI::App& deform, DeformArguments& args) {
   deform.add_option("IN", args.input, "Input mesh (.obj .off .ply .stl)")->required();
   deform.add_option("OUT", args.output,
-                    "Output mesh; its extension sets the format (unknown, or no such directory: exit 2; "
+                    "Output mesh; its extension sets the format (unknown, or no such or no writable directory: exit 2; "
                     "a failed write: exit 3, an existing OUT left unchanged)")
       ->required();
   deform.add_option("--op", args.op,
@@ -345,7 +351,8 @@ void add_deform_options(CLI::App& deform, DeformArguments& args) {
       ->type_name("D");
   deform.add_option("--direction", args.direction,
                     "global:X,Y,Z | curvature:min | curvature:max | field:PATH (lines \"INDEX DX "
-                    "DY DZ [SU [SV]]\": constraints propagated to a smooth line field). Default: "
+                    "DY DZ [SU [SV]]\": constraints propagated to a smooth line field; amounts in the file "
+                    "replace --scale everywhere, and a warning says so when both are given). Default: "
                     "global along the longest bounding-box axis")
       ->type_name("SOURCE");
   deform.add_option("--scale", args.scale,
@@ -374,7 +381,8 @@ void add_deform_options(CLI::App& deform, DeformArguments& args) {
   deform.add_option("--iterations", args.iterations,
                     "AnARAP/ARAP iteration cap, >= 1 (default " +
                         std::to_string(aniso::DeformRequest().max_iterations) +
-                        "); with --rotations steps and a rotation, twist or shear, the number of steps")
+                        "); with --rotations steps and a rotation, twist or shear, the number of steps (default " +
+                        std::to_string(aniso::DeformRequest().rotation_steps) + ", as an op's rotationSteps)")
       ->type_name("N");
   deform.add_option("--tolerance", args.tolerance,
                     "Relative energy change that ends the iterations, >= 0 (default 1e-6)")
@@ -384,7 +392,8 @@ void add_deform_options(CLI::App& deform, DeformArguments& args) {
       ->type_name("KIND");
   deform.add_option("--rotations", args.rotations,
                     "AnARAP with a rotation, twist or shear: coupled (default: neighbouring rotations "
-                    "tied, converges) | steps (the paper's scheme: --iterations steps from the rest pose)")
+                    "tied, converges) | steps (the paper's scheme: --iterations steps from the rest pose, default " +
+                        std::to_string(aniso::DeformRequest().rotation_steps) + ")")
       ->type_name("SCHEME");
   deform.add_option("--rotation-coupling", args.rotation_coupling,
                     "coupled rotations: how strongly neighbours are tied, 0.0001 to 10000 (default 1)")

@@ -48,6 +48,7 @@ struct FlattenPlan {
   Region selection;
   SessionFlatten request;            // the Session's request; its options are built by the core
   std::string direction_description; // empty: the mesh's longest axis
+  std::string field_path;            // --direction field:PATH
   double mm_per_unit = 1.0;
 };
 
@@ -100,6 +101,7 @@ FlattenPlan plan_flatten(const FlattenArguments& args) {
     FlattenDirections& directions = plan.request.directions;
     if (direction.kind == DirectionSource::Kind::Constraints) {
       directions.kind = FlattenDirections::Kind::Constraints;
+      plan.field_path = direction.field_path;
       directions.constraints = read_direction_field(direction.field_path);
     } else if (direction.kind == DirectionSource::Kind::Global) {
       directions.global = direction.vector;
@@ -166,6 +168,20 @@ std::string patch_obj_in_input_order(const FlattenPatch& patch, const Eigen::Mat
   return write_obj_with_uv(mesh, sorted_uv);
 }
 
+// The guessed unit in words, with the size it came from and the option that
+// sets it: "the mesh's unit was guessed as cm (10 mm per unit) from its
+// largest side, 450 units; give --mm-per-unit if it is in another unit (1
+// for mm, 10 for cm, 1000 for m, 25.4 for inches)".
+std::string unit_guess_warning(const ModelUnitGuess& guess) {
+  char size[32];
+  std::snprintf(size, sizeof size, "%g", guess.largest_side);
+  char scale[32];
+  std::snprintf(scale, sizeof scale, "%g", guess.mm_per_unit);
+  return "the mesh's unit was guessed as " + guess.name + " (" + scale + " mm per unit) from its largest side, " +
+         size + " units; give --mm-per-unit if it is in another unit (1 for mm, 10 for cm, 1000 for m, 25.4 for "
+         "inches)";
+}
+
 // A wanted amount: one number, or [min, max] when a field's amounts vary.
 nlohmann::json amount_json(double low, double high) {
   return low == high ? nlohmann::json(low) : nlohmann::json::array({low, high});
@@ -225,16 +241,29 @@ int run_flatten(const FlattenArguments& args) {
   // Without --mm-per-unit, the unit the core guesses from the mesh's size, as
   // the app's pattern export takes it (info().unitGuess; guess_model_unit).
   std::string unit_guess;
+  std::vector<std::string> warnings = session.info().notes;
   if (args.mm_per_unit.empty()) {
     const ModelUnitGuess guess = guess_model_unit(session.info().report.bbox);
     plan.mm_per_unit = guess.mm_per_unit;
     unit_guess = guess.name;
+    // A guess decides the pattern's size in mm: said, as the app shows it
+    // beside its export (a 450 mm panel was taken as cm and written 10x too
+    // large, a 520 mm one as mm, with no word of it).
+    if (plan.format != PatternFormat::Obj) warnings.push_back(unit_guess_warning(guess));
   }
   const Mesh& mesh = session.rest();
-  std::vector<std::string> warnings = session.info().notes;
   if (session.info().report.unreferenced_vertices > 0) {
     warnings.push_back(std::to_string(session.info().report.unreferenced_vertices) +
                        " unreferenced vertex(es): not part of the pattern");
+  }
+  if (!args.compress.empty() && any_amounts(plan.request.directions.constraints)) {
+    warnings.push_back(field_amounts_replace("--compress", args.compress, plan.field_path));
+  }
+  // A field file's vertices against the mesh, named by the file's lines.
+  if (!plan.field_path.empty()) {
+    naming_option("--direction", [&] {
+      validate_direction_constraints(plan.request.directions.constraints, mesh.num_vertices(), plan.field_path);
+    });
   }
   const std::vector<char> mask = selection_mask(mesh, plan.selection);
 
@@ -270,6 +299,7 @@ int run_flatten(const FlattenArguments& args) {
       warnings.push_back(small);
     }
   }
+  print_warnings("flatten", warnings);
   nlohmann::json result = result_json(args, plan, direction, warnings, flattened.result);
   if (!unit_guess.empty()) result["unit_guess"] = unit_guess;  // mm_per_unit is the guess's
   print_json(result);
@@ -309,7 +339,8 @@ void add_flatten_options(CLI::App& command, FlattenArguments& args) {
       ->type_name("SU[,SV]");
   command.add_option("--direction", args.direction,
                      "global:X,Y,Z | field:PATH (lines \"INDEX DX DY DZ [SU [SV]]\": propagated "
-                     "over the patch; amounts in the file override --compress). Default: global "
+                     "over the patch; amounts in the file replace --compress everywhere, and a warning says so when both "
+                     "are given). Default: global "
                      "along the longest bounding-box axis")
       ->type_name("SOURCE");
   command.add_option("--baseline", args.baseline,
@@ -319,7 +350,7 @@ void add_flatten_options(CLI::App& command, FlattenArguments& args) {
   command.add_option("--mm-per-unit", args.mm_per_unit,
                      "Millimetres per model unit for SVG/DXF, 0.001 to 1000000 (default: guessed from the mesh's "
                      "largest side, as the app does: under 5 m (1000), under 500 cm (10), else mm (1); "
-                     "the output's unit_guess says which)")
+                     "the output's unit_guess says which, and for SVG/DXF a warning)")
       ->type_name("K");
   command.add_option("--iterations", args.iterations,
                      "Iteration cap of the ARAP iterations and the stretch refinement together, >= 1 (default " +

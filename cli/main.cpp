@@ -21,9 +21,10 @@ int parse_and_run(int argc, char** argv) {
                "anisoform"};
   app.require_subcommand(1);
   app.footer(
-      "Results are one JSON object on stdout; messages go to stderr.\n"
+      "Results are one JSON object on stdout; messages go to stderr (warnings too,\n"
+      "each also in the JSON's warnings).\n"
       "Exit status: 0 success, 2 bad command line or parameter (including an\n"
-      "unknown-format OUT or one in a missing directory), 3 bad or unreadable input\n"
+      "unknown-format OUT or one in a missing or unwritable directory), 3 bad or unreadable input\n"
       "mesh, or OUT could not be written (an existing OUT is then left unchanged).");
 
   aniso::cli::Action action;
@@ -32,13 +33,35 @@ int parse_and_run(int argc, char** argv) {
   aniso::cli::register_flatten(app, action);
   aniso::cli::register_replay(app, action);
 
+  // A first word that names no command: CLI11 took it for a stray argument
+  // and said "A subcommand is required".
+  if (argc > 1 && argv[1][0] != '-') {
+    const std::string word = argv[1];
+    std::string names;
+    bool known = false;
+    for (const CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
+      known = known || command->get_name() == word;
+      names += (names.empty() ? "" : ", ") + command->get_name();
+    }
+    if (!known) {
+      aniso::cli::report_error("", "unknown command '" + word + "' (the commands are " + names +
+                                       "; see anisoform --help)");
+      return aniso::cli::kExitBadUsage;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     // --help is a ParseError whose exit code is 0 (app.exit prints the help on
     // stdout); CLI11 gives other errors codes of its own, all of which are a
-    // bad command line under our contract.
-    return app.exit(e) == 0 ? aniso::cli::kExitSuccess : aniso::cli::kExitBadUsage;
+    // bad command line under our contract, reported as every other error is
+    // ("anisoform deform: error: ..."; CLI11's own lines had no prefix).
+    if (e.get_exit_code() == 0) return app.exit(e) == 0 ? aniso::cli::kExitSuccess : aniso::cli::kExitBadUsage;
+    const std::vector<CLI::App*> parsed = app.get_subcommands();
+    const std::string command = parsed.empty() ? "" : parsed.back()->get_name();
+    aniso::cli::report_error(command, std::string(e.what()) + " (see anisoform " +
+                                          (command.empty() ? "" : command + " ") + "--help)");
+    return aniso::cli::kExitBadUsage;
   }
   return action ? action() : aniso::cli::kExitBadUsage;
 }

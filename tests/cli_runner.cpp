@@ -99,6 +99,14 @@ CliRun run_cli(const std::vector<std::string>& args, int timeout_seconds) {
   return run_program(std::move(command), timeout_seconds);
 }
 
+CliRun run_cli_under(const std::vector<std::string>& wrapper, const std::vector<std::string>& args,
+                     int timeout_seconds) {
+  std::vector<std::string> command = wrapper;
+  command.push_back(aniso::test::kCliPath);
+  command.insert(command.end(), args.begin(), args.end());
+  return run_program(std::move(command), timeout_seconds);
+}
+
 CliRun run_cli_after_shell(const std::string& setup, const std::vector<std::string>& args,
                            int timeout_seconds) {
   // The arguments reach the CLI as "$@": no quoting of paths in the script.

@@ -29,6 +29,11 @@ CliRun run_cli(const std::vector<std::string>& args, int timeout_seconds = 60);
 CliRun run_cli_after_shell(const std::string& setup, const std::vector<std::string>& args,
                            int timeout_seconds = 60);
 
+// Runs the CLI as the last part of `wrapper`'s command line (e.g. setpriv
+// dropping a capability: what the CLI cannot do then, it must report).
+CliRun run_cli_under(const std::vector<std::string>& wrapper, const std::vector<std::string>& args,
+                     int timeout_seconds = 60);
+
 // The command line and what it did, for INFO messages.
 std::string describe(const std::vector<std::string>& args, const CliRun& run);
 

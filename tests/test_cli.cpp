@@ -417,7 +417,33 @@ TEST_CASE("cli: bad command lines and parameters exit with status 2", "[cli]") {
     const CliRun run = run_expecting(args, 2);
     INFO(describe(args, run));
     CHECK_FALSE(run.err.empty());
+    // Every error in one form, CLI11's own ("--scale: At Most 1 required") too.
+    const bool command = !args.empty() && (args[0] == "info" || args[0] == "deform" || args[0] == "flatten");
+    CHECK(run.err.rfind(command ? "anisoform " + args[0] + ": error: " : "anisoform: error: ", 0) == 0);
     CHECK(run.out.empty());
+  }
+}
+
+TEST_CASE("cli: command-line errors name the command, an unknown one included, and field files their line", "[cli]") {
+  const std::string in = mesh("formats/spot_lowres.obj");
+  const std::string out = temp_path("out.obj");
+  CHECK(run_expecting({"deform", in, out, "--scale", "1.2", "--scale", "1.3"}, 2).err ==
+        "anisoform deform: error: --scale: At Most 1 required but received 2 (see anisoform deform --help)\n");
+  CHECK(run_expecting({"deform", in}, 2).err == "anisoform deform: error: OUT is required (see anisoform deform --help)\n");
+  // It said "A subcommand is required".
+  CHECK(run_expecting({"bogus", in}, 2).err ==
+        "anisoform: error: unknown command 'bogus' (the commands are info, deform, flatten, replay; see anisoform "
+        "--help)\n");
+  CHECK(contains(run_expecting({}, 2).err, "anisoform: error: A subcommand is required (see anisoform --help)"));
+  // It said "direction constraint 2 (vertex 5000): ..." without the file or the line.
+  const std::string field = write_temp_text("far_field.txt", "0 1 0 0\n\n5000 0 0 1\n");
+  for (const std::string command : {"deform", "flatten"}) {
+    const std::string target = command == "deform" ? in : mesh("open/hemisphere.obj");
+    const std::string result = temp_path(command == "deform" ? "far.obj" : "far.svg");
+    const CliRun run = run_expecting({command, target, result, "--direction", "field:" + field}, 2);
+    CHECK(run.err.rfind("anisoform " + command + ": error: --direction: " + field +
+                            " line 3 (vertex 5000): vertex index out of range, the mesh has ",
+                        0) == 0);
   }
 }
 
@@ -447,6 +473,99 @@ TEST_CASE("cli: field-file amounts SU/SV <= 0 are refused like --scale -1, namin
   }
   CHECK(contains(run_expecting({"deform", mesh("formats/spot_lowres.obj"), temp_path("out.obj"), "--scale", "-1"}, 2).err,
                  "must be positive, got -1"));
+}
+
+TEST_CASE("cli: a field file's amounts replace --scale and --compress, and a warning says so", "[cli]") {
+  // Without the warning, --scale 1.3 and --scale 2 gave the same mesh, warnings [].
+  const std::string with_amounts = write_temp_text("amounts.txt", "0 1 0 0 0.8\n100 1 0 0 0.9\n");
+  const std::string without = write_temp_text("no_amounts.txt", "0 1 0 0\n100 1 0 0\n");
+  const struct {
+    std::string command, in, out, option, value;
+  } cases[] = {
+      {"deform", mesh("formats/spot_lowres.obj"), temp_path("amounts.obj"), "--scale", "1.3"},
+      {"flatten", mesh("open/hemisphere.obj"), temp_path("amounts_pattern.obj"), "--compress", "0.7"},
+  };
+  for (const auto& c : cases) {
+    const std::string expected = c.option + " " + c.value + " is not used: the field file " + with_amounts +
+                                 " gives amounts (its SU SV columns), which replace it everywhere";
+    const CliRun replaced =
+        run_expecting({c.command, c.in, c.out, c.option, c.value, "--direction", "field:" + with_amounts}, 0);
+    INFO(c.command << ": " << replaced.err);
+    const json result = stdout_json(replaced);
+    REQUIRE(result["warnings"].size() == 1);
+    CHECK(contains(result["warnings"][0].get<std::string>(), expected));
+    CHECK(contains(replaced.err, "anisoform " + c.command + ": warning: " + expected));
+    // A file without amounts leaves the option its say: no warning.
+    const CliRun kept = run_expecting({c.command, c.in, c.out, c.option, c.value, "--direction", "field:" + without}, 0);
+    CHECK(stdout_json(kept)["warnings"].empty());
+    CHECK_FALSE(contains(kept.err, "is not used"));
+  }
+}
+
+TEST_CASE("cli: --rotations steps without --iterations runs the number of steps --help states", "[cli]") {
+  // --help said the steps were --iterations' default 50; one step ran.
+  const CliRun help = run_expecting({"deform", "--help"}, 0);
+  std::string text;
+  std::istringstream words(help.out);
+  for (std::string word; words >> word;) text += word + " ";  // however CLI11 wraps it
+  const std::string stated = "the number of steps (default ";
+  const std::size_t at = text.find(stated);
+  REQUIRE(at != std::string::npos);
+  const int steps = std::stoi(text.substr(at + stated.size()));
+  const std::string in = mesh("formats/spot_lowres.obj");
+  const std::vector<std::string> edit{"--select", "box:-1,-1,0.5,1,2,2", "--rotate", "n:30", "--rotations", "steps"};
+  std::vector<std::string> by_default{"deform", in, temp_path("steps_default.obj")};
+  by_default.insert(by_default.end(), edit.begin(), edit.end());
+  std::vector<std::string> stated_count{"deform", in, temp_path("steps_stated.obj"), "--iterations", std::to_string(steps)};
+  stated_count.insert(stated_count.end(), edit.begin(), edit.end());
+  const json unset = stdout_json(run_expecting(by_default, 0));
+  const json given = stdout_json(run_expecting(stated_count, 0));
+  CHECK(unset["iterations"] == steps);
+  CHECK(given["iterations"] == steps);
+  CHECK(slurp(temp_path("steps_default.obj")) == slurp(temp_path("steps_stated.obj")));
+}
+
+// A flat panel `length` units long (x) and 100 wide (y), as an OBJ grid.
+static std::string panel_obj(double length) {
+  std::string text;
+  const int columns = 10, rows = 3;
+  for (int j = 0; j < rows; ++j) {
+    for (int i = 0; i < columns; ++i) {
+      text += "v " + std::to_string(length * i / (columns - 1)) + " " + std::to_string(100.0 * j / (rows - 1)) + " 0\n";
+    }
+  }
+  for (int j = 0; j + 1 < rows; ++j) {
+    for (int i = 0; i + 1 < columns; ++i) {
+      const int a = j * columns + i + 1, b = a + 1, c = a + columns, d = c + 1;
+      text += "f " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(d) + "\n";
+      text += "f " + std::to_string(a) + " " + std::to_string(d) + " " + std::to_string(c) + "\n";
+    }
+  }
+  return text;
+}
+
+// The guess decides the pattern's size in mm: a 450 mm panel was written as
+// 450 cm (10x too large), a 520 mm one right, both with warnings [].
+TEST_CASE("cli: flatten says which unit it guessed, from which size, and how to set it", "[cli]") {
+  const struct {
+    double length;
+    std::string guessed;
+  } panels[] = {{450, "the mesh's unit was guessed as cm (10 mm per unit) from its largest side, 450 units"},
+                {520, "the mesh's unit was guessed as mm (1 mm per unit) from its largest side, 520 units"}};
+  for (const auto& panel : panels) {
+    const std::string in = write_temp_text("panel.obj", panel_obj(panel.length));
+    const CliRun guessed = run_expecting({"flatten", in, temp_path("panel.svg"), "--direction", "global:1,0,0"}, 0);
+    const json result = stdout_json(guessed);
+    INFO(guessed.err);
+    REQUIRE(result["warnings"].size() == 1);
+    CHECK(result["warnings"][0].get<std::string>() ==
+          panel.guessed + "; give --mm-per-unit if it is in another unit (1 for mm, 10 for cm, 1000 for m, 25.4 for "
+                          "inches)");
+    CHECK(contains(guessed.err, "anisoform flatten: warning: " + panel.guessed));
+    const json given = stdout_json(run_expecting(
+        {"flatten", in, temp_path("panel.svg"), "--direction", "global:1,0,0", "--mm-per-unit", "1"}, 0));
+    CHECK(given["warnings"].empty());
+  }
 }
 
 TEST_CASE("cli: a missing input says cannot open and exits 3", "[cli]") {

@@ -4,6 +4,7 @@
 // once, and every option value goes through the one strict number grammar.
 #include <sys/stat.h>
 
+#include <cerrno>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -96,6 +97,55 @@ TEST_CASE("cli robustness: a write cut short by a file-size limit leaves OUT as 
     CHECK(slurp(svg) == "<svg>an older pattern</svg>\n");
     CHECK(dir.entry_count() == 2);
   }
+}
+
+// An unwritable directory was found only by the write, after the whole solve
+// (exit 3; the koala's deform 4.6 s, the bunny's flatten ~64 s), and the
+// message said "an existing ro/new.obj is left unchanged" of a file that did
+// not exist. The tests run as root, who may write anywhere: the CLI runs
+// without CAP_DAC_OVERRIDE (setpriv), as a user without the permission.
+TEST_CASE("cli robustness: an OUT in a directory that takes no new file is refused before the work", "[cli][robustness]") {
+  if (!fs::exists("/usr/bin/setpriv")) {
+    WARN("no /usr/bin/setpriv: the directory's permission cannot be taken from root");
+    return;
+  }
+  CliScratch dir("read_only");
+  fs::create_directories(dir.file("ro"));
+  fs::permissions(dir.file("ro"), fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
+                                      fs::perms::group_exec | fs::perms::others_read | fs::perms::others_exec);
+  const std::vector<std::string> without_override{"/usr/bin/setpriv", "--bounding-set", "-dac_override"};
+  const std::string out = dir.file("ro/new.obj");
+  const std::string expected = "error: OUT: cannot write " + out + ": no file can be created in directory " +
+                               dir.file("ro") + " (Permission denied)";
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"deform", mesh_path("formats/spot_lowres.obj"), out, "--scale", "1.2"},
+        {"flatten", mesh_path("open/plane.off"), dir.file("ro/new.svg")},
+        {"deform", "/nonexistent.obj", out}}) {  // before the input is even read
+    const CliRun run = aniso::test::run_cli_under(without_override, args);
+    INFO(describe(args, run));
+    CHECK(run.exit_status == 2);
+    CHECK(contains(run.err, args[0] == "flatten" ? "cannot write " + dir.file("ro/new.svg") : expected));
+    CHECK_FALSE(contains(run.err, "left unchanged"));
+    CHECK(run.out.empty());
+  }
+  fs::permissions(dir.file("ro"), fs::perms::owner_all);
+  CHECK(dir.entry_count() == 1);
+  CHECK(fs::is_empty(dir.file("ro")));  // no temporary file left by the probe
+}
+
+// A failed write names an existing OUT as left unchanged, and only then.
+TEST_CASE("file io: a failed write says an existing file is left unchanged only when there is one", "[io]") {
+  CliScratch dir("no_existing");
+  const std::string missing_directory = dir.file("gone/new.obj");
+  try {
+    aniso::write_file_atomically(missing_directory, "x");
+    FAIL("the write succeeded");
+  } catch (const aniso::Error& e) {
+    CHECK(std::string(e.what()) == "could not write " + missing_directory + ": No such file or directory");
+  }
+  CHECK(aniso::temporary_file_error_next_to(missing_directory) == ENOENT);
+  CHECK(aniso::temporary_file_error_next_to(dir.file("new.obj")) == 0);
+  CHECK(dir.entry_count() == 0);
 }
 
 TEST_CASE("cli robustness: OUT may be IN, and a failed write keeps IN intact", "[cli][robustness]") {

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include <catch2/catch.hpp>
@@ -360,6 +361,21 @@ TEST_CASE("document: the CLI replays to the core's positions", "[document][cli]"
   CHECK(result["hash"] == document["mesh"]["hash"]);
   const Positions written = read_mesh(out).mesh.V;
   CHECK(positions_bitwise_equal(written, replayed_spool(document)));
+  // `last` was in the JSON but not in --help's key list: the help names it
+  // and lists its keys, the JS API's camelCase ones, as the output has them.
+  const std::string help = test::run_cli_expecting({"replay", "--help"}, 0).out;
+  std::string words;
+  std::istringstream split(help);
+  for (std::string word; split >> word;) words += word + " ";
+  const std::string listed = "as the browser's replay returns it: ";
+  const std::size_t from = words.find(listed);
+  REQUIRE(from != std::string::npos);
+  const std::string keys = words.substr(from + listed.size(), words.find(')', from) - from - listed.size());
+  std::string output_keys;
+  for (const auto& item : result["last"].items()) output_keys += (output_keys.empty() ? "" : ", ") + item.key();
+  CHECK(keys == output_keys);
+  CHECK(words.find("warnings (ops that left the mesh unchanged, and why), last (the last replayed op's result") !=
+        std::string::npos);
 
   Json other = document;
   other["mesh"]["hash"] = "fnv1a64:0000000000000000";

@@ -3,7 +3,10 @@
 #include <catch2/catch.hpp>
 
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <csignal>
 
 #include <filesystem>
 #include <fstream>
@@ -101,4 +104,45 @@ TEST_CASE("file io: only regular files are read, without blocking or reading for
   // Files named by options are parameters: the caller picks the code.
   CHECK(error_message_of([&] { aniso::read_regular_file(dir.file("sub"), aniso::ErrorCode::BadParameter); },
                    aniso::ErrorCode::BadParameter) == dir.file("sub") + " is a directory, not a regular file");
+}
+
+// SIGTERM or SIGINT while the bytes went out (a job manager's timeout, a
+// Ctrl+C during a slow write) left the hidden ".NAME.tmp-PID-N" beside OUT.
+// A child writes 192 MB; the signal comes once its temporary file is there.
+TEST_CASE("file io: SIGTERM or SIGINT during a write removes the temporary file, and still ends the process",
+          "[file_io]") {
+  for (const int signal : {SIGTERM, SIGINT}) {
+    ScratchDirectory dir("signal_" + std::to_string(signal));
+    const std::string path = dir.file("out.bin");
+    const pid_t child = ::fork();
+    REQUIRE(child >= 0);
+    if (child == 0) {
+      ::signal(SIGINT, SIG_DFL);  // as a shell's foreground job has it
+      ::signal(SIGTERM, SIG_DFL);
+      try {
+        aniso::write_file_atomically(path, std::string(std::size_t{192} << 20, 'x'));
+      } catch (...) {
+      }
+      ::_exit(0);
+    }
+    bool seen = false;
+    for (int wait = 0; wait < 20000 && !seen; ++wait) {
+      for (const std::string& name : dir.entries()) seen = seen || name.rfind(".out.bin.tmp-", 0) == 0;
+      if (!seen) ::usleep(500);
+    }
+    ::kill(child, signal);
+    int status = 0;
+    REQUIRE(::waitpid(child, &status, 0) == child);
+    INFO("signal " << signal);
+    REQUIRE(seen);
+    if (WIFEXITED(status)) {
+      WARN("the write ended before the signal came: nothing to check");
+      continue;
+    }
+    CHECK(WIFSIGNALED(status));
+    CHECK(WTERMSIG(status) == signal);  // ended by the signal, as its parent expects
+    const std::vector<std::string> left = dir.entries();
+    INFO("left: " << (left.empty() ? std::string("nothing") : left.front()));
+    CHECK(left.empty());  // no temporary file, no partial out.bin
+  }
 }

@@ -2,6 +2,7 @@
 // initializers, every refusal names its field and quotes the value, JS's
 // non-numbers ("NaN") are refused, and the mesh-dependent defaults are
 // resolved in one place (resolve_edit / resolve_flatten).
+#include <algorithm>
 #include <string>
 
 #include <catch2/catch.hpp>
@@ -241,7 +242,9 @@ TEST_CASE("op: the mesh's defaults are resolved by the session's rule", "[op]") 
   const DeformOp handled = deform_op_from_json(Json::parse(R"({"method":"arap","handles":[5, 6]})"));
   const DeformRequest kept = resolve_edit(handled, mesh.V, box, weights);
   CHECK(kept.handles == std::vector<int>{5, 6});
-  CHECK(kept.pins.empty());
+  // Without pins, the unselected vertices hold the mesh, handles or not (test_arap_pins.cpp).
+  CHECK(static_cast<int>(kept.pins.size()) == n - 5);
+  CHECK(std::find(kept.pins.begin(), kept.pins.end(), 5) == kept.pins.end());
 
   // Preview caps the iterations; a twist without origin turns about the selection's centroid line.
   const DeformOp twist = deform_op_from_json(

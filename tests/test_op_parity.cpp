@@ -117,3 +117,16 @@ TEST_CASE("op parity: --op refuses the edit's flags beside it and names bad fiel
   CHECK(run_expecting({"deform", in, temp_path("o.obj"), "--op", broken}, 2).err.find("is not valid JSON") !=
         std::string::npos);
 }
+
+// A number no double holds was "internal error: [json.exception.out_of_range.406] ...", exit 3.
+TEST_CASE("op parity: a number out of range in --op or a document is a bad parameter naming the value", "[op][cli]") {
+  const std::string in = test::mesh_path(kParityMesh);
+  const std::string huge = test::write_temp_text("huge.json", R"({"transform":{"scale":1e400}})");
+  const test::CliRun op = run_expecting({"deform", in, temp_path("o.obj"), "--op", huge}, 2);
+  CHECK(op.err == "anisoform deform: error: --op: " + huge + " holds a number out of range: 1e400 (a JSON number must "
+                  "be a finite double, at most about 1.8e308)\n");
+  const std::string document = test::write_temp_text("huge_doc.json", R"({"format":"anisoform-document","x":-1e400})");
+  const test::CliRun replay = run_expecting({"replay", document, temp_path("o.obj")}, 2);
+  CHECK(replay.err.find("DOC: the document holds a number out of range: -1e400") != std::string::npos);
+  CHECK_THROWS_WITH(json_from_text("[1, 2e999]", "the list"), Catch::StartsWith("the list holds a number out of range: 2e999"));
+}

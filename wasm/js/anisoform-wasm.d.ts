@@ -342,7 +342,11 @@ export interface SetMeshOptions {
 
 /** @schema exportPattern */
 export interface PatternOptions {
-  /** Millimetres per model unit (default 1). */
+  /**
+   * Millimetres per model unit. Default 1 here: the module does not guess. The page's API
+   * (anisoform.exportPattern) and the CLI's flatten default to the guessed unit, info().unitGuess.mmPerUnit;
+   * pass that to export as they do.
+   */
   mmPerUnit?: number;
 }
 

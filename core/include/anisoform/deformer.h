@@ -82,6 +82,8 @@ class Deformer {
   // A LaplacianSolver for `pins`, ordered and analysed (reusing patterns_), not yet factorized.
   std::unique_ptr<LaplacianSolver> planned_solver(const std::vector<int>& pins);
   DeformResult deform_unit(const DeformRequest& request);  // on unit_, in its units
+  // The rest pose as the result of an edit that moves nothing (moves_nothing).
+  DeformResult rest_result(const DeformRequest& request, const Eigen::VectorXd& weights) const;
 
   Mesh rest_;
   // rest_ less origin_ (its bounding box's centre, rounded to a multiple of

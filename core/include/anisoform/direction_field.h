@@ -21,13 +21,20 @@ struct DirectionConstraint {
   double su = 1.0;                                       // amount along (optional use)
   double sv = 1.0;                                       // amount across (optional use)
   bool has_amounts = false;                              // su/sv given for this vertex
+  int line = 0;  // the text line it was read from (parse_direction_constraints), 0 if none: for messages
 };
 
-// Exactly the same constraint (every field bitwise): what caches key on.
+// Exactly the same constraint (every field bitwise, but where it was read):
+// what caches key on.
 inline bool operator==(const DirectionConstraint& a, const DirectionConstraint& b) {
   return a.vertex == b.vertex && a.direction == b.direction && a.su == b.su && a.sv == b.sv &&
          a.has_amounts == b.has_amounts;
 }
+
+// Whether any constraint carries amounts: then the field's interpolated
+// amounts replace the edit's own (a deform's scale su, sv; a flatten's
+// compression), everywhere on the mesh.
+bool any_amounts(const std::vector<DirectionConstraint>& constraints);
 
 struct DirectionField {
   Positions direction;  // #V by 3 unit tangent vectors (zero outside the region)
@@ -46,8 +53,11 @@ std::vector<DirectionConstraint> parse_direction_constraints(const std::string& 
 // vertex in [0, n), each direction finite and non-zero, and the amounts, when
 // given, allowed by validate_scale (transforms.h), the rule of the
 // global scale. Error(BadParameter) naming the constraint (1-based) and its
-// vertex.
-void validate_direction_constraints(const std::vector<DirectionConstraint>& constraints, int n);
+// vertex; with `source` (the file parse_direction_constraints read), by the
+// file and line instead of the constraint's number: "FILE line 2 (vertex
+// 5000): vertex index out of range, the mesh has 829 vertices".
+void validate_direction_constraints(const std::vector<DirectionConstraint>& constraints, int n,
+                                    const std::string& source = "");
 
 // Propagates the constraints over the mesh (or over the vertices with
 // region_mask[i] != 0). A constraint whose direction is (nearly) parallel to

@@ -29,6 +29,16 @@ std::string read_regular_file(const std::string& path, ErrorCode code = ErrorCod
 // Replaces the file at `path` with `bytes` atomically (see above); a symlink
 // at `path` is followed and its target replaced. An existing file keeps its
 // permissions. Throws Error(BadFile, "could not write PATH: <reason>").
+// "could not write PATH: <reason>" ends "(an existing PATH is left
+// unchanged)" when there is one. Natively, SIGTERM, SIGINT and SIGHUP during
+// the write (when their disposition is the default) remove the temporary
+// file before the process ends by the signal as it would have.
 void write_file_atomically(const std::string& path, std::string_view bytes);
+
+// Whether write_file_atomically could create its temporary file next to
+// `path`: creates one and removes it again. 0 when it could, else the errno
+// (EACCES in a directory without write permission, EROFS, ENOENT...), so
+// that a host refuses an unwritable place before the work whose result it is.
+int temporary_file_error_next_to(const std::string& path);
 
 }  // namespace aniso

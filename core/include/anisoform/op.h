@@ -45,6 +45,13 @@ using Json = nlohmann::ordered_json;
 
 // ---- JSON -> request ------------------------------------------------------
 
+// A JSON text (an edit document, the CLI's --op file) as JSON, every failure
+// Error(BadParameter) starting with `what` ("the document", "--op: op.json"):
+// "WHAT is not valid JSON: ..." for a syntax error, "WHAT holds a number out
+// of range: 1e400 ..." for a number no double holds (nlohmann reports it as
+// out_of_range, which the CLI took for an internal error, exit 3).
+Json json_from_text(const std::string& text, const std::string& what);
+
 DeformOp deform_op_from_json(const Json& op);
 // {compress?: su|[su]|[su,sv], direction?: global or constraints (as an op's),
 //  baseline?: 'uniform', patch?: 'mesh'|'selection', maxIterations?, tolerance?, refine?}
@@ -104,6 +111,7 @@ Eigen::Vector3d longest_axis(const BoundingBox& box);
 struct ModelUnitGuess {
   std::string name;  // "m" | "cm" | "mm"
   double mm_per_unit = 1.0;
+  double largest_side = 0.0;  // the size it was guessed from, in model units
 };
 ModelUnitGuess guess_model_unit(const BoundingBox& box);
 
@@ -112,9 +120,13 @@ ModelUnitGuess guess_model_unit(const BoundingBox& box);
 //   direction not given: global along longest_axis(loaded_box), the mesh as loaded;
 //   twist origin not given: default_twist_origin (transforms.h) of the rest pose;
 //   Arap with no handles (none would move: the edit would do nothing): handles
-//     are the vertices with selection weight >= 0.999 and, unless pins are
-//     given, pins those with weight 0 (the soft border in between deforms as
-//     rigidly as possible); nothing selected: no handle (nothing moves);
+//     are the vertices with selection weight >= 0.999 (the soft border in
+//     between deforms as rigidly as possible); nothing selected: no handle
+//     (nothing moves);
+//   Arap without pins (handles given or not): pins are the vertices with
+//     weight 0 that are not handles; given handles and a move with nothing
+//     unselected to hold the mesh (a rigid translation of all of it) are
+//     refused, Error(BadParameter);
 //   preview: max_iterations capped at kPreviewIterations.
 DeformRequest resolve_edit(const DeformOp& edit, const Positions& rest, const BoundingBox& loaded_box,
                            const Eigen::VectorXd& weights);

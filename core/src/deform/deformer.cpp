@@ -163,6 +163,18 @@ void refuse_unseen_rotation(const DeformRequest& request, const Eigen::VectorXd&
        "rotate (the rest holds it), or use AnDefGrad");
 }
 
+// Whether the edit moves no vertex whatever the solve: nothing selected (the
+// surface methods and the linear map move selected vertices only), or ARAP
+// without a handle (T = I with every held vertex at rest: the rest pose is
+// the minimum). The rest pose is then the result, to the bit, with nothing
+// factorized or iterated: an empty selection on the 200k koala was solved in
+// full (6.7 s, 476 MB) and came back 1e-14 off in 2462 of spot's 2487
+// coordinates, while the warning said the mesh was left unchanged.
+bool moves_nothing(const DeformRequest& request, const Eigen::VectorXd& weights) {
+  if (request.method == Method::Arap) return request.handles.empty();
+  return !(weights.array() > 0.0).any();
+}
+
 // The request in the numbering whose vertex rank[i] is the input's vertex i:
 // the selection, the pins and handles, a field's constraints and dense
 // directions. Entries outside the mesh are left as they are (ARAP's unused
@@ -475,16 +487,18 @@ double Deformer::prepare_step() {
 
 DeformResult Deformer::deform(const DeformRequest& request) {
   const auto start = Clock::now();
-  const bool was_prepared = prepared_;
-  prepare();
-  if (!was_prepared) report_setup(kSetupLaplacianShare);
-  const double prepare_ms = was_prepared ? 0.0 : ms_since(start);
   const int n = rest_.num_vertices();
   validate_request(request, n);
   validate_twist(request.transform, diagonal_);
   validate_move(request.handle_offset, diagonal_);
   // Here, so that a bad weight is named by the input's numbering.
-  refuse_unseen_rotation(request, checked_weights(request, n));
+  const Eigen::VectorXd weights = checked_weights(request, n);
+  refuse_unseen_rotation(request, weights);
+  if (moves_nothing(request, weights)) return rest_result(request, weights);
+  const bool was_prepared = prepared_;
+  prepare();
+  if (!was_prepared) report_setup(kSetupLaplacianShare);
+  const double prepare_ms = was_prepared ? 0.0 : ms_since(start);
   // Solve on the unit-size copy (limits.h: results independent of the units,
   // no overflow in squared areas) in its numbering, then scale lengths and
   // energies back and number the vertices as given.
@@ -537,6 +551,16 @@ DeformResult Deformer::deform(const DeformRequest& request) {
   return result;
 }
 
+DeformResult Deformer::rest_result(const DeformRequest& request, const Eigen::VectorXd& weights) const {
+  DeformResult result;
+  result.V = rest_.V;
+  result.method = request.method;
+  result.selected = static_cast<int>((weights.array() > 0.0).count());
+  result.factorizations = factorizations_;
+  if (progress_) progress_(ProgressStage::Solve, 1.0);
+  return result;
+}
+
 DeformResult Deformer::deform_unit(const DeformRequest& request) {
   const int n = unit_.num_vertices();
   const Eigen::VectorXd w = checked_weights(request, n);
@@ -585,12 +609,7 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
     result.energy = gradient_energy(unit_, cotan_weights_, targets.T, result.V);
     result.iterations = 1;
     result.directions_filled = targets.filled;
-  } else if (request.method == Method::Arap && request.handles.empty()) {
-    // No handle: T = I with every held vertex at rest, so the rest pose is
-    // the minimum (energy 0) exactly, where a solve and the gauge's rigid fit
-    // return it up to round-off (3e-16 on spot): nothing moves.
-    result.V = unit_.V;
-  } else {
+  } else {  // AnARAP, or ARAP with handles (deform() returns the rest pose without: moves_nothing)
     const bool isotropic = request.method == Method::Arap;
     std::vector<int> user_pins = request.pins;
     if (isotropic) user_pins.insert(user_pins.end(), request.handles.begin(), request.handles.end());

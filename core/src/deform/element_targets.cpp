@@ -98,9 +98,7 @@ void TargetContext::vertex_directions(const DirectionSource& source, Positions& 
       }
       const DirectionField& field = *fields_->propagated;
       directions = field.direction;
-      bool any_amounts = false;
-      for (const auto& c : source.constraints) any_amounts = any_amounts || c.has_amounts;
-      if (any_amounts) {
+      if (any_amounts(source.constraints)) {
         su = field.su;
         sv = field.sv;
       }

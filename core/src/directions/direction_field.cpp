@@ -219,10 +219,20 @@ field::ValueMatrix<double> interpolated_amounts(const std::vector<DirectionConst
 
 }  // namespace
 
-void validate_direction_constraints(const std::vector<DirectionConstraint>& constraints, int n) {
+bool any_amounts(const std::vector<DirectionConstraint>& constraints) {
+  for (const DirectionConstraint& c : constraints) {
+    if (c.has_amounts) return true;
+  }
+  return false;
+}
+
+void validate_direction_constraints(const std::vector<DirectionConstraint>& constraints, int n,
+                                    const std::string& source) {
   for (std::size_t k = 0; k < constraints.size(); ++k) {
     const DirectionConstraint& c = constraints[k];
-    const std::string name = constraint_name(constraints, k);
+    const std::string name = source.empty() || c.line <= 0 ? constraint_name(constraints, k)
+                                                           : source + " line " + std::to_string(c.line) +
+                                                                 " (vertex " + std::to_string(c.vertex) + ")";
     if (c.vertex < 0 || c.vertex >= n) {
       bad_field_parameter(name + ": vertex index out of range, the mesh has " + std::to_string(n) + " vertices");
     }
@@ -260,6 +270,7 @@ std::vector<DirectionConstraint> parse_direction_constraints(const std::string& 
     constraint.direction = Eigen::Vector3d(numbers[1], numbers[2], numbers[3]);
     if (constraint.direction.squaredNorm() == 0.0) bad_field_parameter(where + "the direction is zero");
     constraint.has_amounts = tokens.size() >= 5;
+    constraint.line = static_cast<int>(line) + 1;
     constraint.su = numbers[4];
     constraint.sv = numbers[5];
     // Checked here too, so that a file's mistake is named by its line.

@@ -148,13 +148,7 @@ EditDocument document_from_json(const Json& document) {
 }
 
 EditDocument document_from_text(const std::string& text) {
-  Json json;
-  try {
-    json = Json::parse(text);
-  } catch (const Json::exception& error) {
-    fail(ErrorCode::BadParameter, std::string("the document is not valid JSON: ") + error.what());
-  }
-  return document_from_json(json);
+  return document_from_json(json_from_text(text, "the document"));
 }
 
 Json document_schema() {

@@ -87,8 +87,7 @@ FlattenTargets flatten_targets(const Mesh& input, const FlattenPatch& patch,
   if (directions.constraints.empty()) {
     fail(ErrorCode::BadParameter, "the direction field has no constraint");
   }
-  bool any_amounts = false;
-  for (const DirectionConstraint& c : directions.constraints) any_amounts = any_amounts || c.has_amounts;
+  const bool field_amounts = any_amounts(directions.constraints);
   // The field lives on the patch only: constraints outside it (and bad
   // amounts) are refused by the propagation, naming the input vertex.
   std::vector<char> in_patch(input.num_vertices(), 0);
@@ -102,7 +101,7 @@ FlattenTargets flatten_targets(const Mesh& input, const FlattenPatch& patch,
   const Triangles& F = patch.mesh.F;
   for (int t = 0; t < m; ++t) {
     triangle_directions.row(t) = corner_line_mean(vertex_directions, F, charts, t).transpose();
-    if (any_amounts) {
+    if (field_amounts) {
       double along = 0.0, across = 0.0;
       for (int k = 0; k < 3; ++k) {
         along += field.su[patch.input_vertex[F(t, k)]];

@@ -7,8 +7,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <array>
 #include <atomic>
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -66,10 +68,76 @@ bool write_all(int fd, std::string_view bytes) {
   return true;
 }
 
+// The temporary file of the write in progress, removed by the handler of a
+// signal that ends the process (SIGTERM from a job manager, SIGINT from
+// Ctrl+C, SIGHUP from a closed terminal): it was left behind as a hidden
+// ".NAME.tmp-PID-N" beside OUT. The handler does only async-signal-safe
+// things: unlink the path (a fixed buffer, filled before it is armed), put
+// the default disposition back and raise the signal again, so the process
+// still ends by it, as its parent expects. A signal whose disposition is not
+// the default (ignored, or the host's own handler) is left alone.
+#if defined(__EMSCRIPTEN__)
+class TemporaryRemovedOnSignal {  // no signals in the browser
+ public:
+  void arm(const std::string&) const {}
+  void disarm() const {}
+};
+#else
+class TemporaryRemovedOnSignal {
+ public:
+  TemporaryRemovedOnSignal() {
+    struct sigaction removing {};
+    removing.sa_handler = remove_and_reraise;
+    sigemptyset(&removing.sa_mask);
+    for (std::size_t k = 0; k < kSignals.size(); ++k) {
+      struct sigaction before {};
+      if (::sigaction(kSignals[k], nullptr, &before) != 0 || before.sa_handler != SIG_DFL) continue;
+      installed_[k] = ::sigaction(kSignals[k], &removing, &previous_[k]) == 0;
+    }
+  }
+  ~TemporaryRemovedOnSignal() {
+    armed_ = 0;
+    for (std::size_t k = 0; k < kSignals.size(); ++k) {
+      if (installed_[k]) ::sigaction(kSignals[k], &previous_[k], nullptr);
+    }
+  }
+  TemporaryRemovedOnSignal(const TemporaryRemovedOnSignal&) = delete;
+  TemporaryRemovedOnSignal& operator=(const TemporaryRemovedOnSignal&) = delete;
+
+  // From now on a signal removes `temporary`: armed before the file is
+  // created, so that no signal between its creation and the arming misses it
+  // (a path too long for the buffer is not armed: the temporary then stays,
+  // as before).
+  void arm(const std::string& temporary) const {
+    armed_ = 0;
+    if (temporary.size() >= sizeof path_) return;
+    std::memcpy(path_, temporary.c_str(), temporary.size() + 1);
+    armed_ = 1;
+  }
+  void disarm() const { armed_ = 0; }
+
+ private:
+  static constexpr std::array<int, 3> kSignals{SIGTERM, SIGINT, SIGHUP};
+
+  static void remove_and_reraise(int signal) {
+    if (armed_) ::unlink(path_);
+    ::signal(signal, SIG_DFL);
+    ::raise(signal);
+  }
+
+  static inline char path_[4096];
+  static inline volatile std::sig_atomic_t armed_ = 0;
+  std::array<struct sigaction, 3> previous_{};
+  std::array<bool, 3> installed_{};
+};
+#endif
+
 // A new file next to `target`, created exclusively (never someone else's):
 // ".NAME.tmp-PID-N" in the same directory, so the rename stays on one file
 // system and is atomic. Sets `temporary` and returns the descriptor, or -1.
-int create_temporary_next_to(const std::string& target, std::string& temporary) {
+// With `on_signal`, each name is armed before it is created.
+int create_temporary_next_to(const std::string& target, std::string& temporary,
+                             const TemporaryRemovedOnSignal* on_signal = nullptr) {
   static std::atomic<unsigned> counter{0};
   const std::size_t slash = target.find_last_of('/');
   const std::string directory = slash == std::string::npos ? "" : target.substr(0, slash + 1);
@@ -77,8 +145,11 @@ int create_temporary_next_to(const std::string& target, std::string& temporary) 
   const std::string stem = directory + "." + name + ".tmp-" + std::to_string(::getpid()) + "-";
   for (int attempt = 0; attempt < 100; ++attempt) {
     temporary = stem + std::to_string(counter++);
+    if (on_signal) on_signal->arm(temporary);
     const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd >= 0 || errno != EEXIST) return fd;
+    if (fd >= 0) return fd;
+    if (on_signal) on_signal->disarm();  // not ours
+    if (errno != EEXIST) return fd;
   }
   return -1;
 }
@@ -96,6 +167,15 @@ std::string resolve_symlink(const std::string& path) {
 }
 
 }  // namespace
+
+int temporary_file_error_next_to(const std::string& path) {
+  std::string temporary;
+  const int fd = create_temporary_next_to(resolve_symlink(path), temporary);
+  if (fd < 0) return errno != 0 ? errno : EEXIST;
+  ::close(fd);
+  ::unlink(temporary.c_str());
+  return 0;
+}
 
 std::string read_regular_file(const std::string& path, ErrorCode code) {
   struct stat info {};
@@ -132,20 +212,23 @@ std::string read_regular_file(const std::string& path, ErrorCode code) {
 void write_file_atomically(const std::string& path, std::string_view bytes) {
   // A symlink keeps pointing where it did: replace its target, not the link.
   const std::string target = resolve_symlink(path);
-  const auto fail_write = [&path](const std::string& reason) {
-    fail(ErrorCode::BadFile, "could not write " + path + ": " + reason + " (an existing " + path +
-                                 " is left unchanged)");
-  };
   struct stat existing {};
   const bool exists = ::stat(target.c_str(), &existing) == 0;
+  // "An existing PATH is left unchanged" only where there is one (it was
+  // said of a new file in an unwritable directory too).
+  const auto fail_write = [&path, exists](const std::string& reason) {
+    fail(ErrorCode::BadFile, "could not write " + path + ": " + reason +
+                                 (exists ? " (an existing " + path + " is left unchanged)" : std::string()));
+  };
   if (exists && !S_ISREG(existing.st_mode)) {
     fail_write(S_ISDIR(existing.st_mode) ? std::string("it is a directory")
                                          : std::string("it is not a regular file (") +
                                                non_regular_kind(existing.st_mode) + ")");
   }
 
+  const TemporaryRemovedOnSignal on_signal;
   std::string temporary;
-  FileDescriptor file(create_temporary_next_to(target, temporary));
+  FileDescriptor file(create_temporary_next_to(target, temporary, &on_signal));
   if (file.get() < 0) fail_write(std::strerror(errno));
   const auto fail_and_remove = [&](int error) {
     if (file.get() >= 0) file.close_now();
