@@ -148,6 +148,32 @@ test("an OBJ export after an edit keeps the loaded OBJ's texture coordinates and
   assert.notDeepEqual(lines(exported, 'v '), lines(input, 'v '), 'the shape changed');
 }));
 
+test("an export after an edit keeps the input's header comments (its attribution), whatever the format", () => {
+  const attribution = 'Converted by the curator from odedstein-meshes objects/spot/spot_low_resolution.obj '
+    + '(Spot by Keenan Crane, public domain).';
+  const expected = {
+    ply: ['comment written by anisoform', `comment ${attribution}`],
+    obj: ['# written by anisoform', `# ${attribution}`],
+    off: ['# written by anisoform', `# ${attribution}`],
+  };
+  withSession('formats/spot_lowres_ascii.ply', (session) => {
+    session.select({ all: true });
+    session.deform({ ...STRETCH_Y, transform: { scale: 1.1 } });
+    for (const [format, lines] of Object.entries(expected)) {
+      // The header's text (a binary PLY's body after it is not text).
+      const text = new TextDecoder('latin1').decode(session.exportMesh(format)).split('\n').slice(0, 5);
+      const comments = text.filter((line) => line.startsWith('#') || line.startsWith('comment'));
+      assert.deepEqual(comments, lines, format);
+    }
+  });
+  // An OBJ's leading block goes into a PLY.
+  withSession('closed/torus.obj', (session) => {
+    const header = new TextDecoder('latin1').decode(session.exportMesh('ply')).split('\n').slice(2, 5);
+    assert.deepEqual(header, ['comment written by anisoform', "comment Blender v2.82 (sub 7) OBJ File: ''",
+      'comment www.blender.org']);
+  });
+});
+
 test('a deleted session refuses calls', () => {
   const session = sessionWith(wasm, 'open/plane.off');
   session.delete();

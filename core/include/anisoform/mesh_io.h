@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "anisoform/mesh.h"
@@ -70,7 +71,30 @@ struct SurfaceAttributes {
   ObjMaterials materials;              // OBJ
   Eigen::MatrixX3d vertex_colors;      // OBJ: `v x y z r g b` on every vertex line (#V rows), or none
   VertexProperties vertex_properties;  // PLY
+  // The file's header comments (attribution, licence...), in file order:
+  // PLY `comment` and `obj_info` lines (their text after the keyword); the
+  // whole-line `#` comments of an OBJ before its first statement and of an
+  // OFF before its first vertex (comments further down describe the data,
+  // e.g. "# 829 vertices", and would be stale after an edit). Kept as
+  // keep_file_comment cleans them. Written into every format that has
+  // comments (OBJ, OFF, PLY; in whichever the output is), after the line
+  // saying anisoform wrote the file; binary STL's 80-byte header takes the
+  // first when it fits, ASCII STL has only a solid name and takes none.
+  std::vector<std::string> comments;
 };
+
+// At most this many comments are kept, each at most this many bytes (cut at
+// a UTF-8 character boundary): a header is for attribution, not a payload.
+constexpr std::size_t kMaxFileComments = 64;
+constexpr std::size_t kMaxFileCommentBytes = 256;
+
+// Adds `text` to `comments` as a header line can safely carry it: control
+// characters (newlines, tabs, NUL, DEL...) become spaces, blanks at both
+// ends go, long text is cut; nothing is added when it is empty, when
+// kMaxFileComments are kept already, or when it is the line anisoform's own
+// writers put first ("written by anisoform..."), which each output writes
+// afresh (read and written again, it would pile up).
+void keep_file_comment(std::vector<std::string>& comments, std::string_view text);
 
 // The vertex colours in [0, 1], #V rows, whichever format carried them: an
 // OBJ's `v x y z r g b`, or a PLY's red, green and blue properties (integer

@@ -186,6 +186,8 @@ struct PolygonMesh {
   // OBJ materials: mtllib statements, and (first polygon, name) per usemtl.
   std::vector<std::string> material_libraries;
   std::vector<std::pair<int, std::string>> material_runs;
+  // The header's comments (OBJ, OFF: SurfaceAttributes::comments).
+  std::vector<std::string> comments;
 
   int num_vertices() const { return static_cast<int>(xyz.size() / 3); }
   int num_polygons() const { return static_cast<int>(offsets.size()) - 1; }
@@ -209,6 +211,17 @@ void note_skipped(ReadReport& report, int count, const std::string& what);
 // writers would otherwise read outside the positions.
 void require_valid_indices(const Mesh& mesh);
 
+// ---------------------------------------------------------------- comments
+
+// The header's comment lines, each "PREFIX text\n" (OBJ and OFF "# ", PLY
+// "comment "): first the line saying anisoform wrote the file, then the
+// attributes' comments (file_comments.cpp: cleaned and capped again here).
+void append_comment_lines(std::string& out, const SurfaceAttributes* attributes, const char* prefix);
+
+// The first comment when it has at most `room` bytes, else "" (binary STL's
+// header).
+std::string first_comment_fitting(const SurfaceAttributes* attributes, std::size_t room);
+
 // ---------------------------------------------------------------- formats
 
 ReadResult read_obj(const char* data, std::size_t size);
@@ -218,7 +231,7 @@ ReadResult read_stl(const char* data, std::size_t size);
 
 std::string write_obj(const Mesh& mesh, const SurfaceAttributes* attributes = nullptr);
 std::string write_off(const Mesh& mesh, const SurfaceAttributes* attributes = nullptr);
-std::string write_ply(const Mesh& mesh, bool binary, const VertexProperties* properties = nullptr);
-std::string write_stl(const Mesh& mesh, bool binary);
+std::string write_ply(const Mesh& mesh, bool binary, const SurfaceAttributes* attributes = nullptr);
+std::string write_stl(const Mesh& mesh, bool binary, const SurfaceAttributes* attributes = nullptr);
 
 }  // namespace aniso::io

@@ -47,7 +47,13 @@ class ObjParser {
       line_ = lines.line_number();
       std::string_view rest = line;
       const std::string_view keyword = next_token(rest);
-      if (keyword.empty() || keyword[0] == '#') continue;
+      if (keyword.empty()) continue;
+      if (keyword[0] == '#') {
+        // The leading block is the file's header (attribution, licence).
+        if (!seen_statement_) keep_file_comment(polygons_.comments, line.substr(line.find('#') + 1));
+        continue;
+      }
+      seen_statement_ = true;
       if (keyword == "v") {
         parse_vertex(rest);
       } else if (keyword == "vt") {
@@ -277,6 +283,7 @@ class ObjParser {
   int face_number() const { return polygons_.num_polygons() + 1; }  // 1-based, of the face being read
 
   PolygonMesh polygons_;
+  bool seen_statement_ = false;  // past the leading comment block
   std::size_t corners_with_uv_ = 0;
   std::string texture_dropped_;  // why the texture coordinates are not kept ("" while they are)
   std::string colors_dropped_;   // why the vertex colours are not kept, when one was not finite
@@ -354,7 +361,8 @@ std::string write_obj(const Mesh& mesh, const SurfaceAttributes* attributes) {
   }
   static const ObjMaterials kNone;
   const ObjMaterials& materials = attributes ? attributes->materials : kNone;
-  std::string out = "# written by anisoform\n";
+  std::string out;
+  append_comment_lines(out, attributes, "# ");
   out.reserve(static_cast<std::size_t>(mesh.V.rows()) * 40 + static_cast<std::size_t>(mesh.F.rows()) * 24);
   for (const std::string& library : materials.libraries) out += "mtllib " + library + '\n';
   if (attributes && attributes->vertex_colors.rows() == mesh.V.rows() && mesh.V.rows() > 0) {

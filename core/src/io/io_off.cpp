@@ -14,13 +14,20 @@ namespace io {
 namespace {
 
 // Yields the lines that hold data: comments ('#' to the end of a line) and
-// blank lines are dropped.
+// blank lines are dropped; the whole-line comments are kept in `comments`
+// until the first vertex line (stop_keeping_comments).
 class OffLines {
  public:
-  explicit OffLines(std::string_view text) : lines_(text) {}
+  explicit OffLines(std::string_view text, std::vector<std::string>& comments)
+      : lines_(text), comments_(&comments) {}
+  void stop_keeping_comments() { comments_ = nullptr; }
   bool next(std::string_view& line) {
     while (lines_.next(line)) {
-      line = line.substr(0, line.find('#'));
+      const std::size_t hash = line.find('#');
+      if (comments_ && hash != std::string_view::npos && line.find_first_not_of(" \t") == hash) {
+        keep_file_comment(*comments_, line.substr(hash + 1));
+      }
+      line = line.substr(0, hash);
       std::string_view probe = line;
       if (!next_token(probe).empty()) return true;
     }
@@ -31,6 +38,7 @@ class OffLines {
 
  private:
   LineReader lines_;
+  std::vector<std::string>* comments_;
 };
 
 // "OFF" with optional prefixes: ST (texture coordinates), C (colour),
@@ -99,7 +107,8 @@ ReadResult read_off(const char* data, std::size_t size) {
   std::string decoded;
   const std::string_view text = decode_text(data, size, decoded, report);
   reject_binary_text(text, "OFF");
-  OffLines lines(text);
+  PolygonMesh polygons;
+  OffLines lines(text, polygons.comments);
   std::string_view line;
 
   if (!lines.next(line)) fail_file("the file has no OFF header (only blank lines and comments)");
@@ -125,13 +134,13 @@ ReadResult read_off(const char* data, std::size_t size) {
   require_declared_bytes(text_bytes_for(num_vertices + num_faces),
                          std::to_string(num_vertices) + " vertices and " + std::to_string(num_faces) + " faces",
                          lines.bytes_left());
-  PolygonMesh polygons;
   // Reserve no more than the bytes could hold: a vertex line takes 6 at least.
   polygons.xyz.reserve(3 * static_cast<std::size_t>(std::min<long long>(num_vertices, size / 6)));
   polygons.offsets.reserve(static_cast<std::size_t>(std::min<long long>(num_faces, size / 6)) + 1);
 
   for (long long v = 0; v < num_vertices; ++v) {
     if (!lines.next(line)) fail_file(truncated_message(v, num_vertices, "vertices"));
+    lines.stop_keeping_comments();  // the header's comments are read; those below describe the data
     double xyz[3];
     for (double& value : xyz) {
       const std::string_view token = next_token(line);
@@ -185,8 +194,9 @@ namespace {
 
 // COFF: each vertex's colour after its position, as integers to 255 (what
 // most readers of COFF expect), alpha full.
-std::string write_coff(const Mesh& mesh, const Eigen::MatrixX3d& colors) {
+std::string write_coff(const Mesh& mesh, const Eigen::MatrixX3d& colors, const SurfaceAttributes* attributes) {
   std::string out = "COFF\n";
+  append_comment_lines(out, attributes, "# ");
   append_number(out, static_cast<long long>(mesh.V.rows()));
   out += ' ';
   append_number(out, static_cast<long long>(mesh.F.rows()));
@@ -211,8 +221,10 @@ std::string write_coff(const Mesh& mesh, const Eigen::MatrixX3d& colors) {
 std::string write_off(const Mesh& mesh, const SurfaceAttributes* attributes) {
   const Eigen::MatrixX3d colors =
       attributes ? vertex_colors(*attributes, static_cast<int>(mesh.V.rows())) : Eigen::MatrixX3d();
-  if (colors.rows() > 0) return write_coff(mesh, colors);
+  if (colors.rows() > 0) return write_coff(mesh, colors, attributes);
+  // The comments after the keyword: readers look for "OFF" on the first line.
   std::string out = "OFF\n";
+  append_comment_lines(out, attributes, "# ");
   out.reserve(static_cast<std::size_t>(mesh.V.rows()) * 40 + static_cast<std::size_t>(mesh.F.rows()) * 24);
   append_number(out, static_cast<long long>(mesh.V.rows()));
   out += ' ';

@@ -46,6 +46,7 @@ struct PlyElement {
 struct PlyHeader {
   PlyEncoding encoding = PlyEncoding::Ascii;
   std::vector<PlyElement> elements;
+  std::vector<std::string> comments;  // `comment` and `obj_info` lines' text, kept
   std::size_t body_offset = 0;  // first byte after "end_header\n"
   int body_first_line = 1;      // the file's line number there
 };
@@ -96,7 +97,11 @@ PlyHeader parse_header(const char* data, std::size_t size) {
     std::string_view rest = line;
     const std::string_view keyword = next_token(rest);
     if (keyword == "end_header") break;
-    if (keyword.empty() || keyword == "comment" || keyword == "obj_info") continue;
+    if (keyword == "comment" || keyword == "obj_info") {
+      keep_file_comment(header.comments, rest);
+      continue;
+    }
+    if (keyword.empty()) continue;
     if (keyword == "format") {
       const std::string_view encoding = next_token(rest);
       if (encoding == "ascii") header.encoding = PlyEncoding::Ascii;
@@ -435,14 +440,17 @@ ReadResult read_body(Values& values, const PlyHeader& header, std::size_t body_b
   }
   ReadResult result = assemble_mesh(polygons, std::move(report));
   result.attributes.vertex_properties = std::move(reader.kept);
+  result.attributes.comments = header.comments;
   return result;
 }
 
 void append_header(std::string& out, const Mesh& mesh, const char* format, const char* coordinate_type,
-                   const VertexProperties& properties) {
+                   const VertexProperties& properties, const SurfaceAttributes* attributes) {
   out += "ply\nformat ";
   out += format;
-  out += " 1.0\ncomment written by anisoform\nelement vertex ";
+  out += " 1.0\n";
+  append_comment_lines(out, attributes, "comment ");
+  out += "element vertex ";
   out += std::to_string(mesh.V.rows());
   for (const char* axis : {"x", "y", "z"}) {
     out += "\nproperty ";
@@ -539,13 +547,14 @@ void append_binary_value(std::string& out, PlyType type, double value) {
 
 }  // namespace
 
-std::string write_ply(const Mesh& mesh, bool binary, const VertexProperties* given) {
-  const VertexProperties properties = properties_to_write(mesh, given);
+std::string write_ply(const Mesh& mesh, bool binary, const SurfaceAttributes* attributes) {
+  const VertexProperties properties =
+      properties_to_write(mesh, attributes ? &attributes->vertex_properties : nullptr);
   std::vector<PlyType> types;
   for (const VertexProperty& property : properties) types.push_back(parse_type(property.type, 0));
   std::string out;
   if (binary) {
-    append_header(out, mesh, "binary_little_endian", "double", properties);
+    append_header(out, mesh, "binary_little_endian", "double", properties, attributes);
     out.reserve(out.size() + static_cast<std::size_t>(mesh.V.rows()) * (24 + 8 * properties.size()) +
                 static_cast<std::size_t>(mesh.F.rows()) * 13);
     for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
@@ -558,7 +567,7 @@ std::string write_ply(const Mesh& mesh, bool binary, const VertexProperties* giv
     }
     return out;
   }
-  append_header(out, mesh, "ascii", "double", properties);
+  append_header(out, mesh, "ascii", "double", properties, attributes);
   if (properties.empty()) {
     append_position_rows(out, mesh.V, "");
   } else {

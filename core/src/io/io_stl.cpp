@@ -303,12 +303,16 @@ ReadResult read_stl(const char* data, std::size_t size) {
   return weld_soup(soup, std::move(report));
 }
 
-std::string write_stl(const Mesh& mesh, bool binary) {
+std::string write_stl(const Mesh& mesh, bool binary, const SurfaceAttributes* attributes) {
   std::string out;
   if (binary) require_float32_keeps(mesh);
   if (binary) {
     // The header must not start with "solid": some readers take that for ASCII.
+    // Then the file's first comment, when it fits whole (a cut attribution
+    // would misquote it); ASCII STL has only a solid name, no comment.
     std::string header = "binary STL written by anisoform";
+    const std::string first = first_comment_fitting(attributes, kHeaderBytes - header.size() - 2);
+    if (!first.empty()) header += "; " + first;
     header.resize(kHeaderBytes, ' ');
     out = header;
     append_little_endian<std::uint32_t>(out, static_cast<std::uint32_t>(mesh.F.rows()));

@@ -93,8 +93,8 @@ std::string write_mesh_to_memory(const Mesh& mesh, MeshFormat format, const Writ
   switch (format) {
     case MeshFormat::Obj: return io::write_obj(mesh, &attributes);
     case MeshFormat::Off: return io::write_off(mesh, &attributes);
-    case MeshFormat::Ply: return io::write_ply(mesh, options.binary, &attributes.vertex_properties);
-    case MeshFormat::Stl: return io::write_stl(mesh, options.binary);
+    case MeshFormat::Ply: return io::write_ply(mesh, options.binary, &attributes);
+    case MeshFormat::Stl: return io::write_stl(mesh, options.binary, &attributes);
   }
   fail(ErrorCode::BadParameter, "unknown mesh format");
 }
@@ -267,6 +267,7 @@ ReadResult assemble_mesh(const PolygonMesh& polygons, ReadReport report) {
     texture.faces.resize(result.mesh.F.rows(), 3);
   }
   result.attributes.materials.libraries = polygons.material_libraries;
+  result.attributes.comments = polygons.comments;
   if (polygons.all_colored && num_vertices > 0 && polygons.colors.size() == 3 * static_cast<std::size_t>(num_vertices)) {
     result.attributes.vertex_colors =
         Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(polygons.colors.data(), num_vertices, 3);
