@@ -345,7 +345,9 @@ void add_deform_options(CLI::App& deform, DeformArguments& args) {
       ->type_name("D");
   deform.add_option("--direction", args.direction,
                     "global:X,Y,Z | curvature:min | curvature:max | field:PATH (lines \"INDEX DX "
-                    "DY DZ [SU [SV]]\": constraints propagated to a smooth line field). Default: "
+                    "DY DZ [SU [SV]]\": constraints propagated to a smooth line field). curvature:min "
+                    "is the direction that bends least (along a tube), curvature:max the one that "
+                    "bends most, by size, whichever way the faces are wound. Default: "
                     "global along the longest bounding-box axis")
       ->type_name("SOURCE");
   deform.add_option("--scale", args.scale,

@@ -12,9 +12,11 @@
 #include <Eigen/Dense>
 
 #include "directions/curvature.h"
+#include "anisoform/deformer.h"
 #include "anisoform/error.h"
 #include "geometry/frames.h"
 #include "mesh/topology.h"
+#include "solver_test_support.h"
 #include "test_support.h"
 
 namespace {
@@ -265,4 +267,47 @@ TEST_CASE("curvature: smoothing steps outside 0..kMaxCurvatureSmoothing are refu
     }
   }
   CHECK_NOTHROW(aniso::validate_curvature_smoothing(aniso::kMaxCurvatureSmoothing));
+}
+
+namespace {
+
+aniso::Mesh wound_the_other_way(aniso::Mesh mesh) {
+  mesh.F.col(1).swap(mesh.F.col(2));
+  return mesh;
+}
+
+}  // namespace
+
+TEST_CASE("curvature: min and max are by magnitude, so they do not swap with the faces' winding", "[curvature]") {
+  // Ordered by signed value, the knot's inward-wound copy had "min" around the
+  // tube: x1.3 along it thickened the knot instead of lengthening it.
+  const aniso::Mesh mesh = aniso::test::load("closed/knot1.off");
+  const aniso::Mesh flipped = wound_the_other_way(mesh);
+  const aniso::PrincipalCurvature pc = aniso::principal_curvature(mesh);
+  const aniso::PrincipalCurvature pf = aniso::principal_curvature(flipped);
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    REQUIRE(std::abs(pc.k_min[i]) <= std::abs(pc.k_max[i]));
+    REQUIRE(pf.k_min[i] == Approx(-pc.k_min[i]).margin(1e-9 * std::abs(pc.k_max[i])));
+    REQUIRE(pf.k_max[i] == Approx(-pc.k_max[i]).margin(1e-9 * std::abs(pc.k_max[i])));
+  }
+  for (const auto which : {aniso::CurvatureDirection::Min, aniso::CurvatureDirection::Max}) {
+    for (const int steps : {0, 10}) {
+      const aniso::Positions a = aniso::curvature_direction_field(mesh, which, steps);
+      const aniso::Positions b = aniso::curvature_direction_field(flipped, which, steps);
+      double worst = 1.0;
+      for (int i = 0; i < mesh.num_vertices(); ++i) worst = std::min(worst, std::abs(a.row(i).dot(b.row(i))));
+      INFO("steps " << steps << ": smallest |cos| between the two windings' lines " << worst);
+      CHECK(worst > 1.0 - 1e-9);
+    }
+  }
+  // The same edit on either gives the same shape: longer along the tube.
+  aniso::DeformRequest request;
+  request.method = aniso::Method::AnDefGrad;
+  request.direction.kind = aniso::DirectionSource::Kind::CurvatureMin;
+  request.transform.su = 1.3;
+  const aniso::Positions as_given = aniso::Deformer(mesh).deform(request).V;
+  const aniso::Positions reversed = aniso::Deformer(flipped).deform(request).V;
+  const double size = aniso::test::diagonal(mesh.V);
+  CHECK((as_given - reversed).rowwise().norm().maxCoeff() < 1e-6 * size);
+  CHECK(aniso::test::diagonal(as_given) > 1.1 * size);
 }

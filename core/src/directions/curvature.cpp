@@ -2,8 +2,15 @@
 // curvatures and their derivatives on triangle meshes"), and the smoothed
 // principal direction field of the paper's Fig. 8.
 //
-// Sign convention: with outward (counter-clockwise) normals a convex surface
-// has positive curvature (a sphere of radius R: k_min = k_max = 1/R).
+// "Min" and "max" are by magnitude: k_min is the principal curvature of least
+// |k| (the direction that bends least, e.g. along a tube), k_max the one of
+// greatest |k|. Ordered by signed value they would swap with the normals:
+// with the faces wound the other way every k changes sign, and a tube's
+// "min" direction would run around it instead of along it.
+//
+// Sign convention of the values: with outward (counter-clockwise) normals a
+// convex surface has positive curvature (a sphere of radius R: k_min = k_max
+// = 1/R); wound inwards, the same surface has -1/R.
 #include "directions/curvature.h"
 
 #include <algorithm>
@@ -189,19 +196,33 @@ PrincipalCurvature principal_curvature_in(const Mesh& mesh, const Positions& nor
     // Closed-form eigen-decomposition of the symmetric 2x2 tensor.
     const double mean = 0.5 * (II.a + II.c);
     const double half_gap = std::hypot(0.5 * (II.a - II.c), II.b);
-    const double max_angle = 0.5 * std::atan2(2.0 * II.b, II.a - II.c);
-    const Eigen::Vector3d max_direction = std::cos(max_angle) * bases[i].e1 + std::sin(max_angle) * bases[i].e2;
-    result.k_max[i] = mean + half_gap;
-    result.k_min[i] = mean - half_gap;
-    result.max_direction.row(i) = max_direction.transpose();
-    result.min_direction.row(i) = bases[i].n.cross(max_direction).transpose();
+    // The eigenvector of the larger eigenvalue, mean + half_gap; the other
+    // one, mean - half_gap, is across it.
+    const double upper_angle = 0.5 * std::atan2(2.0 * II.b, II.a - II.c);
+    const Eigen::Vector3d upper = std::cos(upper_angle) * bases[i].e1 + std::sin(upper_angle) * bases[i].e2;
+    const Eigen::Vector3d lower = bases[i].n.cross(upper);
+    const double k_upper = mean + half_gap;
+    const double k_lower = mean - half_gap;
+    // By magnitude, not by value (see the top of the file).
+    const bool upper_bends_more = std::abs(k_upper) >= std::abs(k_lower);
+    result.k_max[i] = upper_bends_more ? k_upper : k_lower;
+    result.k_min[i] = upper_bends_more ? k_lower : k_upper;
+    result.max_direction.row(i) = (upper_bends_more ? upper : lower).transpose();
+    result.min_direction.row(i) = (upper_bends_more ? lower : upper).transpose();
   }
   return result;
 }
 
+// How much more the max direction bends than the min one: |k_max| - |k_min|,
+// the magnitude gap that tells the two apart (0 at an umbilic point, and at a
+// saddle bent equally both ways, whose two directions swap with the normals).
+double magnitude_gap(const PrincipalCurvature& curvature, Eigen::Index i) {
+  return std::abs(curvature.k_max[i]) - std::abs(curvature.k_min[i]);
+}
+
 // A surface curved alike in every direction at every vertex (a plane, a
 // sphere made exactly) has no principal direction: its "directions" would be
-// the eigen-solver's arbitrary choice. The gap k_max - k_min is measured
+// the eigen-solver's arbitrary choice. The gap |k_max| - |k_min| is measured
 // against the mesh's size (curvature is 1 / length).
 void refuse_without_principal_directions(const Mesh& mesh, const PrincipalCurvature& curvature) {
   const Eigen::Index n = curvature.k_max.size();
@@ -209,7 +230,7 @@ void refuse_without_principal_directions(const Mesh& mesh, const PrincipalCurvat
   const double size = shape_bounding_box(mesh).diagonal();
   double largest_gap = 0.0;
   for (Eigen::Index i = 0; i < n; ++i) {
-    const double gap = curvature.k_max[i] - curvature.k_min[i];
+    const double gap = magnitude_gap(curvature, i);
     if (std::isfinite(gap)) largest_gap = std::max(largest_gap, gap);
   }
   if (largest_gap * size > 1e-6) return;
@@ -225,7 +246,7 @@ PrincipalCurvature principal_curvature(const Mesh& mesh) {
   return principal_curvature_in(mesh, normals, vertex_bases(normals));
 }
 
-// Each vertex's line enters the averaging with weight k_max - k_min, its
+// Each vertex's line enters the averaging with weight |k_max| - |k_min|, its
 // confidence: near-umbilic vertices, whose raw direction is noise, carry
 // almost none and take the direction of their neighbours.
 void validate_curvature_smoothing(int steps) {
@@ -246,7 +267,7 @@ Positions curvature_direction_field(const Mesh& mesh, CurvatureDirection which, 
 
   std::vector<std::complex<double>> u(mesh.num_vertices());
   for (int i = 0; i < mesh.num_vertices(); ++i) {
-    const double confidence = curvature.k_max[i] - curvature.k_min[i];
+    const double confidence = magnitude_gap(curvature, i);
     u[i] = std::isfinite(confidence) ? confidence * field::line_to_complex(raw.row(i).transpose(), bases[i])
                                      : std::complex<double>(0.0);
   }

@@ -10,10 +10,14 @@ namespace aniso {
 
 enum class CurvatureDirection { Min, Max };
 
+// Min and max by magnitude: k_min is the principal curvature of least |k|
+// (the direction that bends least: along a tube), k_max the one of greatest
+// |k|, so neither swaps when the faces are wound the other way. The values are
+// signed (positive where convex towards the normals).
 struct PrincipalCurvature {
   Positions min_direction;  // #V by 3 unit tangent vectors
   Positions max_direction;  // #V by 3 unit tangent vectors
-  Eigen::VectorXd k_min;    // #V
+  Eigen::VectorXd k_min;    // #V, |k_min| <= |k_max|
   Eigen::VectorXd k_max;    // #V
 };
 
@@ -21,7 +25,7 @@ PrincipalCurvature principal_curvature(const Mesh& mesh);
 
 // The chosen principal direction per vertex (#V by 3, unit, tangent), smoothed
 // by `smoothing_steps` steps of line-field averaging over one-rings
-// (0 = raw). Umbilic vertices (|k_max - k_min| tiny) take their neighbours'
+// (0 = raw). Umbilic vertices (|k_max| - |k_min| tiny) take their neighbours'
 // direction through the smoothing.
 Positions curvature_direction_field(const Mesh& mesh, CurvatureDirection which,
                                     int smoothing_steps = 10);
