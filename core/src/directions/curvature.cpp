@@ -25,6 +25,7 @@
 #include "geometry/frames.h"
 #include "mesh/topology.h"
 #include "directions/direction_field_transport.h"
+#include "directions/line_orientation.h"
 
 namespace aniso {
 namespace {
@@ -159,9 +160,9 @@ std::vector<Tensor2> vertex_tensors(const Mesh& mesh, const Positions& normals,
 // Applies `smoothing_steps` Jacobi steps of one-ring averaging to line values
 // u (doubled angles, see direction_field_transport.h), each neighbour
 // transported into the vertex's basis first.
-void smooth_line_values(const Mesh& mesh, const std::vector<field::TangentBasis>& bases,
-                        int smoothing_steps, std::vector<std::complex<double>>& u) {
-  const VertexAdjacency adjacency = vertex_adjacency(mesh.F, mesh.num_vertices());
+void smooth_line_values(const Mesh& mesh, const VertexAdjacency& adjacency,
+                        const std::vector<field::TangentBasis>& bases, int smoothing_steps,
+                        std::vector<std::complex<double>>& u) {
   std::vector<std::complex<double>> transport(adjacency.neighbors.size());
   for (int i = 0; i < mesh.num_vertices(); ++i) {
     for (int k = adjacency.offsets[i]; k < adjacency.offsets[i + 1]; ++k) {
@@ -263,21 +264,27 @@ Positions curvature_direction_field(const Mesh& mesh, CurvatureDirection which, 
   const PrincipalCurvature curvature = principal_curvature_in(mesh, normals, bases);
   refuse_without_principal_directions(mesh, curvature);
   const Positions& raw = which == CurvatureDirection::Min ? curvature.min_direction : curvature.max_direction;
-  if (smoothing_steps == 0) return raw;
-
-  std::vector<std::complex<double>> u(mesh.num_vertices());
-  for (int i = 0; i < mesh.num_vertices(); ++i) {
-    const double confidence = magnitude_gap(curvature, i);
-    u[i] = std::isfinite(confidence) ? confidence * field::line_to_complex(raw.row(i).transpose(), bases[i])
-                                     : std::complex<double>(0.0);
-  }
-  smooth_line_values(mesh, bases, smoothing_steps, u);
-
+  const VertexAdjacency adjacency = vertex_adjacency(mesh.F, mesh.num_vertices());
   Positions result = raw;
-  for (int i = 0; i < mesh.num_vertices(); ++i) {
-    // A vertex no confident direction reached (a flat region) keeps its raw one.
-    if (std::abs(u[i]) > 0.0) result.row(i) = field::complex_to_line(u[i], bases[i]).transpose();
+  if (smoothing_steps > 0) {
+    std::vector<std::complex<double>> u(mesh.num_vertices());
+    for (int i = 0; i < mesh.num_vertices(); ++i) {
+      const double confidence = magnitude_gap(curvature, i);
+      u[i] = std::isfinite(confidence) ? confidence * field::line_to_complex(raw.row(i).transpose(), bases[i])
+                                       : std::complex<double>(0.0);
+    }
+    smooth_line_values(mesh, adjacency, bases, smoothing_steps, u);
+    for (int i = 0; i < mesh.num_vertices(); ++i) {
+      // A vertex no confident direction reached (a flat region) keeps its raw one.
+      if (std::abs(u[i]) > 0.0) result.row(i) = field::complex_to_line(u[i], bases[i]).transpose();
+    }
   }
+  // The eigen-solver's signs are arbitrary from vertex to vertex (half of an
+  // open cylinder's axial directions pointed +z, half -z), and a shear or a
+  // rotation about cu/cv turns each vertex's way: the shape tore where signs
+  // met. Signs agreeing across edges keep such transforms whole.
+  orient_line_field(adjacency, std::vector<char>(mesh.num_vertices(), 0),
+                    std::vector<char>(mesh.num_vertices(), 1), result);
   return result;
 }
 

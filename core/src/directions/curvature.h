@@ -26,7 +26,9 @@ PrincipalCurvature principal_curvature(const Mesh& mesh);
 // The chosen principal direction per vertex (#V by 3, unit, tangent), smoothed
 // by `smoothing_steps` steps of line-field averaging over one-rings
 // (0 = raw). Umbilic vertices (|k_max| - |k_min| tiny) take their neighbours'
-// direction through the smoothing.
+// direction through the smoothing. The vectors' signs agree across edges
+// (orient_line_field, line_orientation.h), but where the field cannot be
+// oriented (around a singularity).
 Positions curvature_direction_field(const Mesh& mesh, CurvatureDirection which,
                                     int smoothing_steps = 10);
 
