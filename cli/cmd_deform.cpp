@@ -261,6 +261,7 @@ int run_deform(const DeformArguments& args) {
   const std::string unchanged = unchanged_reason(resolved);
   if (!unchanged.empty()) warnings.push_back(unchanged);
   const DeformOpResult result = session.deform(edit);
+  warnings.insert(warnings.end(), result.warnings.begin(), result.warnings.end());
   // As the app's status line: a cut-off solve is not the edit's converged shape.
   if (!result.converged) {
     // At the most --iterations allows, raising it is no advice.

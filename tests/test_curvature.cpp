@@ -359,3 +359,37 @@ TEST_CASE("curvature: the field's signs agree across edges, so a shear along it 
   INFO("top ring radius " << top_radius.minCoeff() << " .. " << top_radius.maxCoeff());
   CHECK(top_radius.maxCoeff() - top_radius.minCoeff() < 0.02 * top_radius.mean());
 }
+
+TEST_CASE("curvature: a field without clear principal directions over much of the selection is warned about",
+          "[curvature]") {
+  // A hemisphere is curved alike every way: its "min curvature" field follows
+  // the triangulation. Before, only a surface exactly umbilic at every vertex
+  // was refused, and this one was edited silently.
+  const aniso::Mesh hemisphere = aniso::test::load("open/hemisphere.obj");
+  const std::vector<char> lacking = aniso::lacks_principal_direction(hemisphere);
+  const double share = double(std::count(lacking.begin(), lacking.end(), 1)) / double(lacking.size());
+  INFO("hemisphere: share without a clear direction " << share);
+  CHECK(share > 0.5);
+  aniso::DeformRequest request;
+  request.method = aniso::Method::AnDefGrad;
+  request.direction.kind = aniso::DirectionSource::Kind::CurvatureMin;
+  request.transform.su = 1.3;
+  const aniso::DeformResult on_sphere = aniso::Deformer(hemisphere).deform(request);
+  REQUIRE(on_sphere.warnings.size() == 1);
+  const std::string percent = std::to_string(static_cast<int>(std::lround(100.0 * share))) + " % of the selected vertices";
+  CHECK_THAT(on_sphere.warnings[0], Catch::StartsWith(percent) && Catch::Contains("no clear principal curvature direction"));
+
+  // A tube has clear directions nearly everywhere: nothing to say.
+  const aniso::Mesh knot = aniso::test::load("closed/knot1.off");
+  CHECK(aniso::Deformer(knot).deform(request).warnings.empty());
+  request.direction.kind = aniso::DirectionSource::Kind::CurvatureMax;
+  CHECK(aniso::Deformer(aniso::test::load("closed/torus.obj")).deform(request).warnings.empty());
+
+  // The CLI lists it with its other warnings.
+  const std::string out = std::string(aniso::test::kScratchDir) + "/hemisphere_curvature.obj";
+  const aniso::test::CliRun run = aniso::test::run_cli_expecting(
+      {"deform", aniso::test::mesh_path("open/hemisphere.obj"), out, "--method", "andefgrad", "--direction",
+       "curvature:min", "--scale", "1.3"},
+      0);
+  CHECK_THAT(run.out, Catch::Contains(percent) && Catch::Contains("no clear principal curvature direction"));
+}

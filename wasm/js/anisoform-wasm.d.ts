@@ -235,6 +235,8 @@ export interface DeformResult {
   solveMs: number;
   /** The whole call. */
   ms: number;
+  /** What the user should know about the result, in words (e.g. a curvature field without clear directions). */
+  warnings: string[];
 }
 
 /** @schema flatten */

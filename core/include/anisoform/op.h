@@ -139,7 +139,7 @@ SessionFlatten resolve_flatten(const SessionFlatten& request, const Positions& p
 //  problemCounts: {kind: how many, for each kind found}, notes}
 Json to_json(const SessionMeshInfo& info);
 // {selected, iterations, energy, energyHistory, converged, directionsFilled,
-//  inverted, factorizations, precomputeMs, solveMs, ms}
+//  inverted, factorizations, precomputeMs, solveMs, ms, warnings}
 Json to_json(const DeformOpResult& result);
 // {triangles, vertices, components, boundaryLoops, flipped, compressionErrorMean,
 //  compressionErrorMax, crossErrorMean, crossErrorMax, areaDistortionMean,

@@ -17,6 +17,7 @@
 #include <array>
 #include <cmath>
 #include <complex>
+#include <string>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -221,6 +222,10 @@ double magnitude_gap(const PrincipalCurvature& curvature, Eigen::Index i) {
   return std::abs(curvature.k_max[i]) - std::abs(curvature.k_min[i]);
 }
 
+// Curvature is 1 / length: a curvature below this over the mesh's size
+// (its bounding-box diagonal) is flat.
+constexpr double kFlatCurvatureTimesSize = 1e-6;
+
 // A surface curved alike in every direction at every vertex (a plane, a
 // sphere made exactly) has no principal direction: its "directions" would be
 // the eigen-solver's arbitrary choice. The gap |k_max| - |k_min| is measured
@@ -234,7 +239,7 @@ void refuse_without_principal_directions(const Mesh& mesh, const PrincipalCurvat
     const double gap = magnitude_gap(curvature, i);
     if (std::isfinite(gap)) largest_gap = std::max(largest_gap, gap);
   }
-  if (largest_gap * size > 1e-6) return;
+  if (largest_gap * size > kFlatCurvatureTimesSize) return;
   fail(ErrorCode::BadParameter,
        "the surface has no principal curvature directions: it is curved alike in every direction at every vertex "
        "(flat, or a sphere), so curvature gives no direction; use an axis, a screen drag or a painted field");
@@ -245,6 +250,34 @@ void refuse_without_principal_directions(const Mesh& mesh, const PrincipalCurvat
 PrincipalCurvature principal_curvature(const Mesh& mesh) {
   const Positions normals = vertex_normals(mesh);
   return principal_curvature_in(mesh, normals, vertex_bases(normals));
+}
+
+std::vector<char> lacks_principal_direction(const Mesh& mesh) {
+  const PrincipalCurvature curvature = principal_curvature(mesh);
+  const double size = shape_bounding_box(mesh).diagonal();
+  std::vector<char> lacking(mesh.num_vertices(), 0);
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    const double total = std::abs(curvature.k_max[i]) + std::abs(curvature.k_min[i]);
+    const bool flat = !(total * size > kFlatCurvatureTimesSize);
+    lacking[i] = flat || !(magnitude_gap(curvature, i) > kUnreliableCurvatureAnisotropy * total);
+  }
+  return lacking;
+}
+
+std::string unreliable_curvature_warning(const std::vector<char>& lacking, const Eigen::VectorXd& weights) {
+  int selected = 0, unreliable = 0;
+  for (Eigen::Index i = 0; i < weights.size(); ++i) {
+    if (!(weights[i] > 0.0)) continue;
+    ++selected;
+    if (lacking[static_cast<std::size_t>(i)]) ++unreliable;
+  }
+  if (selected == 0 || !(unreliable > kUnreliableCurvatureShare * selected)) return "";
+  const int percent = static_cast<int>(std::lround(100.0 * unreliable / selected));
+  return std::to_string(percent) + " % of the selected vertices (" + std::to_string(unreliable) + " of " +
+         std::to_string(selected) +
+         ") have no clear principal curvature direction (flat there, or curved about alike every way, "
+         "as a sphere): the curvature direction there is the smoothing's or the triangulation's guess, "
+         "not the shape's; an axis, a screen drag or arrows say it";
 }
 
 // Each vertex's line enters the averaging with weight |k_max| - |k_min|, its

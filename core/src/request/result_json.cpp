@@ -54,6 +54,7 @@ Json to_json(const DeformOpResult& r) {
       {"precomputeMs", r.precompute_ms},
       {"solveMs", r.solve_ms},
       {"ms", r.total_ms},
+      {"warnings", r.warnings},
   };
 }
 
