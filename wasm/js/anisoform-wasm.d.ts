@@ -94,6 +94,12 @@ export interface ScreenCamera {
   viewport: Numbers;
   /** The picked surface point, world space. */
   anchor: Vec3 | Numbers;
+  /**
+   * The surface normal at the anchor (any length). Given, the direction is the tangent vector there whose
+   * on-screen image runs along the drag; without it, the drag in the image plane (each element then takes
+   * its projection along its normal).
+   */
+  normal?: Vec3 | Numbers;
 }
 
 /** @schema direction.global */

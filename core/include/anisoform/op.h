@@ -7,7 +7,7 @@
 //   {method: 'anarap'|'andefgrad'|'arap'|'linear',
 //    direction: {type:'global', vector:[x,y,z]}
 //             | {type:'curvature', which:'min'|'max', smoothing?}
-//             | {type:'screen', from:[x,y], to:[x,y], camera:{view[16], projection[16], viewport[4], anchor[3]}}
+//             | {type:'screen', from:[x,y], to:[x,y], camera:{view[16], projection[16], viewport[4], anchor[3], normal[3]?}}
 //             | {type:'constraints', constraints:[{vertex, direction:[x,y,z], su?, sv?}]}
 //             | {type:'dense', directions:[#V*3]},
 //    transform: {scale?: su|[su]|[su,sv], thickness?, shear?, rotate?: {axis:'n'|'u'|'v', degrees},
