@@ -300,6 +300,12 @@ export interface FlattenMetrics {
   crossErrorMax: number;
   /** Area-weighted mean of |A2d / (A3d su sv) - 1|. */
   areaDistortionMean: number;
+  /**
+   * The fabric's shear: |angle between the pattern images of the direction and its cross direction - 90°|,
+   * in degrees, area-weighted mean and max (the errors above measure lengths, not this angle).
+   */
+  shearDegreesMean: number;
+  shearDegreesMax: number;
   iterations: number;
   energy: number;
   converged: boolean;
@@ -311,6 +317,11 @@ export interface FlattenMetrics {
   method: 'anisotropic' | 'uniform-baseline';
   /** Empty when usable as one piece; otherwise why not and what to do (flatten_problem, flatten.h). */
   problem: string;
+  /**
+   * What a usable pattern still should say (flatten_warnings, flatten.h): a mean shear above 5°. Empty when
+   * nothing.
+   */
+  warnings: string[];
   /**
    * The edge-connected regions whose triangles miss the wanted stretch by more
    * than the core's threshold (kCutRegionError, flatten.h), largest first;

@@ -143,8 +143,10 @@ Json to_json(const SessionMeshInfo& info);
 Json to_json(const DeformOpResult& result);
 // {triangles, vertices, components, boundaryLoops, flipped, compressionErrorMean,
 //  compressionErrorMax, crossErrorMean, crossErrorMax, areaDistortionMean,
+//  shearDegreesMean, shearDegreesMax,
 //  iterations, energy, converged, seconds, filledDirections, initialization, method,
-//  problem, suggestedCuts} (problem: flatten_problem, "" when usable as one piece;
+//  problem, warnings, suggestedCuts} (problem: flatten_problem, "" when usable as one piece;
+//  warnings: flatten_warnings, what a usable pattern still should say;
 //  suggestedCuts: [{vertices, vertex, centroid, errorMean, triangles}], FlattenRegion)
 Json to_json(const FlattenMetrics& metrics);
 

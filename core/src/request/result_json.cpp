@@ -88,6 +88,8 @@ Json to_json(const FlattenMetrics& m) {
       {"crossErrorMean", m.cross_error_mean},
       {"crossErrorMax", m.cross_error_max},
       {"areaDistortionMean", m.area_distortion_mean},
+      {"shearDegreesMean", m.shear_degrees_mean},
+      {"shearDegreesMax", m.shear_degrees_max},
       {"iterations", m.iterations},
       {"energy", m.energy},
       {"converged", m.converged},
@@ -96,6 +98,7 @@ Json to_json(const FlattenMetrics& m) {
       {"initialization", m.initialization},
       {"method", m.method},
       {"problem", flatten_problem(m)},
+      {"warnings", flatten_warnings(m)},
       {"suggestedCuts", suggested_cuts_json(m.suggested_cuts)},
   };
 }
