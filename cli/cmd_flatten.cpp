@@ -207,6 +207,7 @@ nlohmann::json result_json(const FlattenArguments& args, const FlattenPlan& plan
       {"area_distortion_mean", m.area_distortion_mean},
       {"shear_degrees_mean", m.shear_degrees_mean},
       {"shear_degrees_max", m.shear_degrees_max},
+      {"near_normal_directions", m.near_normal_directions},
       {"iterations", m.iterations},
       {"converged", m.converged},
       {"energy", m.energy},
@@ -291,7 +292,7 @@ constexpr const char* kFlattenHelp =
     "(|achieved along / su - 1| per triangle: area-weighted mean, max), cross_error_mean, "
     "cross_error_max (the same across, with sv), area_distortion_mean, shear_degrees_mean, shear_degrees_max "
     "(how far the images of the direction and its cross direction are off square, degrees: area-weighted "
-    "mean, max), "
+    "mean, max), near_normal_directions (triangles whose direction is within 10 degrees of their normal), "
     "iterations, converged, "
     "energy, initialization, directions_filled, grainline, mm_per_unit, unit_guess (when guessed), seconds, suggested_cuts "
     "(the regions that miss su or sv by too much, where a dart or a cut is needed; each: vertices, "

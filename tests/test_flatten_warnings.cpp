@@ -1,6 +1,7 @@
 // What a usable flattening still says: the shear it gives the fabric (the
 // errors measure two lengths, not the angle between them, and the default
-// refinement lowered them by shearing triangles).
+// refinement lowered them by shearing triangles), and a wanted direction that
+// runs along the surface's normal, where it says nothing about the fabric.
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -92,5 +93,32 @@ TEST_CASE("flatten warnings: a plane compressed along itself has no shear and no
   options.directions.global = Eigen::Vector3d(1, 0, 1);  // in the plane y = 0
   const FlattenOutput out = flatten(plane, {}, options);
   CHECK(out.result.metrics.shear_degrees_max < 1e-6);
+  CHECK(out.result.metrics.near_normal_directions == 0);
   CHECK(flatten_warnings(out.result.metrics).empty());
+}
+
+TEST_CASE("flatten warnings: a direction along the normal of a nearly flat patch is warned about", "[flatten]") {
+  // The plane bent a little (its normals within 6° of y): the direction y is
+  // within 10° of every triangle's normal, and its tangent part is noise.
+  // Before, 55 directions were filled on such a patch and the warnings said nothing.
+  Mesh patch = test::load("open/plane.off");
+  for (int i = 0; i < patch.num_vertices(); ++i) {
+    const double x = patch.V(i, 0), z = patch.V(i, 2);
+    patch.V(i, 1) = 0.05 * (x * x - z * z);
+  }
+  FlattenOptions options;
+  options.su = 0.8;
+  options.directions.global = Eigen::Vector3d(0, 1, 0);
+  const FlattenOutput out = flatten(patch, {}, options);
+  const FlattenMetrics& m = out.result.metrics;
+  INFO("near normal " << m.near_normal_directions << " of " << m.triangles << ", filled " << m.filled_directions);
+  CHECK(m.near_normal_directions == m.triangles);
+  const std::vector<std::string> warnings = flatten_warnings(m);
+  CHECK(any_contains(warnings, "the direction runs (nearly) along the surface's normal on " +
+                                   std::to_string(m.triangles) + " of " + std::to_string(m.triangles) +
+                                   " triangles (100 %, within 10°)"));
+
+  // Along the patch: nothing to say about the direction.
+  options.directions.global = Eigen::Vector3d(1, 0, 0);
+  CHECK_FALSE(any_contains(flatten_warnings(flatten(patch, {}, options).result.metrics), "normal"));
 }

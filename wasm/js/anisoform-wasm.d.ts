@@ -306,6 +306,8 @@ export interface FlattenMetrics {
    */
   shearDegreesMean: number;
   shearDegreesMax: number;
+  /** Triangles whose wanted direction is within 10° of their normal. */
+  nearNormalDirections: number;
   iterations: number;
   energy: number;
   converged: boolean;
@@ -318,8 +320,8 @@ export interface FlattenMetrics {
   /** Empty when usable as one piece; otherwise why not and what to do (flatten_problem, flatten.h). */
   problem: string;
   /**
-   * What a usable pattern still should say (flatten_warnings, flatten.h): a mean shear above 5°. Empty when
-   * nothing.
+   * What a usable pattern still should say (flatten_warnings, flatten.h): a mean shear above 5°, a direction
+   * (nearly) along the normal on many triangles or filled from neighbours. Empty when nothing.
    */
   warnings: string[];
   /**

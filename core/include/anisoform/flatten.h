@@ -68,7 +68,14 @@ struct FlattenTargets {
   Eigen::VectorXd sv;          // #T: wanted stretch across (along cv = normal x cu)
   int filled_directions = 0;   // triangles whose direction was (nearly) normal to
                                // them and was taken from their neighbours
+  int near_normal_directions = 0;  // triangles whose wanted 3D direction is within
+                                   // kNearNormalDirectionDegrees of their normal
 };
+
+// A wanted direction this close to a triangle's normal (degrees) says little
+// about where the fabric runs on it: its tangent part is at most sin(10°) =
+// 17 % of it, and tilting the patch by a few degrees turns that part anywhere.
+constexpr double kNearNormalDirectionDegrees = 10.0;
 
 // ---- the local/global solver -----------------------------------------------
 
@@ -147,6 +154,7 @@ struct FlattenMetrics {
   // triangle sheared off square can meet both.
   double shear_degrees_mean = 0.0;       // area-weighted
   double shear_degrees_max = 0.0;
+  int near_normal_directions = 0;        // FlattenTargets::near_normal_directions
   int iterations = 0;
   double energy = 0.0;
   bool converged = false;
@@ -176,8 +184,14 @@ std::string flatten_problem(const FlattenMetrics& metrics);
 // in (a few to 20 %); the compression figures then flatter the pattern.
 constexpr double kShearWarningDegrees = 5.0;
 
+// A wanted direction within kNearNormalDirectionDegrees of the normal on more
+// than this share of the patch's triangles is warned about.
+constexpr double kNearNormalDirectionShare = 0.1;
+
 // What a usable flattening still should say (in words, possibly none): a
-// mean shear above kShearWarningDegrees.
+// mean shear above kShearWarningDegrees; directions filled from neighbours
+// (the direction was normal to their triangles), or nearly normal on more
+// than kNearNormalDirectionShare of the triangles.
 std::vector<std::string> flatten_warnings(const FlattenMetrics& metrics);
 
 // ---- the Flattener ---------------------------------------------------------------

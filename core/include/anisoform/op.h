@@ -143,7 +143,7 @@ Json to_json(const SessionMeshInfo& info);
 Json to_json(const DeformOpResult& result);
 // {triangles, vertices, components, boundaryLoops, flipped, compressionErrorMean,
 //  compressionErrorMax, crossErrorMean, crossErrorMax, areaDistortionMean,
-//  shearDegreesMean, shearDegreesMax,
+//  shearDegreesMean, shearDegreesMax, nearNormalDirections,
 //  iterations, energy, converged, seconds, filledDirections, initialization, method,
 //  problem, warnings, suggestedCuts} (problem: flatten_problem, "" when usable as one piece;
 //  warnings: flatten_warnings, what a usable pattern still should say;

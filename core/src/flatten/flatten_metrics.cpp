@@ -178,6 +178,20 @@ std::vector<std::string> flatten_warnings(const FlattenMetrics& metrics) {
                        "refinement, --no-refine or refine: false, it shears less and misses the lengths "
                        "more); a cut or a dart where it curves most lowers both");
   }
+  const int triangles = std::max(metrics.triangles, 1);
+  const bool many_near_normal = metrics.near_normal_directions > kNearNormalDirectionShare * triangles;
+  if (metrics.filled_directions > 0 || many_near_normal) {
+    const int percent = static_cast<int>(std::lround(100.0 * metrics.near_normal_directions / triangles));
+    std::string text = "the direction runs (nearly) along the surface's normal on " +
+                       std::to_string(metrics.near_normal_directions) + " of " + std::to_string(metrics.triangles) +
+                       " triangles (" + std::to_string(percent) + " %, within " +
+                       std::to_string(static_cast<int>(kNearNormalDirectionDegrees)) + "°)";
+    if (metrics.filled_directions > 0) {
+      text += ", " + std::to_string(metrics.filled_directions) + " of them taken from their neighbours";
+    }
+    warnings.push_back(text + ": there it says little about where the fabric runs; choose a direction "
+                              "along the patch");
+  }
   return warnings;
 }
 

@@ -90,6 +90,7 @@ Json to_json(const FlattenMetrics& m) {
       {"areaDistortionMean", m.area_distortion_mean},
       {"shearDegreesMean", m.shear_degrees_mean},
       {"shearDegreesMax", m.shear_degrees_max},
+      {"nearNormalDirections", m.near_normal_directions},
       {"iterations", m.iterations},
       {"energy", m.energy},
       {"converged", m.converged},

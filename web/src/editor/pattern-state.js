@@ -83,7 +83,7 @@ export class PatternState {
 
 /**
  * The banner for a flattening: metrics.problem (why it is not one piece),
- * metrics.warnings (the shear) and
+ * metrics.warnings (shear, directions along the normal) and
  * metrics.suggestedCuts (the regions above the core's error threshold,
  * largest first), or null when there is nothing to say.
  */
