@@ -266,6 +266,7 @@ int run_deform(const DeformArguments& args) {
   const std::string unchanged = unchanged_reason(resolved);
   if (!unchanged.empty()) warnings.push_back(unchanged);
   const DeformOpResult result = session.deform(edit);
+  warnings.insert(warnings.end(), result.warnings.begin(), result.warnings.end());
   // As the app's status line: a cut-off solve is not the edit's converged shape.
   if (!result.converged) {
     // At the most --iterations allows, raising it is no advice.
@@ -352,7 +353,9 @@ void add_deform_options(CLI::App& deform, DeformArguments& args) {
   deform.add_option("--direction", args.direction,
                     "global:X,Y,Z | curvature:min | curvature:max | field:PATH (lines \"INDEX DX "
                     "DY DZ [SU [SV]]\": constraints propagated to a smooth line field; amounts in the file "
-                    "replace --scale everywhere, and a warning says so when both are given). Default: "
+                    "replace --scale everywhere, and a warning says so when both are given). curvature:min "
+                    "is the direction that bends least (along a tube), curvature:max the one that "
+                    "bends most, by size, whichever way the faces are wound. Default: "
                     "global along the longest bounding-box axis")
       ->type_name("SOURCE");
   deform.add_option("--scale", args.scale,

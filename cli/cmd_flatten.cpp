@@ -221,6 +221,9 @@ nlohmann::json result_json(const FlattenArguments& args, const FlattenPlan& plan
       {"cross_error_mean", m.cross_error_mean},
       {"cross_error_max", m.cross_error_max},
       {"area_distortion_mean", m.area_distortion_mean},
+      {"shear_degrees_mean", m.shear_degrees_mean},
+      {"shear_degrees_max", m.shear_degrees_max},
+      {"near_normal_directions", m.near_normal_directions},
       {"iterations", m.iterations},
       {"converged", m.converged},
       {"energy", m.energy},
@@ -291,6 +294,7 @@ int run_flatten(const FlattenArguments& args) {
   }
   const std::string problem = flatten_problem(flattened.result.metrics);
   if (!problem.empty()) warnings.push_back(problem);
+  for (const std::string& warning : flatten_warnings(flattened.result.metrics)) warnings.push_back(warning);
   if (plan.format != PatternFormat::Obj) {
     std::string small = pattern_size_warning(make_pattern(flattened.patch, flattened.result), pattern_options);
     if (!small.empty()) {
@@ -316,7 +320,10 @@ constexpr const char* kFlattenHelp =
     "which replace them: [min, max] when they vary), amounts (compress | field), direction, "
     "compression_error_mean, compression_error_max "
     "(|achieved along / su - 1| per triangle: area-weighted mean, max), cross_error_mean, "
-    "cross_error_max (the same across, with sv), area_distortion_mean, iterations, converged, "
+    "cross_error_max (the same across, with sv), area_distortion_mean, shear_degrees_mean, shear_degrees_max "
+    "(how far the images of the direction and its cross direction are off square, degrees: area-weighted "
+    "mean, max), near_normal_directions (triangles whose direction is within 10 degrees of their normal), "
+    "iterations, converged, "
     "energy, initialization, directions_filled, grainline, mm_per_unit, unit_guess (when guessed), seconds, suggested_cuts "
     "(the regions that miss su or sv by too much, where a dart or a cut is needed; each: vertices, "
     "vertex (nearest the centroid), centroid, error_mean of max(|along/su - 1|, |across/sv - 1|), "

@@ -12,9 +12,11 @@
 #include <Eigen/Dense>
 
 #include "directions/curvature.h"
+#include "anisoform/deformer.h"
 #include "anisoform/error.h"
 #include "geometry/frames.h"
 #include "mesh/topology.h"
+#include "solver_test_support.h"
 #include "test_support.h"
 
 namespace {
@@ -265,4 +267,129 @@ TEST_CASE("curvature: smoothing steps outside 0..kMaxCurvatureSmoothing are refu
     }
   }
   CHECK_NOTHROW(aniso::validate_curvature_smoothing(aniso::kMaxCurvatureSmoothing));
+}
+
+namespace {
+
+aniso::Mesh wound_the_other_way(aniso::Mesh mesh) {
+  mesh.F.col(1).swap(mesh.F.col(2));
+  return mesh;
+}
+
+// Fraction of the mesh's edges whose two end vectors point opposite ways.
+double opposite_sign_edge_fraction(const aniso::Mesh& mesh, const aniso::Positions& directions) {
+  const aniso::VertexAdjacency adjacency = aniso::vertex_adjacency(mesh.F, mesh.num_vertices());
+  int opposite = 0, edges = 0;
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    for (int k = adjacency.offsets[i]; k < adjacency.offsets[i + 1]; ++k) {
+      const int j = adjacency.neighbors[k];
+      if (j < i) continue;
+      ++edges;
+      if (directions.row(i).dot(directions.row(j)) < 0.0) ++opposite;
+    }
+  }
+  return double(opposite) / double(edges);
+}
+
+}  // namespace
+
+TEST_CASE("curvature: min and max are by magnitude, so they do not swap with the faces' winding", "[curvature]") {
+  // Ordered by signed value, the knot's inward-wound copy had "min" around the
+  // tube: x1.3 along it thickened the knot instead of lengthening it.
+  const aniso::Mesh mesh = aniso::test::load("closed/knot1.off");
+  const aniso::Mesh flipped = wound_the_other_way(mesh);
+  const aniso::PrincipalCurvature pc = aniso::principal_curvature(mesh);
+  const aniso::PrincipalCurvature pf = aniso::principal_curvature(flipped);
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    REQUIRE(std::abs(pc.k_min[i]) <= std::abs(pc.k_max[i]));
+    REQUIRE(pf.k_min[i] == Approx(-pc.k_min[i]).margin(1e-9 * std::abs(pc.k_max[i])));
+    REQUIRE(pf.k_max[i] == Approx(-pc.k_max[i]).margin(1e-9 * std::abs(pc.k_max[i])));
+  }
+  for (const auto which : {aniso::CurvatureDirection::Min, aniso::CurvatureDirection::Max}) {
+    for (const int steps : {0, 10}) {
+      const aniso::Positions a = aniso::curvature_direction_field(mesh, which, steps);
+      const aniso::Positions b = aniso::curvature_direction_field(flipped, which, steps);
+      double worst = 1.0;
+      for (int i = 0; i < mesh.num_vertices(); ++i) worst = std::min(worst, std::abs(a.row(i).dot(b.row(i))));
+      INFO("steps " << steps << ": smallest |cos| between the two windings' lines " << worst);
+      CHECK(worst > 1.0 - 1e-9);
+    }
+  }
+  // The same edit on either gives the same shape: longer along the tube.
+  aniso::DeformRequest request;
+  request.method = aniso::Method::AnDefGrad;
+  request.direction.kind = aniso::DirectionSource::Kind::CurvatureMin;
+  request.transform.su = 1.3;
+  const aniso::Positions as_given = aniso::Deformer(mesh).deform(request).V;
+  const aniso::Positions reversed = aniso::Deformer(flipped).deform(request).V;
+  const double size = aniso::test::diagonal(mesh.V);
+  CHECK((as_given - reversed).rowwise().norm().maxCoeff() < 1e-6 * size);
+  CHECK(aniso::test::diagonal(as_given) > 1.1 * size);
+}
+
+TEST_CASE("curvature: the field's signs agree across edges, so a shear along it stays whole", "[curvature]") {
+  // The eigen-solver's signs were arbitrary per vertex: on the knot about a
+  // twenty-fifth of the edges (406 of 9600) joined opposite signs.
+  const aniso::Mesh knot = aniso::test::load("closed/knot1.off");
+  for (const auto which : {aniso::CurvatureDirection::Min, aniso::CurvatureDirection::Max}) {
+    for (const int steps : {0, 10}) {
+      const double opposite = opposite_sign_edge_fraction(knot, aniso::curvature_direction_field(knot, which, steps));
+      INFO((which == aniso::CurvatureDirection::Min ? "min" : "max") << ", steps " << steps
+                                                                    << ": edges joining opposite signs " << opposite);
+      CHECK(opposite < 0.002);  // a tube's lines are orientable: at most a few around the odd noisy vertex
+    }
+  }
+  // Shear along the lines around an open cylinder, on its top half: each
+  // ring turns as a whole and stays round. With arbitrary signs the top
+  // ring's radius ranged over 0.47..1.53 (vertices sheared opposite ways).
+  const aniso::Mesh cylinder = aniso::test::open_cylinder(48, 41, 1.0, 4.0);
+  const aniso::Positions around = aniso::curvature_direction_field(cylinder, aniso::CurvatureDirection::Max, 10);
+  CHECK(opposite_sign_edge_fraction(cylinder, around) == 0.0);
+  aniso::DeformRequest request;
+  request.method = aniso::Method::AnDefGrad;
+  request.direction.kind = aniso::DirectionSource::Kind::CurvatureMax;
+  request.transform.shear = 0.5;
+  request.selection = (cylinder.V.col(2).array() >= 2.0).cast<double>().matrix();
+  const aniso::Positions V = aniso::Deformer(cylinder).deform(request).V;
+  Eigen::VectorXd top_radius(48);
+  for (int s = 0; s < 48; ++s) {
+    const Eigen::RowVector3d p = V.row(40 * 48 + s);
+    top_radius[s] = std::hypot(p.x(), p.y());
+  }
+  INFO("top ring radius " << top_radius.minCoeff() << " .. " << top_radius.maxCoeff());
+  CHECK(top_radius.maxCoeff() - top_radius.minCoeff() < 0.02 * top_radius.mean());
+}
+
+TEST_CASE("curvature: a field without clear principal directions over much of the selection is warned about",
+          "[curvature]") {
+  // A hemisphere is curved alike every way: its "min curvature" field follows
+  // the triangulation. Before, only a surface exactly umbilic at every vertex
+  // was refused, and this one was edited silently.
+  const aniso::Mesh hemisphere = aniso::test::load("open/hemisphere.obj");
+  const std::vector<char> lacking = aniso::lacks_principal_direction(hemisphere);
+  const double share = double(std::count(lacking.begin(), lacking.end(), 1)) / double(lacking.size());
+  INFO("hemisphere: share without a clear direction " << share);
+  CHECK(share > 0.5);
+  aniso::DeformRequest request;
+  request.method = aniso::Method::AnDefGrad;
+  request.direction.kind = aniso::DirectionSource::Kind::CurvatureMin;
+  request.transform.su = 1.3;
+  const aniso::DeformResult on_sphere = aniso::Deformer(hemisphere).deform(request);
+  REQUIRE(on_sphere.warnings.size() == 1);
+  const std::string percent = std::to_string(static_cast<int>(std::lround(100.0 * share))) + " % of the selected vertices";
+  CHECK_THAT(on_sphere.warnings[0], Catch::StartsWith(percent) && Catch::Contains("no clear principal curvature direction"));
+
+  // A tube has clear directions nearly everywhere: nothing to say.
+  const aniso::Mesh knot = aniso::test::load("closed/knot1.off");
+  CHECK(aniso::Deformer(knot).deform(request).warnings.empty());
+  request.direction.kind = aniso::DirectionSource::Kind::CurvatureMax;
+  CHECK(aniso::Deformer(aniso::test::load("closed/torus.obj")).deform(request).warnings.empty());
+
+  // The CLI lists it with its other warnings.
+  const std::string out = std::string(aniso::test::kScratchDir) + "/hemisphere_curvature.obj";
+  const aniso::test::CliRun run = aniso::test::run_cli_expecting(
+      {"deform", aniso::test::mesh_path("open/hemisphere.obj"), out, "--method", "andefgrad", "--direction",
+       "curvature:min", "--scale", "1.3"},
+      0);
+  CHECK_THAT(run.out, Catch::Contains(percent) && Catch::Contains("no clear principal curvature direction"));
 }

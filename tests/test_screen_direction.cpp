@@ -167,3 +167,63 @@ TEST_CASE("screen: bad cameras, viewports and inputs are refused", "[screen]") {
   CHECK_THAT(bad_parameter_message([&] { aniso::screen_drag_to_world(drag); }),
              Catch::Contains("the anchor point is behind the camera"));
 }
+
+namespace {
+
+// Where a world point lands on screen, in pixels (y down), as three.js's
+// Vector3.project followed by the viewport mapping.
+Eigen::Vector2d to_pixels(const aniso::ScreenDrag& drag, const Eigen::Vector3d& p) {
+  const Eigen::Vector4d clip = drag.projection * drag.view * p.homogeneous();
+  const Eigen::Vector2d ndc = clip.head<2>() / clip.w();
+  return {drag.viewport[0] + 0.5 * (ndc.x() + 1.0) * drag.viewport[2],
+          drag.viewport[1] + 0.5 * (1.0 - ndc.y()) * drag.viewport[3]};
+}
+
+// |sin| of the angle between two 2D vectors.
+double sine_between(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return std::abs(a.x() * b.y() - a.y() * b.x()) / (a.norm() * b.norm());
+}
+
+}  // namespace
+
+TEST_CASE("screen: with the surface normal the drag becomes the tangent vector seen along it", "[screen]") {
+  // A plane z = 0 seen from above at an angle (the app's default view is
+  // similar): a 45 degree drag once stretched along a direction seen at 60
+  // degrees, the image-plane vector having been projected along the normal.
+  Camera camera = look_at(Eigen::Vector3d(3, 4, -3), Eigen::Vector3d::Zero());
+  const Eigen::Matrix4d projection = perspective(45, 800.0 / 600.0, 0.1, 100);
+  for (const double degrees : {0.0, 30.0, 45.0, 60.0, 90.0, 135.0}) {
+    const double a = degrees * kPi / 180.0;
+    aniso::ScreenDrag drag = drag_from_center(camera, projection, 100 * std::cos(a), -100 * std::sin(a));
+    drag.anchor = Eigen::Vector3d::Zero();
+    drag.anchor_normal = Eigen::Vector3d(0, 0, 2);  // any length
+    const Eigen::Vector3d d = aniso::screen_drag_to_world(drag);
+    INFO("drag at " << degrees << " degrees: " << d.transpose());
+    CHECK(std::abs(d.z()) < 1e-12 * d.norm());  // in the tangent plane
+    const Eigen::Vector2d seen = to_pixels(drag, 1e-4 * d.normalized()) - to_pixels(drag, Eigen::Vector3d::Zero());
+    const Eigen::Vector2d dragged = drag.to_px - drag.from_px;
+    CHECK(sine_between(seen, dragged) < 1e-9);
+    CHECK(seen.dot(dragged) > 0.0);  // the same way, not the opposite one
+    // The whole drag's far end, on the plane, lies on the ray through to_px.
+    CHECK((to_pixels(drag, d) - drag.to_px).norm() < 0.5 * (drag.to_px - drag.from_px).norm());
+
+    // Without the normal: the image-plane vector, as before.
+    drag.anchor_normal.setZero();
+    const Eigen::Vector3d image_plane = aniso::screen_drag_to_world(drag);
+    CHECK(std::abs(image_plane.dot((camera.world.block<3, 1>(0, 2)))) < 1e-9 * image_plane.norm());
+  }
+}
+
+TEST_CASE("screen: a tangent plane seen edge-on falls back to the image-plane vector", "[screen]") {
+  const Camera camera = look_at(Eigen::Vector3d(0, 0, 5), Eigen::Vector3d::Zero());
+  const Eigen::Matrix4d projection = perspective(45, 800.0 / 600.0, 0.1, 100);
+  aniso::ScreenDrag drag = drag_from_center(camera, projection, 0, -50);
+  drag.anchor_normal = Eigen::Vector3d(0, 1, 0);  // the plane y = 0, seen exactly edge-on
+  const Eigen::Vector3d d = aniso::screen_drag_to_world(drag);
+  CHECK(d.allFinite());
+  drag.anchor_normal.setZero();
+  CHECK((d - aniso::screen_drag_to_world(drag)).norm() < 1e-12);
+  drag.anchor_normal = Eigen::Vector3d(0, std::numeric_limits<double>::quiet_NaN(), 1);
+  CHECK_THAT(bad_parameter_message([&] { aniso::screen_drag_to_world(drag); }),
+             Catch::Contains("the anchor normal is not finite"));
+}

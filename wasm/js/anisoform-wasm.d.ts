@@ -94,6 +94,12 @@ export interface ScreenCamera {
   viewport: Numbers;
   /** The picked surface point, world space. */
   anchor: Vec3 | Numbers;
+  /**
+   * The surface normal at the anchor (any length). Given, the direction is the tangent vector there whose
+   * on-screen image runs along the drag; without it, the drag in the image plane (each element then takes
+   * its projection along its normal).
+   */
+  normal?: Vec3 | Numbers;
 }
 
 /** @schema direction.global */
@@ -235,6 +241,8 @@ export interface DeformResult {
   solveMs: number;
   /** The whole call. */
   ms: number;
+  /** What the user should know about the result, in words (e.g. a curvature field without clear directions). */
+  warnings: string[];
 }
 
 /** @schema flatten */
@@ -292,6 +300,14 @@ export interface FlattenMetrics {
   crossErrorMax: number;
   /** Area-weighted mean of |A2d / (A3d su sv) - 1|. */
   areaDistortionMean: number;
+  /**
+   * The fabric's shear: |angle between the pattern images of the direction and its cross direction - 90°|,
+   * in degrees, area-weighted mean and max (the errors above measure lengths, not this angle).
+   */
+  shearDegreesMean: number;
+  shearDegreesMax: number;
+  /** Triangles whose wanted direction is within 10° of their normal. */
+  nearNormalDirections: number;
   iterations: number;
   energy: number;
   converged: boolean;
@@ -303,6 +319,11 @@ export interface FlattenMetrics {
   method: 'anisotropic' | 'uniform-baseline';
   /** Empty when usable as one piece; otherwise why not and what to do (flatten_problem, flatten.h). */
   problem: string;
+  /**
+   * What a usable pattern still should say (flatten_warnings, flatten.h): a mean shear above 5°, a direction
+   * (nearly) along the normal on many triangles or filled from neighbours. Empty when nothing.
+   */
+  warnings: string[];
   /**
    * The edge-connected regions whose triangles miss the wanted stretch by more
    * than the core's threshold (kCutRegionError, flatten.h), largest first;

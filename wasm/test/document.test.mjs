@@ -208,3 +208,32 @@ test('documents the core writes pass docs/document.schema.json, whose iteration 
     session.delete();
   }
 });
+
+test('a curvature field without clear directions is warned about in the result and the replay summary the page shows', () => {
+  // A hemisphere's "min curvature" follows its triangulation: 90 % of its
+  // vertices have no clear principal direction. It was edited silently.
+  const session = sessionWith(wasm, 'open/hemisphere.obj');
+  try {
+    session.select({ all: true });
+    const op = { method: 'andefgrad', direction: { type: 'curvature', which: 'min' }, transform: { scale: 1.3 } };
+    const result = session.deform(op);
+    assert.equal(result.warnings.length, 1);
+    assert.match(result.warnings[0], /^90 % of the selected vertices \(\d+ of 2051\) have no clear principal curvature direction/);
+    session.cancel();
+    const info = session.info();
+    const summary = session.replay({
+      format: 'anisoform-document', version: 1,
+      mesh: { name: 'hemisphere.obj', vertices: info.vertices, triangles: info.triangles, hash: session.meshHash() },
+      regions: [{ name: 'all', steps: [{ region: { all: true } }] }],
+      ops: [{ id: 'along', label: 'along', enabled: true, region: 'all', op: session.resolveOp(op) }],
+    });
+    assert.deepEqual(summary.warnings, [`document.ops[0] (id 'along'): ${result.warnings[0]}`]);
+    // A tube's field is clear: nothing to say.
+    const knot = sessionWith(wasm, 'closed/knot1.off');
+    knot.select({ all: true });
+    assert.deepEqual(knot.deform(op).warnings, []);
+    knot.delete();
+  } finally {
+    session.delete();
+  }
+});

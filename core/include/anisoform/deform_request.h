@@ -121,6 +121,9 @@ struct DeformResult {
   int factorizations = 0;               // total so far in this session
   double precompute_ms = 0.0;           // factorization etc. done for this call
   double solve_ms = 0.0;
+  // What the user should know about the result, in words (a curvature field
+  // without clear directions over much of the selection).
+  std::vector<std::string> warnings;
 };
 
 }  // namespace aniso

@@ -68,7 +68,14 @@ struct FlattenTargets {
   Eigen::VectorXd sv;          // #T: wanted stretch across (along cv = normal x cu)
   int filled_directions = 0;   // triangles whose direction was (nearly) normal to
                                // them and was taken from their neighbours
+  int near_normal_directions = 0;  // triangles whose wanted 3D direction is within
+                                   // kNearNormalDirectionDegrees of their normal
 };
+
+// A wanted direction this close to a triangle's normal (degrees) says little
+// about where the fabric runs on it: its tangent part is at most sin(10°) =
+// 17 % of it, and tilting the patch by a few degrees turns that part anywhere.
+constexpr double kNearNormalDirectionDegrees = 10.0;
 
 // ---- the local/global solver -----------------------------------------------
 
@@ -106,6 +113,7 @@ struct TriangleStretch {
   Eigen::VectorXd sigma_max;    // #T: larger singular value of J
   Eigen::VectorXd sigma_min;    // #T: smaller singular value of J (negative if folded)
   Eigen::VectorXd area_ratio;   // #T: signed 2D area / 3D area (= det J)
+  Eigen::VectorXd shear_degrees;  // #T: |angle between J cu and J cv - 90°|: the fabric's shear
   Eigen::MatrixX2d pattern_direction;  // #T by 2: J cu / |J cu|, where cu runs in the plane
   std::vector<char> degenerate;        // #T: no chart (zero 3D area): NaN in every measure
                                        // above, and left out of means and maxima
@@ -141,6 +149,12 @@ struct FlattenMetrics {
   double cross_error_mean = 0.0;         // area-weighted mean of |across/sv - 1|
   double cross_error_max = 0.0;
   double area_distortion_mean = 0.0;     // area-weighted mean of |A2d / (A3d su sv) - 1|
+  // The shear the pattern gives the fabric (TriangleStretch::shear_degrees):
+  // the errors above measure two lengths, not the angle between them, and a
+  // triangle sheared off square can meet both.
+  double shear_degrees_mean = 0.0;       // area-weighted
+  double shear_degrees_max = 0.0;
+  int near_normal_directions = 0;        // FlattenTargets::near_normal_directions
   int iterations = 0;
   double energy = 0.0;
   bool converged = false;
@@ -163,6 +177,22 @@ struct FlattenMetrics {
 // box or a hand is 36 % and more).
 constexpr double kMaxUsableAreaDistortion = 0.25;
 std::string flatten_problem(const FlattenMetrics& metrics);
+
+// Above this mean shear (degrees) a flattening is warned about: a shear of g
+// lengthens one diagonal of a square of fabric and shortens the other by about
+// g/2 (in radians), 4.4 % at 5°, as much as the compressions a pattern builds
+// in (a few to 20 %); the compression figures then flatter the pattern.
+constexpr double kShearWarningDegrees = 5.0;
+
+// A wanted direction within kNearNormalDirectionDegrees of the normal on more
+// than this share of the patch's triangles is warned about.
+constexpr double kNearNormalDirectionShare = 0.1;
+
+// What a usable flattening still should say (in words, possibly none): a
+// mean shear above kShearWarningDegrees; directions filled from neighbours
+// (the direction was normal to their triangles), or nearly normal on more
+// than kNearNormalDirectionShare of the triangles.
+std::vector<std::string> flatten_warnings(const FlattenMetrics& metrics);
 
 // ---- the Flattener ---------------------------------------------------------------
 

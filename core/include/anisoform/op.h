@@ -7,7 +7,7 @@
 //   {method: 'anarap'|'andefgrad'|'arap'|'linear',
 //    direction: {type:'global', vector:[x,y,z]}
 //             | {type:'curvature', which:'min'|'max', smoothing?}
-//             | {type:'screen', from:[x,y], to:[x,y], camera:{view[16], projection[16], viewport[4], anchor[3]}}
+//             | {type:'screen', from:[x,y], to:[x,y], camera:{view[16], projection[16], viewport[4], anchor[3], normal[3]?}}
 //             | {type:'constraints', constraints:[{vertex, direction:[x,y,z], su?, sv?}]}
 //             | {type:'dense', directions:[#V*3]},
 //    transform: {scale?: su|[su]|[su,sv], thickness?, shear?, rotate?: {axis:'n'|'u'|'v', degrees},
@@ -151,12 +151,14 @@ SessionFlatten resolve_flatten(const SessionFlatten& request, const Positions& p
 //  problemCounts: {kind: how many, for each kind found}, notes}
 Json to_json(const SessionMeshInfo& info);
 // {selected, iterations, energy, energyHistory, converged, directionsFilled,
-//  inverted, factorizations, precomputeMs, solveMs, ms}
+//  inverted, factorizations, precomputeMs, solveMs, ms, warnings}
 Json to_json(const DeformOpResult& result);
 // {triangles, vertices, components, boundaryLoops, flipped, compressionErrorMean,
 //  compressionErrorMax, crossErrorMean, crossErrorMax, areaDistortionMean,
+//  shearDegreesMean, shearDegreesMax, nearNormalDirections,
 //  iterations, energy, converged, seconds, filledDirections, initialization, method,
-//  problem, suggestedCuts} (problem: flatten_problem, "" when usable as one piece;
+//  problem, warnings, suggestedCuts} (problem: flatten_problem, "" when usable as one piece;
+//  warnings: flatten_warnings, what a usable pattern still should say;
 //  suggestedCuts: [{vertices, vertex, centroid, errorMean, triangles}], FlattenRegion)
 Json to_json(const FlattenMetrics& metrics);
 

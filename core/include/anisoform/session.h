@@ -95,6 +95,7 @@ struct DeformOpResult {
   double precompute_ms = 0.0;
   double solve_ms = 0.0;
   double total_ms = 0.0;  // the whole call, as the host waits for it
+  std::vector<std::string> warnings;  // DeformResult::warnings
 };
 
 // What distortion() measures against.

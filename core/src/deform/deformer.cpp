@@ -578,6 +578,13 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
   Workspace& ws = *workspace_;
   // prepare_step's warm-up would now reset the rotations a warm start goes on from.
   ws.warmed_up = true;
+  const bool curvature_source = request.direction.kind == DirectionSource::Kind::CurvatureMin ||
+                                request.direction.kind == DirectionSource::Kind::CurvatureMax;
+  if (curvature_source && request.method != Method::Arap) {
+    // A sphere's or a flat part's curvature field is arbitrary: said, not silent.
+    const std::string warning = unreliable_curvature_warning(ws.targets.lacks_principal_direction(), w);
+    if (!warning.empty()) result.warnings.push_back(warning);
+  }
 
   if (request.method == Method::Linear) {
     // Each vertex moves by its own local map about the selection's centroid,

@@ -18,6 +18,7 @@ namespace aniso {
 
 struct TargetContext::FieldCache {
   std::map<std::pair<int, int>, Positions> curvature;  // (min/max, smoothing) -> field
+  std::optional<std::vector<char>> lacks_principal_direction;
   // The last propagated field and its constraints: a drag or a slider asks
   // for the same one at every value, and propagating it is a solve.
   std::vector<DirectionConstraint> constraints;
@@ -51,6 +52,11 @@ const VertexAdjacency& TargetContext::triangle_adjacency() {
                               triangle_adjacency_->neighbors);
   }
   return *triangle_adjacency_;
+}
+
+const std::vector<char>& TargetContext::lacks_principal_direction() {
+  if (!fields_->lacks_principal_direction) fields_->lacks_principal_direction = aniso::lacks_principal_direction(rest_);
+  return *fields_->lacks_principal_direction;
 }
 
 TargetContext::~TargetContext() = default;

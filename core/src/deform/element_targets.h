@@ -33,6 +33,9 @@ class TargetContext {
   // and at 200k vertices they took a tenth of an edit's set-up.
   const VertexAdjacency& vertex_adjacency();
   const VertexAdjacency& triangle_adjacency();
+  // Per vertex, 1 where the rest mesh has no reliable principal curvature
+  // direction (curvature.h lacks_principal_direction); built on first use.
+  const std::vector<char>& lacks_principal_direction();
 
  private:
   const Mesh& rest_;

@@ -2,14 +2,22 @@
 // curvatures and their derivatives on triangle meshes"), and the smoothed
 // principal direction field of the paper's Fig. 8.
 //
-// Sign convention: with outward (counter-clockwise) normals a convex surface
-// has positive curvature (a sphere of radius R: k_min = k_max = 1/R).
+// "Min" and "max" are by magnitude: k_min is the principal curvature of least
+// |k| (the direction that bends least, e.g. along a tube), k_max the one of
+// greatest |k|. Ordered by signed value they would swap with the normals:
+// with the faces wound the other way every k changes sign, and a tube's
+// "min" direction would run around it instead of along it.
+//
+// Sign convention of the values: with outward (counter-clockwise) normals a
+// convex surface has positive curvature (a sphere of radius R: k_min = k_max
+// = 1/R); wound inwards, the same surface has -1/R.
 #include "directions/curvature.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <complex>
+#include <string>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -18,6 +26,7 @@
 #include "geometry/frames.h"
 #include "mesh/topology.h"
 #include "directions/direction_field_transport.h"
+#include "directions/line_orientation.h"
 
 namespace aniso {
 namespace {
@@ -152,9 +161,9 @@ std::vector<Tensor2> vertex_tensors(const Mesh& mesh, const Positions& normals,
 // Applies `smoothing_steps` Jacobi steps of one-ring averaging to line values
 // u (doubled angles, see direction_field_transport.h), each neighbour
 // transported into the vertex's basis first.
-void smooth_line_values(const Mesh& mesh, const std::vector<field::TangentBasis>& bases,
-                        int smoothing_steps, std::vector<std::complex<double>>& u) {
-  const VertexAdjacency adjacency = vertex_adjacency(mesh.F, mesh.num_vertices());
+void smooth_line_values(const Mesh& mesh, const VertexAdjacency& adjacency,
+                        const std::vector<field::TangentBasis>& bases, int smoothing_steps,
+                        std::vector<std::complex<double>>& u) {
   std::vector<std::complex<double>> transport(adjacency.neighbors.size());
   for (int i = 0; i < mesh.num_vertices(); ++i) {
     for (int k = adjacency.offsets[i]; k < adjacency.offsets[i + 1]; ++k) {
@@ -189,19 +198,37 @@ PrincipalCurvature principal_curvature_in(const Mesh& mesh, const Positions& nor
     // Closed-form eigen-decomposition of the symmetric 2x2 tensor.
     const double mean = 0.5 * (II.a + II.c);
     const double half_gap = std::hypot(0.5 * (II.a - II.c), II.b);
-    const double max_angle = 0.5 * std::atan2(2.0 * II.b, II.a - II.c);
-    const Eigen::Vector3d max_direction = std::cos(max_angle) * bases[i].e1 + std::sin(max_angle) * bases[i].e2;
-    result.k_max[i] = mean + half_gap;
-    result.k_min[i] = mean - half_gap;
-    result.max_direction.row(i) = max_direction.transpose();
-    result.min_direction.row(i) = bases[i].n.cross(max_direction).transpose();
+    // The eigenvector of the larger eigenvalue, mean + half_gap; the other
+    // one, mean - half_gap, is across it.
+    const double upper_angle = 0.5 * std::atan2(2.0 * II.b, II.a - II.c);
+    const Eigen::Vector3d upper = std::cos(upper_angle) * bases[i].e1 + std::sin(upper_angle) * bases[i].e2;
+    const Eigen::Vector3d lower = bases[i].n.cross(upper);
+    const double k_upper = mean + half_gap;
+    const double k_lower = mean - half_gap;
+    // By magnitude, not by value (see the top of the file).
+    const bool upper_bends_more = std::abs(k_upper) >= std::abs(k_lower);
+    result.k_max[i] = upper_bends_more ? k_upper : k_lower;
+    result.k_min[i] = upper_bends_more ? k_lower : k_upper;
+    result.max_direction.row(i) = (upper_bends_more ? upper : lower).transpose();
+    result.min_direction.row(i) = (upper_bends_more ? lower : upper).transpose();
   }
   return result;
 }
 
+// How much more the max direction bends than the min one: |k_max| - |k_min|,
+// the magnitude gap that tells the two apart (0 at an umbilic point, and at a
+// saddle bent equally both ways, whose two directions swap with the normals).
+double magnitude_gap(const PrincipalCurvature& curvature, Eigen::Index i) {
+  return std::abs(curvature.k_max[i]) - std::abs(curvature.k_min[i]);
+}
+
+// Curvature is 1 / length: a curvature below this over the mesh's size
+// (its bounding-box diagonal) is flat.
+constexpr double kFlatCurvatureTimesSize = 1e-6;
+
 // A surface curved alike in every direction at every vertex (a plane, a
 // sphere made exactly) has no principal direction: its "directions" would be
-// the eigen-solver's arbitrary choice. The gap k_max - k_min is measured
+// the eigen-solver's arbitrary choice. The gap |k_max| - |k_min| is measured
 // against the mesh's size (curvature is 1 / length).
 void refuse_without_principal_directions(const Mesh& mesh, const PrincipalCurvature& curvature) {
   const Eigen::Index n = curvature.k_max.size();
@@ -209,10 +236,10 @@ void refuse_without_principal_directions(const Mesh& mesh, const PrincipalCurvat
   const double size = shape_bounding_box(mesh).diagonal();
   double largest_gap = 0.0;
   for (Eigen::Index i = 0; i < n; ++i) {
-    const double gap = curvature.k_max[i] - curvature.k_min[i];
+    const double gap = magnitude_gap(curvature, i);
     if (std::isfinite(gap)) largest_gap = std::max(largest_gap, gap);
   }
-  if (largest_gap * size > 1e-6) return;
+  if (largest_gap * size > kFlatCurvatureTimesSize) return;
   fail(ErrorCode::BadParameter,
        "the surface has no principal curvature directions: it is curved alike in every direction at every vertex "
        "(flat, or a sphere), so curvature gives no direction; use an axis, a screen drag or a painted field");
@@ -225,7 +252,35 @@ PrincipalCurvature principal_curvature(const Mesh& mesh) {
   return principal_curvature_in(mesh, normals, vertex_bases(normals));
 }
 
-// Each vertex's line enters the averaging with weight k_max - k_min, its
+std::vector<char> lacks_principal_direction(const Mesh& mesh) {
+  const PrincipalCurvature curvature = principal_curvature(mesh);
+  const double size = shape_bounding_box(mesh).diagonal();
+  std::vector<char> lacking(mesh.num_vertices(), 0);
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    const double total = std::abs(curvature.k_max[i]) + std::abs(curvature.k_min[i]);
+    const bool flat = !(total * size > kFlatCurvatureTimesSize);
+    lacking[i] = flat || !(magnitude_gap(curvature, i) > kUnreliableCurvatureAnisotropy * total);
+  }
+  return lacking;
+}
+
+std::string unreliable_curvature_warning(const std::vector<char>& lacking, const Eigen::VectorXd& weights) {
+  int selected = 0, unreliable = 0;
+  for (Eigen::Index i = 0; i < weights.size(); ++i) {
+    if (!(weights[i] > 0.0)) continue;
+    ++selected;
+    if (lacking[static_cast<std::size_t>(i)]) ++unreliable;
+  }
+  if (selected == 0 || !(unreliable > kUnreliableCurvatureShare * selected)) return "";
+  const int percent = static_cast<int>(std::lround(100.0 * unreliable / selected));
+  return std::to_string(percent) + " % of the selected vertices (" + std::to_string(unreliable) + " of " +
+         std::to_string(selected) +
+         ") have no clear principal curvature direction (flat there, or curved about alike every way, "
+         "as a sphere): the curvature direction there is the smoothing's or the triangulation's guess, "
+         "not the shape's; an axis, a screen drag or arrows say it";
+}
+
+// Each vertex's line enters the averaging with weight |k_max| - |k_min|, its
 // confidence: near-umbilic vertices, whose raw direction is noise, carry
 // almost none and take the direction of their neighbours.
 void validate_curvature_smoothing(int steps) {
@@ -242,21 +297,27 @@ Positions curvature_direction_field(const Mesh& mesh, CurvatureDirection which, 
   const PrincipalCurvature curvature = principal_curvature_in(mesh, normals, bases);
   refuse_without_principal_directions(mesh, curvature);
   const Positions& raw = which == CurvatureDirection::Min ? curvature.min_direction : curvature.max_direction;
-  if (smoothing_steps == 0) return raw;
-
-  std::vector<std::complex<double>> u(mesh.num_vertices());
-  for (int i = 0; i < mesh.num_vertices(); ++i) {
-    const double confidence = curvature.k_max[i] - curvature.k_min[i];
-    u[i] = std::isfinite(confidence) ? confidence * field::line_to_complex(raw.row(i).transpose(), bases[i])
-                                     : std::complex<double>(0.0);
-  }
-  smooth_line_values(mesh, bases, smoothing_steps, u);
-
+  const VertexAdjacency adjacency = vertex_adjacency(mesh.F, mesh.num_vertices());
   Positions result = raw;
-  for (int i = 0; i < mesh.num_vertices(); ++i) {
-    // A vertex no confident direction reached (a flat region) keeps its raw one.
-    if (std::abs(u[i]) > 0.0) result.row(i) = field::complex_to_line(u[i], bases[i]).transpose();
+  if (smoothing_steps > 0) {
+    std::vector<std::complex<double>> u(mesh.num_vertices());
+    for (int i = 0; i < mesh.num_vertices(); ++i) {
+      const double confidence = magnitude_gap(curvature, i);
+      u[i] = std::isfinite(confidence) ? confidence * field::line_to_complex(raw.row(i).transpose(), bases[i])
+                                       : std::complex<double>(0.0);
+    }
+    smooth_line_values(mesh, adjacency, bases, smoothing_steps, u);
+    for (int i = 0; i < mesh.num_vertices(); ++i) {
+      // A vertex no confident direction reached (a flat region) keeps its raw one.
+      if (std::abs(u[i]) > 0.0) result.row(i) = field::complex_to_line(u[i], bases[i]).transpose();
+    }
   }
+  // The eigen-solver's signs are arbitrary from vertex to vertex (half of an
+  // open cylinder's axial directions pointed +z, half -z), and a shear or a
+  // rotation about cu/cv turns each vertex's way: the shape tore where signs
+  // met. Signs agreeing across edges keep such transforms whole.
+  orient_line_field(adjacency, std::vector<char>(mesh.num_vertices(), 0),
+                    std::vector<char>(mesh.num_vertices(), 1), result);
   return result;
 }
 

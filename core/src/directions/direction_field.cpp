@@ -12,7 +12,7 @@
 // constraints at exactly 90° have opposite doubled values and the field then
 // has a singular line between them (either turning sense is equally smooth).
 // Signs: a constrained vertex keeps the sign it was given; the others are
-// oriented outwards from the constraints (orient_from_constraints).
+// oriented outwards from the constraints (orient_line_field).
 //
 // Amounts su, sv: harmonic interpolation (the same weights, r = 1) with the
 // constraints that carry amounts as Dirichlet values.
@@ -38,6 +38,7 @@
 #include "anisoform/transforms.h"
 #include "directions/direction_field_dirichlet.h"
 #include "directions/direction_field_transport.h"
+#include "directions/line_orientation.h"
 #include "io/selection_text.h"
 
 namespace aniso {
@@ -136,36 +137,6 @@ std::vector<field::WeightedEdge> region_edges(const Mesh& mesh, const VertexAdja
     }
   }
   return edges;
-}
-
-// A line field has no sign, but the arrows the user drew do, and some
-// transforms care (a rotation about cu turns the other way for -cu). So signs
-// are chosen outwards from the constraints, breadth first, each free vertex
-// agreeing with the neighbour it was reached from. Where the field turns
-// half-way round a singularity no consistent choice exists; the flip then
-// lies where the search fronts meet.
-void orient_from_constraints(const VertexAdjacency& adjacency, const std::vector<int>& constraint_at,
-                             const std::vector<char>& line_free, Positions& direction) {
-  const int n = static_cast<int>(constraint_at.size());
-  std::vector<char> oriented(n, 0);
-  std::vector<int> queue;
-  queue.reserve(n);
-  for (int i = 0; i < n; ++i) {
-    if (constraint_at[i] >= 0) {
-      oriented[i] = 1;
-      queue.push_back(i);
-    }
-  }
-  for (std::size_t head = 0; head < queue.size(); ++head) {
-    const int i = queue[head];
-    for (int k = adjacency.offsets[i]; k < adjacency.offsets[i + 1]; ++k) {
-      const int j = adjacency.neighbors[k];
-      if (oriented[j] || !line_free[j]) continue;
-      if (direction.row(j).dot(direction.row(i)) < 0.0) direction.row(j) *= -1.0;
-      oriented[j] = 1;
-      queue.push_back(j);
-    }
-  }
 }
 
 // The smoothest line field holding the constraints: unit tangents at the
@@ -321,7 +292,11 @@ DirectionField propagate_direction_field(const Mesh& mesh,
 
   DirectionField result;
   result.direction = line_field(constraints, constraint_at, bases, edges, line_free);
-  orient_from_constraints(adjacency, constraint_at, line_free, result.direction);
+  // The arrows the user drew have signs (a rotation about cu turns the other
+  // way for -cu): the free vertices take theirs outwards from the constraints.
+  std::vector<char> constrained(n, 0);
+  for (int i = 0; i < n; ++i) constrained[i] = constraint_at[i] >= 0;
+  orient_line_field(adjacency, constrained, line_free, result.direction);
   const field::ValueMatrix<double> amounts = interpolated_amounts(constraints, constraint_at, edges, amount_free);
   result.su = amounts.col(0);
   result.sv = amounts.col(1);

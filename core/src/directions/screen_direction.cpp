@@ -1,4 +1,5 @@
-// A pointer drag turned into a world-space vector (METHOD §4.2).
+// A pointer drag turned into a world-space vector (METHOD §4.2), in the
+// image plane or, given the surface normal, in the tangent plane at the anchor.
 //
 // Conventions are OpenGL's, as in three.js: `view` is camera.matrixWorldInverse
 // and `projection` camera.projectionMatrix, both as mathematical matrices
@@ -10,9 +11,12 @@
 #include "anisoform/screen_direction.h"
 
 #include <cmath>
+#include <optional>
 #include <sstream>
 
+#include <Eigen/Geometry>
 #include <Eigen/LU>
+#include <Eigen/SVD>
 
 #include "anisoform/error.h"
 
@@ -34,12 +38,43 @@ Eigen::Vector3d unproject(const Eigen::Matrix4d& clip_to_world, const Eigen::Vec
   return world.head<3>() / world.w();
 }
 
+// Pixels moved per unit world displacement at `point` (2 by 3; y down, as
+// the pointer): the derivative of the perspective division of clip = M p.
+Eigen::Matrix<double, 2, 3> pixels_per_world(const Eigen::Matrix4d& world_to_clip, const Eigen::Vector3d& point,
+                                             const Eigen::Vector4d& viewport) {
+  const Eigen::Vector4d clip = world_to_clip * point.homogeneous();
+  const double w = clip.w();
+  Eigen::Matrix<double, 2, 3> ndc;
+  ndc.row(0) = (world_to_clip.block<1, 3>(0, 0) - (clip.x() / w) * world_to_clip.block<1, 3>(3, 0)) / w;
+  ndc.row(1) = (world_to_clip.block<1, 3>(1, 0) - (clip.y() / w) * world_to_clip.block<1, 3>(3, 0)) / w;
+  ndc.row(0) *= 0.5 * viewport[2];
+  ndc.row(1) *= -0.5 * viewport[3];
+  return ndc;
+}
+
+// The tangent vector at the anchor whose on-screen image is the drag, or
+// nothing when the tangent plane is seen (nearly) edge-on.
+std::optional<Eigen::Vector3d> tangent_drag(const ScreenDrag& drag, const Eigen::Matrix4d& world_to_clip) {
+  const Eigen::Vector3d n = drag.anchor_normal.stableNormalized();
+  // Any two orthonormal tangents t1, t2; the result does not depend on them.
+  const Eigen::Vector3d t1 = n.unitOrthogonal();
+  const Eigen::Vector3d t2 = n.cross(t1);
+  Eigen::Matrix<double, 3, 2> tangents;
+  tangents << t1, t2;
+  const Eigen::Matrix2d on_screen = pixels_per_world(world_to_clip, drag.anchor, drag.viewport) * tangents;
+  const Eigen::JacobiSVD<Eigen::Matrix2d> svd(on_screen);
+  const Eigen::Vector2d stretch = svd.singularValues();
+  if (!(stretch[1] > kEdgeOnTangentPlane * stretch[0])) return std::nullopt;
+  return tangents * on_screen.inverse() * (drag.to_px - drag.from_px);
+}
+
 void check_input(const ScreenDrag& drag) {
   if (!drag.view.allFinite()) bad_screen_drag("the view matrix is not finite");
   if (!drag.projection.allFinite()) bad_screen_drag("the projection matrix is not finite");
   if (!drag.viewport.allFinite()) bad_screen_drag("the viewport is not finite");
   if (!drag.from_px.allFinite() || !drag.to_px.allFinite()) bad_screen_drag("the pointer positions are not finite");
   if (!drag.anchor.allFinite()) bad_screen_drag("the anchor point is not finite");
+  if (!drag.anchor_normal.allFinite()) bad_screen_drag("the anchor normal is not finite");
   if (!(drag.viewport[2] > 0.0 && drag.viewport[3] > 0.0)) {
     std::ostringstream message;
     message << "the viewport is empty (" << drag.viewport[2] << " x " << drag.viewport[3] << " pixels)";
@@ -62,6 +97,9 @@ Eigen::Vector3d screen_drag_to_world(const ScreenDrag& drag) {
   if (!(anchor_clip.w() > 0.0)) bad_screen_drag("the anchor point is behind the camera");
   const double ndc_depth = anchor_clip.z() / anchor_clip.w();
 
+  if (!drag.anchor_normal.isZero(0.0)) {
+    if (const auto tangent = tangent_drag(drag, drag.projection * drag.view)) return *tangent;
+  }
   const Eigen::Matrix4d clip_to_world = view_lu.inverse() * projection_lu.inverse();
   const Eigen::Vector3d from = unproject(clip_to_world, pixel_to_ndc(drag.from_px, drag.viewport), ndc_depth);
   const Eigen::Vector3d to = unproject(clip_to_world, pixel_to_ndc(drag.to_px, drag.viewport), ndc_depth);

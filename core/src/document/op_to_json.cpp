@@ -54,14 +54,15 @@ Json to_json(const DirectionSource& d) {
               {"smoothing", d.curvature_smoothing}};
     case DirectionSource::Kind::Screen: {
       const ScreenDrag& s = d.screen;
+      Json camera = {{"view", matrix4_json(s.view)},
+                     {"projection", matrix4_json(s.projection)},
+                     {"viewport", Json::array({s.viewport[0], s.viewport[1], s.viewport[2], s.viewport[3]})},
+                     {"anchor", xyz_json(s.anchor)}};
+      if (!s.anchor_normal.isZero(0.0)) camera["normal"] = xyz_json(s.anchor_normal);
       return {{"type", "screen"},
               {"from", Json::array({s.from_px.x(), s.from_px.y()})},
               {"to", Json::array({s.to_px.x(), s.to_px.y()})},
-              {"camera",
-               {{"view", matrix4_json(s.view)},
-                {"projection", matrix4_json(s.projection)},
-                {"viewport", Json::array({s.viewport[0], s.viewport[1], s.viewport[2], s.viewport[3]})},
-                {"anchor", xyz_json(s.anchor)}}}};
+              {"camera", camera}};
     }
     case DirectionSource::Kind::Constraints: {
       Json list = Json::array();

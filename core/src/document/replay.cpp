@@ -148,6 +148,9 @@ ReplaySummary replay_document(Session& session, const EditDocument& document, co
           "its region '" + op.region + "'");
       if (!unchanged.empty()) summary.warnings.push_back(document_op_name(document, i) + ": " + unchanged);
       summary.last = scratch.deform(edit);
+      for (const std::string& warning : summary.last.warnings) {
+        summary.warnings.push_back(document_op_name(document, i) + ": " + warning);
+      }
       scratch.commit();
     });
     ++summary.replayed;

@@ -217,6 +217,7 @@ FlattenResult Flattener::flatten(const FlattenOptions& options) {
   metrics.converged = converged;
   metrics.capped = !converged && solved.iterations >= options.solver.max_iterations;
   metrics.filled_directions = result.targets.filled_directions;
+  metrics.near_normal_directions = result.targets.near_normal_directions;
   metrics.initialization = solved.initialization;
   metrics.method = baseline ? "uniform-baseline" : "anisotropic";
   metrics.suggested_cuts = find_cut_regions(patch, im.charts, im.neighbours, result.targets, result.stretch);

@@ -3,12 +3,15 @@
 // amounts: the numbers the paper's Fig. 11 claim is measured by.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include <Eigen/LU>
 
 #include "anisoform/limits.h"
+#include "base/math_constants.h"
 #include "flatten/flatten_pipeline.h"
 
 namespace aniso {
@@ -52,6 +55,7 @@ TriangleStretch measure_stretch(const Triangles& F, const TriangleCharts& charts
   stretch.sigma_max.setConstant(m, nan);
   stretch.sigma_min.setConstant(m, nan);
   stretch.area_ratio.setConstant(m, nan);
+  stretch.shear_degrees.setConstant(m, nan);
   stretch.pattern_direction.setZero(m, 2);
   stretch.degenerate.assign(m, 0);
   for (int t = 0; t < m; ++t) {
@@ -63,8 +67,13 @@ TriangleStretch measure_stretch(const Triangles& F, const TriangleCharts& charts
     const Eigen::Vector2d cu = targets.direction.row(t);
     const Eigen::Vector2d cv(-cu.y(), cu.x());
     const Eigen::Vector2d mapped_u = J * cu;
+    const Eigen::Vector2d mapped_v = J * cv;
     stretch.along[t] = mapped_u.norm();
-    stretch.across[t] = (J * cv).norm();
+    stretch.across[t] = mapped_v.norm();
+    // The angle between the images of cu and cv, off square (atan2 of the
+    // cross and dot products: exact near 90°, where acos is not).
+    const double cross = mapped_u.x() * mapped_v.y() - mapped_u.y() * mapped_v.x();
+    stretch.shear_degrees[t] = std::abs(std::atan2(cross, mapped_u.dot(mapped_v)) * 180.0 / kPi - 90.0);
     if (stretch.along[t] > 0.0) stretch.pattern_direction.row(t) = mapped_u.normalized().transpose();
     // Closed-form signed singular values of a 2x2 matrix.
     const double e = 0.5 * (J(0, 0) + J(1, 1)), f = 0.5 * (J(0, 0) - J(1, 1));
@@ -125,7 +134,7 @@ std::string flatten_problem(const FlattenMetrics& metrics) {
 void summarize_stretch(const TriangleCharts& charts, const FlattenTargets& targets,
                        const TriangleStretch& stretch, FlattenMetrics& metrics) {
   double total_area = 0.0, along_sum = 0.0, across_sum = 0.0, area_sum = 0.0;
-  double along_max = 0.0, across_max = 0.0;
+  double along_max = 0.0, across_max = 0.0, shear_sum = 0.0, shear_max = 0.0;
   for (int t = 0; t < charts.area.size(); ++t) {
     if (stretch.degenerate[t]) continue;
     const double area = charts.area[t];
@@ -137,6 +146,10 @@ void summarize_stretch(const TriangleCharts& charts, const FlattenTargets& targe
     along_sum += area * along_error;
     across_sum += area * across_error;
     area_sum += area * area_error;
+    if (std::isfinite(stretch.shear_degrees[t])) {
+      shear_sum += area * stretch.shear_degrees[t];
+      shear_max = std::max(shear_max, stretch.shear_degrees[t]);
+    }
     along_max = std::max(along_max, along_error);
     across_max = std::max(across_max, across_error);
   }
@@ -146,6 +159,40 @@ void summarize_stretch(const TriangleCharts& charts, const FlattenTargets& targe
   metrics.cross_error_mean = across_sum * inverse;
   metrics.cross_error_max = across_max;
   metrics.area_distortion_mean = area_sum * inverse;
+  metrics.shear_degrees_mean = shear_sum * inverse;
+  metrics.shear_degrees_max = shear_max;
+}
+
+std::vector<std::string> flatten_warnings(const FlattenMetrics& metrics) {
+  std::vector<std::string> warnings;
+  const auto degrees = [](double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f°", value);
+    return std::string(text);
+  };
+  if (metrics.shear_degrees_mean > kShearWarningDegrees) {
+    warnings.push_back("the pattern shears the fabric: the wanted direction and its cross direction meet " +
+                       degrees(metrics.shear_degrees_mean) + " off square on average (" +
+                       degrees(metrics.shear_degrees_max) +
+                       " at most), which the compression and cross errors do not show (without the "
+                       "refinement, --no-refine or refine: false, it shears less and misses the lengths "
+                       "more); a cut or a dart where it curves most lowers both");
+  }
+  const int triangles = std::max(metrics.triangles, 1);
+  const bool many_near_normal = metrics.near_normal_directions > kNearNormalDirectionShare * triangles;
+  if (metrics.filled_directions > 0 || many_near_normal) {
+    const int percent = static_cast<int>(std::lround(100.0 * metrics.near_normal_directions / triangles));
+    std::string text = "the direction runs (nearly) along the surface's normal on " +
+                       std::to_string(metrics.near_normal_directions) + " of " + std::to_string(metrics.triangles) +
+                       " triangles (" + std::to_string(percent) + " %, within " +
+                       std::to_string(static_cast<int>(kNearNormalDirectionDegrees)) + "°)";
+    if (metrics.filled_directions > 0) {
+      text += ", " + std::to_string(metrics.filled_directions) + " of them taken from their neighbours";
+    }
+    warnings.push_back(text + ": there it says little about where the fabric runs; choose a direction "
+                              "along the patch");
+  }
+  return warnings;
 }
 
 std::vector<Eigen::Vector2d> mean_pattern_directions(const FlattenPatch& patch,

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "anisoform/error.h"
+#include "base/math_constants.h"
 #include "flatten/flatten_pipeline.h"
 #include "geometry/frames.h"
 #include "anisoform/transforms.h"
@@ -45,6 +46,17 @@ void directions_into_charts(const FlattenPatch& patch, const TriangleCharts& cha
   const int m = patch.mesh.num_triangles();
   targets.direction.resize(m, 2);
   targets.filled_directions = frames.filled;
+  const Positions normals = triangle_normals(patch.mesh);
+  const double near = std::cos(kNearNormalDirectionDegrees * kPi / 180.0);
+  targets.near_normal_directions = 0;
+  for (int t = 0; t < m; ++t) {
+    const Eigen::Vector3d d = triangle_directions.row(t);
+    const Eigen::Vector3d n = normals.row(t);
+    // Only a triangle that has a normal; one without a direction is filled (counted above).
+    if (n.squaredNorm() > 0.0 && d.squaredNorm() > 0.0 && std::abs(d.dot(n)) >= near * d.norm() * n.norm()) {
+      ++targets.near_normal_directions;
+    }
+  }
   for (int t = 0; t < m; ++t) {
     const Eigen::Vector3d cu = frames.u.row(t);
     Eigen::Vector2d chart(cu.dot(charts.axis_u.row(t)), cu.dot(charts.axis_v.row(t)));

@@ -43,6 +43,8 @@ ScreenDrag screen_from_json(const Json& direction, const std::string& name) {
       finite_numbers(member(camera, "viewport", camera_name + ".viewport"), 4, camera_name + ".viewport");
   drag.viewport = {viewport[0], viewport[1], viewport[2], viewport[3]};
   drag.anchor = vector3(member(camera, "anchor", camera_name + ".anchor"), camera_name + ".anchor");
+  // Optional: the surface normal at the anchor puts the drag into its tangent plane.
+  if (has(camera, "normal")) drag.anchor_normal = vector3(camera["normal"], camera_name + ".normal");
   return drag;
 }
 

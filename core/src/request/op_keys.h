@@ -20,7 +20,7 @@ inline const Keys kDirectionTypes{"global", "curvature", "screen", "constraints"
 inline const Keys kGlobal{"type", "vector"};
 inline const Keys kCurvature{"type", "which", "smoothing"};
 inline const Keys kScreen{"type", "from", "to", "camera"};
-inline const Keys kCamera{"view", "projection", "viewport", "anchor"};
+inline const Keys kCamera{"view", "projection", "viewport", "anchor", "normal"};
 inline const Keys kConstraints{"type", "constraints"};
 inline const Keys kConstraint{"vertex", "direction", "su", "sv"};
 inline const Keys kDense{"type", "directions"};

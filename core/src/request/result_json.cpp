@@ -54,6 +54,7 @@ Json to_json(const DeformOpResult& r) {
       {"precomputeMs", r.precompute_ms},
       {"solveMs", r.solve_ms},
       {"ms", r.total_ms},
+      {"warnings", r.warnings},
   };
 }
 
@@ -87,6 +88,9 @@ Json to_json(const FlattenMetrics& m) {
       {"crossErrorMean", m.cross_error_mean},
       {"crossErrorMax", m.cross_error_max},
       {"areaDistortionMean", m.area_distortion_mean},
+      {"shearDegreesMean", m.shear_degrees_mean},
+      {"shearDegreesMax", m.shear_degrees_max},
+      {"nearNormalDirections", m.near_normal_directions},
       {"iterations", m.iterations},
       {"energy", m.energy},
       {"converged", m.converged},
@@ -95,6 +99,7 @@ Json to_json(const FlattenMetrics& m) {
       {"initialization", m.initialization},
       {"method", m.method},
       {"problem", flatten_problem(m)},
+      {"warnings", flatten_warnings(m)},
       {"suggestedCuts", suggested_cuts_json(m.suggested_cuts)},
   };
 }

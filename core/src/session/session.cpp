@@ -410,6 +410,7 @@ DeformOpResult Session::deform_once(const DeformOp& edit) {
   summary.inverted = result.inverted;
   summary.precompute_ms = result.precompute_ms;
   summary.solve_ms = result.solve_ms;
+  summary.warnings = std::move(result.warnings);
   set_current(current_positions(std::move(result.V)));
   summary.factorizations = factorizations();
   summary.total_ms = milliseconds_since(start);

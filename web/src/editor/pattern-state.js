@@ -82,13 +82,16 @@ export class PatternState {
 }
 
 /**
- * The banner for a flattening: metrics.problem (why it is not one piece) and
+ * The banner for a flattening: metrics.problem (why it is not one piece),
+ * metrics.warnings (shear, directions along the normal) and
  * metrics.suggestedCuts (the regions above the core's error threshold,
  * largest first), or null when there is nothing to say.
  */
 export function flattenWarning(metrics) {
   const sentences = [];
   if (metrics.problem) sentences.push(`${metrics.problem}.`);
+  // What a usable pattern still should say (flatten_warnings, flatten.h).
+  for (const warning of metrics.warnings ?? []) sentences.push(`${warning[0].toUpperCase()}${warning.slice(1)}.`);
   const cuts = metrics.suggestedCuts ?? [];
   if (cuts.length > 0) {
     const largest = cuts[0];

@@ -1,9 +1,9 @@
 // Arrows: press on the surface and drag to place a direction constraint at
-// the vertex under the pointer; the drag, projected into the surface's
-// tangent plane there, is its direction. The solver propagates the arrows to
+// the vertex under the pointer; the tangent direction there that is seen
+// running along the drag is its direction. The solver propagates the arrows to
 // a smooth line field (direction source 'arrows'). Placing an arrow selects
 // that source (the Flatten panel's in flatten mode).
-import { normalized, worldDragVector } from '../interaction/screen-drag.js';
+import { surfaceDragDirection } from '../interaction/screen-drag.js';
 
 const DRAG_THRESHOLD_PX = 4;
 
@@ -31,10 +31,7 @@ export class ArrowTool {
   move({ x, y }) {
     const gesture = this.gesture;
     if (!gesture || Math.hypot(x - gesture.from[0], y - gesture.from[1]) < DRAG_THRESHOLD_PX) return;
-    const drag = worldDragVector(this.viewer, gesture.from, [x, y], gesture.hit.point);
-    const normal = gesture.hit.normal;
-    const along = drag[0] * normal[0] + drag[1] * normal[1] + drag[2] * normal[2];
-    gesture.direction = normalized(drag.map((value, axis) => value - along * normal[axis]));
+    gesture.direction = surfaceDragDirection(this.viewer, gesture.from, [x, y], gesture.hit);
     this.arrowPreview([...this.settings.values.arrows, this.#arrow(gesture)]);
   }
 

@@ -47,7 +47,7 @@ export class TransformTool {
 
   start({ x, y, hit }) {
     if (!this.editor.beginGesture()) return;
-    this.gesture = { from: [x, y], anchor: hit.point, camera: this.viewer.cameraState(), op: null,
+    this.gesture = { from: [x, y], anchor: hit.point, normal: hit.normal, camera: this.viewer.cameraState(), op: null,
       amounts: structuredClone(this.settings.values[this.id]) };
   }
 
@@ -93,7 +93,8 @@ export class TransformTool {
     }
     const direction =
       values.direction.source === 'screen'
-        ? { type: 'screen', from: gesture.from, to, camera: { ...gesture.camera, anchor: gesture.anchor } }
+        ? { type: 'screen', from: gesture.from, to,
+            camera: { ...gesture.camera, anchor: gesture.anchor, normal: gesture.normal } }
         : directionFromSettings(values);
     const document = this.editor.document;
     const dragLength = Math.hypot(...dragWorld);

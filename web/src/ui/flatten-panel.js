@@ -189,6 +189,7 @@ function showMetrics(element, pattern) {
     row('Compression error', `${formatPercent(m.compressionErrorMean)} mean · ${formatPercent(m.compressionErrorMax)} max`, 'metric-compression'),
     row('Cross error', `${formatPercent(m.crossErrorMean)} mean · ${formatPercent(m.crossErrorMax)} max`, 'metric-cross'),
     row('Area distortion', formatPercent(m.areaDistortionMean), 'metric-area'),
+    row('Shear', `${m.shearDegreesMean.toFixed(1)}° mean · ${m.shearDegreesMax.toFixed(1)}° max`, 'metric-shear'),
     row('Flipped triangles', String(m.flipped), 'metric-flipped'),
     row('Pieces · outlines', `${m.components} · ${m.boundaryLoops}`, 'metric-pieces'),
     row('Iterations', `${m.iterations}${m.converged ? '' : ' (not converged)'} · ${(1000 * m.seconds).toFixed(0)} ms`, 'metric-iterations'),
