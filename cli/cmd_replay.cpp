@@ -73,7 +73,7 @@ void register_replay(CLI::App& app, Action& action) {
       "result. Keys: document, mesh, output, hash, vertices, triangles, replayed, skipped, warnings (ops "
       "that left the mesh unchanged, and why), last (the last replayed op's result, null when none was "
       "replayed; in the JS API's camelCase, as the browser's replay returns it: selected, iterations, energy, "
-      "energyHistory, converged, directionsFilled, inverted, factorizations, precomputeMs, solveMs, ms). "
+      "energyHistory, converged, directionsFilled, inverted, factorizations, precomputeMs, solveMs, ms, warnings). "
       "The mesh must be the document's (its hash is checked).");
   replay->add_option("DOC", args->document, "Edit document (.json)")->required();
   replay->add_option("OUT", args->output, "Output mesh: .obj .off .ply .stl")->required();

@@ -491,13 +491,22 @@ TEST_CASE("cli: a field file's amounts replace --scale and --compress, and a war
     const CliRun replaced =
         run_expecting({c.command, c.in, c.out, c.option, c.value, "--direction", "field:" + with_amounts}, 0);
     INFO(c.command << ": " << replaced.err);
+    // The warning about the amounts, once, among any others (the hemisphere's
+    // pattern also warns of its shear).
+    const auto amounts_warnings = [](const json& result) {
+      int count = 0;
+      for (const auto& warning : result["warnings"]) count += contains(warning.get<std::string>(), "is not used");
+      return count;
+    };
     const json result = stdout_json(replaced);
-    REQUIRE(result["warnings"].size() == 1);
-    CHECK(contains(result["warnings"][0].get<std::string>(), expected));
+    REQUIRE(amounts_warnings(result) == 1);
+    bool said = false;
+    for (const auto& warning : result["warnings"]) said = said || contains(warning.get<std::string>(), expected);
+    CHECK(said);
     CHECK(contains(replaced.err, "anisoform " + c.command + ": warning: " + expected));
-    // A file without amounts leaves the option its say: no warning.
+    // A file without amounts leaves the option its say: no such warning.
     const CliRun kept = run_expecting({c.command, c.in, c.out, c.option, c.value, "--direction", "field:" + without}, 0);
-    CHECK(stdout_json(kept)["warnings"].empty());
+    CHECK(amounts_warnings(stdout_json(kept)) == 0);
     CHECK_FALSE(contains(kept.err, "is not used"));
   }
 }
