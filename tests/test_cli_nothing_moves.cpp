@@ -87,6 +87,20 @@ TEST_CASE("deformer: an edit that selects nothing returns the rest pose to the b
   CHECK(deformer.factorizations() == 0);
 }
 
+// Without the solve, a bad field is still refused, as the solve refused it.
+TEST_CASE("deformer: an edit that selects nothing still refuses a direction along the normal", "[cli]") {
+  aniso::Deformer deformer(aniso::test::load("open/plane.off"));  // in y = 0: y is its normal
+  aniso::DeformRequest request;
+  request.selection = Eigen::VectorXd::Zero(deformer.rest().num_vertices());
+  request.direction.kind = aniso::DirectionSource::Kind::Constraints;
+  aniso::DirectionConstraint along_normal;
+  along_normal.direction = Eigen::Vector3d::UnitY();
+  request.direction.constraints = {along_normal};
+  CHECK_THROWS_WITH(deformer.deform(request), Catch::Contains("(nearly) parallel to the surface normal"));
+  request.direction.constraints[0].direction = Eigen::Vector3d::UnitX();
+  CHECK(deformer.deform(request).V == deformer.rest().V);
+}
+
 TEST_CASE("cli: deform with an empty selection writes the input's positions unchanged", "[cli]") {
   const std::string in = aniso::test::mesh_path("formats/spot_lowres.obj");
   const std::string out = temp_path("empty_selection.obj");

@@ -153,7 +153,8 @@ test('arap with given handles and no pins holds the unselected vertices; with no
     for (let k = 0; k < 3; ++k) assert.equal(result[3 * i + k], rest[3 * i + k], `vertex ${i} is unselected: held at rest`);
   }
   assert.ok(held > 0);
-  for (const i of handles) assert.ok(Math.abs(result[3 * i + 1] - rest[3 * i + 1] - move[1]) < 1e-9 * height);
+  // positions() are float32: the offset to their precision.
+  for (const i of handles) assert.ok(Math.abs(result[3 * i + 1] - rest[3 * i + 1] - move[1]) < 1e-6 * height);
   session.cancel();
   session.select({ all: true });
   assert.throws(() => session.deform({ method: 'arap', handles, move }),

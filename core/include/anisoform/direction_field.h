@@ -59,6 +59,13 @@ std::vector<DirectionConstraint> parse_direction_constraints(const std::string& 
 void validate_direction_constraints(const std::vector<DirectionConstraint>& constraints, int n,
                                     const std::string& source = "");
 
+// The checks propagate_direction_field makes of the constraints over the
+// whole mesh before it solves (validate_direction_constraints, one constraint
+// per vertex, no direction along its vertex's normal), without the solve: an
+// edit that moves nothing refuses the same bad field as one that moves
+// something (Deformer::deform).
+void check_direction_constraints(const Mesh& mesh, const std::vector<DirectionConstraint>& constraints);
+
 // Propagates the constraints over the mesh (or over the vertices with
 // region_mask[i] != 0). A constraint whose direction is (nearly) parallel to
 // the normal is refused with Error(BadParameter) naming the vertex; an index

@@ -494,7 +494,14 @@ DeformResult Deformer::deform(const DeformRequest& request) {
   // Here, so that a bad weight is named by the input's numbering.
   const Eigen::VectorXd weights = checked_weights(request, n);
   refuse_unseen_rotation(request, weights);
-  if (moves_nothing(request, weights)) return rest_result(request, weights);
+  if (moves_nothing(request, weights)) {
+    // A bad field is refused all the same, as the solve refused it (cheaply:
+    // its checks need the vertex normals only).
+    if (request.method != Method::Arap && request.direction.kind == DirectionSource::Kind::Constraints) {
+      check_direction_constraints(rest_, request.direction.constraints);
+    }
+    return rest_result(request, weights);
+  }
   const bool was_prepared = prepared_;
   prepare();
   if (!was_prepared) report_setup(kSetupLaplacianShare);

@@ -254,6 +254,11 @@ std::vector<DirectionConstraint> parse_direction_constraints(const std::string& 
   return constraints;
 }
 
+void check_direction_constraints(const Mesh& mesh, const std::vector<DirectionConstraint>& constraints) {
+  const std::vector<char> whole_mesh(static_cast<std::size_t>(mesh.num_vertices()), 1);
+  constraint_per_vertex(constraints, whole_mesh, vertex_normals(mesh));
+}
+
 DirectionField propagate_direction_field(const Mesh& mesh,
                                          const std::vector<DirectionConstraint>& constraints,
                                          const std::vector<char>* region_mask) {
