@@ -46,7 +46,7 @@ void directions_into_charts(const FlattenPatch& patch, const TriangleCharts& cha
   const int m = patch.mesh.num_triangles();
   targets.direction.resize(m, 2);
   targets.filled_directions = frames.filled;
-  const Positions normals = triangle_normals(patch.mesh);
+  const Positions& normals = frames.n;  // the triangle normals build_frames was given
   const double near = std::cos(kNearNormalDirectionDegrees * kPi / 180.0);
   targets.near_normal_directions = 0;
   for (int t = 0; t < m; ++t) {

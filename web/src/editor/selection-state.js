@@ -110,8 +110,10 @@ export class SelectionState {
   snapshotForEdit() {
     const document = this.#editor.requireDocument();
     if (document.selectionCount === 0) return { key: 'whole', weightsOf: () => new Float32Array(document.vertexCount).fill(1) };
+    // Copied now (the page's weights may change before the edit runs), and
+    // sent once: syncForEdit transfers this copy.
     const weights = document.selection.slice();
-    return { key: document.selectionVersion, weightsOf: () => weights.slice() };
+    return { key: document.selectionVersion, weightsOf: () => weights };
   }
 
   // Requests are ordered, so the request that follows sees these weights.

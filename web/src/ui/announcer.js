@@ -5,10 +5,11 @@
 // their own alert and status regions (messages.js). The status bar shows
 // these figures but is no live region: it changes at every preview frame,
 // which would talk over the user. One region for the whole modeller.
-const LONG_SOLVE_MS = 1000;
 import { formatCount, formatPercent } from '../shared/number-format.js';
 import { h } from './dom.js';
 import { selectionText } from './selection-panel.js';
+
+const LONG_SOLVE_MS = 1000;
 
 export function installAnnouncer(container, { editor }) {
   const region = h('p', { className: 'visually-hidden', role: 'status', 'aria-live': 'polite', 'data-testid': 'announcer' });
