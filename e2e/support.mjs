@@ -184,7 +184,7 @@ export async function verticalRange(page) {
  * exports it as `format`: the solver's positions and the file's bytes.
  */
 export async function stretchUpperHalfAndExport(page, format, { scale = 1.5, falloff = 0 } = {}) {
-  const { positions, bytes } = await page.evaluate(async ([as, amount, width]) => {
+  const positions = await page.evaluate(async ([amount, width]) => {
     const api = window.anisoform;
     const rest = api.positions();
     let low = Infinity, high = -Infinity;
@@ -194,9 +194,28 @@ export async function stretchUpperHalfAndExport(page, format, { scale = 1.5, fal
     }
     await api.select({ box: { min: [-1e30, (low + high) / 2, -1e30], max: [1e30, 1e30, 1e30] } }, { falloff: width });
     await api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [amount, 1] } });
-    return { positions: Array.from(api.positions()), bytes: Array.from(new Uint8Array(await api.export(as))) };
-  }, [format, scale, falloff]);
-  return { positions, bytes: Buffer.from(bytes) };
+    return Array.from(api.positions());
+  }, [scale, falloff]);
+  return { positions, bytes: await exportedBytes(page, format) };
+}
+
+/**
+ * The file window.anisoform.export(format) makes, as a Buffer. It crosses
+ * from the page as base64 text: as an array of numbers, a 175 kB GLB took
+ * 5 s to arrive (each entry serialised apart).
+ */
+export async function exportedBytes(page, format) {
+  const base64 = await page.evaluate(async (as) => {
+    const reader = new FileReader();
+    const url = new Promise((resolve, reject) => {
+      reader.onload = () => resolve(reader.result);
+      reader.onerror = () => reject(reader.error);
+    });
+    reader.readAsDataURL(new Blob([await window.anisoform.export(as)]));
+    const text = await url;
+    return text.slice(text.indexOf(',') + 1);
+  }, format);
+  return Buffer.from(base64, 'base64');
 }
 
 /** Saves a screenshot of the page for review as e2e/artifacts/NAME.png (git-ignored; CI keeps it). */
@@ -219,4 +238,26 @@ export async function recordWorkerRequests(page) {
     };
   });
   return (from = 0) => page.evaluate((start) => window.__posted.slice(start), from);
+}
+
+/**
+ * What is wrong with entries 0 to count - 1, as "index: problem" for the
+ * first `limit` of them: `problem(i)` says what is wrong with entry i, or
+ * nothing. One `expect(failures(...)).toEqual([])` checks a whole array:
+ * the runner records every expect() as a step, about 1 ms each, and one per
+ * vertex took most of a test's 15 s.
+ */
+export function failures(count, problem, limit = 5) {
+  const found = [];
+  for (let i = 0; i < count && found.length < limit; i++) {
+    const text = problem(i);
+    if (text) found.push(`${i}: ${text}`);
+  }
+  return found;
+}
+
+/** Entries of `actual` further than `tolerance` from those of `expected` (failures' form). */
+export function farFrom(actual, expected, tolerance) {
+  if (actual.length !== expected.length) return [`length ${actual.length}, expected ${expected.length}`];
+  return failures(actual.length, (k) => !(Math.abs(actual[k] - expected[k]) < tolerance) && `${actual[k]}, expected ${expected[k]}`);
 }
