@@ -525,9 +525,14 @@ export class OpStack {
     this.#persistence.disableAutosave();
   }
 
-  /** Restores the autosaved work, if any; resolves true when a saved mesh was loaded. */
+  /** Restores the autosaved work, if any: null when there was none, else {complete, view} (document-persistence.js). */
   restoreAutosave() {
     return this.#persistence.restoreAutosave();
+  }
+
+  /** Autosaves the view of the work beside it (view-autosave.js). */
+  saveView(view) {
+    return this.#persistence.saveView(view);
   }
 
   // ---- helpers -------------------------------------------------------------

@@ -23,6 +23,7 @@ import { MeshView } from '../viewer/mesh-view.js';
 import { Viewer } from '../viewer/viewer.js';
 import { SolverClient } from '../worker/solver-client.js';
 import { SolverPool } from '../worker/solver-pool.js';
+import { ViewAutosave } from '../document/view-autosave.js';
 import { Request } from '../worker/protocol.js';
 import { installFullUi } from './full-ui.js';
 import { Lifetime } from './lifetime.js';
@@ -53,7 +54,8 @@ const OPTIONS = ['ui', 'mesh', 'meshName', 'document', 'keyboard', 'autosave', '
  *             (api.open); if it cannot be opened, `mesh` is shown without
  *             it and the error is reported ('error'), `ready` resolving
  *   autosave: keep the work in IndexedDB and restore it on the next start
- *             instead of `mesh` (default false: one store per origin, so
+ *             instead of `mesh`, with its selection, tool settings and
+ *             camera (document/view-autosave.js) (default false: one store per origin, so
  *             only a page with a single modeller should turn it on)
  *   keyboard: 'focus' (default: shortcuts while focus is inside the modeller) or 'page'
  *   workerUrl, wasmUrl: where the solver worker and its WASM are, when a
@@ -184,13 +186,17 @@ export function createModeller(container, options = {}) {
   meshSource?.catch(() => {}); // reported through `ready`
   const documentSource = editDocument === undefined ? undefined : resolveDocumentSource(editDocument);
   documentSource?.catch(() => {}); // reported below, with the mesh shown without it
+  // The selection, tool, settings and camera kept beside the autosaved work (autosave only).
+  const viewAutosave = autosave ? new ViewAutosave({ editor, settings, viewer, lifetime }) : null;
   const ready = (async () => {
     const [, source] = await Promise.all([starting, meshSource]);
     if (autosave && !lifetime.disposed) {
       editor.ops.enableAutosave();
       lifetime.defer(() => editor.ops.disableAutosave());
     }
-    if (autosave && editDocument === undefined && (await editor.ops.restoreAutosave())) {
+    const restored = autosave && editDocument === undefined ? await editor.ops.restoreAutosave() : null;
+    if (restored) {
+      viewAutosave.apply(restored);
       await drawn();
       return;
     }
@@ -219,6 +225,9 @@ export function createModeller(container, options = {}) {
   ready.catch((error) => {
     if (!lifetime.disposed) reportError(error, 'The modeller could not start');
   });
+  // The view is saved from when the page shows its work: the states a
+  // restore passes through are not.
+  if (viewAutosave) ready.finally(() => viewAutosave.start()).catch(() => {});
 
   const api = createAnisoformApi({ editor, viewer, picker, ready });
 

@@ -178,6 +178,33 @@ export class Viewer extends EventEmitter {
     this.requestRender();
   }
 
+  /** Where the camera is, to put it back later (setView): a reload keeps the view (view-autosave.js). */
+  view() {
+    return {
+      position: this.camera.position.toArray(),
+      target: this.controls.target.toArray(),
+      up: this.camera.up.toArray(),
+      zoom: this.camera.zoom,
+      near: this.camera.near,
+      far: this.camera.far,
+    };
+  }
+
+  /** Puts the camera where view() found it; false (nothing moved) when `view` is not one. */
+  setView(view) {
+    const isPoint = (value) => Array.isArray(value) && value.length === 3 && value.every(Number.isFinite);
+    const positive = (value) => Number.isFinite(value) && value > 0;
+    if (!view || ![view.position, view.target, view.up].every(isPoint) || ![view.zoom, view.near, view.far].every(positive)) return false;
+    this.camera.position.fromArray(view.position);
+    this.camera.up.fromArray(view.up);
+    this.controls.target.fromArray(view.target);
+    Object.assign(this.camera, { zoom: view.zoom, near: view.near, far: view.far });
+    this.camera.updateProjectionMatrix();
+    this.controls.update();
+    this.requestRender();
+    return true;
+  }
+
   /** The camera as the solver needs it for screen drags (wasm/CONTRACT.md). */
   cameraState() {
     this.camera.updateMatrixWorld();
