@@ -95,11 +95,6 @@ export class OpStack {
     return this.#runner.restVersion;
   }
 
-  /** The base mesh as loaded, {name, bytes: a Blob of the file}, or null. */
-  get baseMesh() {
-    return this.#persistence.mesh;
-  }
-
   /** A new mesh: an empty document whose state 0 is the mesh as loaded. */
   adoptMesh({ info, positions, exact, hash, sourceBytes }, name) {
     this.#live.leave();

@@ -23,6 +23,7 @@ export class Viewer extends EventEmitter {
   #boundsSource = () => null;
   /** Target and distance the last fit left, to tell whether the user zoomed or panned since. */
   #lastFit = null;
+  #resizeObserver;
   /** The view's size in CSS pixels, as of the last resize (read without laying the page out). */
   width = 1;
   height = 1;
@@ -66,19 +67,33 @@ export class Viewer extends EventEmitter {
     this.controls = new OrbitControls(this.camera, this.canvas);
     this.controls.addEventListener('change', () => this.requestRender());
 
-    const resizeObserver = new ResizeObserver(() => this.#resize());
-    resizeObserver.observe(container);
+    this.#resizeObserver = new ResizeObserver(() => this.#resize());
+    this.#resizeObserver.observe(container);
     this.#resize();
     lifetime.defer(() => {
       this.#disposed = true;
       cancelAnimationFrame(this.#frameRequest);
-      resizeObserver.disconnect();
+      this.#resizeObserver.disconnect();
       this.controls.dispose();
       this.renderer.dispose();
       // Browsers keep only a few WebGL contexts per page: give this one back now.
       this.renderer.forceContextLoss();
       this.canvas.remove();
     });
+  }
+
+  /**
+   * Moves the view into `container` (a new layout of the same modeller: the
+   * element's ui changed), with what was drawn over it (`overlays`: the
+   * axis gizmo, the brush cursor...); the camera and the GL context stay.
+   */
+  moveTo(container, overlays = []) {
+    this.#resizeObserver.unobserve(this.container);
+    this.container = container;
+    container.prepend(this.canvas);
+    container.append(...overlays);
+    this.#resizeObserver.observe(container);
+    this.#resize();
   }
 
   /** Draws the scene in the next animation frame (once, however often it is asked before). */
