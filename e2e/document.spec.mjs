@@ -27,6 +27,20 @@ async function editSpot(page) {
   });
 }
 
+// The view saved beside the work of the tab that saved last (view-autosave.js), or null.
+const savedView = (page) => page.evaluate(() => new Promise((resolve) => {
+  const request = indexedDB.open('anisoform', 1);
+  request.onsuccess = () => {
+    const store = request.result.transaction('autosave').objectStore('autosave');
+    const latest = store.get('current');
+    latest.onsuccess = () => {
+      if (!latest.result) return resolve(null);
+      const get = store.get(`view:${latest.result.tab}`);
+      get.onsuccess = () => resolve(get.result ?? null);
+    };
+  };
+}));
+
 const bitwise = (a, b) => a.length === b.length && a.every((value, i) => Object.is(value, b[i]));
 
 // The autosaved work a new tab would restore, {meshName, document}: the
@@ -635,6 +649,8 @@ test('a restore of the autosaved work stopped with Esc says the edits stay saved
     return api.document();
   });
   await expect.poll(() => savedWork(page).then((record) => record?.document.ops.length ?? 0)).toBe(2);
+  const selection = await page.evaluate(() => Array.from(window.anisoform.selection()));
+  await expect.poll(() => savedView(page).then((view) => view?.work.ops.length === 2 && view.selection !== null)).toBe(true);
   // Cancelled once the first saved edit's replay is sent to the worker (the
   // first reload only). Not on its progress: a solve under 150 ms shows none,
   // and on a fast machine the restore then ended before any cancel.
@@ -655,10 +671,78 @@ test('a restore of the autosaved work stopped with Esc says the edits stay saved
   await page.evaluate(() => window.anisoform.ready);
   await expect(page.getByTestId('notice')).toContainText('Putting back the saved work was stopped: its 2 edits stay saved');
   expect(await page.evaluate(() => window.anisoform.document().ops.length)).toBe(0);
+  // The selection saved with the two edits is not put on the work without them.
+  expect(await page.evaluate(() => window.anisoform.selection().every((weight) => weight === 0))).toBe(true);
   expect((await savedWork(page)).document.ops.length).toBe(2);
   await page.reload();
   await page.evaluate(() => window.anisoform.ready);
   expect(await page.evaluate(() => window.anisoform.document().ops)).toEqual(document.ops);
+  expect(bitwise(await page.evaluate(() => Array.from(window.anisoform.selection())), selection)).toBe(true);
+  expect(pageErrors).toEqual([]);
+});
+
+const closeTo = (values) => values.map((value) => expect.closeTo(value, 9));
+
+// A reload brought back the mesh and the edits only: the selected region,
+// the tool, its amounts, the direction, method and brush, and the view were
+// gone (the selection empty, the Select tool, the defaults, the camera framed).
+test('a reload puts back the selection, the tool and its settings and the camera; Apply and Undo go on from them', async ({ page }) => {
+  const pageErrors = await openApp(page);
+  await page.evaluate(() => window.anisoform.select({ sphere: { center: [0, 0.3, 0.5], radius: 0.4 } }, { falloff: 0.2 }));
+  const type = async (field, value) => {
+    await page.locator(field).fill(value);
+    await page.locator(field).press('Tab');
+  };
+  await type('#brush-radiusPercent', '12');
+  await page.getByTestId('tool-stretch').click();
+  await type('#stretch-along', '1.3');
+  await type('#stretch-across', '0.9');
+  await page.locator('#direction-source').selectOption('global');
+  await page.locator('#direction-axis').selectOption('y');
+  await page.locator('#solver-method').selectOption('andefgrad');
+  await type('#solver-iterations', '30');
+  // Orbited, zoomed and panned by key.
+  await page.getByTestId('viewport').focus();
+  for (const key of ['Shift+ArrowLeft', 'Shift+ArrowLeft', 'Shift+ArrowUp', '+', '+', 'ArrowLeft']) await page.keyboard.press(key);
+  await page.getByTestId('apply-stretch').click();
+  await expect.poll(() => page.evaluate(() => window.anisoform.document().ops.length)).toBe(1);
+  const before = await page.evaluate(() => ({ selection: Array.from(window.anisoform.selection()), camera: window.anisoform.camera(),
+    positions: Array.from(window.anisoform.positions()), document: window.anisoform.document() }));
+  expect(before.document.ops[0].op).toMatchObject({ method: 'andefgrad', maxIterations: 30, transform: { scale: [1.3, 0.9] } });
+  await expect.poll(() => savedView(page).then((view) => view?.work.ops.length === 1
+    && view.camera.position.every((value, k) => value === before.camera.position[k]))).toBe(true);
+
+  await page.reload();
+  await page.evaluate(() => window.anisoform.ready);
+  const after = await page.evaluate(() => ({ selection: Array.from(window.anisoform.selection()), camera: window.anisoform.camera(),
+    positions: Array.from(window.anisoform.positions()) }));
+  expect(bitwise(after.positions, before.positions)).toBe(true);
+  expect(bitwise(after.selection, before.selection)).toBe(true);
+  expect(after.selection.filter((weight) => weight > 0 && weight < 1).length).toBeGreaterThan(0); // the soft border too
+  for (const key of ['position', 'target', 'view', 'projection']) expect(after.camera[key]).toEqual(closeTo(before.camera[key]));
+  await expect(page.getByTestId('tool-stretch')).toHaveAttribute('aria-pressed', 'true');
+  await expect(page.locator('#stretch-along')).toHaveValue('1.3');
+  await expect(page.locator('#stretch-across')).toHaveValue('0.9');
+  await expect(page.locator('#direction-source')).toHaveValue('global');
+  await expect(page.locator('#direction-axis')).toHaveValue('y');
+  await expect(page.locator('#solver-method')).toHaveValue('andefgrad');
+  await expect(page.locator('#solver-iterations')).toHaveValue('30');
+  await expect(page.locator('#brush-radiusPercent')).toHaveValue('12');
+  // Undo takes back the edit (not the selection put back), and Apply makes
+  // the same edit on the selection put back.
+  const undo = page.getByTestId('undo');
+  await expect(undo).toHaveAttribute('title', `Undo ${before.document.ops[0].label} (Ctrl+Z)`);
+  await page.getByTestId('apply-stretch').click();
+  await expect.poll(() => page.evaluate(() => window.anisoform.document().ops.length)).toBe(2);
+  const applied = await page.evaluate(() => window.anisoform.document());
+  expect(applied.ops[1].op).toEqual(before.document.ops[0].op);
+  const region = applied.regions.find((r) => r.name === applied.ops[1].region).steps[0].region;
+  expect(region.vertices).toEqual(before.selection.flatMap((weight, i) => (weight > 0 ? [i] : [])));
+  expect(region.weights).toEqual(closeTo(before.selection.filter((weight) => weight > 0)));
+  expect(bitwise(await page.evaluate(() => Array.from(window.anisoform.positions())), before.positions)).toBe(false);
+  await undo.click();
+  await expect.poll(() => page.evaluate(() => window.anisoform.document().ops.length)).toBe(1);
+  expect(bitwise(await page.evaluate(() => Array.from(window.anisoform.positions())), before.positions)).toBe(true);
   expect(pageErrors).toEqual([]);
 });
 

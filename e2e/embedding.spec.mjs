@@ -295,8 +295,8 @@ test('<anisoform-modeller>: src loads, events come out as DOM events, .api works
   });
   expect(edited).toEqual(['selection', 'positions', 'document']); // a committed edit is a new op in the document
 
-  // A new ui rebuilds the modeller on the same solver worker, once it is
-  // idle, with the work it held: the mesh loaded and its edits, bitwise.
+  // A new ui lays the same modeller out anew: the same solver worker, the
+  // mesh loaded and its edits, bitwise, and no load heard again.
   const rebuilt = await page.evaluate(async () => {
     const loaded = new Promise((resolve) => {
       window.element.addEventListener('change', resolve, { once: true });
@@ -308,11 +308,13 @@ test('<anisoform-modeller>: src loads, events come out as DOM events, .api works
     await window.element.api.select({ box: { min: [-1, 0.5, -1], max: [1, 2, 2] } });
     await window.element.api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.3, 1] } });
     const edited = Array.from(window.element.api.positions());
-    const changed = new Promise((resolve) => {
-      window.element.addEventListener('change', (event) => resolve(event.detail), { once: true });
-    });
+    const changes = [];
+    const heard = (event) => changes.push(event.detail);
+    window.element.addEventListener('change', heard);
     window.element.setAttribute('ui', 'full');
     await window.element.api.ready;
+    await new Promise((resolve) => setTimeout(resolve, 100));
+    window.element.removeEventListener('change', heard);
     const positions = window.element.api.positions();
     return {
       newWorkers: window.__census().workersCreated - created,
@@ -321,10 +323,10 @@ test('<anisoform-modeller>: src loads, events come out as DOM events, .api works
       ops: window.element.api.document().ops.length,
       kept: positions.length === edited.length && edited.every((value, i) => Object.is(value, positions[i])),
       moved: edited.some((value, i) => value !== rest[i]),
-      change: await changed,
+      changes,
     };
   });
-  expect(rebuilt).toEqual({ newWorkers: 0, panel: 1, vertices: 2930, ops: 1, kept: true, moved: true, change: { reason: 'load' } });
+  expect(rebuilt).toEqual({ newWorkers: 0, panel: 1, vertices: 2930, ops: 1, kept: true, moved: true, changes: [] });
 
   // A ui not known: an 'error' event naming it, and the modeller kept with its work; a known one then rebuilds.
   const refusedUi = await page.evaluate(async () => {
@@ -449,6 +451,66 @@ test('<anisoform-modeller>: src loads, events come out as DOM events, .api works
   expect(shared.taken).toEqual({ kept: 0, newWorkers: 1, vertices: 649 });
   expect(shared.workersAfter).toBe(workersBefore);
   expect(shared.refusal).toBe('bad-parameter: anisoform-modeller: solvers must be a pool made by createSolverPool(), or null');
+  expect(pageErrors).toEqual([]);
+});
+
+// A ui change while an edit solved rebuilt the modeller: the edit was
+// rejected ("disposed"), and the load was replayed to the listeners.
+test('<anisoform-modeller>: a ui change while an edit solves lays the same modeller out: the edit is applied, no load is heard again', async ({ page }) => {
+  const pageErrors = await openExample(page);
+  const outcome = await page.evaluate(async () => {
+    const element = document.createElement('anisoform-modeller');
+    element.setAttribute('src', '../spot_triangulated.obj');
+    element.style.height = '300px';
+    document.body.append(element);
+    await element.api.ready;
+    const { api } = element;
+    const created = window.__census().workersCreated;
+    await api.select({ box: { min: [-1, 0.5, -1], max: [1, 2, 2] } });
+    const rest = Array.from(api.positions());
+    const heard = [];
+    for (const type of ['change', 'error']) element.addEventListener(type, (event) => heard.push(`${type} ${event.detail.reason ?? event.detail.message}`));
+    const apiHeard = [];
+    for (const event of ['change', 'document', 'positions', 'error']) {
+      api.on(event, (payload) => apiHeard.push(event === 'change' ? `change ${payload.reason}` : event));
+    }
+    const edit = api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.3, 1] } })
+      .then(() => 'applied', (error) => `rejected: ${error.message}`);
+    element.setAttribute('ui', 'none');
+    const panelsWhileSolving = element.querySelectorAll('.side-panel').length;
+    const result = await edit;
+    await api.ready;
+    await new Promise((resolve) => setTimeout(resolve, 100));
+    const edited = Array.from(api.positions());
+    const none = {
+      result, panelsWhileSolving, heard: [...heard], apiHeard: [...apiHeard],
+      ops: api.document().ops.length,
+      moved: edited.some((value, i) => value !== rest[i]),
+      selected: api.selection().filter((weight) => weight > 0).length,
+      canvases: element.querySelectorAll('canvas').length,
+    };
+    // Back to the full ui: its panels show the work as it is (the edit to undo), and work it.
+    element.setAttribute('ui', 'full');
+    await api.ready;
+    const undo = element.querySelector('[data-testid=undo]');
+    const full = { undoTitle: undo.title, edits: element.querySelectorAll('[data-testid=op-list] > li').length,
+      selection: element.querySelector('.selection-count').textContent };
+    undo.click();
+    await new Promise((resolve) => setTimeout(resolve, 100));
+    const undone = api.positions();
+    return { none, full, undone: undone.every((value, i) => value === rest[i]), newWorkers: window.__census().workersCreated - created,
+      heardAfter: heard.slice(none.heard.length) };
+  });
+  expect(outcome.none).toMatchObject({ result: 'applied', panelsWhileSolving: 0, heard: ['change positions', 'change document'], ops: 1, moved: true,
+    canvases: 1 });
+  expect(outcome.none.apiHeard).toEqual(['positions', 'change positions', 'document', 'change document']);
+  expect(outcome.none.selected).toBeGreaterThan(0);
+  expect(outcome.full.undoTitle).toMatch(/^Undo Stretch/);
+  expect(outcome.full.edits).toBe(1);
+  expect(outcome.full.selection).toMatch(/vertices selected$/);
+  expect(outcome.undone).toBe(true);
+  expect(outcome.newWorkers).toBe(0);
+  expect(outcome.heardAfter).toEqual(['change positions', 'change document']);
   expect(pageErrors).toEqual([]);
 });
 

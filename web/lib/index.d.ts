@@ -81,6 +81,11 @@ export interface Modeller {
   open(document: unknown, mesh?: MeshSource, name?: string): Promise<void>;
   /** A glTF mesh drawn with its own materials (true) or the editing surface (false), as the option `materials`. */
   setMaterials(on: boolean): void;
+  /**
+   * Lays the same modeller out for another ui ('full' | 'none'), as the element's `ui` attribute does:
+   * its worker, mesh, edits, selection, camera and an edit in flight go on; throws 'bad-parameter' for another value.
+   */
+  setUi(ui: 'full' | 'none'): void;
   /** Cancels the pending frame, stops the ResizeObservers, the worker (and its WASM session; an idle worker goes back to the `solvers` pool) and removes every listener and element it added. */
   dispose(): void;
   /** Listeners and clean-up steps the modeller still holds (0 after dispose). */

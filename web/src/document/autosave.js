@@ -94,11 +94,18 @@ async function transact(mode, work) {
   }
 }
 
+// Beside each tab's work, under 'view:' and its key, the view of that work
+// (view-autosave.js: the selection, the tool and its settings, the camera):
+// written far more often than the work, so apart from its mesh file.
+const viewKey = (workKey) => `view:${workKey}`;
+
 // Off until enable(): one database per origin, so only the standalone site
 // autosaves; two embedded modellers on one page would overwrite each other.
 export class Autosave {
   /** Saves are chained, so the last one written is the last one asked for. */
   #chain = Promise.resolve();
+  /** The key of the work load() found last: its view goes with it (loadView). */
+  #loadedKey = null;
   enabled = false;
 
   save({ document, meshName, meshBytes }) {
@@ -121,15 +128,45 @@ export class Autosave {
   async load() {
     if (!this.enabled) return null;
     await this.#chain;
+    this.#loadedKey = null;
     try {
       const own = await transact('readonly', (store) => store.get(tabKey()));
-      if (own) return own;
+      if (own) return this.#found(tabKey(), own);
       const latest = await transact('readonly', (store) => store.get(LATEST));
       // A record of a build before the tabs' own: the work itself.
       if (!latest?.tab) return latest ?? null;
-      return (await transact('readonly', (store) => store.get(latest.tab))) ?? null;
+      return this.#found(latest.tab, await transact('readonly', (store) => store.get(latest.tab)));
     } catch (error) {
       throw storageError('read the saved work', error);
+    }
+  }
+
+  #found(key, record) {
+    this.#loadedKey = record ? key : null;
+    return record ?? null;
+  }
+
+  /** Saves this tab's view (view-autosave.js), after the saves asked for before. */
+  saveView(view) {
+    if (!this.enabled) return Promise.resolve();
+    const key = viewKey(tabKey());
+    const saving = this.#chain.then(() => this.enabled && transact('readwrite', (store) => {
+      store.put(view, key);
+    }));
+    this.#chain = saving.catch(() => {});
+    return saving.catch((error) => {
+      throw storageError('save the view', error);
+    });
+  }
+
+  /** The view saved beside the work load() found last (its tab's), or null. */
+  async loadView() {
+    if (!this.enabled || !this.#loadedKey) return null;
+    const key = viewKey(this.#loadedKey);
+    try {
+      return (await transact('readonly', (store) => store.get(key))) ?? null;
+    } catch (error) {
+      throw storageError('read the saved view', error);
     }
   }
 }
@@ -143,6 +180,9 @@ function pruneTabs(store, own) {
     const byAge = keys.result.map((key, i) => ({ key, savedAt: records.result[i]?.savedAt ?? 0 }))
       .filter(({ key }) => key !== own)
       .sort((a, b) => b.savedAt - a.savedAt);
-    byAge.slice(KEEP_TABS - 1).forEach(({ key }) => store.delete(key));
+    byAge.slice(KEEP_TABS - 1).forEach(({ key }) => {
+      store.delete(key);
+      store.delete(viewKey(key));
+    });
   };
 }

@@ -126,28 +126,41 @@ export class DocumentPersistence {
     this.#autosave.enabled = false;
   }
 
-  /** Restores the autosaved work, if any; resolves true when a saved mesh was loaded. */
+  /** Autosaves the view of the work (view-autosave.js) beside it. */
+  saveView(view) {
+    return this.#autosave.saveView(view);
+  }
+
+  /**
+   * Restores the autosaved work, if any. Resolves null when no saved mesh
+   * was loaded, else {complete, view}: complete, whether all its edits were
+   * put back (not stopped, not failed); view, the view saved beside it
+   * (view-autosave.js), or null.
+   */
   async restoreAutosave() {
     const record = await this.#autosave.load().catch((error) => {
       this.#editor.report(error, 'Autosave');
       return null;
     });
-    if (!record) return false;
+    if (!record) return null;
     this.restoring = true;
     try {
       await this.#editor.load(record.meshBytes, record.meshName);
     } finally {
       this.restoring = false;
     }
-    await this.open(record.document).catch((error) => {
+    // A view that cannot be read leaves the work as restored, the view as a new page has it.
+    const view = this.#autosave.loadView().catch(() => null);
+    const complete = await this.open(record.document).then(() => true, (error) => {
       // Stopped (Esc while it replays), the saved work is not lost yet: the
       // record stays until the next change here is saved over it. The
       // cancel's own words ("the history is as it was") hid that a first
       // edit then replaced every saved edit.
       if (error?.code === 'cancelled') this.#editor.report(restoreStoppedError(record.document?.ops?.length ?? 0));
       else this.#editor.report(error, 'The saved work could not be replayed');
+      return false;
     });
-    return true;
+    return { complete, view: await view };
   }
 }
 

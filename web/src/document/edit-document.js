@@ -134,3 +134,18 @@ export function regionSteps(rule, selection, selectionCount) {
   }
   return [{ region: { vertices, weights } }];
 }
+
+/**
+ * Whether two documents' JSON (toJSON) say the same: the same values, the
+ * order of an object's keys aside (a document read back by fromJSON lists an
+ * op's keys in another order).
+ */
+export function sameDocument(a, b) {
+  return canonical(a) === canonical(b);
+}
+
+function canonical(value) {
+  return JSON.stringify(value, (_, v) => (v && typeof v === 'object' && !Array.isArray(v)
+    ? Object.fromEntries(Object.keys(v).sort().map((key) => [key, v[key]]))
+    : v));
+}

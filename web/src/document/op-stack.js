@@ -95,11 +95,6 @@ export class OpStack {
     return this.#runner.restVersion;
   }
 
-  /** The base mesh as loaded, {name, bytes: a Blob of the file}, or null. */
-  get baseMesh() {
-    return this.#persistence.mesh;
-  }
-
   /** A new mesh: an empty document whose state 0 is the mesh as loaded. */
   adoptMesh({ info, positions, exact, hash, sourceBytes }, name) {
     this.#live.leave();
@@ -525,9 +520,14 @@ export class OpStack {
     this.#persistence.disableAutosave();
   }
 
-  /** Restores the autosaved work, if any; resolves true when a saved mesh was loaded. */
+  /** Restores the autosaved work, if any: null when there was none, else {complete, view} (document-persistence.js). */
   restoreAutosave() {
     return this.#persistence.restoreAutosave();
+  }
+
+  /** Autosaves the view of the work beside it (view-autosave.js). */
+  saveView(view) {
+    return this.#persistence.saveView(view);
   }
 
   // ---- helpers -------------------------------------------------------------

@@ -81,6 +81,15 @@ export class SelectionState {
     return document.selectionCount;
   }
 
+  /**
+   * Puts back the selection a reload kept (view-autosave.js), as no step of
+   * its own: the history rebuilt from the edits is as it was, and Undo takes
+   * back the last edit, not this.
+   */
+  restore(weights) {
+    this.#apply(weights);
+  }
+
   /** Shows weights of a stroke in progress without committing them. */
   show(weights) {
     this.#editor.emit('selection', { weights, count: null, live: true });

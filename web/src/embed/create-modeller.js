@@ -23,22 +23,13 @@ import { MeshView } from '../viewer/mesh-view.js';
 import { Viewer } from '../viewer/viewer.js';
 import { SolverClient } from '../worker/solver-client.js';
 import { SolverPool } from '../worker/solver-pool.js';
+import { ViewAutosave } from '../document/view-autosave.js';
 import { Request } from '../worker/protocol.js';
 import { installFullUi } from './full-ui.js';
+import { primeEditorListeners, scopedEmitter } from './ui-scope.js';
 import { Lifetime } from './lifetime.js';
 import { resolveDocumentSource, resolveMeshSource } from './mesh-source.js';
 import { UI_MODES, buildLayout } from './modeller-layout.js';
-
-// The work of each modeller made here, for the element's rebuild (modellerWork).
-const works = new WeakMap();
-
-/**
- * What `modeller` holds, to build another on: {mesh: {name, bytes}, document}
- * (the document only when it has ops), or null before a mesh is loaded.
- */
-export function modellerWork(modeller) {
-  return works.get(modeller)?.() ?? null;
-}
 
 const OPTIONS = ['ui', 'mesh', 'meshName', 'document', 'keyboard', 'autosave', 'workerUrl', 'wasmUrl', 'solvers', 'materials'];
 
@@ -53,7 +44,8 @@ const OPTIONS = ['ui', 'mesh', 'meshName', 'document', 'keyboard', 'autosave', '
  *             (api.open); if it cannot be opened, `mesh` is shown without
  *             it and the error is reported ('error'), `ready` resolving
  *   autosave: keep the work in IndexedDB and restore it on the next start
- *             instead of `mesh` (default false: one store per origin, so
+ *             instead of `mesh`, with its selection, tool settings and
+ *             camera (document/view-autosave.js) (default false: one store per origin, so
  *             only a page with a single modeller should turn it on)
  *   keyboard: 'focus' (default: shortcuts while focus is inside the modeller) or 'page'
  *   workerUrl, wasmUrl: where the solver worker and its WASM are, when a
@@ -79,8 +71,13 @@ export function createModeller(container, options = {}) {
   // Milestones for the page's timing (app.spec): the first modeller's count.
   const starting = editor.start().then(() => performance.mark('anisoform:solver-ready'));
 
+  // The layout of the ui shown, and what its parts hold (its panels'
+  // listeners among them: ui-scope.js), until setUi lays the modeller out anew.
+  let currentUi = ui;
   const layout = buildLayout(container, ui);
-  lifetime.defer(() => layout.element.remove());
+  let uiLifetime = layoutLifetime(layout);
+  lifetime.defer(() => uiLifetime.dispose());
+  const layoutNodes = new Set(layout.viewport.children);
   const settings = new Settings();
   settings.values.display.materials = materials;
   const viewer = new Viewer(layout.viewport, lifetime);
@@ -129,7 +126,7 @@ export function createModeller(container, options = {}) {
   // Errors the editor has reported already are not shown twice.
   const reportError = (error, context) => editor.report(error, context);
   const directionDisplay = new DirectionDisplay({ editor, settings, viewer, meshView, lifetime });
-  new HeatmapDisplay({ editor, settings, meshView, viewport: layout.viewport, lifetime, reportError, fileLook: () => gltfDisplay.active });
+  const heatmapDisplay = new HeatmapDisplay({ editor, settings, meshView, viewport: layout.viewport, lifetime, reportError, fileLook: () => gltfDisplay.active });
   const tools = createTools({
     editor,
     viewer,
@@ -141,7 +138,7 @@ export function createModeller(container, options = {}) {
     arrowPreview: (arrows) => directionDisplay.showArrows(arrows),
   });
   // Without the panel there is no way to pick a tool: the pointer orbits only.
-  const activeTool = ui === 'full' ? () => tools.get(settings.values.tool) ?? null : () => null;
+  const activeTool = () => (currentUi === 'full' ? tools.get(settings.values.tool) ?? null : null);
   const gestures = new PointerGestures(viewer, picker, activeTool, lifetime);
   // Arrows, the last screen drag and a stroke in progress belong to the mesh
   // they were made on; a load drops them before the new mesh is shown.
@@ -184,13 +181,17 @@ export function createModeller(container, options = {}) {
   meshSource?.catch(() => {}); // reported through `ready`
   const documentSource = editDocument === undefined ? undefined : resolveDocumentSource(editDocument);
   documentSource?.catch(() => {}); // reported below, with the mesh shown without it
+  // The selection, tool, settings and camera kept beside the autosaved work (autosave only).
+  const viewAutosave = autosave ? new ViewAutosave({ editor, settings, viewer, lifetime }) : null;
   const ready = (async () => {
     const [, source] = await Promise.all([starting, meshSource]);
     if (autosave && !lifetime.disposed) {
       editor.ops.enableAutosave();
       lifetime.defer(() => editor.ops.disableAutosave());
     }
-    if (autosave && editDocument === undefined && (await editor.ops.restoreAutosave())) {
+    const restored = autosave && editDocument === undefined ? await editor.ops.restoreAutosave() : null;
+    if (restored) {
+      viewAutosave.apply(restored);
       await drawn();
       return;
     }
@@ -219,25 +220,61 @@ export function createModeller(container, options = {}) {
   ready.catch((error) => {
     if (!lifetime.disposed) reportError(error, 'The modeller could not start');
   });
+  // The view is saved from when the page shows its work: the states a
+  // restore passes through are not.
+  if (viewAutosave) ready.finally(() => viewAutosave.start()).catch(() => {});
 
   const api = createAnisoformApi({ editor, viewer, picker, ready });
 
-  const keyTarget = keyboard === 'page' ? window : layout.root;
-  installKeyboardShortcuts(keyTarget, lifetime, {
-    undo: () => api.undo(),
-    redo: () => api.redo(),
-    cancel: () => gestures.cancel() || editor.cancelGesture() || editor.cancelSolve() || editor.ops.dropPreview(),
-    frame: () => api.frame(),
-  });
-  // The panel's own form events stay inside: outside, 'change' is the api's
-  // (the <anisoform-modeller> element relays it under that name).
-  lifetime.listen(layout.root, 'change', (event) => event.stopPropagation());
   // Arrow keys pan and Shift+arrows orbit while the 3D view has the focus
   // (about 9° a press on a 400 px high view).
   viewer.controls.listenToKeyEvents(viewer.canvas);
   viewer.controls.keyRotateSpeed = 10;
   installKeyboardZoom(viewer, lifetime);
-  if (ui === 'full') installFullUi(layout, { api, editor, settings, tools, viewer, picker, reportError, lifetime, keyTarget });
+  // What is drawn over the view (the axis gizmo, the brush cursor, the heat
+  // map's legend) moves with it to a new layout.
+  const overlays = [...layout.viewport.children].filter((node) => node !== viewer.canvas && !layoutNodes.has(node));
+
+  // The parts of a layout: its keys, and with ui 'full' the panels.
+  function installUi(shown, shownUi, held, { prime = false } = {}) {
+    const keyTarget = keyboard === 'page' ? window : shown.root;
+    installKeyboardShortcuts(keyTarget, held, {
+      undo: () => api.undo(),
+      redo: () => api.redo(),
+      cancel: () => gestures.cancel() || editor.cancelGesture() || editor.cancelSolve() || editor.ops.dropPreview(),
+      frame: () => api.frame(),
+    });
+    // The panel's own form events stay inside: outside, 'change' is the api's
+    // (the <anisoform-modeller> element relays it under that name).
+    held.listen(shown.root, 'change', (event) => event.stopPropagation());
+    if (shownUi !== 'full') return;
+    const heard = [];
+    installFullUi(shown, {
+      api, editor: scopedEmitter(editor, held, heard), settings: scopedEmitter(settings, held, heard),
+      tools, viewer, picker, reportError, lifetime: held, keyTarget,
+    });
+    if (prime) primeEditorListeners(heard, editor);
+  }
+  installUi(layout, ui, uiLifetime);
+
+  /**
+   * Lays the same modeller out for another ui ('full' or 'none'): its worker,
+   * mesh, document, selection, camera and an edit in flight go on; only the
+   * panels change (the element's ui attribute).
+   */
+  function setUi(next) {
+    if (!UI_MODES.includes(next)) throw badParameter(`setUi: ui must be ${UI_MODES.map((m) => `'${m}'`).join(' or ')}, got '${next}'`);
+    if (next === currentUi || lifetime.disposed) return;
+    gestures.cancel(); // a stroke of the panel's tool ends with the panel
+    const nextLayout = buildLayout(container, next);
+    viewer.moveTo(nextLayout.viewport, overlays);
+    heatmapDisplay.legend.moveTo(nextLayout.viewport);
+    const previous = uiLifetime;
+    currentUi = next;
+    uiLifetime = layoutLifetime(nextLayout);
+    previous.dispose();
+    installUi(nextLayout, next, uiLifetime, { prime: true });
+  }
 
   /** Loads a URL as well as what api.load takes; failures are reported as 'error' events too. */
   async function load(source, name) {
@@ -284,6 +321,7 @@ export function createModeller(container, options = {}) {
       if (typeof on !== 'boolean') throw badParameter(`setMaterials: expected true or false, got ${JSON.stringify(on)}`);
       settings.update('display', { materials: on });
     },
+    setUi,
     /** Stops everything this modeller started; the container is left as it was. */
     dispose: () => lifetime.dispose(),
     /** Listeners and clean-up steps still held (0 after dispose): for tests. */
@@ -291,12 +329,14 @@ export function createModeller(container, options = {}) {
       return lifetime.size;
     },
   });
-  works.set(modeller, () => {
-    const base = editor.ops.baseMesh;
-    if (!base) return null;
-    return { mesh: base, document: editor.ops.document?.ops.length ? api.document() : undefined };
-  });
   return modeller;
+}
+
+// What one layout holds, its DOM first (removed when the layout is left).
+function layoutLifetime(layout) {
+  const held = new Lifetime();
+  held.defer(() => layout.element.remove());
+  return held;
 }
 
 // The containers that hold a live modeller: a second one in the same

@@ -3,19 +3,18 @@
 // or changed), edits (the URL of saved edits, opened on src when set or
 // changed: both changed together open the edits on the new mesh, or show it
 // without them when they cannot be opened), ui
-// ('full', the default, or 'none'; a change rebuilds the modeller with the
-// work it holds: the mesh loaded and its edits; a value not known is
-// reported and the modeller kept). The api's
+// ('full', the default, or 'none'; a change lays the same modeller out
+// anew: its worker, mesh, edits and an edit in flight go on, and listeners
+// hear no load again; a value not known is reported and the modeller kept). The api's
 // events come out as DOM CustomEvents ('change', 'error', 'progress', with the
 // api's payload as `detail`); `.api` is the modeller's api while connected.
 // Removing the element disposes the modeller (once the task that removed it
 // has not put it back: moved to another parent, it keeps its work);
 // connecting it again builds a new one.
-// The solver worker: a new ui rebuilds the modeller on the same worker (the
-// element's own pool, ended on disconnect); `.solvers`, a pool from
+// The solver worker: the element's own pool (ended on disconnect); `.solvers`, a pool from
 // createSolverPool, shares workers with other elements and modellers: the
 // worker then goes back to it on disconnect.
-import { createModeller, modellerWork } from './create-modeller.js';
+import { createModeller } from './create-modeller.js';
 import { ElementApi } from './element-api.js';
 import { UI_MODES } from './modeller-layout.js';
 import { badParameter } from '../shared/errors.js';
@@ -39,10 +38,8 @@ export class AnisoformModellerElement extends ElementBase {
   /** Whether src changed since the last load (a change of edits alone opens them on the mesh loaded). */
   #srcChanged = false;
   #reconciling = false;
-  /** The ui the modeller was built with. */
+  /** The ui the modeller is laid out for. */
   #ui = 'full';
-  /** The work a ui change built the modeller on, until it has opened it (another change then goes on from it). */
-  #startWork = null;
   /** `.api`: one object across ui changes (element-api.js). */
   #api = new ElementApi();
   /** Settles `.api.ready` with the load a src or edits change starts. */
@@ -92,7 +89,7 @@ export class AnisoformModellerElement extends ElementBase {
   attributeChangedCallback(name, previous, value) {
     if (!this.#modeller || previous === value) return;
     if (name === 'ui') {
-      this.#rebuildFor(value ?? 'full');
+      this.#layOutFor(value ?? 'full');
     } else if (name === 'materials') {
       this.#modeller.setMaterials(value !== null);
     } else {
@@ -140,24 +137,23 @@ export class AnisoformModellerElement extends ElementBase {
     this.#settleReady = null;
   }
 
-  // A new ui: the work (the mesh loaded, its edits replayed) goes on in the
-  // new modeller; an unknown value is refused as the option is, as an
-  // 'error' event, and the modeller stays as it is.
-  #rebuildFor(ui) {
+  // A new ui: the same modeller laid out anew (createModeller's setUi). It
+  // was rebuilt on its work: an edit in flight was rejected ("disposed") and
+  // the load replayed to the listeners. An unknown value is refused as the
+  // option is, as an 'error' event, and the modeller stays as it is.
+  #layOutFor(ui) {
     if (!UI_MODES.includes(ui)) {
       const message = `anisoform-modeller: ui must be ${UI_MODES.map((m) => `'${m}'`).join(' or ')}, got '${ui}'`;
       this.dispatchEvent(new CustomEvent('error', { detail: { code: 'bad-parameter', message } }));
       return;
     }
     if (ui === this.#ui) return;
-    // A modeller still opening the work it was built on holds none of it yet.
-    const work = this.#startWork ?? modellerWork(this.#modeller);
-    this.#teardown();
-    this.#build(work);
+    this.#modeller.setUi(ui);
+    this.#ui = ui;
   }
 
-  // The modeller from the attributes, or on `work` (modellerWork) when a ui change rebuilds it.
-  #build(work = null) {
+  // The modeller from the attributes.
+  #build() {
     const src = this.getAttribute('src');
     if (this.#sharedSolvers) {
       this.#ownSolvers?.dispose();
@@ -169,8 +165,7 @@ export class AnisoformModellerElement extends ElementBase {
     const ui = this.getAttribute('ui') ?? 'full';
     // A ui not known at connection builds the default one (and says so), as a change to it keeps the last.
     this.#ui = UI_MODES.includes(ui) ? ui : 'full';
-    let start = { ...(src ? { mesh: src } : {}), ...(src && edits ? { document: edits } : {}) };
-    if (work) start = { mesh: work.mesh.bytes, meshName: work.mesh.name, ...(work.document ? { document: work.document } : {}) };
+    const start = { ...(src ? { mesh: src } : {}), ...(src && edits ? { document: edits } : {}) };
     this.#modeller = createModeller(this, {
       ui: this.#ui,
       materials: this.hasAttribute('materials'),
@@ -181,12 +176,7 @@ export class AnisoformModellerElement extends ElementBase {
     const { api } = modeller;
     this.#api.attach(api);
     this.#offs = RELAYED_EVENTS.map((type) => api.on(type, (detail) => this.dispatchEvent(new CustomEvent(type, { detail }))));
-    this.#startWork = work;
-    const opened = () => {
-      if (this.#modeller === modeller) this.#startWork = null;
-    };
-    api.ready.then(opened, opened); // a failure is reported as an 'error' event
-    if (ui !== this.#ui) this.#rebuildFor(ui);
+    if (ui !== this.#ui) this.#layOutFor(ui);
   }
 
   #teardown() {

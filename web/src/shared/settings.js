@@ -43,16 +43,65 @@ export function defaultSettings() {
 }
 
 export class Settings extends EventEmitter {
+  // What a value of each setting may be: 'section' (a value of its own, as
+  // the tool) or 'section.key' -> accept(value), the value kept (a number
+  // clamped to its field's range) or undefined when it is refused. The
+  // panels declare them where their fields are (ui/fields.js), so a value
+  // typed in a field and one put back after a reload (restore) pass the same
+  // rule; a setting no field edits has none, and is not put back.
+  #rules = new Map();
+
   constructor(values = defaultSettings()) {
     super();
     this.values = values;
   }
 
+  /** Declares the rule of a setting (key undefined: the section is one value); see #rules. */
+  defineRule(section, key, accept) {
+    this.#rules.set(key === undefined ? section : `${section}.${key}`, accept);
+  }
+
+  /** `value` as the rule of the setting keeps it, or undefined when refused (or when it has no rule). */
+  accepted(section, key, value) {
+    return this.#rules.get(key === undefined ? section : `${section}.${key}`)?.(value);
+  }
+
+  /** A plain copy of the values, to keep (a reload puts it back: restore). */
+  snapshot() {
+    return structuredClone(this.values);
+  }
+
+  /**
+   * Puts back the values of a snapshot that their rules accept (the rest
+   * stay as they are: a setting without a rule, one a newer build renamed,
+   * a value out of its field's range is clamped as a typed one is), and
+   * announces each section changed. The mode comes first, as the tool it
+   * keeps goes with it (mode-switch.js).
+   */
+  restore(saved) {
+    if (!isPlainObject(saved)) return;
+    for (const section of Object.keys(this.values)) {
+      if (!(section in saved)) continue;
+      const current = this.values[section];
+      if (!isPlainObject(current)) {
+        const value = this.accepted(section, undefined, saved[section]);
+        if (value !== undefined && value !== current) this.update(section, value);
+        continue;
+      }
+      if (!isPlainObject(saved[section])) continue;
+      const patch = {};
+      for (const key of Object.keys(current)) {
+        const value = key in saved[section] ? this.accepted(section, key, saved[section][key]) : undefined;
+        if (value !== undefined) patch[key] = value;
+      }
+      if (Object.keys(patch).length > 0) this.update(section, patch);
+    }
+  }
+
   /** Merges `partial` into a section (or sets a top-level value) and announces it. */
   update(section, partial) {
     const current = this.values[section];
-    const isPlainObject = current && typeof current === 'object' && !Array.isArray(current);
-    this.values[section] = isPlainObject && partial && typeof partial === 'object' && !Array.isArray(partial)
+    this.values[section] = isPlainObject(current) && isPlainObject(partial)
       ? { ...current, ...partial }
       : partial;
     this.emit('change', { section });
@@ -75,6 +124,10 @@ export class Settings extends EventEmitter {
     }
     if (this.values.display.heatMap === 'compression') this.update('display', { heatMap: defaults.display.heatMap });
   }
+}
+
+function isPlainObject(value) {
+  return Boolean(value) && typeof value === 'object' && !Array.isArray(value);
 }
 
 const AXES = { x: [1, 0, 0], y: [0, 1, 0], z: [0, 0, 1] };

@@ -20,6 +20,10 @@ import { decimalInput, parseDecimal } from './decimal-input.js';
 export function numberField(settings, sectionName, { key, label, min, max, integer = false }) {
   const field = `${sectionName}-${key}`;
   const input = decimalInput({ id: field, inputMode: integer ? 'numeric' : 'decimal' });
+  // The field's rule, for a value typed here and one put back after a reload (Settings.restore).
+  settings.defineRule(sectionName, key, (value) => (Number.isFinite(value) && (!integer || Number.isInteger(value))
+    ? clamp(value, min, max)
+    : undefined));
   const sync = () => {
     if (document.activeElement !== input) input.value = settings.values[sectionName][key];
   };
@@ -27,8 +31,9 @@ export function numberField(settings, sectionName, { key, label, min, max, integ
     const typed = input.value.trim();
     const value = parseDecimal(typed);
     const fraction = integer && Number.isFinite(value) && !Number.isInteger(value);
-    const taken = Number.isFinite(value) && !fraction;
-    if (taken) settings.update(sectionName, { [key]: clamp(value, min, max) });
+    const accepted = settings.accepted(sectionName, key, value);
+    const taken = accepted !== undefined;
+    if (taken) settings.update(sectionName, { [key]: accepted });
     const kept = settings.values[sectionName][key];
     input.value = kept;
     // Said, not only undone: "abc" used to put the old value back silently.
@@ -50,6 +55,7 @@ export function selectField(settings, sectionName, { key, label, options }) {
     { id: `${sectionName}-${key}` },
     options.map(([value, text]) => h('option', { value }, text)),
   );
+  settings.defineRule(sectionName, key, (value) => (options.some(([option]) => option === value) ? value : undefined));
   const sync = () => (select.value = settings.values[sectionName][key]);
   select.addEventListener('change', () => settings.update(sectionName, { [key]: select.value }));
   settings.on('change', ({ section }) => section === sectionName && sync());
@@ -59,6 +65,7 @@ export function selectField(settings, sectionName, { key, label, options }) {
 
 export function checkboxField(settings, sectionName, { key, label }) {
   const input = h('input', { type: 'checkbox', id: `${sectionName}-${key}` });
+  settings.defineRule(sectionName, key, (value) => (typeof value === 'boolean' ? value : undefined));
   const sync = () => (input.checked = settings.values[sectionName][key]);
   input.addEventListener('change', () => settings.update(sectionName, { [key]: input.checked }));
   settings.on('change', ({ section }) => section === sectionName && sync());
@@ -71,6 +78,8 @@ export function vectorField(settings, sectionName, { key, label, point = false }
   const inputs = [0, 1, 2].map((axis) =>
     decimalInput({ 'aria-label': `${label} ${'xyz'[axis]}` }),
   );
+  const isVector = (value) => Array.isArray(value) && value.length === 3 && value.every(Number.isFinite);
+  settings.defineRule(sectionName, key, (value) => (isVector(value) && (point || Math.hypot(...value) > 0) ? [...value] : undefined));
   const sync = () => {
     const vector = settings.values[sectionName][key];
     inputs.forEach((input, axis) => document.activeElement !== input && (input.value = vector[axis]));
@@ -78,8 +87,9 @@ export function vectorField(settings, sectionName, { key, label, point = false }
   for (const input of inputs) {
     input.addEventListener('change', () => {
       const vector = inputs.map((field) => parseDecimal(field.value));
-      if (vector.every(Number.isFinite) && (point || Math.hypot(...vector) > 0)) {
-        settings.update(sectionName, { [key]: vector });
+      const accepted = settings.accepted(sectionName, key, vector);
+      if (accepted !== undefined) {
+        settings.update(sectionName, { [key]: accepted });
         settings.emit('accepted', { field: `${sectionName}-${key}` });
       } else {
         const kept = settings.values[sectionName][key];

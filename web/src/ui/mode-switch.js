@@ -24,6 +24,7 @@ export function modePanel(mode, ...sections) {
 const ARROWS = { ArrowLeft: -1, ArrowUp: -1, ArrowRight: 1, ArrowDown: 1 };
 
 export function modeSwitch({ settings, app }) {
+  settings.defineRule('mode', undefined, (mode) => (MODES.some(([known]) => known === mode) ? mode : undefined));
   const tabs = MODES.map(([mode, label, title]) => h('button', {
     className: 'mode-tab',
     role: 'tab',

@@ -8,6 +8,7 @@ import { setOff, whenOn } from './focusable-disabled.js';
 import { numberField, selectField, showWhen, vectorField } from './fields.js';
 
 export function toolPanel({ editor, settings, tools, reportError, selectRegion }) {
+  settings.defineRule('tool', undefined, (id) => (tools.has(id) ? id : undefined));
   const buttons = [...tools.values()].map((tool) =>
     h('button', {
       className: 'tool-button',

@@ -44,6 +44,16 @@ export class HeatmapLegend {
     this.hide();
   }
 
+  /** Goes over another viewport (a new layout of the same modeller: viewer.moveTo). */
+  moveTo(viewport) {
+    this.resized.unobserve(this.viewport);
+    this.viewport.style.removeProperty('--legend-space');
+    this.viewport = viewport;
+    viewport.append(this.element);
+    this.resized.observe(viewport);
+    if (!this.element.hidden) this.setShown(true);
+  }
+
   /**
    * @param {object} palette  of heat-palettes.js
    * @param {{value: number, adaptive: boolean}} range  the value at full colour

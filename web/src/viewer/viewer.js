@@ -23,6 +23,7 @@ export class Viewer extends EventEmitter {
   #boundsSource = () => null;
   /** Target and distance the last fit left, to tell whether the user zoomed or panned since. */
   #lastFit = null;
+  #resizeObserver;
   /** The view's size in CSS pixels, as of the last resize (read without laying the page out). */
   width = 1;
   height = 1;
@@ -66,19 +67,33 @@ export class Viewer extends EventEmitter {
     this.controls = new OrbitControls(this.camera, this.canvas);
     this.controls.addEventListener('change', () => this.requestRender());
 
-    const resizeObserver = new ResizeObserver(() => this.#resize());
-    resizeObserver.observe(container);
+    this.#resizeObserver = new ResizeObserver(() => this.#resize());
+    this.#resizeObserver.observe(container);
     this.#resize();
     lifetime.defer(() => {
       this.#disposed = true;
       cancelAnimationFrame(this.#frameRequest);
-      resizeObserver.disconnect();
+      this.#resizeObserver.disconnect();
       this.controls.dispose();
       this.renderer.dispose();
       // Browsers keep only a few WebGL contexts per page: give this one back now.
       this.renderer.forceContextLoss();
       this.canvas.remove();
     });
+  }
+
+  /**
+   * Moves the view into `container` (a new layout of the same modeller: the
+   * element's ui changed), with what was drawn over it (`overlays`: the
+   * axis gizmo, the brush cursor...); the camera and the GL context stay.
+   */
+  moveTo(container, overlays = []) {
+    this.#resizeObserver.unobserve(this.container);
+    this.container = container;
+    container.prepend(this.canvas);
+    container.append(...overlays);
+    this.#resizeObserver.observe(container);
+    this.#resize();
   }
 
   /** Draws the scene in the next animation frame (once, however often it is asked before). */
@@ -176,6 +191,33 @@ export class Viewer extends EventEmitter {
     this.camera.position.copy(this.controls.target).add(offset);
     this.controls.update();
     this.requestRender();
+  }
+
+  /** Where the camera is, to put it back later (setView): a reload keeps the view (view-autosave.js). */
+  view() {
+    return {
+      position: this.camera.position.toArray(),
+      target: this.controls.target.toArray(),
+      up: this.camera.up.toArray(),
+      zoom: this.camera.zoom,
+      near: this.camera.near,
+      far: this.camera.far,
+    };
+  }
+
+  /** Puts the camera where view() found it; false (nothing moved) when `view` is not one. */
+  setView(view) {
+    const isPoint = (value) => Array.isArray(value) && value.length === 3 && value.every(Number.isFinite);
+    const positive = (value) => Number.isFinite(value) && value > 0;
+    if (!view || ![view.position, view.target, view.up].every(isPoint) || ![view.zoom, view.near, view.far].every(positive)) return false;
+    this.camera.position.fromArray(view.position);
+    this.camera.up.fromArray(view.up);
+    this.controls.target.fromArray(view.target);
+    Object.assign(this.camera, { zoom: view.zoom, near: view.near, far: view.far });
+    this.camera.updateProjectionMatrix();
+    this.controls.update();
+    this.requestRender();
+    return true;
   }
 
   /** The camera as the solver needs it for screen drags (wasm/CONTRACT.md). */
