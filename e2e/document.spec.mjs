@@ -794,6 +794,41 @@ test("two tabs keep their own autosaved work: a reload restores its own tab's, a
   expect(otherErrors).toEqual([]);
 });
 
+test("undo called again on each step's 'document' event takes back several steps, as the API says", async ({ page }) => {
+  // The event came while the step's re-run still ran: the next undo() was
+  // refused as busy ("Undo waits until the solve has ended").
+  const pageErrors = await openApp(page);
+  const outcome = await page.evaluate(async () => {
+    const api = window.anisoform;
+    // Three edits of one selection, the first then turned off: four steps
+    // that each change the document.
+    await api.select({ sphere: { center: [0, 0.3, 0.5], radius: 0.4 } });
+    for (const vector of [[0, 0, 1], [0, 1, 0], [1, 0, 0]]) {
+      await api.deform({ method: 'anarap', direction: { type: 'global', vector }, transform: { scale: [1.2, 1] } });
+    }
+    await api.setOpEnabled(api.document().ops[0].id, false);
+    const answers = [];
+    const ended = new Promise((resolve) => {
+      const off = api.on('document', (current) => {
+        if (current.ops.length === 1) {
+          off();
+          resolve();
+          return;
+        }
+        answers.push(api.undo());
+      });
+    });
+    answers.push(api.undo());
+    await ended;
+    return { answers, ops: api.document().ops.map((op) => op.enabled) };
+  });
+  // Turned back on, then the third op and the second taken away.
+  expect(outcome.answers).toEqual([true, true, true]);
+  expect(outcome.ops).toEqual([true]);
+  await expect(page.getByTestId('notice')).toBeHidden();
+  expect(pageErrors).toEqual([]);
+});
+
 test('after a reload, undo first turns back on an op that was off, then takes the ops away', async ({ page }) => {
   const pageErrors = await openApp(page);
   const { afterTwo, afterThree, document } = await editSpot(page);

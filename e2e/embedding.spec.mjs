@@ -854,8 +854,9 @@ test('<anisoform-modeller edits> that cannot be opened: the mesh is shown withou
 
 test('materials (option, setMaterials, the element\'s attribute) draws a glTF mesh with its own materials', async ({ page }) => {
   const pageErrors = await openExample(page);
-  const glb = [...await spotSceneGlb(meshPath('closed/spot_triangulated.obj'))];
-  const outcome = await page.evaluate(async (bytes) => {
+  const glb = (await spotSceneGlb(meshPath('closed/spot_triangulated.obj'))).toString('base64');
+  const outcome = await page.evaluate(async (base64) => {
+    const bytes = Uint8Array.from(atob(base64), (c) => c.charCodeAt(0));
     const { createModeller } = window.anisoformExample;
     const surfaceOf = (root) => root.querySelector('[data-testid=viewport]').dataset.surface;
     const host = Object.assign(document.createElement('div'), { style: 'height: 200px' });

@@ -54,14 +54,20 @@ const texturePng = (page) => page.evaluate(() => {
   return canvas.toDataURL('image/png');
 }).then((url) => Buffer.from(url.slice(url.indexOf(',') + 1), 'base64'));
 
-// The RGBA pixels of PNG bytes, decoded by the browser.
-const pixelsOf = (page, png) => page.evaluate(async (bytes) => {
-  const bitmap = await createImageBitmap(new Blob([new Uint8Array(bytes)], { type: 'image/png' }));
+// The RGBA pixels of PNG bytes, decoded by the browser (both ways as base64
+// text: arrays of numbers cross to and from the page an entry at a time).
+const pixelsOf = (page, png) => page.evaluate(async (base64) => {
+  const bytes = Uint8Array.from(atob(base64), (c) => c.charCodeAt(0));
+  const bitmap = await createImageBitmap(new Blob([bytes], { type: 'image/png' }));
   const canvas = Object.assign(document.createElement('canvas'), { width: bitmap.width, height: bitmap.height });
   const context = canvas.getContext('2d');
   context.drawImage(bitmap, 0, 0);
-  return Array.from(context.getImageData(0, 0, bitmap.width, bitmap.height).data);
-}, Array.from(png));
+  const reader = new FileReader();
+  const url = new Promise((resolve) => (reader.onload = () => resolve(reader.result)));
+  reader.readAsDataURL(new Blob([context.getImageData(0, 0, bitmap.width, bitmap.height).data]));
+  const text = await url;
+  return text.slice(text.indexOf(',') + 1);
+}, Buffer.from(png).toString('base64'));
 
 // The bytes of a GLB's one image.
 function imageOf(glb) {

@@ -49,7 +49,7 @@ test.describe('uploading every format', () => {
 
 test('dropping a file on the page loads it', async ({ page }) => {
   await openApp(page);
-  const bytes = [...readFileSync(meshPath('formats/spot_lowres.off'))];
+  const base64 = readFileSync(meshPath('formats/spot_lowres.off')).toString('base64');
   const loaded = page.evaluate(
     () =>
       new Promise((resolve) => {
@@ -63,9 +63,9 @@ test('dropping a file on the page loads it', async ({ page }) => {
   );
   const dataTransfer = await page.evaluateHandle((data) => {
     const transfer = new DataTransfer();
-    transfer.items.add(new File([new Uint8Array(data)], 'spot_lowres.off'));
+    transfer.items.add(new File([Uint8Array.from(atob(data), (c) => c.charCodeAt(0))], 'spot_lowres.off'));
     return transfer;
-  }, bytes);
+  }, base64);
   await page.dispatchEvent('main.viewport', 'dragenter', { dataTransfer });
   await expect(page.getByTestId('drop-overlay')).toBeVisible();
   await page.dispatchEvent('main.viewport', 'drop', { dataTransfer });

@@ -35,10 +35,11 @@ async function openInPicker(page, files) {
 }
 
 async function dropFiles(page, paths) {
-  const files = paths.map((path) => ({ name: basename(path), bytes: [...readFileSync(path)] }));
+  // As base64 text: as an array of numbers, Spot's 330 kB took seconds to cross.
+  const files = paths.map((path) => ({ name: basename(path), base64: readFileSync(path).toString('base64') }));
   const dataTransfer = await page.evaluateHandle((list) => {
     const transfer = new DataTransfer();
-    for (const { name, bytes } of list) transfer.items.add(new File([new Uint8Array(bytes)], name));
+    for (const { name, base64 } of list) transfer.items.add(new File([Uint8Array.from(atob(base64), (c) => c.charCodeAt(0))], name));
     return transfer;
   }, files);
   const opened = await armChange(page, 'document');

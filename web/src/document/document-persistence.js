@@ -102,11 +102,27 @@ export class DocumentPersistence {
     this.#reportSolved(result.summary?.last ?? null);
   }
 
-  /** Announces the document ('document', and a 'change' unless change is false). */
+  /**
+   * Announces the document ('document', and a 'change' unless change is
+   * false), once the operation that changed it has ended: a listener may
+   * start the next one. (The API's "undo again after each step's 'document'
+   * event" was refused as busy: the event came while the re-run still ran.)
+   * Changes within one operation are announced once.
+   */
   announce({ change = true } = {}) {
-    this.#editor.emit('document', this.#stack.document);
-    if (change) this.#editor.emit('change', { reason: 'document' });
+    if (this.#announcing) {
+      this.#announcing.change ||= change;
+      return;
+    }
+    const announcing = { change };
+    this.#announcing = announcing;
+    this.#editor.afterOperation(() => {
+      this.#announcing = null;
+      this.#editor.emit('document', this.#stack.document);
+      if (announcing.change) this.#editor.emit('change', { reason: 'document' });
+    });
   }
+  #announcing = null;
 
   /** Announces the document and autosaves it with the mesh bytes. */
   changed({ change = true } = {}) {

@@ -62,6 +62,8 @@ export class Editor extends EventEmitter {
   heatMapKind = null;
   #client;
   #busy = 0;
+  // Called when the operation running ends (afterOperation).
+  #whenEnded = [];
   /**
    * Cancels so far: a commit asked for before a cancel, not yet sent to the
    * worker (queued, or between its requests), is cancelled too (op-stack.js).
@@ -145,7 +147,17 @@ export class Editor extends EventEmitter {
       this.#busy--;
       this.#cancelling = false;
       this.emit('busy', this.#busy > 0);
+      for (const callback of this.#whenEnded.splice(0)) callback();
     };
+  }
+
+  /**
+   * Calls `callback` once the committed solve running has ended (its busy
+   * released; another queued may follow), or at once when none runs.
+   */
+  afterOperation(callback) {
+    if (this.busy) this.#whenEnded.push(callback);
+    else callback();
   }
 
   /** The edit document and its op stack (document/op-stack.js). */
