@@ -67,5 +67,19 @@ test('a garment panel flattens as one piece, its shear said; the heat range adap
   const torsoTop = await page.getByTestId('heatmap-legend-values').locator('span').last().textContent();
   expect(Number.parseFloat(torsoTop)).toBeLessThan(Number.parseFloat(handTop));
   await saveScreenshot(page, 'flatten-torso-adaptive-range');
+  // What the warning offers is in the panel: "Refine lengths" off (it named
+  // the CLI's --no-refine and the API's refine: false, which a page user has not).
+  await expect(warning).toContainText('without the refinement, Refine lengths off, it shears less and misses the lengths more');
+  const shown = async () => ({
+    shear: Number.parseFloat(await page.getByTestId('metric-shear').textContent()),
+    compression: Number.parseFloat(await page.getByTestId('metric-compression').textContent()),
+  });
+  const refined = await shown();
+  await page.locator('#flatten-refine').uncheck();
+  await expect(page.getByTestId('pattern-stale')).toBeVisible();
+  await page.getByTestId('flatten-run').click();
+  await expect(page.getByTestId('pattern-stale')).toBeHidden();
+  await expect.poll(async () => (await shown()).shear).toBeLessThan(refined.shear);
+  expect((await shown()).compression).toBeGreaterThan(refined.compression);
   expect(pageErrors).toEqual([]);
 });

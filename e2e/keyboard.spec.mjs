@@ -213,6 +213,12 @@ test('C selects with the brush\'s soft edge: full weight inside radius x (1 - so
   expect(vertices.filter((v) => distance(v) <= 0.5 * r - 1e-6 && selection[v] !== 1)).toEqual([]);
   expect(vertices.filter((v) => distance(v) > r + 1e-6 && selection[v] > 0)).toEqual([]);
   expect(selection.filter((w) => w > 0 && w < 1).length).toBeGreaterThan(5);
+  // Shift+C takes all of it away, the soft ring too (32 of 50 vertices
+  // stayed selected, at weights up to 0.48), as one undo step.
+  await page.keyboard.press('Shift+C');
+  await expect.poll(() => page.evaluate(() => window.anisoform.selection().filter((w) => w > 0).length)).toBe(0);
+  await page.keyboard.press('Control+z');
+  await expect.poll(() => page.evaluate(() => Array.from(window.anisoform.selection()))).toEqual(selection);
   expect(pageErrors).toEqual([]);
 });
 

@@ -323,7 +323,8 @@ TEST_CASE("document: a bad document is refused naming the field, the session unc
                              "triangles) does not match the loaded mesh fnv1a64:"));
   CHECK_THAT(refusal_of_document(other_mesh, ErrorCode::BadMesh),
              Catch::EndsWith("triangles): saved edits replay only on the mesh they were made on; open them with "
-                             "'spool.off'"));
+                             "'spool.off' as it was when they were saved (a file of that name changed since is "
+                             "another mesh)"));
 
   const std::string text = good.dump();
   CHECK_THAT(test::bad_parameter_message([&] { document_from_text(text.substr(0, text.size() / 2)); }),

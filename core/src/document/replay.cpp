@@ -52,7 +52,9 @@ void check_document(const EditDocument& document, const Session& session) {
                                  loaded_hash + " (" + std::to_string(rest.num_vertices()) + " vertices, " +
                                  std::to_string(rest.num_triangles()) +
                                  " triangles): saved edits replay only on the mesh they were made on; open them "
-                                 "with '" + document.mesh_name + "'");
+                                 "with '" + document.mesh_name +
+                                 "' as it was when they were saved (a file of that name changed since is another "
+                                 "mesh)");
   }
   // The same mesh (its hash matches), but counts the document states otherwise: it was edited by hand.
   const auto check_count = [&](const char* field, int stated, int has, const char* what) {

@@ -91,7 +91,9 @@ export function flattenWarning(metrics) {
   const sentences = [];
   if (metrics.problem) sentences.push(`${metrics.problem}.`);
   // What a usable pattern still should say (flatten_warnings, flatten.h).
-  for (const warning of metrics.warnings ?? []) sentences.push(`${warning[0].toUpperCase()}${warning.slice(1)}.`);
+  // The core names the CLI's flag and the API's option; the page has a checkbox.
+  const inPanelWords = (warning) => warning.replace('--no-refine or refine: false', 'Refine lengths off');
+  for (const warning of (metrics.warnings ?? []).map(inPanelWords)) sentences.push(`${warning[0].toUpperCase()}${warning.slice(1)}.`);
   const cuts = metrics.suggestedCuts ?? [];
   if (cuts.length > 0) {
     const largest = cuts[0];

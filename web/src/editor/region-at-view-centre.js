@@ -3,7 +3,10 @@
 // with its soft edge) centred on the surface point in the middle of the 3D view, or on the orbit
 // target when no surface is there. It is added or subtracted as the brush
 // mode says (Shift inverts it, as for a stroke); the core's select rule does
-// the selecting, as one undo step.
+// the selecting, as one undo step. Subtracted, it is the whole ball or cube
+// with no soft edge, so that Shift+C takes away all that C put there: the
+// core's subtract, min(old, 1 - new), keeps a weight of at most one half
+// where the region's own is as low (a ring of 32 of C's 50 vertices was left).
 
 /** @returns {Promise<number>|null} the number of selected vertices; null without a mesh */
 export function selectRegionAtViewCentre({ api, editor, viewer, picker, settings }, { invert = false } = {}) {
@@ -17,12 +20,12 @@ export function selectRegionAtViewCentre({ api, editor, viewer, picker, settings
   // The brush's soft edge, as a dab has it: full weight out to
   // radius x (1 - softness), fading to none at the radius (the core's falloff
   // runs outside its region). It used to be ignored here.
-  const soft = radius * (softnessPercent / 100);
+  const subtract = (mode === 'subtract') !== invert;
+  const soft = subtract ? 0 : radius * (softnessPercent / 100);
   const hard = radius - soft;
   const shape = region === 'box'
     ? { box: { min: center.map((value) => value - hard), max: center.map((value) => value + hard) } }
     : { sphere: { center, radius: hard } };
-  const subtract = (mode === 'subtract') !== invert;
   const before = document.selection;
   return api.select(shape, { mode: subtract ? 'subtract' : 'add', falloff: soft }).then((count) => {
     // Nothing there (the orbit target in the air): said, not a silent no-op.

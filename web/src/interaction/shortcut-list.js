@@ -22,7 +22,7 @@ export function shortcutRows(tools) {
     ...toolRows,
     ['[ and ]', 'Brush radius smaller / larger'],
     ['C', 'Select the brush region (sphere or box) at the surface in the middle of the view'],
-    ['Shift+C', 'The same, with the brush mode inverted (add ↔ subtract)'],
+    ['Shift+C', 'The same, with the brush mode inverted (add ↔ subtract); taken away, the whole sphere or box, no soft edge'],
     ['F or Home', 'Frame the whole mesh'],
     ['Arrow keys', 'Pan the view (3D view focused); Shift+arrows orbit'],
     ['+ (or =) and −', 'Zoom the view in / out (3D view focused)'],

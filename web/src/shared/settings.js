@@ -37,7 +37,7 @@ export function defaultSettings() {
     // in; 'custom': mmPerUnit millimetres per unit).
     flatten: {
       patch: 'mesh', source: 'global', axis: 'auto', custom: [1, 0, 0],
-      along: 0.8, across: 1, baseline: false, unit: 'guess', mmPerUnit: 10, colorBy: 'compression',
+      along: 0.8, across: 1, baseline: false, refine: true, unit: 'guess', mmPerUnit: 10, colorBy: 'compression',
     },
   };
 }

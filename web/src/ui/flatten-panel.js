@@ -77,6 +77,10 @@ export function flattenPanel({ api, editor, settings, reportError }) {
     numberField(settings, 'flatten', { key: 'across', label: 'Stretch across', step: 0.01 }),
     showWhen(settings, 'flatten', arrowList(settings), (f) => f.source === 'arrows'),
     checkboxField(settings, 'flatten', { key: 'baseline', label: 'Industry baseline (uniform 2D scale)' }),
+    // The core's stretch refinement after the paper's ARAP (README,
+    // Flattening refinement): off, the pattern shears less and misses the
+    // lengths more, which the shear warning offers.
+    checkboxField(settings, 'flatten', { key: 'refine', label: 'Refine lengths (off: the paper\'s ARAP result, less shear)' }),
     h('p', { className: 'hint' }, 'Stretch 0.8 = the fabric is cut 20 % shorter along the direction.'),
     h('div', { className: 'row' }, run),
     stale,
@@ -113,6 +117,7 @@ export function flattenFromSettings({ api, editor, settings, reportError }) {
 function panelOptions(values, direction) {
   const options = { compress: [values.flatten.along, values.flatten.across], direction, patch: values.flatten.patch };
   if (values.flatten.baseline) options.baseline = 'uniform';
+  if (!values.flatten.refine) options.refine = false;
   return options;
 }
 
@@ -129,7 +134,7 @@ function panelOptionsOrNull(values, document) {
 // Whether a pattern made with `made` (PatternState's options) is what `now` would make.
 function sameFlattenOptions(made, now) {
   if (!now) return false;
-  const key = ({ compress, direction, patch = 'mesh', baseline = null }) => JSON.stringify({ compress, direction, patch, baseline });
+  const key = ({ compress, direction, patch = 'mesh', baseline = null, refine = true }) => JSON.stringify({ compress, direction, patch, baseline, refine });
   return key(made) === key(now);
 }
 
