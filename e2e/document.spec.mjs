@@ -27,36 +27,28 @@ async function editSpot(page) {
   });
 }
 
-// The view saved beside the work of the tab that saved last (view-autosave.js), or null.
-const savedView = (page) => page.evaluate(() => new Promise((resolve) => {
+// The record under `prefix` + the id of the tab that saved last (autosave.js), or null.
+const savedRecord = (page, prefix) => page.evaluate((keyPrefix) => new Promise((resolve) => {
   const request = indexedDB.open('anisoform', 1);
   request.onsuccess = () => {
     const store = request.result.transaction('autosave').objectStore('autosave');
     const latest = store.get('current');
     latest.onsuccess = () => {
       if (!latest.result) return resolve(null);
-      const get = store.get(`view:${latest.result.tab}`);
-      get.onsuccess = () => resolve(get.result ?? null);
+      const get = store.get(`${keyPrefix}${latest.result.tab}`);
+      // Without the mesh file (a Blob, which does not cross to the test).
+      get.onsuccess = () => resolve(get.result ? { ...get.result, meshBytes: undefined } : null);
     };
   };
-}));
+}), prefix);
+
+// The view saved beside that work (view-autosave.js), or null.
+const savedView = (page) => savedRecord(page, 'view:');
 
 const bitwise = (a, b) => a.length === b.length && a.every((value, i) => Object.is(value, b[i]));
 
-// The autosaved work a new tab would restore, {meshName, document}: the
-// record of the tab that saved last (autosave.js).
-const savedWork = (page) => page.evaluate(() => new Promise((resolve) => {
-  const request = indexedDB.open('anisoform', 1);
-  request.onsuccess = () => {
-    const store = request.result.transaction('autosave').objectStore('autosave');
-    const latest = store.get('current');
-    latest.onsuccess = () => {
-      if (!latest.result) return resolve(null);
-      const get = store.get(latest.result.tab);
-      get.onsuccess = () => resolve(get.result && { meshName: get.result.meshName, document: get.result.document });
-    };
-  };
-}));
+// The autosaved work a new tab would restore, {meshName, document}.
+const savedWork = (page) => savedRecord(page, '').then((record) => record && { meshName: record.meshName, document: record.document });
 
 test('a document replays on a fresh page to bitwise the same positions', async ({ page, browser }) => {
   const pageErrors = await openApp(page);
