@@ -155,7 +155,12 @@ export interface Anisoform {
   /** Loads OBJ, PLY, STL, OFF or GLB; on failure rejects and keeps the current mesh. */
   load(source: File | Blob | ArrayBuffer, name: string): Promise<MeshCounts>;
   info(): MeshInfo;
-  /** A copy: xyz per vertex. */
+  /**
+   * A copy: xyz per vertex, of the committed shape (the document's last
+   * state). A live preview (a drag, or setParameter with `preview: true`)
+   * is not in it until committed: its shapes come in 'positions' events
+   * with `live: true`.
+   */
   positions(): Float32Array;
   /**
    * Selects by the core's rule (in the solver worker) as one undoable step;
