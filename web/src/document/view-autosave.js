@@ -39,9 +39,10 @@ export class ViewAutosave {
     const work = document && this.#editor.ops.toJSON();
     if (!view || !work || !sameMesh(view.work?.mesh, work.mesh)) return;
     this.#settings.restore(view.settings);
-    this.#viewer.setView(view.camera);
+    if (cameraSeesMesh(view.camera, document.bounds())) this.#viewer.setView(view.camera);
     const weights = view.selection;
-    if (complete && weights instanceof Float32Array && weights.length === document.vertexCount && sameDocument(view.work, work)) {
+    if (complete && weights instanceof Float32Array && weights.length === document.vertexCount && sameDocument(view.work, work)
+      && weights.every((weight) => weight >= 0 && weight <= 1)) {
       this.#editor.selectionState.restore(weights.slice());
     }
   }
@@ -81,6 +82,19 @@ export class ViewAutosave {
     // a click, not work.
     this.#editor.ops.saveView(view).catch(() => {});
   }
+}
+
+// A stored camera is put back only where the mesh can be seen from it: its
+// target within a few sizes of the mesh, at a distance between a ten-
+// thousandth and a thousand sizes (a record edited or damaged put the camera
+// at 1e30, or inside the mesh on its target). The viewer refuses what is not
+// a camera at all (setView).
+function cameraSeesMesh(camera, { center, diagonal }) {
+  const point = (value) => Array.isArray(value) && value.length === 3;
+  if (!camera || !point(camera.position) || !point(camera.target) || !(diagonal > 0)) return false;
+  const distance = (a, b) => Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+  const away = distance(camera.position, camera.target);
+  return distance(camera.target, center) <= 10 * diagonal && away >= 1e-4 * diagonal && away <= 1e3 * diagonal;
 }
 
 function sameMesh(a, b) {

@@ -205,11 +205,20 @@ export class Viewer extends EventEmitter {
     };
   }
 
-  /** Puts the camera where view() found it; false (nothing moved) when `view` is not one. */
+  /**
+   * Puts the camera where view() found it; false (nothing moved) when `view`
+   * is not one: a camera on its target, an up of zero length or along the
+   * line of sight, or near not before far draw nothing (a stored up of
+   * [0, 0, 0] left the view empty without a word).
+   */
   setView(view) {
     const isPoint = (value) => Array.isArray(value) && value.length === 3 && value.every(Number.isFinite);
     const positive = (value) => Number.isFinite(value) && value > 0;
     if (!view || ![view.position, view.target, view.up].every(isPoint) || ![view.zoom, view.near, view.far].every(positive)) return false;
+    const sight = new Vector3().fromArray(view.target).sub(new Vector3().fromArray(view.position));
+    const up = new Vector3().fromArray(view.up);
+    const across = new Vector3().crossVectors(sight, up).length();
+    if (!(sight.length() > 0) || !(across > 1e-9 * sight.length() * up.length()) || !(view.near < view.far)) return false;
     this.camera.position.fromArray(view.position);
     this.camera.up.fromArray(view.up);
     this.controls.target.fromArray(view.target);
