@@ -34,6 +34,10 @@ struct FlattenPatch {
   int num_components = 0;
   std::vector<std::vector<int>> boundary_loops;  // patch vertex indices, in walking order
   std::vector<int> loop_component;               // per loop: its component
+  // Input faces wound against most of their piece, turned over in `mesh`
+  // (majority_winding) so that the pattern is seen from one side (kPatternSide,
+  // pattern_export.h), ascending.
+  std::vector<int> reoriented_faces;
 };
 
 // ---- per-triangle charts ---------------------------------------------------
@@ -166,6 +170,7 @@ struct FlattenMetrics {
   std::string method;                    // "anisotropic" or "uniform-baseline"
   std::vector<FlattenRegion> suggested_cuts;  // largest first; empty when no region's
                                               // error is above kCutRegionError
+  std::vector<int> reoriented_faces;          // FlattenPatch::reoriented_faces (a warning names them)
 };
 
 // Empty when the flattening is usable as one piece; otherwise why not and

@@ -60,6 +60,28 @@ void compact_selected_faces(const Mesh& mesh, const std::vector<char>& vertex_ma
   }
 }
 
+// The pattern is the patch seen from the side its faces' normals point to
+// (pattern_export.h, kPatternSide): a face wound against its neighbours would
+// be laid flat seen from the other side, folded over the rest (one such face
+// on the torso panel folded and stopped the solver; half the faces turned
+// gave an outline crossing itself 22 times). Such faces are turned over to
+// the winding most of their piece has, and named (metrics.reoriented_faces).
+void wind_faces_one_way(FlattenPatch& patch) {
+  const WindingRepair repair = majority_winding(patch.mesh);
+  if (repair.non_orientable_face >= 0) {
+    fail(ErrorCode::BadMesh,
+         "the patch cannot be wound one way: it is non-orientable (like a Moebius strip: at face " +
+             std::to_string(patch.input_face[repair.non_orientable_face]) +
+             " the winding disagrees with a neighbour's whichever way the faces are turned), and a piece of "
+             "fabric has a right and a wrong side: cut the patch there, or flatten a selection that is not");
+  }
+  for (const int t : repair.faces_to_turn) {
+    std::swap(patch.mesh.F(t, 1), patch.mesh.F(t, 2));
+    patch.reoriented_faces.push_back(patch.input_face[t]);
+  }
+  std::sort(patch.reoriented_faces.begin(), patch.reoriented_faces.end());
+}
+
 }  // namespace
 
 FlattenPatch extract_flatten_patch(const Mesh& mesh, const std::vector<char>& vertex_mask) {
@@ -78,6 +100,7 @@ FlattenPatch extract_flatten_patch(const Mesh& mesh, const std::vector<char>& ve
   }
   FlattenPatch patch;
   compact_selected_faces(mesh, vertex_mask, patch);
+  wind_faces_one_way(patch);
   const int n = patch.mesh.num_vertices();
   patch.component = vertex_components(patch.mesh.F, n, &patch.num_components);
   patch.boundary_loops = boundary_loops(patch.mesh.F, n);
