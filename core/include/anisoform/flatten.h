@@ -38,7 +38,18 @@ struct FlattenPatch {
   // (majority_winding) so that the pattern is seen from one side (kPatternSide,
   // pattern_export.h), ascending.
   std::vector<int> reoriented_faces;
+  // Input faces left out: fins hanging off edges shared by three or more
+  // faces (kMaxFinAreaShare), ascending.
+  std::vector<int> dropped_faces;
 };
+
+// Faces off an edge shared by three or more faces are left out of a patch as
+// a fin when they form a sheet (joined across two-face edges) of at most this
+// share of the patch's area that is not the largest at that edge: a triangle
+// or a flap glued on by mistake. A larger one is a part of its own, which
+// the user must select and flatten apart: that patch is refused, naming the
+// edge.
+constexpr double kMaxFinAreaShare = 0.05;
 
 // ---- per-triangle charts ---------------------------------------------------
 
@@ -171,6 +182,7 @@ struct FlattenMetrics {
   std::vector<FlattenRegion> suggested_cuts;  // largest first; empty when no region's
                                               // error is above kCutRegionError
   std::vector<int> reoriented_faces;          // FlattenPatch::reoriented_faces (a warning names them)
+  std::vector<int> dropped_faces;             // FlattenPatch::dropped_faces (a warning names them)
 };
 
 // Empty when the flattening is usable as one piece; otherwise why not and

@@ -93,6 +93,19 @@ struct WindingRepair {
 };
 WindingRepair majority_winding(const Mesh& mesh);
 
+// Every edge shared by three or more faces (check_mesh's NonManifoldEdge),
+// with all its faces, ascending; edges ordered by (lo, hi).
+struct NonManifoldEdgeFaces {
+  int lo = 0, hi = 0;  // the edge's vertices, lo < hi
+  std::vector<int> faces;
+};
+std::vector<NonManifoldEdgeFaces> non_manifold_edge_faces(const Mesh& mesh);
+
+// Per face, its sheet (0 .. *count - 1): the faces joined to it across
+// edges with exactly two faces, as one piece of fabric could hold them; an
+// edge shared by three or more faces (or one) joins none.
+std::vector<int> face_sheets(const Mesh& mesh, int* count = nullptr);
+
 // Merges vertices whose positions are equal (tolerance 0: exactly equal;
 // otherwise within `tolerance` in every coordinate). Faces that collapse
 // (a corner repeated) are dropped. `old_to_new` (#V of the input) if not null.

@@ -213,6 +213,7 @@ FlattenResult Flattener::flatten(const FlattenOptions& options) {
   metrics.outline_crossings = count_outline_crossings(patch, result.uv);
   metrics.non_manifold_edges = im.non_manifold_edges;
   metrics.reoriented_faces = patch.reoriented_faces;
+  metrics.dropped_faces = patch.dropped_faces;
   metrics.iterations = solved.iterations;
   metrics.energy = solved.report.energy;
   metrics.converged = converged;

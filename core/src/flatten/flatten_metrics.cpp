@@ -178,6 +178,13 @@ std::string face_list(const std::vector<int>& faces) {
 
 std::vector<std::string> flatten_warnings(const FlattenMetrics& metrics) {
   std::vector<std::string> warnings;
+  if (!metrics.dropped_faces.empty()) {
+    warnings.push_back(std::to_string(metrics.dropped_faces.size()) +
+                       " face(s) hanging off edges shared by three or more faces (a fin: " +
+                       face_list(metrics.dropped_faces) +
+                       ") were left out of the pattern: no flat piece can hold such an edge; if they belong to "
+                       "the garment, select them and flatten them apart");
+  }
   if (!metrics.reoriented_faces.empty()) {
     warnings.push_back(std::to_string(metrics.reoriented_faces.size()) +
                        " face(s) were wound against their neighbours (" + face_list(metrics.reoriented_faces) +

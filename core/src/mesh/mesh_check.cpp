@@ -549,6 +549,43 @@ WindingRepair majority_winding(const Mesh& mesh) {
   return repair;
 }
 
+std::vector<int> face_sheets(const Mesh& mesh, int* count) {
+  const int num_faces = mesh.num_triangles();
+  std::vector<int> parent(static_cast<std::size_t>(num_faces));
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto root = [&](int f) {
+    while (parent[f] != f) f = parent[f] = parent[parent[f]];
+    return f;
+  };
+  const std::vector<EdgeUse> uses = edge_uses(mesh);
+  for_each_edge(uses, [&](std::size_t begin, std::size_t end) {
+    if (end - begin != 2) return;
+    const int a = root(uses[begin].face), b = root(uses[begin + 1].face);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  });
+  std::vector<int> sheet(static_cast<std::size_t>(num_faces), -1);
+  int sheets = 0;
+  for (int f = 0; f < num_faces; ++f) {
+    const int r = root(f);
+    if (sheet[r] < 0) sheet[r] = sheets++;
+    sheet[f] = sheet[r];
+  }
+  if (count) *count = sheets;
+  return sheet;
+}
+
+std::vector<NonManifoldEdgeFaces> non_manifold_edge_faces(const Mesh& mesh) {
+  std::vector<NonManifoldEdgeFaces> edges;
+  const std::vector<EdgeUse> uses = edge_uses(mesh);
+  for_each_edge(uses, [&](std::size_t begin, std::size_t end) {
+    if (end - begin <= 2) return;
+    NonManifoldEdgeFaces edge{uses[begin].lo, uses[begin].hi, {}};
+    for (std::size_t u = begin; u < end; ++u) edge.faces.push_back(uses[u].face);
+    edges.push_back(std::move(edge));
+  });
+  return edges;
+}
+
 // ---------------------------------------------------------------- repairs
 
 namespace {
