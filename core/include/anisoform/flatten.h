@@ -142,6 +142,10 @@ struct FlattenRegion {
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  // area-weighted, of its triangles (3D)
   double error_mean = 0.0;    // area-weighted mean of its triangles' error (cut_region_error)
   int triangles = 0;
+  double area_share = 0.0;            // its 3D area / the patch's (at most kCutRegionMaxArea)
+  double connected_area_share = 0.0;  // the same of all the connected triangles above
+                                      // kCutRegionError it was taken from (more than
+                                      // area_share where it was cut down to its worst part)
 };
 
 // A triangle is part of a region when the larger of |along/su - 1| and
@@ -151,6 +155,12 @@ struct FlattenRegion {
 // (single stray triangles are noise, not a place to cut).
 constexpr double kCutRegionError = 0.25;
 constexpr double kCutRegionMinArea = 0.01;
+// A region is at most this share of the patch's 3D area: a dart or a cut
+// takes in a small part of a piece. Where a connected part above the error
+// is larger (a hand: two thirds of it), the region is its worst part, grown
+// from its worst triangle by error, the worst neighbour first; the patch
+// then needs cutting into pieces, which flatten_problem says.
+constexpr double kCutRegionMaxArea = 0.1;
 
 struct FlattenMetrics {
   int triangles = 0;
