@@ -306,6 +306,7 @@ int run_flatten(const FlattenArguments& args) {
   print_warnings("flatten", warnings);
   nlohmann::json result = result_json(args, plan, direction, warnings, flattened.result);
   if (!unit_guess.empty()) result["unit_guess"] = unit_guess;  // mm_per_unit is the guess's
+  result["side"] = kPatternSide;
   print_json(result);
   return kExitSuccess;
 }
@@ -325,9 +326,14 @@ constexpr const char* kFlattenHelp =
     "mean, max), near_normal_directions (triangles whose direction is within 10 degrees of their normal), "
     "iterations, converged, "
     "energy, initialization, directions_filled, grainline, mm_per_unit, unit_guess (when guessed), seconds, suggested_cuts "
-    "(the regions that miss su or sv by too much, where a dart or a cut is needed; each: vertices, "
+    "(the regions that miss su or sv by more than 25 %, where a dart or a cut is needed, each at most a tenth of the "
+    "patch's area: a larger one is its worst part; each: vertices, "
     "vertex (nearest the centroid), centroid, error_mean of max(|along/su - 1|, |across/sv - 1|), "
-    "triangles; largest first), warnings.\n"
+    "triangles; the largest connected part first), side (which side of the fabric the pattern shows), warnings.\n"
+    "The pattern is the piece seen from the side its faces' normals point to (every face counter-clockwise in "
+    "the pattern; the SVG and DXF say so): the same patch wound the other way gives the mirror image. Faces wound "
+    "against the rest of their piece are turned over to agree with it, with a warning naming them; a "
+    "non-orientable patch (a Moebius strip) exits 3.\n"
     "The patch is the faces whose vertices are all in --select; every component must have a "
     "boundary: a closed mesh or patch exits 3. Several boundary loops and several pieces are "
     "fine (pieces are laid out side by side).";

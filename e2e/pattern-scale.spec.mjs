@@ -56,6 +56,8 @@ test('the torso panel is guessed in metres, shown and exported at its real size,
   expect(metres.outlineBox[1]).toBeCloseTo(shown[1], 0);
   expect(metres.fontSize).toBe(4);
   expect(metres.noteLines[0]).toContain('1 model unit = 1000.000 mm');
+  // Which side is up, on the sheet itself (kPatternSide, pattern_export.h).
+  expect(metres.noteLines[1]).toBe("Face up: the side the mesh's face normals point to (the outside, for outward normals)");
 
   // Read as centimetres, the same panel is a hundred times smaller, its note as large and whole.
   await page.locator('#flatten-unit').selectOption('cm');
@@ -65,7 +67,7 @@ test('the torso panel is guessed in metres, shown and exported at its real size,
   const centimetres = await exportSvg(page);
   expect(centimetres.outlineBox[0]).toBeCloseTo(shown[0] / 100, 1);
   expect(centimetres.fontSize).toBe(4);
-  expect(centimetres.noteLines.length).toBe(2);
+  expect(centimetres.noteLines.length).toBe(3);  // the scale, the side shown, the request
   // The sheet is wide enough for the longest note line (0.6 em per character) plus its margins.
   const longest = Math.max(...centimetres.noteLines.map((line) => line.length));
   expect(centimetres.width).toBeGreaterThanOrEqual(0.6 * 4 * longest + 20 - 0.01);

@@ -251,7 +251,7 @@ TEST_CASE("pattern: a piece of a few millimetres keeps its note whole and 4 mm h
   CHECK(well_formed_xml(svg, problem));
   INFO(problem);
   CHECK(svg.find(".scale-note{font-family:sans-serif;font-size:4.000px}") != std::string::npos);
-  CHECK(count_of(svg, "<tspan ") == 2);
+  CHECK(count_of(svg, "<tspan ") == 3);  // the scale, the side shown (kPatternSide), the note
   // The sheet holds the longest note line at 0.6 em (2.4 mm) per character, plus the margins.
   const double width_mm = std::stod(svg.substr(svg.find("width=\"") + 7));
   CHECK(width_mm >= 2.4 * static_cast<double>(options.note.size()) + 20.0);

@@ -34,7 +34,22 @@ struct FlattenPatch {
   int num_components = 0;
   std::vector<std::vector<int>> boundary_loops;  // patch vertex indices, in walking order
   std::vector<int> loop_component;               // per loop: its component
+  // Input faces wound against most of their piece, turned over in `mesh`
+  // (majority_winding) so that the pattern is seen from one side (kPatternSide,
+  // pattern_export.h), ascending.
+  std::vector<int> reoriented_faces;
+  // Input faces left out: fins hanging off edges shared by three or more
+  // faces (kMaxFinAreaShare), ascending.
+  std::vector<int> dropped_faces;
 };
+
+// Faces off an edge shared by three or more faces are left out of a patch as
+// a fin when they form a sheet (joined across two-face edges) of at most this
+// share of the patch's area that is not the largest at that edge: a triangle
+// or a flap glued on by mistake. A larger one is a part of its own, which
+// the user must select and flatten apart: that patch is refused, naming the
+// edge.
+constexpr double kMaxFinAreaShare = 0.05;
 
 // ---- per-triangle charts ---------------------------------------------------
 
@@ -127,6 +142,10 @@ struct FlattenRegion {
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  // area-weighted, of its triangles (3D)
   double error_mean = 0.0;    // area-weighted mean of its triangles' error (cut_region_error)
   int triangles = 0;
+  double area_share = 0.0;            // its 3D area / the patch's (at most kCutRegionMaxArea)
+  double connected_area_share = 0.0;  // the same of all the connected triangles above
+                                      // kCutRegionError it was taken from (more than
+                                      // area_share where it was cut down to its worst part)
 };
 
 // A triangle is part of a region when the larger of |along/su - 1| and
@@ -136,6 +155,12 @@ struct FlattenRegion {
 // (single stray triangles are noise, not a place to cut).
 constexpr double kCutRegionError = 0.25;
 constexpr double kCutRegionMinArea = 0.01;
+// A region is at most this share of the patch's 3D area: a dart or a cut
+// takes in a small part of a piece. Where a connected part above the error
+// is larger (a hand: two thirds of it), the region is its worst part, grown
+// from its worst triangle by error, the worst neighbour first; the patch
+// then needs cutting into pieces, which flatten_problem says.
+constexpr double kCutRegionMaxArea = 0.1;
 
 struct FlattenMetrics {
   int triangles = 0;
@@ -166,6 +191,8 @@ struct FlattenMetrics {
   std::string method;                    // "anisotropic" or "uniform-baseline"
   std::vector<FlattenRegion> suggested_cuts;  // largest first; empty when no region's
                                               // error is above kCutRegionError
+  std::vector<int> reoriented_faces;          // FlattenPatch::reoriented_faces (a warning names them)
+  std::vector<int> dropped_faces;             // FlattenPatch::dropped_faces (a warning names them)
 };
 
 // Empty when the flattening is usable as one piece; otherwise why not and

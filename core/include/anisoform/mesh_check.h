@@ -80,6 +80,32 @@ std::string coordinate_problem(const Eigen::RowVector3d& p);
 // Throws Error(BadMesh) with blocking_summary() unless the mesh is solvable.
 void require_solvable(const Mesh& mesh);
 
+// The faces to turn over (two corners swapped) so that every group of faces
+// joined across edges with two faces is wound one way: the way most of its
+// faces are wound (the others are the faces check_mesh reports as
+// InconsistentOrientation; a tie keeps the winding of the group's lowest
+// face). When a group cannot be wound one way at all (it is non-orientable,
+// a Moebius strip), non_orientable_face names a face where it fails and
+// faces_to_turn is empty.
+struct WindingRepair {
+  std::vector<int> faces_to_turn;  // ascending
+  int non_orientable_face = -1;
+};
+WindingRepair majority_winding(const Mesh& mesh);
+
+// Every edge shared by three or more faces (check_mesh's NonManifoldEdge),
+// with all its faces, ascending; edges ordered by (lo, hi).
+struct NonManifoldEdgeFaces {
+  int lo = 0, hi = 0;  // the edge's vertices, lo < hi
+  std::vector<int> faces;
+};
+std::vector<NonManifoldEdgeFaces> non_manifold_edge_faces(const Mesh& mesh);
+
+// Per face, its sheet (0 .. *count - 1): the faces joined to it across
+// edges with exactly two faces, as one piece of fabric could hold them; an
+// edge shared by three or more faces (or one) joins none.
+std::vector<int> face_sheets(const Mesh& mesh, int* count = nullptr);
+
 // Merges vertices whose positions are equal (tolerance 0: exactly equal;
 // otherwise within `tolerance` in every coordinate). Faces that collapse
 // (a corner repeated) are dropped. `old_to_new` (#V of the input) if not null.

@@ -15,6 +15,18 @@
 
 namespace aniso {
 
+// Which side of a piece a pattern shows, the one rule wherever a pattern is
+// drawn: the piece as seen from the side its faces' normals point to (each
+// face's corners run counter-clockwise in the plane; for a garment modelled
+// with outward normals, the outside, the fabric's right side, faces up). The
+// same patch with every face wound the other way gives the mirror image. The
+// flattening keeps every piece so (scale_to_area turns a start map seen from
+// the back over; a face wound against the rest of its piece is turned to
+// agree with it, FlattenPatch::reoriented_faces); the SVG and DXF state it
+// (this text), as do the CLI's output and the README.
+inline constexpr const char* kPatternSide =
+    "Face up: the side the mesh's face normals point to (the outside, for outward normals)";
+
 struct PatternPiece {
   // Closed polylines in pattern coordinates (model units), one per boundary
   // loop of the piece, the first point not repeated at the end.
@@ -41,8 +53,8 @@ struct PatternExportOptions {
 // <path class="outline">; per piece a grainline (<line class="grainline">
 // with arrowhead lines); a 100 mm (or 10 mm) <line class="scale-bar"> and a
 // <text class="scale-note"> in 4 mm type at any scale, one <tspan> per line
-// (the scale, then `note`), the sheet widened to hold the longest line. The y axis is flipped (SVG's points down), so the
-// pattern is not mirrored. Throws Error(BadParameter) if mm_per_unit is not a
+// (the scale, kPatternSide, then `note`), the sheet widened to hold the longest line; a <desc> says kPatternSide too.
+// The y axis is flipped (SVG's points down), so the pattern is not mirrored. Throws Error(BadParameter) if mm_per_unit is not a
 // positive finite number.
 std::string write_pattern_svg(const Pattern& pattern, const PatternExportOptions& options);
 
@@ -63,7 +75,8 @@ void validate_mm_per_unit(double mm_per_unit);
 // ASCII DXF R12 (AC1009, the version garment CAD and cutters import; units
 // millimetres, also stated as $INSUNITS 4): one closed POLYLINE (VERTEX ...
 // SEQEND) per outline on layer OUTLINE, one LINE per piece on layer
-// GRAINLINE, and the scale note as 4 mm TEXT on layer NOTE. Same errors as SVG.
+// GRAINLINE, and the scale note and below it kPatternSide as 4 mm TEXT on
+// layer NOTE (kPatternSide also as a 999 comment). Same errors as SVG.
 std::string write_pattern_dxf(const Pattern& pattern, const PatternExportOptions& options);
 
 }  // namespace aniso

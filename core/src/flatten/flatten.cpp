@@ -212,6 +212,8 @@ FlattenResult Flattener::flatten(const FlattenOptions& options) {
   metrics.flipped = count_folded(F, im.charts, result.uv);
   metrics.outline_crossings = count_outline_crossings(patch, result.uv);
   metrics.non_manifold_edges = im.non_manifold_edges;
+  metrics.reoriented_faces = patch.reoriented_faces;
+  metrics.dropped_faces = patch.dropped_faces;
   metrics.iterations = solved.iterations;
   metrics.energy = solved.report.energy;
   metrics.converged = converged;

@@ -163,8 +163,34 @@ void summarize_stretch(const TriangleCharts& charts, const FlattenTargets& targe
   metrics.shear_degrees_max = shear_max;
 }
 
+namespace {
+
+// "faces 4, 9, 12 and 30 more": the first few input faces of a list, by number.
+std::string face_list(const std::vector<int>& faces) {
+  constexpr std::size_t kNamed = 5;
+  std::string text = faces.size() == 1 ? "face " : "faces ";
+  for (std::size_t k = 0; k < faces.size() && k < kNamed; ++k) text += (k > 0 ? ", " : "") + std::to_string(faces[k]);
+  if (faces.size() > kNamed) text += " and " + std::to_string(faces.size() - kNamed) + " more";
+  return text;
+}
+
+}  // namespace
+
 std::vector<std::string> flatten_warnings(const FlattenMetrics& metrics) {
   std::vector<std::string> warnings;
+  if (!metrics.dropped_faces.empty()) {
+    warnings.push_back(std::to_string(metrics.dropped_faces.size()) +
+                       " face(s) hanging off edges shared by three or more faces (a fin: " +
+                       face_list(metrics.dropped_faces) +
+                       ") were left out of the pattern: no flat piece can hold such an edge; if they belong to "
+                       "the garment, select them and flatten them apart");
+  }
+  if (!metrics.reoriented_faces.empty()) {
+    warnings.push_back(std::to_string(metrics.reoriented_faces.size()) +
+                       " face(s) were wound against their neighbours (" + face_list(metrics.reoriented_faces) +
+                       "): turned over to the winding most of the piece has, since the pattern is the piece seen "
+                       "from the side its faces' normals point to; check the mesh's winding there");
+  }
   const auto degrees = [](double value) {
     char text[32];
     std::snprintf(text, sizeof text, "%.1f°", value);

@@ -36,6 +36,8 @@ void scale_to_area(const FlattenPatch& patch, const Eigen::VectorXd& triangle_ar
   for (int c = 0; c < components; ++c) {
     const double factor =
         std::abs(achieved[c]) > 0.0 ? std::sqrt(wanted[c] / std::abs(achieved[c])) : 1.0;
+    // A map seen from the back is mirrored: every piece is shown from the
+    // side its faces' normals point to (kPatternSide, pattern_export.h).
     scale[c] = Eigen::RowVector2d(factor, achieved[c] < 0.0 ? -factor : factor);
   }
   for (int i = 0; i < uv.rows(); ++i) {

@@ -193,7 +193,8 @@ std::string write_pattern_svg(const Pattern& pattern, const PatternExportOptions
   const double scale = options.mm_per_unit;
   const Box box = pattern_box(pattern, scale);
   const double bar = scale_bar_length(box.max.x() - box.min.x());
-  std::vector<std::string> note_lines{printable_ascii(scale_heading(options) + " - scale bar " + number(bar) + " mm")};
+  std::vector<std::string> note_lines{printable_ascii(scale_heading(options) + " - scale bar " + number(bar) + " mm"),
+                                      kPatternSide};
   if (!options.note.empty()) note_lines.push_back(printable_ascii(options.note));
   double note_width = 0.0;
   for (const std::string& text : note_lines) note_width = std::max(note_width, note_width_mm(text));
@@ -217,6 +218,7 @@ std::string write_pattern_svg(const Pattern& pattern, const PatternExportOptions
       << "mm\" height=\"" << number(height) << "mm\" viewBox=\"0 0 " << number(width) << " "
       << number(height) << "\">\n"
       << "<title>Anisoform pattern</title>\n"
+      << "<desc>" << xml_escaped(kPatternSide) << "</desc>\n"
       << "<style>.outline{fill:none;stroke:#000;stroke-width:0.3}"
          ".grainline{stroke:#c00;stroke-width:0.3}.scale-bar{stroke:#000;stroke-width:0.5}"
          ".scale-note{font-family:sans-serif;font-size:" << number(kNoteFontMm) << "px}</style>\n";
@@ -273,6 +275,7 @@ std::string write_pattern_dxf(const Pattern& pattern, const PatternExportOptions
   };
 
   group(999, "Anisoform pattern, units: millimetres");
+  group(999, kPatternSide);
   group(0, "SECTION");
   group(2, "HEADER");
   group(9, "$ACADVER");
@@ -283,10 +286,13 @@ std::string write_pattern_dxf(const Pattern& pattern, const PatternExportOptions
   // pattern, its width at most a type height per character.
   const std::string note = scale_note(options);
   const Eigen::Vector2d note_at(box.min.x(), box.min.y() - kNoteGapMm);
+  // kPatternSide's line below the note.
+  const Eigen::Vector2d side_at(note_at.x(), note_at.y() - kNoteLineMm);
   group(9, "$EXTMIN");
-  point(10, Eigen::Vector2d(box.min.x(), note_at.y()));
+  point(10, Eigen::Vector2d(box.min.x(), side_at.y()));
   group(9, "$EXTMAX");
-  point(10, Eigen::Vector2d(std::max(box.max.x(), note_at.x() + kNoteFontMm * static_cast<double>(note.size())),
+  const std::size_t longest = std::max(note.size(), std::string(kPatternSide).size());
+  point(10, Eigen::Vector2d(std::max(box.max.x(), note_at.x() + kNoteFontMm * static_cast<double>(longest)),
                             box.max.y()));
   group(0, "ENDSEC");
 
@@ -318,6 +324,11 @@ std::string write_pattern_dxf(const Pattern& pattern, const PatternExportOptions
   point(10, note_at);
   group(40, number(kNoteFontMm));
   group(1, note);
+  group(0, "TEXT");
+  group(8, "NOTE");
+  point(10, side_at);
+  group(40, number(kNoteFontMm));
+  group(1, kPatternSide);
   group(0, "ENDSEC");
   group(0, "EOF");
   return dxf.str();

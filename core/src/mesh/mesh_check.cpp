@@ -339,38 +339,45 @@ void check_non_manifold_edges(const std::vector<EdgeUse>& uses, MeshReport& repo
   });
 }
 
-// Faces are compared across edges with exactly two uses. Within each group of
-// faces so connected, the faces whose winding the fewer agree with are
-// reported: for one flipped face that is the face, not its neighbours.
-void check_orientation(const Mesh& mesh, const std::vector<EdgeUse>& uses, MeshReport& report,
-                       ProblemList& problems) {
-  const int num_faces = mesh.num_triangles();
+// Faces joined across edges with exactly two uses, in groups (the faces a
+// winding can be compared between). Within each group, every face's side (0:
+// wound as the group's first face, 1: against it) and whether that side is
+// the group's minority (the fewer faces; a tie: side 1). The one rule for
+// which faces are "the flipped ones": check_mesh reports them, and
+// majority_winding turns them over.
+struct WindingGroups {
+  std::vector<int> side;                      // per face
+  std::vector<char> in_minority;              // per face
+  std::vector<std::pair<int, int>> disagreeing_pairs;  // faces using their shared edge in the same direction
+  std::vector<int> disagreeing_edges;         // per face: how many of its edges disagree
+  int non_orientable_face = -1;  // the lowest face of a link no choice of sides satisfies (a Moebius strip)
+};
+
+WindingGroups winding_groups(int num_faces, const std::vector<EdgeUse>& uses) {
+  WindingGroups groups;
+  groups.side.assign(static_cast<std::size_t>(num_faces), 0);
+  groups.in_minority.assign(static_cast<std::size_t>(num_faces), 0);
+  groups.disagreeing_edges.assign(static_cast<std::size_t>(num_faces), 0);
   struct Link {
     int face, other;
     bool flips;  // the two faces use their shared edge in the same direction
   };
   std::vector<Link> links;  // both directions of every face pair across a 2-use edge
-  std::vector<int> disagreeing_edges(static_cast<std::size_t>(num_faces), 0);
-  std::vector<std::pair<int, int>> flipped_pairs;
   for_each_edge(uses, [&](std::size_t begin, std::size_t end) {
     if (end - begin != 2 || uses[begin].face == uses[begin + 1].face) return;
     const EdgeUse& x = uses[begin];
     const EdgeUse& y = uses[begin + 1];
-    if (x.forward != y.forward) return;
-    ++report.inconsistent_edges;
-    ++disagreeing_edges[x.face];
-    ++disagreeing_edges[y.face];
-    flipped_pairs.emplace_back(x.face, y.face);
+    const bool flips = x.forward == y.forward;
+    if (flips) {
+      ++groups.disagreeing_edges[x.face];
+      ++groups.disagreeing_edges[y.face];
+      groups.disagreeing_pairs.emplace_back(x.face, y.face);
+    }
+    links.push_back({x.face, y.face, flips});
+    links.push_back({y.face, x.face, flips});
   });
-  if (report.inconsistent_edges == 0) return;  // the common case: no graph needed
+  if (groups.disagreeing_pairs.empty()) return groups;  // the common case: no graph needed
 
-  for_each_edge(uses, [&](std::size_t begin, std::size_t end) {
-    if (end - begin != 2 || uses[begin].face == uses[begin + 1].face) return;
-    const EdgeUse& x = uses[begin];
-    const EdgeUse& y = uses[begin + 1];
-    links.push_back({x.face, y.face, x.forward == y.forward});
-    links.push_back({y.face, x.face, x.forward == y.forward});
-  });
   std::vector<int> start(static_cast<std::size_t>(num_faces) + 1, 0);
   for (const Link& link : links) ++start[link.face + 1];
   std::partial_sum(start.begin(), start.end(), start.begin());
@@ -378,8 +385,8 @@ void check_orientation(const Mesh& mesh, const std::vector<EdgeUse>& uses, MeshR
   std::vector<int> fill(start.begin(), start.end() - 1);
   for (const Link& link : links) by_face[fill[link.face]++] = link;
 
-  std::vector<int> side(static_cast<std::size_t>(num_faces), -1);  // 0: as the group's first face
-  std::vector<char> reported(static_cast<std::size_t>(num_faces), 0);
+  std::vector<int>& side = groups.side;
+  side.assign(static_cast<std::size_t>(num_faces), -1);
   std::vector<int> group;
   for (int seed = 0; seed < num_faces; ++seed) {
     if (side[seed] != -1) continue;
@@ -396,18 +403,36 @@ void check_orientation(const Mesh& mesh, const std::vector<EdgeUse>& uses, MeshR
       }
     }
     const int minority = 2 * flipped <= static_cast<int>(group.size()) ? 1 : 0;
-    for (const int f : group) reported[f] = side[f] == minority;
+    for (const int f : group) groups.in_minority[f] = side[f] == minority;
   }
+  for (const Link& link : links) {
+    if ((side[link.face] ^ side[link.other]) == static_cast<int>(link.flips)) continue;
+    const int face = std::min(link.face, link.other);
+    if (groups.non_orientable_face < 0 || face < groups.non_orientable_face) groups.non_orientable_face = face;
+  }
+  return groups;
+}
+
+// Within each group of faces so connected, the faces whose winding the fewer
+// agree with are reported: for one flipped face that is the face, not its
+// neighbours.
+void check_orientation(const Mesh& mesh, const std::vector<EdgeUse>& uses, MeshReport& report,
+                       ProblemList& problems) {
+  const int num_faces = mesh.num_triangles();
+  const WindingGroups groups = winding_groups(num_faces, uses);
+  report.inconsistent_edges = static_cast<int>(groups.disagreeing_pairs.size());
+  if (report.inconsistent_edges == 0) return;
+  std::vector<char> reported = groups.in_minority;
   // A non-orientable group (a Moebius strip) can leave a disagreeing pair with
   // both faces on one side: report the later face.
-  for (const auto& [f, g] : flipped_pairs) {
+  for (const auto& [f, g] : groups.disagreeing_pairs) {
     if (!reported[f] && !reported[g]) reported[std::max(f, g)] = 1;
   }
   for (int f = 0; f < num_faces; ++f) {
-    if (!reported[f] || disagreeing_edges[f] == 0) continue;
+    if (!reported[f] || groups.disagreeing_edges[f] == 0) continue;
     problems.add(ProblemKind::InconsistentOrientation, f, [&] {
       return "face " + std::to_string(f) + " is wound opposite to its neighbours (across " +
-             std::to_string(disagreeing_edges[f]) + " of its edges)";
+             std::to_string(groups.disagreeing_edges[f]) + " of its edges)";
     });
   }
 }
@@ -508,6 +533,57 @@ void require_solvable(const Mesh& mesh) {
   report.problems = problems.in_order();
   report.problem_counts = problems.counts();
   if (!report.solvable()) fail(ErrorCode::BadMesh, "the mesh cannot be solved on: " + report.blocking_summary());
+}
+
+WindingRepair majority_winding(const Mesh& mesh) {
+  WindingRepair repair;
+  const WindingGroups groups = winding_groups(mesh.num_triangles(), edge_uses(mesh));
+  if (groups.disagreeing_pairs.empty()) return repair;
+  if (groups.non_orientable_face >= 0) {
+    repair.non_orientable_face = groups.non_orientable_face;
+    return repair;
+  }
+  for (int f = 0; f < mesh.num_triangles(); ++f) {
+    if (groups.in_minority[f]) repair.faces_to_turn.push_back(f);
+  }
+  return repair;
+}
+
+std::vector<int> face_sheets(const Mesh& mesh, int* count) {
+  const int num_faces = mesh.num_triangles();
+  std::vector<int> parent(static_cast<std::size_t>(num_faces));
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto root = [&](int f) {
+    while (parent[f] != f) f = parent[f] = parent[parent[f]];
+    return f;
+  };
+  const std::vector<EdgeUse> uses = edge_uses(mesh);
+  for_each_edge(uses, [&](std::size_t begin, std::size_t end) {
+    if (end - begin != 2) return;
+    const int a = root(uses[begin].face), b = root(uses[begin + 1].face);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  });
+  std::vector<int> sheet(static_cast<std::size_t>(num_faces), -1);
+  int sheets = 0;
+  for (int f = 0; f < num_faces; ++f) {
+    const int r = root(f);
+    if (sheet[r] < 0) sheet[r] = sheets++;
+    sheet[f] = sheet[r];
+  }
+  if (count) *count = sheets;
+  return sheet;
+}
+
+std::vector<NonManifoldEdgeFaces> non_manifold_edge_faces(const Mesh& mesh) {
+  std::vector<NonManifoldEdgeFaces> edges;
+  const std::vector<EdgeUse> uses = edge_uses(mesh);
+  for_each_edge(uses, [&](std::size_t begin, std::size_t end) {
+    if (end - begin <= 2) return;
+    NonManifoldEdgeFaces edge{uses[begin].lo, uses[begin].hi, {}};
+    for (std::size_t u = begin; u < end; ++u) edge.faces.push_back(uses[u].face);
+    edges.push_back(std::move(edge));
+  });
+  return edges;
 }
 
 // ---------------------------------------------------------------- repairs
