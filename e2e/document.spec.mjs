@@ -735,6 +735,21 @@ test('a reload puts back the selection, the tool and its settings and the camera
   await undo.click();
   await expect.poll(() => page.evaluate(() => window.anisoform.document().ops.length)).toBe(1);
   expect(bitwise(await page.evaluate(() => Array.from(window.anisoform.positions())), before.positions)).toBe(true);
+
+  // An orbit and a selection made just before a reload (within the view's
+  // 250 ms wait) come back too: they were lost, the view before them shown.
+  await expect.poll(() => savedWork(page).then((record) => record?.document.ops.length)).toBe(1);
+  await page.getByTestId('viewport').focus();
+  for (const key of ['Shift+ArrowRight', 'Shift+ArrowRight', 'Shift+ArrowRight']) await page.keyboard.press(key);
+  const last = await page.evaluate(async () => {
+    await window.anisoform.select({ sphere: { center: [0, -0.2, 0.3], radius: 0.3 } });
+    return { selection: Array.from(window.anisoform.selection()), camera: window.anisoform.camera() };
+  });
+  await page.reload();
+  await page.evaluate(() => window.anisoform.ready);
+  const restored = await page.evaluate(() => ({ selection: Array.from(window.anisoform.selection()), camera: window.anisoform.camera() }));
+  expect(bitwise(restored.selection, last.selection)).toBe(true);
+  for (const key of ['position', 'target']) expect(restored.camera[key]).toEqual(closeTo(last.camera[key]));
   expect(pageErrors).toEqual([]);
 });
 

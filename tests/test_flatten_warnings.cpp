@@ -73,6 +73,21 @@ TEST_CASE("flatten warnings: the torso panel's shear is measured and warned abou
   const std::vector<std::string> warnings = flatten_warnings(m);
   CHECK(any_contains(warnings, "the pattern shears the fabric"));
   CHECK(any_contains(warnings, "off square on average"));
+  CHECK(m.refined);
+  CHECK(any_contains(warnings, "without the refinement, --no-refine or refine: false, it shears less"));
+  // Without the refinement (the hemisphere still shears 6°): turning it off
+  // is not offered again (it was, to a user who had turned it off).
+  const Mesh hemisphere = test::load("open/hemisphere.obj");
+  FlattenOptions unrefined;
+  unrefined.su = 0.8;
+  unrefined.directions.global = Eigen::Vector3d(1, 0, 0);
+  unrefined.solver.refine = false;
+  const FlattenMetrics plain = flatten(hemisphere, {}, unrefined).result.metrics;
+  CHECK_FALSE(plain.refined);
+  CHECK(plain.shear_degrees_mean > kShearWarningDegrees);
+  const std::vector<std::string> plain_warnings = flatten_warnings(plain);
+  CHECK(any_contains(plain_warnings, "the pattern shears the fabric"));
+  CHECK_FALSE(any_contains(plain_warnings, "without the refinement"));
 
   // In the CLI's JSON and warnings too.
   const std::string svg = std::string(test::kScratchDir) + "/torso_shear.svg";

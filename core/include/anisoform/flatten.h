@@ -184,6 +184,7 @@ struct FlattenMetrics {
   double energy = 0.0;
   bool converged = false;
   bool capped = false;                   // stopped unconverged at the iteration cap (raise it, not cut)
+  bool refined = false;                  // the stretch refinement changed the ARAP result (refine on)
   int outline_crossings = 0;             // the outline crosses itself: the pattern overlaps itself
   double seconds = 0.0;                  // wall time of the flatten call
   int filled_directions = 0;

@@ -181,11 +181,13 @@ FlattenResult Flattener::flatten(const FlattenOptions& options) {
   }
   Impl::Solved solved = im.solve(solved_targets, local_global);
   bool converged = solved.report.converged;
+  bool refined_ran = false;
   if (refining) {
     const StretchRefineReport refined =
         refine_stretch(patch, im.charts, solved_targets, im.arap->pinned(), options.solver, solved.iterations,
                        im.refinement_starts(solved.uv, solved_targets), solved.uv, refine_progress);
     if (refined.start >= 0) {
+      refined_ran = true;
       solved.iterations += refined.iterations;
       converged = refined.converged;
       if (refined.start > 0) solved.initialization = refined.start == 1 ? "lscm" : "tutte";
@@ -217,6 +219,7 @@ FlattenResult Flattener::flatten(const FlattenOptions& options) {
   metrics.iterations = solved.iterations;
   metrics.energy = solved.report.energy;
   metrics.converged = converged;
+  metrics.refined = refined_ran;
   metrics.capped = !converged && solved.iterations >= options.solver.max_iterations;
   metrics.filled_directions = result.targets.filled_directions;
   metrics.near_normal_directions = result.targets.near_normal_directions;

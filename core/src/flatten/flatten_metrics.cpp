@@ -200,9 +200,12 @@ std::vector<std::string> flatten_warnings(const FlattenMetrics& metrics) {
     warnings.push_back("the pattern shears the fabric: the wanted direction and its cross direction meet " +
                        degrees(metrics.shear_degrees_mean) + " off square on average (" +
                        degrees(metrics.shear_degrees_max) +
-                       " at most), which the compression and cross errors do not show (without the "
-                       "refinement, --no-refine or refine: false, it shears less and misses the lengths "
-                       "more); a cut or a dart where it curves most lowers both");
+                       " at most), which the compression and cross errors do not show" +
+                       // Offered only where the refinement ran: without it, it is no way out.
+                       std::string(metrics.refined ? " (without the refinement, --no-refine or refine: false, it "
+                                                     "shears less and misses the lengths more)"
+                                                   : "") +
+                       "; a cut or a dart where it curves most lowers both");
   }
   const int triangles = std::max(metrics.triangles, 1);
   const bool many_near_normal = metrics.near_normal_directions > kNearNormalDirectionShare * triangles;

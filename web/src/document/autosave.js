@@ -98,6 +98,30 @@ async function transact(mode, work) {
 // (view-autosave.js: the selection, the tool and its settings, the camera):
 // written far more often than the work, so apart from its mesh file.
 const viewKey = (workKey) => `view:${workKey}`;
+// sessionStorage's key of the view saved as the page went (saveViewOnLeave).
+const LEAVING_VIEW = 'anisoform-leaving-view';
+
+function base64Of(bytes) {
+  let text = '';
+  for (let i = 0; i < bytes.length; i += 0x8000) text += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
+  return btoa(text);
+}
+
+// The view this tab saved as it went, if it is of the work `workKey`
+// (once: it is removed), its selection a Float32Array again; else null.
+function takeLeavingView(workKey) {
+  try {
+    const text = sessionStorage.getItem(LEAVING_VIEW);
+    sessionStorage.removeItem(LEAVING_VIEW);
+    const view = text && JSON.parse(text);
+    if (!view || view.tab !== workKey) return null;
+    const selection = typeof view.selection === 'string'
+      ? new Float32Array(Uint8Array.from(atob(view.selection), (c) => c.charCodeAt(0)).buffer) : null;
+    return { ...view, selection };
+  } catch {
+    return null;
+  }
+}
 
 // Off until enable(): one database per origin, so only the standalone site
 // autosaves; two embedded modellers on one page would overwrite each other.
@@ -147,8 +171,9 @@ export class Autosave {
   }
 
   /** Saves this tab's view (view-autosave.js), after the saves asked for before. */
-  saveView(view) {
+  saveView(view, { leaving = false } = {}) {
     if (!this.enabled) return Promise.resolve();
+    if (leaving) this.#saveViewOnLeave(view);
     const key = viewKey(tabKey());
     const saving = this.#chain.then(() => this.enabled && transact('readwrite', (store) => {
       store.put(view, key);
@@ -159,12 +184,35 @@ export class Autosave {
     });
   }
 
-  /** The view saved beside the work load() found last (its tab's), or null. */
+  /**
+   * Saves this tab's view at once, as the page goes (pagehide): a database
+   * write begun then does not end before the page does (a reload within
+   * the view's 250 ms wait lost the last orbit or stroke). Kept in the tab's
+   * sessionStorage, which a reload keeps; too large for it (a huge
+   * selection), it is not kept there.
+   */
+  #saveViewOnLeave(view) {
+    if (!this.enabled) return;
+    try {
+      const selection = view.selection && base64Of(new Uint8Array(view.selection.buffer, view.selection.byteOffset, view.selection.byteLength));
+      sessionStorage.setItem(LEAVING_VIEW, JSON.stringify({ ...view, selection, tab: tabKey() }));
+    } catch {
+      try {
+        sessionStorage.removeItem(LEAVING_VIEW);
+      } catch {
+        // No sessionStorage (a sandboxed frame): the database's copy is all.
+      }
+    }
+  }
+
+  /** The view saved beside the work load() found last (its tab's; the later of its two copies), or null. */
   async loadView() {
     if (!this.enabled || !this.#loadedKey) return null;
     const key = viewKey(this.#loadedKey);
+    const leaving = takeLeavingView(this.#loadedKey);
     try {
-      return (await transact('readonly', (store) => store.get(key))) ?? null;
+      const stored = (await transact('readonly', (store) => store.get(key))) ?? null;
+      return leaving && !(stored?.savedAt > leaving.savedAt) ? leaving : stored;
     } catch (error) {
       throw storageError('read the saved view', error);
     }

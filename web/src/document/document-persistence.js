@@ -142,9 +142,9 @@ export class DocumentPersistence {
     this.#autosave.enabled = false;
   }
 
-  /** Autosaves the view of the work (view-autosave.js) beside it. */
-  saveView(view) {
-    return this.#autosave.saveView(view);
+  /** Autosaves the view of the work (view-autosave.js) beside it; `leaving`: the page is going. */
+  saveView(view, options) {
+    return this.#autosave.saveView(view, options);
   }
 
   /**

@@ -525,9 +525,9 @@ export class OpStack {
     return this.#persistence.restoreAutosave();
   }
 
-  /** Autosaves the view of the work beside it (view-autosave.js). */
-  saveView(view) {
-    return this.#persistence.saveView(view);
+  /** Autosaves the view of the work beside it (view-autosave.js); `leaving`: the page is going. */
+  saveView(view, options) {
+    return this.#persistence.saveView(view, options);
   }
 
   // ---- helpers -------------------------------------------------------------

@@ -57,8 +57,8 @@ export class ViewAutosave {
     this.#settings.on('change', soon);
     this.#viewer.controls.addEventListener('change', soon);
     this.#lifetime.defer(() => this.#viewer.controls.removeEventListener('change', soon));
-    // A tab closed or reloaded within SAVE_AFTER_MS of the last change still saves it.
-    this.#lifetime.listen(window, 'pagehide', () => this.#saveNow());
+    // A tab reloaded within SAVE_AFTER_MS of the last change still saves it.
+    this.#lifetime.listen(window, 'pagehide', () => this.#saveNow({ leaving: true }));
   }
 
   #saveSoon() {
@@ -66,7 +66,7 @@ export class ViewAutosave {
     this.#timer = setTimeout(() => this.#saveNow(), SAVE_AFTER_MS);
   }
 
-  #saveNow() {
+  #saveNow({ leaving = false } = {}) {
     clearTimeout(this.#timer);
     const document = this.#editor.document;
     if (!document || this.#lifetime.disposed) return;
@@ -80,7 +80,7 @@ export class ViewAutosave {
     // A view that cannot be stored is not said: the work's own save, which
     // meets the same storage, says it (autosave.js), and a lost view costs
     // a click, not work.
-    this.#editor.ops.saveView(view).catch(() => {});
+    this.#editor.ops.saveView(view, { leaving }).catch(() => {});
   }
 }
 
