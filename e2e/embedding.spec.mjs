@@ -498,9 +498,18 @@ test('<anisoform-modeller>: a ui change while an edit solves lays the same model
     undo.click();
     await new Promise((resolve) => setTimeout(resolve, 100));
     const undone = api.positions();
+    // A control of the panel focused when the ui changes: the 3D view has
+    // the focus after, there and back (it fell to the page's body).
+    element.querySelector('[data-testid=tool-stretch]').focus();
+    element.setAttribute('ui', 'none');
+    const focusNone = document.activeElement === element.querySelector('canvas');
+    element.setAttribute('ui', 'full');
+    const focusFull = document.activeElement === element.querySelector('canvas');
     return { none, full, undone: undone.every((value, i) => value === rest[i]), newWorkers: window.__census().workersCreated - created,
-      heardAfter: heard.slice(none.heard.length) };
+      heardAfter: heard.slice(none.heard.length), focusNone, focusFull };
   });
+  expect(outcome.focusNone).toBe(true);
+  expect(outcome.focusFull).toBe(true);
   expect(outcome.none).toMatchObject({ result: 'applied', panelsWhileSolving: 0, heard: ['change positions', 'change document'], ops: 1, moved: true,
     canvases: 1 });
   expect(outcome.none.apiHeard).toEqual(['positions', 'change positions', 'document', 'change document']);

@@ -75,6 +75,7 @@ export function createModeller(container, options = {}) {
   // listeners among them: ui-scope.js), until setUi lays the modeller out anew.
   let currentUi = ui;
   const layout = buildLayout(container, ui);
+  let shownLayout = layout;
   let uiLifetime = layoutLifetime(layout);
   lifetime.defer(() => uiLifetime.dispose());
   const layoutNodes = new Set(layout.viewport.children);
@@ -266,14 +267,20 @@ export function createModeller(container, options = {}) {
     if (!UI_MODES.includes(next)) throw badParameter(`setUi: ui must be ${UI_MODES.map((m) => `'${m}'`).join(' or ')}, got '${next}'`);
     if (next === currentUi || lifetime.disposed) return;
     gestures.cancel(); // a stroke of the panel's tool ends with the panel
+    // The focus stays in the modeller: on the same control in the new
+    // layout, else on the 3D view (it fell to the page's body, and with
+    // keyboard 'focus' the shortcuts stopped reaching the modeller).
+    const focused = shownLayout.root.contains(document.activeElement) ? document.activeElement : null;
     const nextLayout = buildLayout(container, next);
     viewer.moveTo(nextLayout.viewport, overlays);
     heatmapDisplay.legend.moveTo(nextLayout.viewport);
     const previous = uiLifetime;
     currentUi = next;
+    shownLayout = nextLayout;
     uiLifetime = layoutLifetime(nextLayout);
     previous.dispose();
     installUi(nextLayout, next, uiLifetime, { prime: true });
+    if (focused) focusLike(focused, nextLayout.root, viewer.canvas);
   }
 
   /** Loads a URL as well as what api.load takes; failures are reported as 'error' events too. */
@@ -370,4 +377,12 @@ function checkOptions(container, options) {
 
 function openWithoutMesh() {
   return badParameter('createModeller: the document option needs its base mesh in the mesh option');
+}
+
+// Focuses the control of `root` that is `control`'s counterpart (its test
+// id: a banner's button is in both layouts), or `fallback`.
+function focusLike(control, root, fallback) {
+  const testId = control.dataset?.testid;
+  const counterpart = testId && root.querySelector(`[data-testid="${CSS.escape(testId)}"]`);
+  (counterpart || fallback).focus();
 }
