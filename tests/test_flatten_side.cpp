@@ -66,13 +66,6 @@ Mesh with_faces_turned(Mesh mesh, const std::vector<int>& faces) {
   return mesh;
 }
 
-bool warnings_mention_turned(const std::vector<std::string>& lines, const std::string& part) {
-  for (const std::string& line : lines) {
-    if (line.find(part) != std::string::npos) return true;
-  }
-  return false;
-}
-
 }  // namespace
 
 TEST_CASE("flatten: the torso panel wound the other way is its pattern's mirror image, and the files say "
@@ -127,7 +120,7 @@ TEST_CASE("flatten: faces wound against the rest of their piece are turned over 
     CHECK(out.result.metrics.flipped == 0);
     CHECK(rigid_misfit(wanted, uv_by_input_vertex(out, mesh.num_vertices())) < 1e-6 * size);
     const std::vector<std::string> warnings = flatten_warnings(out.result.metrics);
-    CHECK(warnings_mention_turned(warnings, "1 face(s) were wound against their neighbours (face 100): turned over to the "
+    CHECK(test::any_contains(warnings, "1 face(s) were wound against their neighbours (face 100): turned over to the "
                              "winding most of the piece has"));
     CHECK(flatten_problem(out.result.metrics).empty());
   }
@@ -144,7 +137,7 @@ TEST_CASE("flatten: faces wound against the rest of their piece are turned over 
     CHECK(out.result.metrics.boundary_loops == 1);
     CHECK(out.result.metrics.outline_crossings == 0);
     CHECK(rigid_misfit(wanted, uv_by_input_vertex(out, mesh.num_vertices())) < 1e-6 * size);
-    CHECK(warnings_mention_turned(flatten_warnings(out.result.metrics),
+    CHECK(test::any_contains(flatten_warnings(out.result.metrics),
                    std::to_string(right.size()) + " face(s) were wound against their neighbours (faces " +
                        std::to_string(right[0]) + ", "));
   }

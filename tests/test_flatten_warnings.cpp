@@ -18,10 +18,6 @@ namespace {
 
 using namespace aniso;
 
-bool any_contains(const std::vector<std::string>& texts, const std::string& part) {
-  return std::any_of(texts.begin(), texts.end(), [&](const std::string& t) { return t.find(part) != std::string::npos; });
-}
-
 // The area-weighted mean of |angle(J d, J (n x d)) - 90°| over the patch,
 // recomputed from the 3D triangles and their pattern positions alone: J maps
 // each triangle's edges onto its uv edges, d is the global direction in the
@@ -71,10 +67,10 @@ TEST_CASE("flatten warnings: the torso panel's shear is measured and warned abou
   CHECK(m.shear_degrees_mean > kShearWarningDegrees);
   CHECK(m.shear_degrees_max >= m.shear_degrees_mean);
   const std::vector<std::string> warnings = flatten_warnings(m);
-  CHECK(any_contains(warnings, "the pattern shears the fabric"));
-  CHECK(any_contains(warnings, "off square on average"));
+  CHECK(test::any_contains(warnings, "the pattern shears the fabric"));
+  CHECK(test::any_contains(warnings, "off square on average"));
   CHECK(m.refined);
-  CHECK(any_contains(warnings, "without the refinement, --no-refine or refine: false, it shears less"));
+  CHECK(test::any_contains(warnings, "without the refinement, --no-refine or refine: false, it shears less"));
   // Without the refinement (the hemisphere still shears 6°): turning it off
   // is not offered again (it was, to a user who had turned it off).
   const Mesh hemisphere = test::load("open/hemisphere.obj");
@@ -86,8 +82,8 @@ TEST_CASE("flatten warnings: the torso panel's shear is measured and warned abou
   CHECK_FALSE(plain.refined);
   CHECK(plain.shear_degrees_mean > kShearWarningDegrees);
   const std::vector<std::string> plain_warnings = flatten_warnings(plain);
-  CHECK(any_contains(plain_warnings, "the pattern shears the fabric"));
-  CHECK_FALSE(any_contains(plain_warnings, "without the refinement"));
+  CHECK(test::any_contains(plain_warnings, "the pattern shears the fabric"));
+  CHECK_FALSE(test::any_contains(plain_warnings, "without the refinement"));
 
   // In the CLI's JSON and warnings too.
   const std::string svg = std::string(test::kScratchDir) + "/torso_shear.svg";
@@ -98,7 +94,7 @@ TEST_CASE("flatten warnings: the torso panel's shear is measured and warned abou
   const nlohmann::json json = nlohmann::json::parse(run.out);
   CHECK(json["shear_degrees_mean"].get<double>() == Approx(m.shear_degrees_mean).epsilon(1e-9));
   CHECK(json["shear_degrees_max"].get<double>() == Approx(m.shear_degrees_max).epsilon(1e-9));
-  CHECK(any_contains(json["warnings"].get<std::vector<std::string>>(), "the pattern shears the fabric"));
+  CHECK(test::any_contains(json["warnings"].get<std::vector<std::string>>(), "the pattern shears the fabric"));
 }
 
 TEST_CASE("flatten warnings: a plane compressed along itself has no shear and nothing to say", "[flatten]") {
@@ -129,11 +125,11 @@ TEST_CASE("flatten warnings: a direction along the normal of a nearly flat patch
   INFO("near normal " << m.near_normal_directions << " of " << m.triangles << ", filled " << m.filled_directions);
   CHECK(m.near_normal_directions == m.triangles);
   const std::vector<std::string> warnings = flatten_warnings(m);
-  CHECK(any_contains(warnings, "the direction runs (nearly) along the surface's normal on " +
+  CHECK(test::any_contains(warnings, "the direction runs (nearly) along the surface's normal on " +
                                    std::to_string(m.triangles) + " of " + std::to_string(m.triangles) +
                                    " triangles (100 %, within 10°)"));
 
   // Along the patch: nothing to say about the direction.
   options.directions.global = Eigen::Vector3d(1, 0, 0);
-  CHECK_FALSE(any_contains(flatten_warnings(flatten(patch, {}, options).result.metrics), "normal"));
+  CHECK_FALSE(test::any_contains(flatten_warnings(flatten(patch, {}, options).result.metrics), "normal"));
 }

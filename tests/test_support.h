@@ -37,6 +37,14 @@ inline int count_of(const std::string& text, const std::string& part) {
   return count;
 }
 
+// Whether any of `texts` (warnings, lines) contains `part`.
+inline bool any_contains(const std::vector<std::string>& texts, const std::string& part) {
+  for (const std::string& text : texts) {
+    if (text.find(part) != std::string::npos) return true;
+  }
+  return false;
+}
+
 // The message of the aniso::Error that `call` throws; fails the test if it
 // throws nothing or an error with another code.
 template <typename Call>

@@ -14,6 +14,8 @@ export class DocumentPersistence {
   #rebuildHistory;
   #reportSolved;
   #autosave = new Autosave();
+  // The announcement waiting for the operation running to end (announce), or null.
+  #announcing = null;
   /** The base mesh as loaded: {name, bytes: a Blob of the file}. */
   mesh = null;
   /** True while the autosaved mesh is being loaded (its load must not replace the autosave). */
@@ -122,7 +124,6 @@ export class DocumentPersistence {
       if (announcing.change) this.#editor.emit('change', { reason: 'document' });
     });
   }
-  #announcing = null;
 
   /** Announces the document and autosaves it with the mesh bytes. */
   changed({ change = true } = {}) {
