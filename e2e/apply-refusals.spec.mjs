@@ -3,7 +3,7 @@
 // 'ARAP with handles', which has no amount), the error banner and the API's
 // 'error' event say why and what to do, and the mesh and history stay. An
 // edit no direction changes (a twist, a rotation about the normal) needs none.
-import { armChange, expect, meshPath, openApp, selectUpperHalf, test, uploadFile } from './support.mjs';
+import { armChange, evaluateBulk, expect, meshPath, openApp, selectUpperHalf, test, uploadFile } from './support.mjs';
 
 async function recordErrors(page) {
   await page.evaluate(() => {
@@ -29,14 +29,14 @@ async function expectRefusal(page, { before, words }) {
   expect(errors).toHaveLength(1);
   expect(errors[0].code).toBe('bad-parameter');
   for (const word of words) expect(errors[0].message).toContain(word);
-  expect(await page.evaluate(() => Array.from(window.anisoform.positions()))).toEqual(before);
+  expect(await evaluateBulk(page, () => Array.from(window.anisoform.positions()))).toEqual(before);
   expect(await page.evaluate(() => window.anisoform.undo())).toBe(false);
 }
 
 test('Apply on a fresh page (screen direction, no drag yet) says to drag first', async ({ page }) => {
   const pageErrors = await openApp(page);
   await recordErrors(page);
-  const before = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  const before = await evaluateBulk(page, () => Array.from(window.anisoform.positions()));
   await applyStretch(page, 2);
   await expectRefusal(page, { before, words: ['Stretch was not applied', 'drag on the mesh', 'direction source'] });
   expect(pageErrors).toEqual([]);
@@ -46,7 +46,7 @@ test('Apply of a twist or a rotation about the normal needs no drag first; about
   const pageErrors = await openApp(page);
   await recordErrors(page);
   await selectUpperHalf(page);
-  const positions = () => page.evaluate(() => Array.from(window.anisoform.positions()));
+  const positions = () => evaluateBulk(page, () => Array.from(window.anisoform.positions()));
   const opCount = () => page.evaluate(() => window.anisoform.document().ops.length);
   const rest = await positions();
   await page.getByTestId('tool-twist').click();
@@ -81,7 +81,7 @@ test('Apply of a twist or a rotation about the normal needs no drag first; about
 test('Apply with the Arrows source and no arrows says to place arrows', async ({ page }) => {
   const pageErrors = await openApp(page);
   await recordErrors(page);
-  const before = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  const before = await evaluateBulk(page, () => Array.from(window.anisoform.positions()));
   await page.locator('#direction-source').selectOption('arrows');
   await applyStretch(page, 2);
   await expectRefusal(page, { before, words: ['Stretch was not applied', 'Arrows tool'] });
@@ -91,7 +91,7 @@ test('Apply with the Arrows source and no arrows says to place arrows', async ({
 test('Apply with ARAP with handles says to drag the selection instead', async ({ page }) => {
   const pageErrors = await openApp(page);
   await recordErrors(page);
-  const before = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  const before = await evaluateBulk(page, () => Array.from(window.anisoform.positions()));
   await page.locator('#direction-source').selectOption('global');
   await page.locator('#solver-method').selectOption('arap');
   await applyStretch(page, 2);
@@ -186,7 +186,7 @@ test('Undo and Redo keep the focus at either end of the history', async ({ page 
 test('Apply with an amount the core refuses says so in the panel\'s words', async ({ page }) => {
   const pageErrors = await openApp(page);
   await recordErrors(page);
-  const before = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  const before = await evaluateBulk(page, () => Array.from(window.anisoform.positions()));
   await page.locator('#direction-source').selectOption('global');
   await applyStretch(page, 0);
   await expectRefusal(page, { before, words: ['Stretch', 'stretch along (su) must be positive, got 0'] });

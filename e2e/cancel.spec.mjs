@@ -3,7 +3,7 @@
 // notice (not an error) says so, the mesh, the document and the history are
 // exactly as before, and the solver comes back with that state: the next
 // edit, undo and a replay of the document all work as if nothing happened.
-import { expect, meshPath, openApp, recordWorkerRequests, test, uploadFile, verticalRange } from './support.mjs';
+import { evaluateBulk, expect, meshPath, openApp, recordWorkerRequests, test, uploadFile, verticalRange } from './support.mjs';
 
 // A solve that would run for tens of seconds on the armadillo.
 const LONG_EDIT = {
@@ -34,7 +34,7 @@ async function setUp(page) {
 // Starts LONG_EDIT, waits until it is solving, stops it with `stop` (run in
 // the page), and reports what happened.
 async function cancelLongEdit(page, stop) {
-  return page.evaluate(async ({ edit, stop }) => {
+  return evaluateBulk(page, async ({ edit, stop }) => {
     const api = window.anisoform;
     const before = { positions: Array.from(api.positions()), document: JSON.stringify(api.document()) };
     const started = api.deform(edit).then(() => ({ outcome: 'finished' }), (error) => ({ outcome: 'rejected', code: error.code, message: error.message, at: performance.now() }));
@@ -98,7 +98,7 @@ test('api.cancel(), the Cancel button and Esc stop a long commit at once; the ne
   expect(result.accepted).toBe(true);
   expectKept(result);
 
-  const after = await page.evaluate(async () => {
+  const after = await evaluateBulk(page, async () => {
     const api = window.anisoform;
     const kept = Array.from(api.positions());
     const idle = api.cancel(); // nothing to stop now
@@ -147,7 +147,7 @@ test('Esc stops the re-run an Edits-list toggle started; the states on screen co
   await page.evaluate(() => window.anisoform.deform({ method: 'anarap', direction: { type: 'global', vector: [1, 0, 0] },
     transform: { shear: 0.2 }, maxIterations: 400, tolerance: 1e-15, acceleration: 'none' }));
   const posted = await recordWorkerRequests(page);
-  const before = await page.evaluate(() => ({ positions: Array.from(window.anisoform.positions()),
+  const before = await evaluateBulk(page, () => ({ positions: Array.from(window.anisoform.positions()),
     document: JSON.stringify(window.anisoform.document()), undo: document.querySelector('[data-testid="undo"]').title }));
   const toggle = page.getByTestId('op-toggle-op-1');
   await toggle.uncheck();
@@ -165,7 +165,7 @@ test('Esc stops the re-run an Edits-list toggle started; the states on screen co
   expect(progress).toMatch(/^Edit [12] of 2: (Solving|Preparing the solver) \d+ %/);
   await expect(page.getByTestId('notice')).toContainText('Cancelled: the solve was stopped');
   await expect(toggle).toBeChecked();
-  const after = await page.evaluate(() => ({ positions: Array.from(window.anisoform.positions()),
+  const after = await evaluateBulk(page, () => ({ positions: Array.from(window.anisoform.positions()),
     document: JSON.stringify(window.anisoform.document()), undo: document.querySelector('[data-testid="undo"]').title,
     errorShown: !document.querySelector('[data-testid="error"]').hidden }));
   after.posted = await posted(postedBefore);

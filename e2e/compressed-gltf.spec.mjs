@@ -5,7 +5,7 @@ import { readFileSync, writeFileSync } from 'node:fs';
 
 import { dracoGlb, instancedGlb, meshoptGlb, quantizedGlb, skinnedGlb } from './compressed-gltf.mjs';
 import { assembledGlb, glbChunks, glbWithJson, meshesByName, parseGlb, spotSceneGlb, worldPositions } from './gltf-scene.mjs';
-import { expect, failures, meshPath, openApp, rangeAlong, stretchUpperHalfAndExport, test, uploadFile } from './support.mjs';
+import { evaluateBulk, expect, failures, meshPath, openApp, rangeAlong, stretchUpperHalfAndExport, test, uploadFile } from './support.mjs';
 
 const SPOT = meshPath('formats/spot_lowres.glb');
 
@@ -15,7 +15,7 @@ async function open(page, bytes, name) {
   const path = test.info().outputPath(name);
   writeFileSync(path, bytes);
   const loaded = await uploadFile(page, path);
-  const { positions, notice } = await page.evaluate(() => {
+  const { positions, notice } = await evaluateBulk(page, () => {
     const shown = document.querySelector('[data-testid="notice"]');
     return { positions: Array.from(window.anisoform.positions()), notice: shown.hidden ? '' : shown.textContent };
   });
@@ -179,7 +179,7 @@ test('a GLB using an extension the app does not read says which, and still opens
 test('a damaged Draco or meshopt GLB is refused, saying what failed, and the mesh stays', async ({ page }) => {
   const pageErrors = await openApp(page);
   const glb = readFileSync(SPOT);
-  const before = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  const before = await evaluateBulk(page, () => Array.from(window.anisoform.positions()));
   const cases = [
     ['spot-draco.glb', await dracoGlb(glb), /not a readable glTF file: Draco geometry: .*Decoding failed/],
     ['spot-meshopt.glb', await meshoptGlb(await quantizedGlb(glb)), /not a readable glTF file: Malformed buffer data/],

@@ -6,12 +6,12 @@
 import { readFileSync } from 'node:fs';
 
 import { schemaErrors } from '../docs/document-schema.mjs';
-import { armChange, expect, meshPath, openApp, recordWorkerRequests, test, uploadFile } from './support.mjs';
+import { armChange, evaluateBulk, expect, meshPath, openApp, recordWorkerRequests, test, uploadFile } from './support.mjs';
 
 // Three edits on Spot: a soft region stretch, a twist of a box, a shear of
 // a selection built with 'add'.
 async function editSpot(page) {
-  return page.evaluate(async () => {
+  return evaluateBulk(page, async () => {
     const api = window.anisoform;
     await api.select({ sphere: { center: [0, 0.3, 0.5], radius: 0.4 } }, { falloff: 0.2 });
     await api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 0, 1] }, transform: { scale: [1.4, 1] } });
@@ -62,7 +62,7 @@ test('a document replays on a fresh page to bitwise the same positions', async (
 
   const fresh = await browser.newPage();
   const freshErrors = await openApp(fresh);
-  const replayed = await fresh.evaluate(async (json) => {
+  const replayed = await evaluateBulk(fresh, async (json) => {
     await window.anisoform.open(json);
     return { positions: Array.from(window.anisoform.positions()), document: window.anisoform.document() };
   }, document);
@@ -85,12 +85,12 @@ test('an op toggled off is skipped and its amounts re-run the later ops', async 
   await page.getByTestId(`op-toggle-${third.id}`).uncheck();
   await rerun();
   expect(await page.evaluate(() => window.anisoform.document().ops[2].enabled)).toBe(false);
-  expect(bitwise(await page.evaluate(() => Array.from(window.anisoform.positions())), afterTwo)).toBe(true);
+  expect(bitwise(await evaluateBulk(page, () => Array.from(window.anisoform.positions())), afterTwo)).toBe(true);
   rerun = await armChange(page, 'document');
   await page.getByTestId(`op-toggle-${third.id}`).check();
   await rerun();
   expect(await page.evaluate(() => window.anisoform.document().ops[2].enabled)).toBe(true);
-  expect(bitwise(await page.evaluate(() => Array.from(window.anisoform.positions())), afterThree)).toBe(true);
+  expect(bitwise(await evaluateBulk(page, () => Array.from(window.anisoform.positions())), afterThree)).toBe(true);
 
   // The middle op's twist amount from the panel: the op and the one after re-run.
   await page.getByTestId(`op-select-${second.id}`).click();
@@ -101,10 +101,10 @@ test('an op toggled off is skipped and its amounts re-run the later ops', async 
   await amount.dispatchEvent('change');
   await rerun();
   expect(await page.evaluate(() => window.anisoform.document().ops[1].op.transform.twist.degreesPerUnit)).toBe(10);
-  const retwisted = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  const retwisted = await evaluateBulk(page, () => Array.from(window.anisoform.positions()));
   expect(bitwise(retwisted, afterThree)).toBe(false);
   // Back to 30 by the API: bitwise the original three-op result.
-  const restored = await page.evaluate(async (id) => {
+  const restored = await evaluateBulk(page, async (id) => {
     await window.anisoform.setParameter(id, { transform: { twist: { ...window.anisoform.document().ops[1].op.transform.twist, degreesPerUnit: 30 } } });
     return Array.from(window.anisoform.positions());
   }, second.id);
@@ -113,7 +113,7 @@ test('an op toggled off is skipped and its amounts re-run the later ops', async 
   // Each change of an op is a step of the history, as each commit is: undo
   // and redo re-run the op with its value before or after (here the undo
   // steps named in the Undo button, back over every change to the shear's commit).
-  const positions = () => page.evaluate(() => Array.from(window.anisoform.positions()));
+  const positions = () => evaluateBulk(page, () => Array.from(window.anisoform.positions()));
   const ops = () => page.evaluate(() => window.anisoform.document().ops.map((op) => `${op.enabled}:${JSON.stringify(op.op.transform)}`));
   const undoTitle = () => page.getByTestId('undo').getAttribute('title');
   const step = async (which, solves = true) => {
@@ -189,7 +189,7 @@ test('an op deleted or moved in the Edits list: the later ops re-run, as a repla
   const pageErrors = await openApp(page);
   const { afterTwo, afterThree, document } = await editSpot(page);
   const [first, , third] = document.ops;
-  const positions = () => page.evaluate(() => Array.from(window.anisoform.positions()));
+  const positions = () => evaluateBulk(page, () => Array.from(window.anisoform.positions()));
   const ids = () => page.evaluate(() => window.anisoform.document().ops.map((op) => op.id));
   const changed = async (action) => {
     const done = await armChange(page, 'document');
@@ -244,7 +244,7 @@ test("an earlier op's method and direction from the Edits list: it re-runs as a 
   const pageErrors = await openApp(page);
   const { afterThree, document } = await editSpot(page);
   const [first] = document.ops;
-  const positions = () => page.evaluate(() => Array.from(window.anisoform.positions()));
+  const positions = () => evaluateBulk(page, () => Array.from(window.anisoform.positions()));
   const firstOp = () => page.evaluate(() => window.anisoform.document().ops[0]);
   const changed = async (action) => {
     const done = await armChange(page, 'document');
@@ -309,7 +309,7 @@ test('an op is renamed in the Edits list: saved with its edits, undone as a step
   await name.fill('  Longer nose  ');
   await name.press('Enter');
   await expect(page.getByTestId(`op-select-${first.id}`)).toHaveText('Longer nose');
-  const renamed = await page.evaluate(() => ({ positions: Array.from(window.anisoform.positions()),
+  const renamed = await evaluateBulk(page, () => ({ positions: Array.from(window.anisoform.positions()),
     label: window.anisoform.document().ops[0].label }));
   expect(renamed.label).toBe('Longer nose');
   expect(bitwise(renamed.positions, afterThree)).toBe(true);
@@ -350,7 +350,7 @@ test('a direction in the Edits list goes from z to x whatever field is typed fir
 
 test("an ARAP drag's move from the Edits list: the dragged part moves by the new offset; undo takes it back", async ({ page }) => {
   const pageErrors = await openApp(page);
-  const { rest, dragged } = await page.evaluate(async () => {
+  const { rest, dragged } = await evaluateBulk(page, async () => {
     const api = window.anisoform;
     const rest = Array.from(api.positions());
     await api.select({ box: { min: [-1, 0.5, -1], max: [1, 2, 1] } });
@@ -365,7 +365,7 @@ test("an ARAP drag's move from the Edits list: the dragged part moves by the new
   await expect(page.getByTestId(`op-move-${op.id}-y`)).toHaveValue('0.2');
   await expect(page.getByTestId(`op-method-${op.id}`)).toHaveCount(0);
   await expect(page.getByTestId(`op-direction-${op.id}-x`)).toHaveCount(0);
-  const moved = async () => page.evaluate((i) => Array.from(window.anisoform.positions().slice(3 * i, 3 * i + 3)), dragged);
+  const moved = async () => evaluateBulk(page, (i) => Array.from(window.anisoform.positions().slice(3 * i, 3 * i + 3)), dragged);
   const y = page.getByTestId(`op-move-${op.id}-y`);
   const changed = await armChange(page, 'document');
   await y.fill('0.4');
@@ -388,7 +388,7 @@ test('an amount typed in the last edit previews live; leaving the field commits 
   const { afterThree, document } = await editSpot(page);
   const [, second, third] = document.ops;
   const shear = () => page.evaluate(() => window.anisoform.document().ops[2].op.transform.shear);
-  await page.evaluate(() => {
+  await evaluateBulk(page, () => {
     window.__live = 0;
     window.anisoform.on('positions', ({ live, positions }) => {
       if (live) window.__live++;
@@ -448,7 +448,7 @@ test('the Edits list by keyboard: Esc takes a typed amount back, a decimal comma
   const [first, second, third] = document.ops;
   const shear = () => page.evaluate(() => window.anisoform.document().ops.at(-1).op.transform.shear);
   const focused = () => page.evaluate(() => window.document.activeElement?.getAttribute('data-testid') ?? window.document.activeElement?.tagName);
-  await page.evaluate(() => {
+  await evaluateBulk(page, () => {
     window.anisoform.on('positions', ({ live, positions }) => {
       window.__shown = { live, positions: Array.from(positions) };
     });
@@ -514,7 +514,7 @@ test('the Edits list by keyboard: Esc takes a typed amount back, a decimal comma
 test("an op's region shows on the mesh and the current selection replaces it; the result replays bitwise", async ({ page, browser }) => {
   const pageErrors = await openApp(page);
   // The first op's region as the core selects it on the mesh as loaded (its input).
-  const firstRegion = await page.evaluate(async () => {
+  const firstRegion = await evaluateBulk(page, async () => {
     await window.anisoform.select({ sphere: { center: [0, 0.3, 0.5], radius: 0.4 } }, { falloff: 0.2 });
     return Array.from(window.anisoform.selection());
   });
@@ -537,7 +537,7 @@ test("an op's region shows on the mesh and the current selection replaces it; th
   const rerun = await armChange(page, 'document');
   await page.getByTestId(`op-use-selection-${first.id}`).click();
   await rerun();
-  const changed = await page.evaluate(() => ({ positions: Array.from(window.anisoform.positions()),
+  const changed = await evaluateBulk(page, () => ({ positions: Array.from(window.anisoform.positions()),
     document: window.anisoform.document() }));
   const region = changed.document.regions.find((r) => r.name === changed.document.ops[0].region);
   expect(changed.document.ops[0].region).not.toBe(first.region);
@@ -551,7 +551,7 @@ test("an op's region shows on the mesh and the current selection replaces it; th
   // A fresh page replays the new document to bitwise the same positions.
   const fresh = await browser.newPage();
   const freshErrors = await openApp(fresh);
-  const replayed = await fresh.evaluate(async (json) => {
+  const replayed = await evaluateBulk(fresh, async (json) => {
     await window.anisoform.open(json);
     return Array.from(window.anisoform.positions());
   }, changed.document);
@@ -565,7 +565,7 @@ test("an op's region shows on the mesh and the current selection replaces it; th
   await falloff.fill('0.3');
   await falloff.press('Enter');
   await softer();
-  const widened = await page.evaluate(() => ({ positions: Array.from(window.anisoform.positions()), document: window.anisoform.document() }));
+  const widened = await evaluateBulk(page, () => ({ positions: Array.from(window.anisoform.positions()), document: window.anisoform.document() }));
   const widenedRegion = widened.document.regions.find((r) => r.name === widened.document.ops[0].region);
   expect(widenedRegion.steps).toEqual([{ region: { box }, falloff: 0.3 }]);
   expect(bitwise(widened.positions, changed.positions)).toBe(false);
@@ -575,7 +575,7 @@ test("an op's region shows on the mesh and the current selection replaces it; th
   const undone = await armChange(page, 'document');
   expect(await page.evaluate(() => window.anisoform.undo())).toBe(true);
   await undone();
-  expect(bitwise(await page.evaluate(() => Array.from(window.anisoform.positions())), changed.positions)).toBe(true);
+  expect(bitwise(await evaluateBulk(page, () => Array.from(window.anisoform.positions())), changed.positions)).toBe(true);
   expect(await page.evaluate(() => window.anisoform.setRegion('op-1', []).catch((error) => error.message)))
     .toMatch(/steps must be a list of select steps/);
   expect(pageErrors).toEqual([]);
@@ -590,19 +590,19 @@ test('the work is autosaved and restored bitwise after a reload; reset clears th
 
   await page.reload();
   await page.evaluate(() => window.anisoform.ready);
-  const restored = await page.evaluate(() => ({ positions: Array.from(window.anisoform.positions()),
+  const restored = await evaluateBulk(page, () => ({ positions: Array.from(window.anisoform.positions()),
     document: window.anisoform.document() }));
   expect(restored.document.ops).toEqual(document.ops);
   expect(bitwise(restored.positions, afterThree)).toBe(true);
 
-  const loaded = await page.evaluate(() => {
+  const loaded = await evaluateBulk(page, () => {
     window.anisoform.reset();
     return Array.from(window.anisoform.positions());
   });
   await page.waitForTimeout(300);
   await page.reload();
   await page.evaluate(() => window.anisoform.ready);
-  const afterReset = await page.evaluate(() => ({ positions: Array.from(window.anisoform.positions()),
+  const afterReset = await evaluateBulk(page, () => ({ positions: Array.from(window.anisoform.positions()),
     ops: window.anisoform.document().ops.length }));
   expect(afterReset.ops).toBe(0);
   expect(bitwise(afterReset.positions, loaded)).toBe(true);
@@ -610,7 +610,7 @@ test('the work is autosaved and restored bitwise after a reload; reset clears th
   // A mesh of the user's, edited and reset: a reload shows it without the
   // edits (it used to bring the default mesh back).
   expect((await uploadFile(page, meshPath('closed/torus.obj'))).ok).toBe(true);
-  const torus = await page.evaluate(async () => {
+  const torus = await evaluateBulk(page, async () => {
     const api = window.anisoform;
     const before = Array.from(api.positions());
     await api.select({ all: true });
@@ -621,7 +621,7 @@ test('the work is autosaved and restored bitwise after a reload; reset clears th
   await expect.poll(() => savedWork(page).then((record) => record && `${record.meshName} ${record.document.ops.length}`)).toBe('torus.obj 0');
   await page.reload();
   await page.evaluate(() => window.anisoform.ready);
-  const reloaded = await page.evaluate(() => ({ name: window.anisoform.document().mesh.name,
+  const reloaded = await evaluateBulk(page, () => ({ name: window.anisoform.document().mesh.name,
     positions: Array.from(window.anisoform.positions()), ops: window.anisoform.document().ops.length }));
   expect(reloaded.name).toBe('torus.obj');
   expect(reloaded.ops).toBe(0);
@@ -641,7 +641,7 @@ test('a restore of the autosaved work stopped with Esc says the edits stay saved
     return api.document();
   });
   await expect.poll(() => savedWork(page).then((record) => record?.document.ops.length ?? 0)).toBe(2);
-  const selection = await page.evaluate(() => Array.from(window.anisoform.selection()));
+  const selection = await evaluateBulk(page, () => Array.from(window.anisoform.selection()));
   await expect.poll(() => savedView(page).then((view) => view?.work.ops.length === 2 && view.selection !== null)).toBe(true);
   // Cancelled once the first saved edit's replay is sent to the worker (the
   // first reload only). Not on its progress: a solve under 150 ms shows none,
@@ -669,7 +669,7 @@ test('a restore of the autosaved work stopped with Esc says the edits stay saved
   await page.reload();
   await page.evaluate(() => window.anisoform.ready);
   expect(await page.evaluate(() => window.anisoform.document().ops)).toEqual(document.ops);
-  expect(bitwise(await page.evaluate(() => Array.from(window.anisoform.selection())), selection)).toBe(true);
+  expect(bitwise(await evaluateBulk(page, () => Array.from(window.anisoform.selection())), selection)).toBe(true);
   expect(pageErrors).toEqual([]);
 });
 
@@ -698,7 +698,7 @@ test('a reload puts back the selection, the tool and its settings and the camera
   for (const key of ['Shift+ArrowLeft', 'Shift+ArrowLeft', 'Shift+ArrowUp', '+', '+', 'ArrowLeft']) await page.keyboard.press(key);
   await page.getByTestId('apply-stretch').click();
   await expect.poll(() => page.evaluate(() => window.anisoform.document().ops.length)).toBe(1);
-  const before = await page.evaluate(() => ({ selection: Array.from(window.anisoform.selection()), camera: window.anisoform.camera(),
+  const before = await evaluateBulk(page, () => ({ selection: Array.from(window.anisoform.selection()), camera: window.anisoform.camera(),
     positions: Array.from(window.anisoform.positions()), document: window.anisoform.document() }));
   expect(before.document.ops[0].op).toMatchObject({ method: 'andefgrad', maxIterations: 30, transform: { scale: [1.3, 0.9] } });
   await expect.poll(() => savedView(page).then((view) => view?.work.ops.length === 1
@@ -706,7 +706,7 @@ test('a reload puts back the selection, the tool and its settings and the camera
 
   await page.reload();
   await page.evaluate(() => window.anisoform.ready);
-  const after = await page.evaluate(() => ({ selection: Array.from(window.anisoform.selection()), camera: window.anisoform.camera(),
+  const after = await evaluateBulk(page, () => ({ selection: Array.from(window.anisoform.selection()), camera: window.anisoform.camera(),
     positions: Array.from(window.anisoform.positions()) }));
   expect(bitwise(after.positions, before.positions)).toBe(true);
   expect(bitwise(after.selection, before.selection)).toBe(true);
@@ -731,23 +731,23 @@ test('a reload puts back the selection, the tool and its settings and the camera
   const region = applied.regions.find((r) => r.name === applied.ops[1].region).steps[0].region;
   expect(region.vertices).toEqual(before.selection.flatMap((weight, i) => (weight > 0 ? [i] : [])));
   expect(region.weights).toEqual(closeTo(before.selection.filter((weight) => weight > 0)));
-  expect(bitwise(await page.evaluate(() => Array.from(window.anisoform.positions())), before.positions)).toBe(false);
+  expect(bitwise(await evaluateBulk(page, () => Array.from(window.anisoform.positions())), before.positions)).toBe(false);
   await undo.click();
   await expect.poll(() => page.evaluate(() => window.anisoform.document().ops.length)).toBe(1);
-  expect(bitwise(await page.evaluate(() => Array.from(window.anisoform.positions())), before.positions)).toBe(true);
+  expect(bitwise(await evaluateBulk(page, () => Array.from(window.anisoform.positions())), before.positions)).toBe(true);
 
   // An orbit and a selection made just before a reload (within the view's
   // 250 ms wait) come back too: they were lost, the view before them shown.
   await expect.poll(() => savedWork(page).then((record) => record?.document.ops.length)).toBe(1);
   await page.getByTestId('viewport').focus();
   for (const key of ['Shift+ArrowRight', 'Shift+ArrowRight', 'Shift+ArrowRight']) await page.keyboard.press(key);
-  const last = await page.evaluate(async () => {
+  const last = await evaluateBulk(page, async () => {
     await window.anisoform.select({ sphere: { center: [0, -0.2, 0.3], radius: 0.3 } });
     return { selection: Array.from(window.anisoform.selection()), camera: window.anisoform.camera() };
   });
   await page.reload();
   await page.evaluate(() => window.anisoform.ready);
-  const restored = await page.evaluate(() => ({ selection: Array.from(window.anisoform.selection()), camera: window.anisoform.camera() }));
+  const restored = await evaluateBulk(page, () => ({ selection: Array.from(window.anisoform.selection()), camera: window.anisoform.camera() }));
   expect(bitwise(restored.selection, last.selection)).toBe(true);
   for (const key of ['position', 'target']) expect(restored.camera[key]).toEqual(closeTo(last.camera[key]));
   expect(pageErrors).toEqual([]);
@@ -850,11 +850,11 @@ test('after a reload, undo first turns back on an op that was off, then takes th
   await undo.click();
   await expect.poll(() => page.evaluate(() => window.anisoform.document().ops.map((op) => op.enabled)))
     .toEqual([true, true, true]);
-  await expect.poll(async () => bitwise(await page.evaluate(() => Array.from(window.anisoform.positions())), afterThree))
+  await expect.poll(async () => bitwise(await evaluateBulk(page, () => Array.from(window.anisoform.positions())), afterThree))
     .toBe(true);
   await expect(undo).toHaveAttribute('title', `Undo ${document.ops[2].label} (Ctrl+Z)`);
   await undo.click();
-  await expect.poll(async () => bitwise(await page.evaluate(() => Array.from(window.anisoform.positions())), afterTwo))
+  await expect.poll(async () => bitwise(await evaluateBulk(page, () => Array.from(window.anisoform.positions())), afterTwo))
     .toBe(true);
   // Redo turns it off again, as the session that made it had.
   const redo = page.getByTestId('redo');
@@ -900,7 +900,7 @@ test('a full storage quota is reported and the work in the page is kept', async 
 test('a bad document is refused with its code and the work is kept', async ({ page }) => {
   const pageErrors = await openApp(page);
   const { afterThree, document } = await editSpot(page);
-  const refusals = await page.evaluate(async (good) => {
+  const refusals = await evaluateBulk(page, async (good) => {
     const api = window.anisoform;
     const outcomes = [];
     const cases = [
@@ -1055,7 +1055,7 @@ test('open keeps the states between the ops for undo; a document failing at its 
   const { afterTwo, document } = await editSpot(page);
   const posted = await recordWorkerRequests(page);
   const replays = async () => (await posted()).filter((kind) => kind === 'replay').length;
-  const positions = () => page.evaluate(() => Array.from(window.anisoform.positions()));
+  const positions = () => evaluateBulk(page, () => Array.from(window.anisoform.positions()));
 
   await page.evaluate((json) => window.anisoform.open(json), document);
   expect(await replays()).toBe(3); // one per op
@@ -1068,7 +1068,7 @@ test('open keeps the states between the ops for undo; a document failing at its 
 
   // The same edit on the state in the page, before and after a failed open.
   const edit = { method: 'anarap', direction: { type: 'global', vector: [1, 0, 0] }, transform: { scale: [1.2, 1] } };
-  const again = async () => page.evaluate(async (op) => {
+  const again = async () => evaluateBulk(page, async (op) => {
     const api = window.anisoform;
     await api.select({ box: { min: [-1, -1, -1], max: [0, 1, 1] } });
     await api.deform(op);
@@ -1135,7 +1135,7 @@ test('a Thicken edit is listed and saved as Thicken', async ({ page }) => {
 
 test("cancel() drops a setParameter preview left uncommitted, of the last op or an earlier one: the document's shape shows again", async ({ page }) => {
   const pageErrors = await openApp(page);
-  const outcome = await page.evaluate(async () => {
+  const outcome = await evaluateBulk(page, async () => {
     const api = window.anisoform;
     const nextPositions = (live) => new Promise((resolve) => {
       const off = api.on('positions', (event) => {
@@ -1173,7 +1173,7 @@ test('an op given a new region edits that region; a region that selects nothing 
   // ARAP's handles and pins follow the op's region: they used to stay the old
   // region's, so the old part stayed lifted while the Edits list showed the new one.
   const pageErrors = await openApp(page);
-  const { rest, a, b, radius } = await page.evaluate(() => {
+  const { rest, a, b, radius } = await evaluateBulk(page, () => {
     const positions = Array.from(window.anisoform.positions());
     const vertex = (i) => positions.slice(3 * i, 3 * i + 3);
     let maxX = 0;
@@ -1190,7 +1190,7 @@ test('an op given a new region edits that region; a region that selects nothing 
     await window.anisoform.deform({ method: 'arap', move });
   }, { a, radius, move });
   await page.evaluate(({ b, radius }) => window.anisoform.setRegion('op-1', [{ region: { sphere: { center: b, radius } } }]), { b, radius });
-  const moved = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  const moved = await evaluateBulk(page, () => Array.from(window.anisoform.positions()));
   const near = (centre, i) => Math.hypot(...[0, 1, 2].map((k) => rest[3 * i + k] - centre[k])) < radius;
   let inA = 0;
   let inB = 0;
@@ -1210,7 +1210,7 @@ test('an op given a new region edits that region; a region that selects nothing 
   await page.evaluate(() => window.anisoform.setRegion('op-1', [{ region: { sphere: { center: [10, 10, 10], radius: 0.1 } } }]));
   await expect(page.getByTestId('warning'))
     .toContainText(/Move \(ARAP\): its region 'region-\d+' holds no vertex: the mesh is left unchanged/);
-  expect(await page.evaluate(() => Array.from(window.anisoform.positions()))).toEqual(rest);
+  expect(await evaluateBulk(page, () => Array.from(window.anisoform.positions()))).toEqual(rest);
   expect(pageErrors).toEqual([]);
 });
 

@@ -3,7 +3,7 @@
 // close to the one the release commits. Before, a drag's previews were an
 // iteration each and stopped with the pointer: on Spot a shear's last live
 // shape stayed where the moves had left it until the release.
-import { armChange, canvasCentre, expect, openApp, test } from './support.mjs';
+import { armChange, canvasCentre, evaluateBulk, expect, openApp, test } from './support.mjs';
 
 // The largest distance of a live shape's vertices from the committed ones,
 // as a fraction of the committed shape's bounding-box diagonal.
@@ -27,7 +27,7 @@ function distanceFrom(final) {
 test('a resting pointer keeps the live shape iterating towards the committed one', async ({ page }) => {
   await openApp(page);
   await page.getByTestId('tool-shear').click();
-  await page.evaluate(() => {
+  await evaluateBulk(page, () => {
     const shapes = [];
     window.__shapes = shapes;
     window.anisoform.on('positions', ({ positions, live }) => {
@@ -45,7 +45,7 @@ test('a resting pointer keeps the live shape iterating towards the committed one
   await page.mouse.up();
   await committed();
 
-  const { after, final } = await page.evaluate((since) => ({
+  const { after, final } = await evaluateBulk(page, (since) => ({
     after: window.__shapes.filter((s) => s.at > since).map((s) => s.positions),
     final: Array.from(window.anisoform.positions()),
   }), rested);
@@ -65,7 +65,7 @@ test('a resting pointer keeps the live shape iterating towards the committed one
 
 test("a slider resting on the last op's value keeps its live shape iterating towards the committed one", async ({ page }) => {
   await openApp(page);
-  const { shapes, afterValue, final } = await page.evaluate(async () => {
+  const { shapes, afterValue, final } = await evaluateBulk(page, async () => {
     const api = window.anisoform;
     await api.select({ box: { min: [-1, 0.2, -1], max: [1, 1, 1] } });
     await api.deform({ method: 'anarap', direction: { type: 'global', vector: [1, 0, 0] }, transform: { shear: 0.1 } });

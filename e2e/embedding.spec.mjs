@@ -3,7 +3,7 @@
 // (workers, observers, listeners and animation frames counted from outside by
 // resource-census.mjs).
 import { spotSceneGlb } from './gltf-scene.mjs';
-import { expect, meshPath, test } from './support.mjs';
+import { evaluateBulk, expect, meshPath, test } from './support.mjs';
 import { installResourceCensus } from './resource-census.mjs';
 
 const census = (page) => page.evaluate(() => window.__census());
@@ -54,7 +54,7 @@ test('two modellers on one page are independent', async ({ page }) => {
   expect(counts).toEqual([649, 2930]);
 
   // An edit of the spool leaves Spot's positions, selection and history alone.
-  const outcome = await page.evaluate(async () => {
+  const outcome = await evaluateBulk(page, async () => {
     const { spool, spot } = window.anisoformExample.modellers;
     const spotBefore = Array.from(spot.api.positions());
     const spoolBefore = Array.from(spool.api.positions());
@@ -68,18 +68,18 @@ test('two modellers on one page are independent', async ({ page }) => {
 
   // Keyboard shortcuts go to the modeller with focus: Ctrl+Z in Spot's view
   // leaves the spool's edit in place; in the spool's view it undoes it.
-  const spoolEdited = await page.evaluate(() => Array.from(window.anisoformExample.modellers.spool.api.positions()));
+  const spoolEdited = await evaluateBulk(page, () => Array.from(window.anisoformExample.modellers.spool.api.positions()));
   await page.getByTestId('host-spot').getByTestId('viewport').focus();
   await page.keyboard.press('Control+z');
-  expect(await page.evaluate(() => Array.from(window.anisoformExample.modellers.spool.api.positions()))).toEqual(spoolEdited);
+  expect(await evaluateBulk(page, () => Array.from(window.anisoformExample.modellers.spool.api.positions()))).toEqual(spoolEdited);
   await page.getByTestId('host-spool').getByTestId('viewport').focus();
   await page.keyboard.press('Control+z');
-  expect(await page.evaluate(() => Array.from(window.anisoformExample.modellers.spool.api.positions()))).not.toEqual(spoolEdited);
+  expect(await evaluateBulk(page, () => Array.from(window.anisoformExample.modellers.spool.api.positions()))).not.toEqual(spoolEdited);
   // Nothing focused: the page's keys are the page's.
   await page.evaluate(() => document.activeElement?.blur());
-  const spoolNow = await page.evaluate(() => Array.from(window.anisoformExample.modellers.spool.api.positions()));
+  const spoolNow = await evaluateBulk(page, () => Array.from(window.anisoformExample.modellers.spool.api.positions()));
   await page.keyboard.press('Control+Shift+z');
-  expect(await page.evaluate(() => Array.from(window.anisoformExample.modellers.spool.api.positions()))).toEqual(spoolNow);
+  expect(await evaluateBulk(page, () => Array.from(window.anisoformExample.modellers.spool.api.positions()))).toEqual(spoolNow);
 
   // The spool's bare viewport has no stylesheet: its heat-map legend, with no
   // heat map shown, is hidden all the same (it showed as an empty box).
@@ -127,7 +127,7 @@ test('two modellers with the full UI: each label works its own modeller\'s contr
 
 test('api calls in the wrong order: refusals are reported, a second cancel() is false, a dispose stops a solve as cancelled', async ({ page }) => {
   const pageErrors = await openExample(page);
-  const outcome = await page.evaluate(async () => {
+  const outcome = await evaluateBulk(page, async () => {
     const { createModeller } = window.anisoformExample;
     const host = Object.assign(document.createElement('div'), { style: 'height: 200px' });
     document.body.append(host);
@@ -297,7 +297,7 @@ test('<anisoform-modeller>: src loads, events come out as DOM events, .api works
 
   // A new ui lays the same modeller out anew: the same solver worker, the
   // mesh loaded and its edits, bitwise, and no load heard again.
-  const rebuilt = await page.evaluate(async () => {
+  const rebuilt = await evaluateBulk(page, async () => {
     const loaded = new Promise((resolve) => {
       window.element.addEventListener('change', resolve, { once: true });
     });
@@ -347,7 +347,7 @@ test('<anisoform-modeller>: src loads, events come out as DOM events, .api works
   // Two ui changes in quick succession go on from the work (the second
   // change came while the first rebuild was still opening it). An api taken
   // before them is still the element's: its calls and listeners go on.
-  const quick = await page.evaluate(async () => {
+  const quick = await evaluateBulk(page, async () => {
     const element = window.element;
     const { api } = element;
     let heard = 0;
@@ -458,7 +458,7 @@ test('<anisoform-modeller>: src loads, events come out as DOM events, .api works
 // rejected ("disposed"), and the load was replayed to the listeners.
 test('<anisoform-modeller>: a ui change while an edit solves lays the same modeller out: the edit is applied, no load is heard again', async ({ page }) => {
   const pageErrors = await openExample(page);
-  const outcome = await page.evaluate(async () => {
+  const outcome = await evaluateBulk(page, async () => {
     const element = document.createElement('anisoform-modeller');
     element.setAttribute('src', '../spot_triangulated.obj');
     element.style.height = '300px';
@@ -578,7 +578,7 @@ test('a solver pool hands a disposed modeller\'s idle worker to the next one, wh
   for (const button of await page.getByRole('button', { name: 'Dispose' }).all()) await button.click();
   expect((await census(page)).workers).toBe(0);
 
-  const outcome = await page.evaluate(async () => {
+  const outcome = await evaluateBulk(page, async () => {
     const { createModeller, createSolverPool } = window.anisoformExample;
     const workers = () => window.__census().workers;
     const hosts = [];
@@ -695,7 +695,7 @@ test('a solver pool hands a disposed modeller\'s idle worker to the next one, wh
 test('<anisoform-modeller edits>: saved edits open with src, alone on the mesh loaded, or with a new src; bad ones are refused and the work kept', async ({ page }) => {
   const pageErrors = await openExample(page);
   // Two saved edits of the spool (one op, two ops), made by a modeller of the page, served as files.
-  const made = await page.evaluate(async () => {
+  const made = await evaluateBulk(page, async () => {
     const host = document.createElement('div');
     host.style.height = '200px';
     document.body.append(host);
@@ -721,7 +721,7 @@ test('<anisoform-modeller edits>: saved edits open with src, alone on the mesh l
   await serve('spool-two.json', JSON.stringify(made.two.document));
   await serve('broken.json', '{"format": ');
 
-  const state = () => page.evaluate(() => ({ vertices: window.element.api.info().vertices,
+  const state = () => evaluateBulk(page, () => ({ vertices: window.element.api.info().vertices,
     ops: window.element.api.document().ops.length, positions: Array.from(window.element.api.positions()) }));
   const nextError = () => page.evaluate(() => new Promise((resolve) => {
     window.element.addEventListener('error', (event) => resolve(event.detail.message), { once: true });
@@ -822,7 +822,7 @@ test('<anisoform-modeller edits> that cannot be opened: the mesh is shown withou
     await route.fulfill({ response, body: JSON.stringify(failing), contentType: 'application/json' });
   });
 
-  const outcomes = await page.evaluate(async (op) => {
+  const outcomes = await evaluateBulk(page, async (op) => {
     const make = (edits) => {
       const element = document.createElement('anisoform-modeller');
       element.setAttribute('ui', 'none');

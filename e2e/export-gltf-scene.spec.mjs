@@ -7,12 +7,12 @@ import { readFileSync, writeFileSync } from 'node:fs';
 import {
   glbChunks, meshesByName, parseGlb, spotSceneGlb, withBaseColorTexture, worldPositions,
 } from './gltf-scene.mjs';
-import { expect, exportedBytes, farFrom, meshPath, openApp, test, uploadFile } from './support.mjs';
+import { evaluateBulk, expect, exportedBytes, farFrom, meshPath, openApp, test, uploadFile } from './support.mjs';
 
 // Deforms the part of what is loaded inside `box` (soft border) and exports
 // it as GLB; returns the solver's positions before and after, and the file.
 async function stretchAndExport(page, box) {
-  const { rest, positions } = await page.evaluate(async (region) => {
+  const { rest, positions } = await evaluateBulk(page, async (region) => {
     const api = window.anisoform;
     const rest = Array.from(api.positions());
     await api.select({ box: region }, { falloff: 0.2 });

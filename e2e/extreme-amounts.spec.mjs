@@ -1,13 +1,13 @@
 // Issue 9 item 8: the amount fields show the value that is used, and an
 // extreme amount that folds triangles over says how many, for the live
 // preview and for the committed edit.
-import { armChange, canvasCentre, expect, openApp, saveScreenshot, test } from './support.mjs';
+import { armChange, canvasCentre, evaluateBulk, expect, openApp, saveScreenshot, test } from './support.mjs';
 
 test('a typed out-of-range amount is shown as used: the core refuses it by name, a panel bound clamps at once', async ({ page }) => {
   const pageErrors = await openApp(page);
   await page.getByTestId('tool-stretch').click();
   await page.locator('#direction-source').selectOption('global');
-  const before = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  const before = await evaluateBulk(page, () => Array.from(window.anisoform.positions()));
 
   const along = page.locator('#stretch-along');
   await along.fill('-3');
@@ -19,7 +19,7 @@ test('a typed out-of-range amount is shown as used: the core refuses it by name,
   await expect(error).toContainText('-3');
   await expect(error).toContainText(/must be positive/);
   await expect(along).toHaveValue('-3');
-  expect(await page.evaluate(() => Array.from(window.anisoform.positions()))).toEqual(before);
+  expect(await evaluateBulk(page, () => Array.from(window.anisoform.positions()))).toEqual(before);
 
   // The brush radius is the panel's own bound (0.5 .. 100 %): the field shows the clamped value while still focused.
   await page.getByTestId('tool-select').click();

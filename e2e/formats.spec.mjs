@@ -2,7 +2,7 @@
 // gives the counts of MANIFEST.md (polygons triangulated, STL soups welded).
 // A .gltf whose geometry is in another file is refused, naming that file.
 import { readdirSync, readFileSync, writeFileSync } from 'node:fs';
-import { expect, meshesDir, meshPath, openApp, test, uploadFile } from './support.mjs';
+import { evaluateBulk, expect, meshesDir, meshPath, openApp, test, uploadFile } from './support.mjs';
 
 // triangles = sum over polygons of (corners - 2)
 const EXPECTED = {
@@ -91,12 +91,12 @@ test('a .gltf with its buffers embedded as data: URIs opens under the strict CSP
 
   const fromGlb = await uploadFile(page, meshPath('formats/spot_lowres.glb'));
   expect(fromGlb.ok).toBe(true);
-  const glbPositions = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  const glbPositions = await evaluateBulk(page, () => Array.from(window.anisoform.positions()));
   const fetched = [];
   page.on('request', (request) => fetched.push(request.url()));
   const outcome = await uploadFile(page, gltf);
   expect(outcome).toMatchObject({ ok: true, info: { vertices: 829, triangles: 1654 } });
-  expect(await page.evaluate(() => Array.from(window.anisoform.positions()))).toEqual(glbPositions);
+  expect(await evaluateBulk(page, () => Array.from(window.anisoform.positions()))).toEqual(glbPositions);
   expect(fetched.filter((url) => url.startsWith('data:'))).toEqual([]);
   expect(pageErrors).toEqual([]);
 });

@@ -7,7 +7,7 @@
 // the edits and Ctrl+O opens the file picker, not the browser's own.
 // A polite live region tells a screen reader when work ends.
 import { saveScreenshot } from './artifacts.mjs';
-import { expect, meshPath, openApp, test, uploadFile } from './support.mjs';
+import { evaluateBulk, expect, meshPath, openApp, test, uploadFile } from './support.mjs';
 
 /** Presses Tab until the focused element matches `selector` (at most 80 presses). */
 async function tabTo(page, selector) {
@@ -27,7 +27,7 @@ const pressedTool = (page) => page.locator('.tool-button[aria-pressed="true"]').
 
 /** The selection the core's region rule should give: 1 inside `inside(point)`, 0 elsewhere. */
 const expectSelection = async (page, inside) => {
-  const { positions, selection } = await page.evaluate(() => ({
+  const { positions, selection } = await evaluateBulk(page, () => ({
     positions: Array.from(window.anisoform.positions()),
     selection: Array.from(window.anisoform.selection()),
   }));
@@ -201,7 +201,7 @@ test('C selects with the brush\'s soft edge: full weight inside radius x (1 - so
   });
   await page.keyboard.press('c'); // the default brush: 8 % radius, soft edge 50 %
   await expect.poll(() => page.evaluate(() => window.anisoform.selection().some((w) => w > 0))).toBe(true);
-  const { positions, selection } = await page.evaluate(() => ({
+  const { positions, selection } = await evaluateBulk(page, () => ({
     positions: Array.from(window.anisoform.positions()), selection: Array.from(window.anisoform.selection()) }));
   const extent = [0, 1, 2].map((k) => {
     const values = positions.filter((_, i) => i % 3 === k);
@@ -218,7 +218,7 @@ test('C selects with the brush\'s soft edge: full weight inside radius x (1 - so
   await page.keyboard.press('Shift+C');
   await expect.poll(() => page.evaluate(() => window.anisoform.selection().filter((w) => w > 0).length)).toBe(0);
   await page.keyboard.press('Control+z');
-  await expect.poll(() => page.evaluate(() => Array.from(window.anisoform.selection()))).toEqual(selection);
+  await expect.poll(() => evaluateBulk(page, () => Array.from(window.anisoform.selection()))).toEqual(selection);
   expect(pageErrors).toEqual([]);
 });
 

@@ -12,7 +12,7 @@
 //               over the view, the status bar says the surface is open and
 //               its title how many boundary loops it has.
 import { readdirSync } from 'node:fs';
-import { expect, meshesDir, meshPath, openApp, test, uploadFile } from './support.mjs';
+import { evaluateBulk, expect, meshesDir, meshPath, openApp, test, uploadFile } from './support.mjs';
 
 const EXPECTED = {
   'Spider_binary.stl': 'notice',
@@ -62,7 +62,7 @@ test.describe('loading every malformed file', () => {
     test(`${name}: ${expected}`, async () => {
       // Start each case from the same known mesh.
       expect(await uploadFile(page, meshPath(reference))).toMatchObject({ ok: true });
-      const before = await page.evaluate(() => Array.from(window.anisoform.positions()));
+      const before = await evaluateBulk(page, () => Array.from(window.anisoform.positions()));
 
       const outcome = await uploadFile(page, meshPath(`malformed/${name}`));
       if (expected === 'rejected') {
@@ -71,7 +71,7 @@ test.describe('loading every malformed file', () => {
         await expect(error).toBeVisible();
         await expect(error).toContainText(name);
         await expect(error).toContainText('unchanged');
-        const after = await page.evaluate(() => Array.from(window.anisoform.positions()));
+        const after = await evaluateBulk(page, () => Array.from(window.anisoform.positions()));
         expect(after).toEqual(before);
         expect(await page.evaluate(() => window.anisoform.info().vertices)).toBe(829);
       } else if (expected === 'open') {

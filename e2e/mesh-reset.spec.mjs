@@ -3,7 +3,7 @@
 // arrow placed on Spot threw "offset is out of bounds" on a smaller mesh and
 // made Apply fail with "vertex index out of range", and on a larger mesh it
 // silently drove the stretch from an unrelated vertex.
-import { canvasCentre, expect, meshPath, openApp, test, uploadFile } from './support.mjs';
+import { canvasCentre, evaluateBulk, expect, meshPath, openApp, test, uploadFile } from './support.mjs';
 
 const SMALLER = 'formats/spot_control_mesh.obj'; // 188 vertices (Spot: 2930)
 const LARGER = 'closed/knot1.off'; // 3200 vertices
@@ -37,16 +37,16 @@ test('an arrow placed on Spot is dropped when a smaller mesh is opened', async (
 
   await page.getByTestId('tool-arrows').click();
   await expect(page.getByText('0 arrow(s) placed')).toBeVisible();
-  const selection = await page.evaluate(() => Array.from(window.anisoform.selection()));
+  const selection = await evaluateBulk(page, () => Array.from(window.anisoform.selection()));
   expect(selection).toHaveLength(loaded.info.vertices);
   expect(selection.every((weight) => weight === 0)).toBe(true);
 
-  const before = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  const before = await evaluateBulk(page, () => Array.from(window.anisoform.positions()));
   await applyStretch(page);
   const error = page.getByTestId('error');
   await expect(error).toContainText('no arrows are placed');
   await expect(error).not.toContainText('out of range');
-  expect(await page.evaluate(() => Array.from(window.anisoform.positions()))).toEqual(before);
+  expect(await evaluateBulk(page, () => Array.from(window.anisoform.positions()))).toEqual(before);
   // The glyph refresh runs after the load; give it its frame before checking.
   await page.waitForTimeout(300);
   expect(pageErrors).toEqual([]);
@@ -58,10 +58,10 @@ test('an arrow placed on Spot does not drive a stretch of a larger mesh', async 
   const loaded = await uploadFile(page, meshPath(LARGER));
   expect(loaded.ok).toBe(true);
 
-  const before = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  const before = await evaluateBulk(page, () => Array.from(window.anisoform.positions()));
   await applyStretch(page);
   await expect(page.getByTestId('error')).toContainText('no arrows are placed');
-  expect(await page.evaluate(() => Array.from(window.anisoform.positions()))).toEqual(before);
+  expect(await evaluateBulk(page, () => Array.from(window.anisoform.positions()))).toEqual(before);
   expect(await page.evaluate(() => window.anisoform.undo())).toBe(false);
   expect(pageErrors).toEqual([]);
 });
@@ -77,10 +77,10 @@ test('the last screen drag does not carry over to a new mesh', async ({ page }) 
   await expect.poll(() => page.evaluate(() => window.anisoform.undo())).toBe(true);
 
   expect((await uploadFile(page, meshPath(LARGER))).ok).toBe(true);
-  const before = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  const before = await evaluateBulk(page, () => Array.from(window.anisoform.positions()));
   await page.getByTestId('apply-stretch').click();
   await expect(page.getByTestId('error')).toContainText('no screen direction yet');
-  expect(await page.evaluate(() => Array.from(window.anisoform.positions()))).toEqual(before);
+  expect(await evaluateBulk(page, () => Array.from(window.anisoform.positions()))).toEqual(before);
   expect(pageErrors).toEqual([]);
 });
 

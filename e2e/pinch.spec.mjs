@@ -5,11 +5,11 @@
 // stroke with one finger does edit: the touch path itself works.
 import { saveScreenshot } from './artifacts.mjs';
 import { swipe, touchScreen } from './touch.mjs';
-import { canvasCentre, expect, openApp, test } from './support.mjs';
+import { canvasCentre, evaluateBulk, expect, openApp, test } from './support.mjs';
 
 test.use({ viewport: { width: 390, height: 844 }, hasTouch: true, isMobile: true });
 
-const state = (page) => page.evaluate(() => ({
+const state = (page) => evaluateBulk(page, () => ({
   selection: Array.from(window.anisoform.selection()),
   positions: Array.from(window.anisoform.positions()),
   ops: window.anisoform.document().ops.length,

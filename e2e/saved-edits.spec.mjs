@@ -7,7 +7,7 @@
 import { readFileSync, writeFileSync } from 'node:fs';
 import { basename } from 'node:path';
 import { schemaErrors } from '../docs/document-schema.mjs';
-import { armChange, expect, meshPath, openApp, replaceWorkIfAsked, selectUpperHalf, test, uploadFile } from './support.mjs';
+import { armChange, evaluateBulk, expect, meshPath, openApp, replaceWorkIfAsked, selectUpperHalf, test, uploadFile } from './support.mjs';
 
 async function recordErrors(page) {
   await page.evaluate(() => {
@@ -16,7 +16,7 @@ async function recordErrors(page) {
   });
 }
 
-const positions = (page) => page.evaluate(() => Array.from(window.anisoform.positions()));
+const positions = (page) => evaluateBulk(page, () => Array.from(window.anisoform.positions()));
 const opCount = (page) => page.evaluate(() => window.anisoform.document().ops.length);
 
 // Twists the upper half of the mesh loaded with the Twist tool's Apply.

@@ -1,12 +1,12 @@
 // tool-stretch: a horizontal mouse drag on the mesh stretches it along the
 // drag (the screen direction projected onto the surface): the extent along
 // the camera's right axis grows, the extent along its up axis stays.
-import { armChange, canvasCentre, expect, extentAlong, openApp, test } from './support.mjs';
+import { armChange, canvasCentre, evaluateBulk, expect, extentAlong, openApp, test } from './support.mjs';
 
 test('a horizontal drag with the stretch tool stretches along the drag', async ({ page }) => {
   await openApp(page);
   await page.getByTestId('tool-stretch').click();
-  const before = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  const before = await evaluateBulk(page, () => Array.from(window.anisoform.positions()));
   const camera = await page.evaluate(() => window.anisoform.camera());
   // Rows of the view matrix (column-major elements) are the camera axes in world space.
   const right = [camera.view[0], camera.view[4], camera.view[8]];
@@ -20,7 +20,7 @@ test('a horizontal drag with the stretch tool stretches along the drag', async (
   await page.mouse.up();
   await committed();
 
-  const after = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  const after = await evaluateBulk(page, () => Array.from(window.anisoform.positions()));
   const growthRight = extentAlong(after, right) / extentAlong(before, right);
   const growthUp = extentAlong(after, up) / extentAlong(before, up);
   console.log(`stretch drag: right extent ×${growthRight.toFixed(3)}, up extent ×${growthUp.toFixed(3)}`);
@@ -32,7 +32,7 @@ test('a horizontal drag with the stretch tool stretches along the drag', async (
 test('the drag previews live, and Esc cancels it', async ({ page }) => {
   await openApp(page);
   await page.getByTestId('tool-stretch').click();
-  const before = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  const before = await evaluateBulk(page, () => Array.from(window.anisoform.positions()));
   const centre = await canvasCentre(page);
   await page.mouse.move(...centre.page);
   await page.mouse.down();
@@ -41,7 +41,7 @@ test('the drag previews live, and Esc cancels it', async ({ page }) => {
   await expect(page.getByTestId('status-solve')).toContainText('preview');
   await page.keyboard.press('Escape');
   await page.mouse.up();
-  const after = await page.evaluate(() => Array.from(window.anisoform.positions()));
+  const after = await evaluateBulk(page, () => Array.from(window.anisoform.positions()));
   expect(after).toEqual(before);
   expect(await page.evaluate(() => window.anisoform.undo())).toBe(false);
 });
@@ -55,7 +55,7 @@ test('during a drag, a select, an op change or an open through the API is refuse
     await window.anisoform.select(r);
     await window.anisoform.deform({ method: 'andefgrad', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.1, 1] } });
   }, region);
-  const selected = await page.evaluate(() => Array.from(window.anisoform.selection()).flatMap((w, i) => (w > 0 ? [i] : [])));
+  const selected = await evaluateBulk(page, () => Array.from(window.anisoform.selection()).flatMap((w, i) => (w > 0 ? [i] : [])));
   await page.getByTestId('tool-stretch').click();
   const centre = await canvasCentre(page);
   const committed = await armChange(page, 'positions');

@@ -261,3 +261,60 @@ export function farFrom(actual, expected, tolerance) {
   if (actual.length !== expected.length) return [`length ${actual.length}, expected ${expected.length}`];
   return failures(actual.length, (k) => !(Math.abs(actual[k] - expected[k]) < tolerance) && `${actual[k]}, expected ${expected[k]}`);
 }
+
+// Runs in the page: `value` with each long array of numbers (plain or typed)
+// replaced by {bulk: type, base64} of its bytes. Self-contained: it is sent
+// to the page as source.
+function encodeBulk(value) {
+  const TYPES = ['Float64Array', 'Float32Array', 'Int32Array', 'Uint32Array', 'Uint8Array', 'Uint16Array', 'Int16Array', 'Int8Array'];
+  const toBase64 = (bytes) => {
+    let text = '';
+    for (let i = 0; i < bytes.length; i += 0x8000) text += String.fromCharCode.apply(null, bytes.subarray(i, i + 0x8000));
+    return btoa(text);
+  };
+  const walk = (item) => {
+    if (ArrayBuffer.isView(item) && TYPES.includes(item.constructor.name)) {
+      return { bulk: item.constructor.name, base64: toBase64(new Uint8Array(item.buffer, item.byteOffset, item.byteLength)) };
+    }
+    if (Array.isArray(item)) {
+      if (item.length >= 32 && item.every((entry) => typeof entry === 'number')) {
+        return { bulk: 'Array', base64: toBase64(new Uint8Array(Float64Array.from(item).buffer)) };
+      }
+      return item.map(walk);
+    }
+    if (item && typeof item === 'object' && Object.getPrototypeOf(item) === Object.prototype) {
+      return Object.fromEntries(Object.entries(item).map(([key, entry]) => [key, walk(entry)]));
+    }
+    return item;
+  };
+  return walk(value);
+}
+
+function decodeBulk(value) {
+  if (Array.isArray(value)) return value.map(decodeBulk);
+  if (!value || typeof value !== 'object') return value;
+  if (typeof value.bulk === 'string' && typeof value.base64 === 'string' && Object.keys(value).length === 2) {
+    const bytes = Buffer.from(value.base64, 'base64');
+    const buffer = bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength);
+    if (value.bulk === 'Array') return Array.from(new Float64Array(buffer));
+    return new globalThis[value.bulk](buffer);
+  }
+  return Object.fromEntries(Object.entries(value).map(([key, entry]) => [key, decodeBulk(entry)]));
+}
+
+/**
+ * `target.evaluate(fn, arg)` for results that hold long arrays of numbers
+ * (positions, selections): those cross as base64 bytes, exactly, instead of
+ * number by number. Playwright checks and serialises each entry of an array
+ * apart, in the test runner, the browser and the page: a third of the
+ * runner's own time in the document tests. Plain arrays come back as plain
+ * arrays of the same doubles (-0 and NaN included), typed ones as their type.
+ */
+export async function evaluateBulk(target, fn, arg) {
+  const handle = await target.evaluateHandle(fn, arg);
+  try {
+    return decodeBulk(await handle.evaluate(encodeBulk));
+  } finally {
+    await handle.dispose();
+  }
+}

@@ -1,5 +1,5 @@
 // Undo and redo restore positions exactly (bitwise), by API and by keyboard.
-import { expect, openApp, test } from './support.mjs';
+import { evaluateBulk, expect, openApp, test } from './support.mjs';
 
 test('undo and redo restore positions bitwise', async ({ page }) => {
   await openApp(page);
@@ -23,7 +23,7 @@ test('undo and redo restore positions bitwise', async ({ page }) => {
   expect(outcome).toEqual([true, true, true, true, true, true]);
 
   // Keyboard: Ctrl+Z twice (shear, stretch), then Ctrl+Shift+Z once.
-  const snapshot = () => page.evaluate(() => Array.from(window.anisoform.positions()));
+  const snapshot = () => evaluateBulk(page, () => Array.from(window.anisoform.positions()));
   const sheared = await snapshot();
   await page.getByTestId('viewport').focus();
   await page.keyboard.press('Control+z');
