@@ -81,10 +81,14 @@ void validate_twist(const TransformSpec& spec, double mesh_diagonal);
 // diagonals.
 void validate_move(const Eigen::Vector3d& offset, double mesh_diagonal);
 
-// Per-element amounts overriding su / sv (from a direction field with amounts).
+// Per-element amounts overriding su / sv (from a direction field with amounts),
+// and the share of the shear the element takes (shear_share,
+// element_targets.h: 1 where its cv points along the shear's orientation, 0
+// where it is square to it).
 struct Amounts {
   double su;
   double sv;
+  double shear = 1.0;
 };
 
 // T for one element: frame columns (cu, cv, n), selection weight s in [0, 1],

@@ -406,10 +406,13 @@ struct SideShare {
   Eigen::Vector3d across() const {
     return across_only ? Eigen::Vector3d(w * (v.dot(e) * v + u.dot(e) * u)) : Eigen::Vector3d((w * v.dot(e)) * v);
   }
-  // v turned to `orientation` (oriented_frame, element_targets.cpp).
+  // v turned to `orientation`, the side's share of the shear taken
+  // (oriented_frame, element_targets.cpp; shear_share, element_targets.h):
+  // none across only.
   Eigen::Vector3d sheared(const Eigen::Vector3d& orientation) const {
+    if (across_only) return Eigen::Vector3d::Zero();
     const Eigen::Vector3d oriented = v.dot(orientation) < 0.0 ? Eigen::Vector3d(-v) : v;
-    return (w * oriented.dot(e)) * u;
+    return (w * shear_share(v, orientation) * oriented.dot(e)) * u;
   }
 };
 
@@ -485,12 +488,13 @@ void AnArapSolver::set_scale_targets(const Frames& frames, const Eigen::VectorXd
   scale_targets_set();
 }
 
-void AnArapSolver::set_shear_steps(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight,
+void AnArapSolver::set_shear_steps(const Frames& frames, const Eigen::VectorXd& side_weight,
                                    const Eigen::Vector3d& orientation) {
   Positions& sheared = zeroed_step(shear_step_);
-  visit_side_shares(u, v, side_weight, [&](int row, const SideShare& side) {
-    sheared.row(row) += side.sheared(orientation).transpose();
-  });
+  visit_side_shares(
+      frames.u, frames.v, side_weight,
+      [&](int row, const SideShare& side) { sheared.row(row) += side.sheared(orientation).transpose(); },
+      &frames.along_normal);
 }
 
 void AnArapSolver::set_shear_targets(double h) {
@@ -500,12 +504,13 @@ void AnArapSolver::set_shear_targets(double h) {
   scale_targets_set();
 }
 
-void AnArapSolver::set_shear_targets(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight,
+void AnArapSolver::set_shear_targets(const Frames& frames, const Eigen::VectorXd& side_weight,
                                      const Eigen::Vector3d& orientation, double h) {
   Positions& target = rest_targets();
-  visit_side_shares(u, v, side_weight, [&](int row, const SideShare& side) {
-    target.row(row) += (h * side.sheared(orientation)).transpose();
-  });
+  visit_side_shares(
+      frames.u, frames.v, side_weight,
+      [&](int row, const SideShare& side) { target.row(row) += (h * side.sheared(orientation)).transpose(); },
+      &frames.along_normal);
   scale_targets_set();
 }
 

@@ -86,16 +86,17 @@ class AnArapSolver {
   void set_scale_targets(const Frames& frames, const Eigen::VectorXd& side_weight, double su,
                          double sv);
   // Shear-only targets (TransformSpec::shears_only) are linear in the shear
-  // h: a side maps e to e + w h u (v.e), v turned to `orientation`
-  // (shear_orientation, element_targets.h), so t = e + h S per spoke (or
-  // side). As the scale steps: set_shear_steps keeps S, set_shear_targets(h)
-  // sets the targets from it, the other set_shear_targets directly. Only
-  // for coupled rotations: the polar targets are not made.
-  void set_shear_steps(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight,
-                       const Eigen::Vector3d& orientation);
+  // h: a side maps e to e + w s h u (v.e), v turned to `orientation`
+  // (shear_orientation, element_targets.h) and s its triangle's share
+  // (shear_share; 0 on a triangle square to the direction,
+  // Frames::along_normal), so t = e + h S per spoke (or side). As the scale
+  // steps: set_shear_steps keeps S, set_shear_targets(h) sets the targets
+  // from it, the other set_shear_targets directly. Only for coupled
+  // rotations: the polar targets are not made.
+  void set_shear_steps(const Frames& frames, const Eigen::VectorXd& side_weight, const Eigen::Vector3d& orientation);
   void set_shear_targets(double h);
-  void set_shear_targets(const Positions& u, const Positions& v, const Eigen::VectorXd& side_weight,
-                         const Eigen::Vector3d& orientation, double h);
+  void set_shear_targets(const Frames& frames, const Eigen::VectorXd& side_weight, const Eigen::Vector3d& orientation,
+                         double h);
   // Rotation-only targets (TransformSpec::rotates_only): a side of weight w
   // turns e about its triangle's `axis` row (#F by 3, unit) by w `radians`
   // (Rodrigues: e + sin (a x e) + (1 - cos) (a (a.e) - e)), directly, the

@@ -683,7 +683,7 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
         if (scale_preview) {
           iterations->set_scale_steps(frames.frames, side_weights(unit_, w));
         } else {
-          iterations->set_shear_steps(frames.frames.u, frames.frames.v, side_weights(unit_, w),
+          iterations->set_shear_steps(frames.frames, side_weights(unit_, w),
                                       shear_orientation(unit_, request.transform, w));
         }
         kept = Workspace::AffineSteps{request.elements, ws.frames_built, w};
@@ -694,7 +694,7 @@ DeformResult Deformer::deform_unit(const DeformRequest& request) {
       } else if (scale_preview) {
         iterations->set_scale_targets(spec.su, spec.sv);
       } else if (shear_preview && screen) {
-        iterations->set_shear_targets(frames.frames.u, frames.frames.v, side_weights(unit_, w),
+        iterations->set_shear_targets(frames.frames, side_weights(unit_, w),
                                       shear_orientation(unit_, spec, w), spec.shear);
       } else if (shear_preview) {
         iterations->set_shear_targets(spec.shear);

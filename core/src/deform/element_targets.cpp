@@ -1,5 +1,7 @@
 #include "deform/element_targets.h"
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <new>
 #include <optional>
@@ -132,7 +134,14 @@ Eigen::Vector3d shear_orientation(const Mesh& mesh, const TransformSpec& spec, c
     }
   }
   if (ws == 0.0 || wu == 0) return Eigen::Vector3d::Zero();
-  return selected / ws - unselected / wu;
+  const Eigen::Vector3d away = selected / ws - unselected / wu;
+  const double length = away.norm();
+  return length > 0.0 && std::isfinite(length) ? Eigen::Vector3d(away / length) : Eigen::Vector3d::Zero();
+}
+
+double shear_share(const Eigen::Vector3d& cv, const Eigen::Vector3d& orientation) {
+  if (orientation.isZero(0.0)) return 1.0;
+  return std::min(1.0, std::abs(cv.dot(orientation)));
 }
 
 namespace {
@@ -151,9 +160,14 @@ Amounts element_amounts(const Frames& frames, int e, Amounts amounts) {
 }
 
 // Element frame columns with cv oriented along `orientation` (shear_orientation):
-// flipping cv and n together keeps the frame right-handed.
-void oriented_frame(const Frames& frames, int e, const Eigen::Vector3d& orientation, Eigen::Vector3d& u,
-                    Eigen::Vector3d& v, Eigen::Vector3d& n) {
+// flipping cv and n together keeps the frame right-handed. Returns the
+// element's share of the shear (shear_share): none where the direction is
+// its normal (Frames::along_normal), as the one shear of the selection moves
+// such a face along its normal, not in its plane (its filled u, square to
+// the direction, picked by the order of the fill, sheared the x = +-1 sides
+// of a box sheared along x along y or z, unevenly).
+double oriented_frame(const Frames& frames, int e, const Eigen::Vector3d& orientation, Eigen::Vector3d& u,
+                      Eigen::Vector3d& v, Eigen::Vector3d& n) {
   u = frames.u.row(e).transpose();
   v = frames.v.row(e).transpose();
   n = frames.n.row(e).transpose();
@@ -161,6 +175,7 @@ void oriented_frame(const Frames& frames, int e, const Eigen::Vector3d& orientat
     v = -v;
     n = -n;
   }
+  return frames.along_normal[static_cast<std::size_t>(e)] ? 0.0 : shear_share(v, orientation);
 }
 
 }  // namespace
@@ -180,9 +195,9 @@ ElementTargets vertex_targets(TargetContext& context, const DirectionSource& sou
   const Eigen::Vector3d orientation = shear_orientation(mesh, spec, weights);
   Eigen::Vector3d u, v, normal;
   for (int i = 0; i < n; ++i) {
-    oriented_frame(frames, i, orientation, u, v, normal);
-    out.T[i] = element_transform(spec, u, v, normal, weights[i], mesh.V.row(i).transpose(),
-                                 element_amounts(frames, i, amounts_at(spec, su, sv, i)));
+    Amounts amounts = element_amounts(frames, i, amounts_at(spec, su, sv, i));
+    amounts.shear = oriented_frame(frames, i, orientation, u, v, normal);
+    out.T[i] = element_transform(spec, u, v, normal, weights[i], mesh.V.row(i).transpose(), amounts);
   }
   return out;
 }
@@ -254,8 +269,9 @@ ElementTargets triangle_targets(TargetContext& context, const DirectionSource& s
     const Eigen::Vector3d centroid = (mesh.V.row(a) + mesh.V.row(b) + mesh.V.row(c)).transpose() / 3.0;
     Amounts amounts{spec.su, spec.sv};
     if (su.size() > 0) amounts = {(su[a] + su[b] + su[c]) / 3.0, (sv[a] + sv[b] + sv[c]) / 3.0};
-    oriented_frame(frames, t, orientation, u, v, normal);
-    out.T[t] = element_transform(spec, u, v, normal, w, centroid, element_amounts(frames, t, amounts));
+    amounts = element_amounts(frames, t, amounts);
+    amounts.shear = oriented_frame(frames, t, orientation, u, v, normal);
+    out.T[t] = element_transform(spec, u, v, normal, w, centroid, amounts);
   }
   return out;
 }
@@ -275,7 +291,7 @@ SideTargets::SideTargets(const Mesh& rest, const SideFrames& frames, const Trans
 
 void SideTargets::operator()(int t, Eigen::Matrix3d T[3]) const {
   Eigen::Vector3d u, v, normal;
-  oriented_frame(frames_.frames, t, orientation_, u, v, normal);
+  const double shear = oriented_frame(frames_.frames, t, orientation_, u, v, normal);
   // Without a twist a side's map depends on its position only through its
   // weight and amounts, the same on the three sides of most triangles (all
   // of a selection's inside): made once for them (element_transform was a
@@ -289,6 +305,7 @@ void SideTargets::operator()(int t, Eigen::Matrix3d T[3]) const {
     Amounts amounts{spec_.su, spec_.sv};
     if (frames_.su.size() > 0) amounts = {0.5 * (frames_.su[a] + frames_.su[b]), 0.5 * (frames_.sv[a] + frames_.sv[b])};
     amounts = element_amounts(frames_.frames, t, amounts);
+    amounts.shear = shear;
     if (k > 0 && !by_position && w == last_w && amounts.su == last_amounts.su && amounts.sv == last_amounts.sv) {
       T[k] = T[k - 1];
       continue;

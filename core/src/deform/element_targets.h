@@ -77,10 +77,22 @@ SideFrames side_frames(TargetContext& context, const DirectionSource& source);
 // A shear moves points along cu in proportion to their cv coordinate, and
 // cv = n x cu flips between opposite sides of a part (front and back of a
 // box), which would shear them against each other. cv is oriented to point
-// away from the unselected part (from its centroid towards the selection's,
-// this vector), so a shear displaces the whole selection one way. Zero when
-// there is nothing to orient by (no shear, or no unselected vertex).
+// away from the unselected part (from its centroid towards the selection's:
+// this unit vector), so a shear displaces the whole selection one way. Zero
+// when there is nothing to orient by (no shear, or no unselected vertex).
 Eigen::Vector3d shear_orientation(const Mesh& mesh, const TransformSpec& spec, const Eigen::VectorXd& w);
+
+// The share of the shear an element with cross axis cv takes: |cv . o| for
+// the unit orientation o (1 where cv points away from the unselected part,
+// the sides of a post; 0 where cv is square to it, the top of a box), 1 when
+// there is no orientation. A face square to o has no "away" for its cv: its
+// sign came from rounding (v . o ~ 1e-17 either way), so a box's top was
+// sheared in its own plane one way or the other, face by face, and a
+// symmetric box came out asymmetric. Scaled by |cv . o| instead, the shear is
+// the part of the one shear of the selection (along the direction, growing
+// away from the unselected part) that lies across the face's direction: it
+// fades to 0 on such faces, continuously, whichever sign their cv has.
+double shear_share(const Eigen::Vector3d& cv, const Eigen::Vector3d& orientation);
 
 // Per-side targets (3 per triangle, T[3t + k] for the side opposite corner k):
 // the triangle's frame, with the side's own weight (the mean of its two

@@ -146,7 +146,7 @@ Eigen::Matrix3d element_transform(const TransformSpec& spec, const Eigen::Vector
   }
   if (spec.shear != 0.0) {
     Eigen::Matrix3d shear = Eigen::Matrix3d::Identity();
-    shear(0, 1) = s * spec.shear;
+    shear(0, 1) = s * spec.shear * amounts.shear;
     local = shear * local;
   }
   if (rotates) {

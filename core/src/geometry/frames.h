@@ -32,7 +32,8 @@ struct Frames {
   // across the direction only, by sv in every direction of its plane (as
   // the 3D stretch along the direction does to a face square to it: a
   // cylinder's flat cap keeps its shape when the cylinder is stretched along
-  // its axis). Its u is still filled, for a shear or a turn about u or v.
+  // its axis). Its u is still filled, for a turn about u or v (a shear
+  // leaves it unsheared: shear_share, element_targets.h).
   std::vector<char> along_normal;
 };
 
