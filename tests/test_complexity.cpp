@@ -4,6 +4,7 @@
 // (sizes linear in #F, #corners - 2 triangles) and on results; the [complexity]
 // tests get a ctest TIMEOUT (tests/CMakeLists.txt), so a return of the old
 // behaviour fails instead of hanging. Today each takes well under 2 s.
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -70,11 +71,10 @@ std::string written_cycling_polygon(int corners) {
 
 // The concave 66-gon of formats/concave_polygon.obj (a rim and a hole joined
 // by a bridge edge 31-32 walked both ways), each edge but the bridge cut into
-// `pieces`: one polygon of 66 + 64 (pieces - 1) corners. Every corner has a
-// texture coordinate of its own, the corners' coordinates listed backwards
-// (vt i is not corner i), u, v = corner number, 1000 + corner number.
-// Returns the path; `corners` gets the polygon's 0-based vertices in order.
-std::string written_textured_concave_polygon(int pieces, std::vector<int>& corners) {
+// `pieces` collinear pieces: one polygon of 66 + 64 (pieces - 1) corners,
+// nearly all of them flat (which ear clipping counts as reflex). Returns its
+// positions; `corners` gets the polygon's 0-based vertices in order.
+aniso::Positions subdivided_concave_polygon(int pieces, std::vector<int>& corners) {
   const Mesh mesh = aniso::test::load("formats/concave_polygon.obj");
   const std::vector<int> rim = {27, 23, 19, 15, 11, 5,  2,  1,  3,  6,  12, 16, 20, 24, 28, 34, 38,
                                 42, 46, 50, 54, 60, 63, 64, 62, 59, 53, 49, 45, 41, 37, 31, 32, 35,
@@ -92,11 +92,21 @@ std::string written_textured_concave_polygon(int pieces, std::vector<int>& corne
       points.push_back(mesh.V.row(a) + (mesh.V.row(b) - mesh.V.row(a)) * (static_cast<double>(j) / pieces));
     }
   }
+  aniso::Positions V(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < points.size(); ++i) V.row(static_cast<Eigen::Index>(i)) = points[i];
+  return V;
+}
+
+// That polygon written as an OBJ where every corner has a texture coordinate
+// of its own, the corners' coordinates listed backwards (vt i is not corner
+// i), u, v = corner number, 1000 + corner number. Returns the path.
+std::string written_textured_concave_polygon(int pieces, std::vector<int>& corners) {
+  const aniso::Positions V = subdivided_concave_polygon(pieces, corners);
   const int n = static_cast<int>(corners.size());
   std::string text;
   char line[96];
-  for (const Eigen::RowVector3d& p : points) {
-    std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", p.x(), p.y(), p.z());
+  for (Eigen::Index v = 0; v < V.rows(); ++v) {
+    std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", V(v, 0), V(v, 1), V(v, 2));
     text += line;
   }
   for (int c = n - 1; c >= 0; --c) text += "vt " + std::to_string(c) + " " + std::to_string(1000 + c) + "\n";
@@ -107,6 +117,33 @@ std::string written_textured_concave_polygon(int pieces, std::vector<int>& corne
   return path;
 }
 
+// How a polygon's triangles cover it, in its plane: the sum of their absolute
+// areas (the polygon's own area unless some overlap) and how many wind
+// against the polygon (its Newell normal).
+struct PlaneCoverage {
+  double polygon_area = 0, covered = 0;
+  int backwards = 0;
+};
+
+PlaneCoverage plane_coverage(const aniso::Positions& V, const std::vector<int>& corners,
+                             const std::vector<std::array<int, 3>>& triangles) {
+  const int n = static_cast<int>(corners.size());
+  const Eigen::RowVector3d origin = V.row(corners[0]);
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  for (int c = 0; c < n; ++c) {
+    normal += (V.row(corners[c]) - origin).transpose().cross((V.row(corners[(c + 1) % n]) - origin).transpose());
+  }
+  PlaneCoverage coverage;
+  coverage.polygon_area = normal.norm() / 2;
+  const Eigen::Vector3d unit_normal = normal.normalized();
+  for (const auto& t : triangles) {
+    const Eigen::Vector3d a = V.row(t[0]).transpose();
+    const double area = (V.row(t[1]).transpose() - a).cross(V.row(t[2]).transpose() - a).dot(unit_normal) / 2;
+    coverage.covered += std::abs(area);
+    if (area < -1e-12 * coverage.polygon_area) ++coverage.backwards;
+  }
+  return coverage;
+}
 
 }  // namespace
 
@@ -191,6 +228,16 @@ TEST_CASE("complexity: a textured polygon of 400k corners loads with each corner
   REQUIRE(n == 66 + 64 * 6249);
   const aniso::ReadResult read = aniso::read_mesh(path);
   REQUIRE(read.mesh.num_triangles() == n - 2);
+  // Its edges cut into collinear pieces, nearly every corner is flat: the
+  // ear clipping ran out of its work budget and fanned most of the polygon
+  // (the triangles covered 3.22 for the polygon's 0.245, 175001 backwards).
+  std::vector<std::array<int, 3>> triangles;
+  for (Eigen::Index f = 0; f < read.mesh.F.rows(); ++f) {
+    triangles.push_back({read.mesh.F(f, 0), read.mesh.F(f, 1), read.mesh.F(f, 2)});
+  }
+  const PlaneCoverage coverage = plane_coverage(read.mesh.V, corners, triangles);
+  CHECK(coverage.covered == Approx(coverage.polygon_area).epsilon(1e-9));
+  CHECK(coverage.backwards == 0);
   const aniso::CornerTexture& texture = read.attributes.texture;
   REQUIRE(texture.faces.rows() == n - 2);
   REQUIRE(texture.uv.rows() == n);
@@ -207,6 +254,23 @@ TEST_CASE("complexity: a textured polygon of 400k corners loads with each corner
     }
   }
   CHECK(wrong == 0);
+}
+
+TEST_CASE("complexity: a concave polygon of 100k corners, its edges cut into collinear pieces, triangulates without overlap",
+          "[complexity]") {
+  // Each ear test scanned every reflex corner, and flat ones count: the work
+  // budget ran out after about a thousand ears and the other ~99k corners
+  // were fanned across the ring's hole. Measured before the fix: the
+  // triangles covered 3.23 for the polygon's 0.245, 43765 wound backwards.
+  std::vector<int> corners;
+  const aniso::Positions V = subdivided_concave_polygon(1563, corners);
+  const int n = static_cast<int>(corners.size());
+  REQUIRE(n == 66 + 64 * 1562);
+  const auto triangles = aniso::triangulate_polygon(V, corners);
+  REQUIRE(static_cast<int>(triangles.size()) == n - 2);
+  const PlaneCoverage coverage = plane_coverage(V, corners, triangles);
+  CHECK(coverage.covered == Approx(coverage.polygon_area).epsilon(1e-9));
+  CHECK(coverage.backwards == 0);
 }
 
 TEST_CASE("complexity: the mesh check of 200k unused vertices counts them all and words the first 1000",

@@ -5,20 +5,24 @@
 // corner. Corners at the same position as the ear's own corners are ignored in
 // that test, so a polygon whose hole is joined by a doubled bridge edge
 // triangulates like the hole-free polygon it stands for. Only reflex corners
-// can lie inside an ear, so only they are tested: convex polygons take linear
-// time.
+// (flat ones included: they may sit on an ear's edge) can lie inside an ear,
+// so only they are tested, and only those near the ear (a k-d tree,
+// reflex_corners.h). The walk around the polygon in search of ears steps
+// from convex corner to convex corner: a long run of flat or reflex corners
+// is not walked over again on every lap.
 //
 // Ear clipping can find no ear on self-intersecting or non-planar input. Then
 // collinear (flat) ears are accepted, and failing that, the remaining corners
 // are fanned: the result always has #corners-2 triangles, in the polygon's
 // winding.
 //
-// Ear clipping is O(n^2) at worst (n corners, many of them reflex). The work
-// (corner visits and point-in-triangle tests) is therefore capped at
-// kWorkPerCorner * n * log2(n): ordinary polygons (convex, or a few reflex
-// corners) finish well within it, and a pathological one (thousands of reflex
-// corners) gets the rest of its corners fanned: O(n log n) whatever the input,
-// at the price of overlapping triangles only on such polygons.
+// Ear clipping may still take O(n^2) (n corners), e.g. when laps of the walk
+// find few ears each. The work (corners visited, tree nodes visited, points
+// tested against an ear) is therefore capped at kWorkPerCorner * n * log2(n):
+// ordinary polygons finish well within it (a polygon of 400k corners, nearly
+// all flat, takes an eighth of it), and a pathological one gets the rest of
+// its corners fanned: O(n log n) whatever the input, at the price of
+// overlapping triangles only on such polygons.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -28,6 +32,7 @@
 
 #include "anisoform/error.h"
 #include "anisoform/mesh_check.h"
+#include "mesh/reflex_corners.h"
 
 namespace aniso {
 
@@ -42,25 +47,56 @@ long long ear_clipping_budget(std::size_t corners) {
   return static_cast<long long>(kWorkPerCorner * n * std::max(1.0, std::log2(n)));
 }
 
-struct Point2 {
-  double x, y;
+using ear_clipping::orient;
+using ear_clipping::Point2;
+using ear_clipping::ReflexCorners;
+using ear_clipping::same_position;
+using ear_clipping::Triangle2;
+
+// A ring of some of the corners, in the polygon's order, linked both ways.
+class CornerRing {
+ public:
+  explicit CornerRing(int corners) : next_(corners, -1), prev_(corners, -1) {}
+
+  bool holds(int corner) const { return next_[corner] != -1; }
+  int next(int corner) const { return next_[corner]; }
+  int size() const { return size_; }
+
+  // Links `corner` in after `at`, or alone when `at` is -1 (empty ring).
+  void insert_after(int corner, int at) {
+    if (at == -1) at = corner;
+    const int following = at == corner ? corner : next_[at];
+    prev_[corner] = at;
+    next_[corner] = following;
+    next_[at] = corner;
+    prev_[following] = corner;
+    ++size_;
+  }
+  void insert_before(int corner, int at) { insert_after(corner, prev_[at]); }
+
+  void remove(int corner) {
+    next_[prev_[corner]] = next_[corner];
+    prev_[next_[corner]] = prev_[corner];
+    next_[corner] = prev_[corner] = -1;
+    --size_;
+  }
+
+ private:
+  std::vector<int> next_, prev_;
+  int size_ = 0;
 };
-
-// Twice the signed area of (a, b, c): > 0 when counter-clockwise.
-double orient(const Point2& a, const Point2& b, const Point2& c) {
-  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-}
-
-bool same_position(const Point2& a, const Point2& b) { return a.x == b.x && a.y == b.y; }
 
 class EarClipper {
  public:
   EarClipper(std::vector<Point2> points, const std::vector<int>& polygon)
-      : points_(std::move(points)), polygon_(polygon), budget_(ear_clipping_budget(polygon.size())) {
+      : points_(std::move(points)),
+        polygon_(polygon),
+        reflex_(points_),
+        convex_(static_cast<int>(points_.size())),
+        budget_(ear_clipping_budget(polygon.size())) {
     const int n = static_cast<int>(points_.size());
     prev_.resize(n);
     next_.resize(n);
-    reflex_.assign(n, 0);
     for (int i = 0; i < n; ++i) {
       prev_[i] = (i + n - 1) % n;
       next_[i] = (i + 1) % n;
@@ -69,7 +105,13 @@ class EarClipper {
     double extent = 0;
     for (const Point2& p : points_) extent = std::max({extent, std::abs(p.x), std::abs(p.y)});
     flat_tolerance_ = 1e-14 * extent * extent;
-    for (int i = 0; i < n; ++i) update_reflex(i);
+    int last_convex = -1;
+    for (int i = 0; i < n; ++i) {
+      update_reflex(i);
+      if (reflex_.is_reflex(i)) continue;
+      convex_.insert_after(i, last_convex);
+      last_convex = i;
+    }
   }
 
   std::vector<std::array<int, 3>> run() {
@@ -80,16 +122,19 @@ class EarClipper {
     while (remaining > 3 && work_ < budget_) {
       ++work_;
       if (is_ear(corner, accept_flat)) {
-        const int after = next_[corner];
-        clip(corner);
+        corner = clip(corner);
         --remaining;
-        corner = after;
         misses = 0;
         accept_flat = false;
         continue;
       }
-      corner = next_[corner];
-      if (++misses < remaining) continue;
+      // Only convex corners can be proper ears: the walk skips the others
+      // (after a flat ear it may have to walk to the next convex corner).
+      const bool on_ring = !accept_flat && convex_.holds(corner);
+      corner = on_ring ? convex_.next(corner) : next_[corner];
+      if (on_ring || accept_flat) ++misses;
+      // A lap without an ear: of the convex corners, then of all corners.
+      if (misses < (accept_flat ? remaining : convex_.size())) continue;
       if (accept_flat) break;  // no ear at all: fan what is left
       accept_flat = true;
       misses = 0;
@@ -104,10 +149,8 @@ class EarClipper {
   }
 
   void update_reflex(int i) {
-    const bool was_reflex = reflex_[i];
     // Flat corners count as reflex: they may sit on an ear's edge.
-    reflex_[i] = corner_orientation(i) <= flat_tolerance_;
-    if (reflex_[i] && !was_reflex) reflex_list_.push_back(i);
+    reflex_.set_reflex(i, corner_orientation(i) <= flat_tolerance_);
   }
 
   bool is_ear(int b, bool accept_flat) {
@@ -115,31 +158,61 @@ class EarClipper {
     const int c = next_[b];
     const double area = corner_orientation(b);
     if (!(area > flat_tolerance_) && !(accept_flat && area >= -flat_tolerance_)) return false;
-    const Point2& pa = points_[a];
-    const Point2& pb = points_[b];
-    const Point2& pc = points_[c];
-    for (const int r : reflex_list_) {
-      ++work_;
-      if (!reflex_[r] || removed(r) || r == a || r == b || r == c) continue;
+    const Triangle2 ear(points_[a], points_[b], points_[c]);
+    const auto ignore = [&](int r) {
       const Point2& p = points_[r];
-      if (same_position(p, pa) || same_position(p, pb) || same_position(p, pc)) continue;
-      if (orient(pa, pb, p) >= 0 && orient(pb, pc, p) >= 0 && orient(pc, pa, p) >= 0) return false;
-    }
-    return true;
+      return r == a || r == b || r == c || same_position(p, ear.a) || same_position(p, ear.b) ||
+             same_position(p, ear.c);
+    };
+    return !reflex_.any_in(ear, ignore, work_);
   }
 
-  bool removed(int i) const { return next_[i] == -1; }
-
-  void clip(int b) {
+  // Cuts the ear at b off; returns the corner to test next: the next convex
+  // one after b, as the walk would reach it.
+  int clip(int b) {
     const int a = prev_[b];
     const int c = next_[b];
     triangles_.push_back({polygon_[a], polygon_[b], polygon_[c]});
     next_[a] = c;
     prev_[c] = a;
     next_[b] = prev_[b] = -1;
-    reflex_[b] = 0;
+    reflex_.set_reflex(b, false);
     update_reflex(a);
     update_reflex(c);
+    // a and c keep b's place in the ring: a just before it, c just after.
+    const int anchor = convex_.holds(b) ? b : -1;
+    update_convex(a, anchor, true);
+    update_convex(c, anchor, false);
+    int after = c;
+    if (anchor != -1) {
+      if (convex_.next(b) != b) after = convex_.next(b);
+      convex_.remove(b);
+    }
+    return after;
+  }
+
+  // Puts corner i in or out of the ring of convex corners, next to `anchor`
+  // (a ring member next to it in the polygon) or, without one (b was a flat
+  // ear), before the next member along the polygon.
+  void update_convex(int i, int anchor, bool before) {
+    const bool convex = !reflex_.is_reflex(i);
+    if (convex == convex_.holds(i)) return;
+    if (!convex) {
+      convex_.remove(i);
+      return;
+    }
+    if (anchor == -1) {
+      for (int j = next_[i]; j != i && anchor == -1; j = next_[j]) {
+        ++work_;
+        if (convex_.holds(j)) anchor = j;
+      }
+      before = true;
+    }
+    if (before && anchor != -1) {
+      convex_.insert_before(i, anchor);
+    } else {
+      convex_.insert_after(i, anchor);  // alone in the ring when anchor is -1
+    }
   }
 
   void fan_rest(int start) {
@@ -151,8 +224,8 @@ class EarClipper {
   std::vector<Point2> points_;
   const std::vector<int>& polygon_;
   std::vector<int> prev_, next_;
-  std::vector<char> reflex_;
-  std::vector<int> reflex_list_;  // every corner that was ever reflex; check reflex_ too
+  ReflexCorners reflex_;  // of the corners not clipped yet
+  CornerRing convex_;     // the corners not clipped yet that are not reflex
   std::vector<std::array<int, 3>> triangles_;
   double flat_tolerance_ = 0;
   long long budget_;
