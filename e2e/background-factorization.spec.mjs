@@ -3,7 +3,7 @@
 // edit does not pay for it in its first preview; the page is not busy
 // meanwhile, and the next edit runs after the part in progress (the
 // preparation goes a part at a time) and applies as usual.
-import { evaluateBulk, expect, meshPath, openApp, test, uploadFile, verticalRange } from './support.mjs';
+import { expect, meshPath, openApp, test, uploadFile, verticalRange } from './support.mjs';
 
 test('a commit starts the next factorization in the background, and the next edit still applies', { tag: '@speed' }, async ({ page }) => {
   test.setTimeout(120_000);
@@ -30,7 +30,7 @@ test('a commit starts the next factorization in the background, and the next edi
   });
   const loaded = await uploadFile(page, meshPath('closed/armadillo.off'));
   expect(loaded.ok).toBe(true);
-  const result = await evaluateBulk(page, async ({ low: lowY, height }) => {
+  const result = await page.evaluate(async ({ low: lowY, height }) => {
     const api = window.anisoform;
     await window.__loadPrepared;
     const progress = [];

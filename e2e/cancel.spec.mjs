@@ -98,7 +98,7 @@ test('api.cancel(), the Cancel button and Esc stop a long commit at once; the ne
   expect(result.accepted).toBe(true);
   expectKept(result);
 
-  const after = await evaluateBulk(page, async () => {
+  const after = await page.evaluate(async () => {
     const api = window.anisoform;
     const kept = Array.from(api.positions());
     const idle = api.cancel(); // nothing to stop now
@@ -147,7 +147,7 @@ test('Esc stops the re-run an Edits-list toggle started; the states on screen co
   await page.evaluate(() => window.anisoform.deform({ method: 'anarap', direction: { type: 'global', vector: [1, 0, 0] },
     transform: { shear: 0.2 }, maxIterations: 400, tolerance: 1e-15, acceleration: 'none' }));
   const posted = await recordWorkerRequests(page);
-  const before = await evaluateBulk(page, () => ({ positions: Array.from(window.anisoform.positions()),
+  const before = await page.evaluate(() => ({ positions: Array.from(window.anisoform.positions()),
     document: JSON.stringify(window.anisoform.document()), undo: document.querySelector('[data-testid="undo"]').title }));
   const toggle = page.getByTestId('op-toggle-op-1');
   await toggle.uncheck();
@@ -165,7 +165,7 @@ test('Esc stops the re-run an Edits-list toggle started; the states on screen co
   expect(progress).toMatch(/^Edit [12] of 2: (Solving|Preparing the solver) \d+ %/);
   await expect(page.getByTestId('notice')).toContainText('Cancelled: the solve was stopped');
   await expect(toggle).toBeChecked();
-  const after = await evaluateBulk(page, () => ({ positions: Array.from(window.anisoform.positions()),
+  const after = await page.evaluate(() => ({ positions: Array.from(window.anisoform.positions()),
     document: JSON.stringify(window.anisoform.document()), undo: document.querySelector('[data-testid="undo"]').title,
     errorShown: !document.querySelector('[data-testid="error"]').hidden }));
   after.posted = await posted(postedBefore);

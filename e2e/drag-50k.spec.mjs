@@ -14,7 +14,7 @@
 // move, where per-frame moves show 14.7-16.0/s (the worker's previews then
 // take 35-40 ms each beside the page's drawing on 2 cores; 15 ms in Node).
 import { writeFileSync } from 'node:fs';
-import { armChange, canvasCentre, evaluateBulk, expect, openApp, test, uploadFile } from './support.mjs';
+import { armChange, canvasCentre, expect, openApp, test, uploadFile } from './support.mjs';
 
 // An open tube, the benchmark's cyl50k shape: no real mesh in ../shared has
 // 50k vertices (the koala is 200k, the bunny 36k).
@@ -47,7 +47,7 @@ test('a 2 s stretch drag on a 50k-vertex mesh previews live and commits', { tag:
   const loaded = await uploadFile(page, file);
   expect(loaded.ok).toBe(true);
   expect(loaded.info.vertices).toBe(50_000);
-  const before = await evaluateBulk(page, () => Array.from(window.anisoform.positions()));
+  const before = await page.evaluate(() => Array.from(window.anisoform.positions()));
 
   await page.getByTestId('tool-stretch').click();
   // Counted in the page: a frame counts when live positions it had not
@@ -108,7 +108,7 @@ test('a 2 s stretch drag on a 50k-vertex mesh previews live and commits', { tag:
     + `${(counted.changedFrames / seconds).toFixed(1)} updates/s (${counted.arrived} live shapes, ${counted.frames} frames, `
     + `${moves} pointer moves)`);
   expect(counted.changedFrames).toBeGreaterThanOrEqual(3);
-  const after = await evaluateBulk(page, () => Array.from(window.anisoform.positions()));
+  const after = await page.evaluate(() => Array.from(window.anisoform.positions()));
   let moved = 0;
   for (let i = 0; i < after.length; i++) moved = Math.max(moved, Math.abs(after[i] - before[i]));
   expect(moved).toBeGreaterThan(0.01);

@@ -5,7 +5,7 @@
 // the memory ceiling a minute later.
 import { readFileSync, writeFileSync } from 'node:fs';
 import { binaryPly, readBinaryPly, subdivided } from '../wasm/subdivided-mesh.mjs';
-import { evaluateBulk, expect, meshPath, openApp, test } from './support.mjs';
+import { expect, meshPath, openApp, test } from './support.mjs';
 
 test('an 800k-vertex upload is refused at once naming the limit; the page stays responsive and keeps its mesh', { tag: '@speed' }, async ({ page }) => {
   test.setTimeout(120_000);
@@ -16,7 +16,7 @@ test('an 800k-vertex upload is refused at once naming the limit; the page stays 
   writeFileSync(big, binaryPly(subdivided(koala.positions, koala.triangles)));
 
   await openApp(page);
-  const before = await evaluateBulk(page, () => ({ info: window.anisoform.info(), positions: Array.from(window.anisoform.positions()) }));
+  const before = await page.evaluate(() => ({ info: window.anisoform.info(), positions: Array.from(window.anisoform.positions()) }));
   await page.evaluate(() => {
     window.__longTasks = [];
     new PerformanceObserver((list) => window.__longTasks.push(...list.getEntries().map((entry) => Math.round(entry.duration))))
@@ -34,6 +34,6 @@ test('an 800k-vertex upload is refused at once naming the limit; the page stays 
   await expect(error).toBeVisible();
   await expect(error).toContainText('524288');
   expect(await page.evaluate(() => window.__longTasks.filter((ms) => ms >= 200))).toEqual([]);
-  expect(await evaluateBulk(page, () => ({ info: window.anisoform.info(), positions: Array.from(window.anisoform.positions()) })))
+  expect(await page.evaluate(() => ({ info: window.anisoform.info(), positions: Array.from(window.anisoform.positions()) })))
     .toEqual(before);
 });
