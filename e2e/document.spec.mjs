@@ -388,7 +388,7 @@ test('an amount typed in the last edit previews live; leaving the field commits 
   const { afterThree, document } = await editSpot(page);
   const [, second, third] = document.ops;
   const shear = () => page.evaluate(() => window.anisoform.document().ops[2].op.transform.shear);
-  await evaluateBulk(page, () => {
+  await page.evaluate(() => {
     window.__live = 0;
     window.anisoform.on('positions', ({ live, positions }) => {
       if (live) window.__live++;
@@ -448,7 +448,7 @@ test('the Edits list by keyboard: Esc takes a typed amount back, a decimal comma
   const [first, second, third] = document.ops;
   const shear = () => page.evaluate(() => window.anisoform.document().ops.at(-1).op.transform.shear);
   const focused = () => page.evaluate(() => window.document.activeElement?.getAttribute('data-testid') ?? window.document.activeElement?.tagName);
-  await evaluateBulk(page, () => {
+  await page.evaluate(() => {
     window.anisoform.on('positions', ({ live, positions }) => {
       window.__shown = { live, positions: Array.from(positions) };
     });

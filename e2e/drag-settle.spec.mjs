@@ -27,7 +27,7 @@ function distanceFrom(final) {
 test('a resting pointer keeps the live shape iterating towards the committed one', async ({ page }) => {
   await openApp(page);
   await page.getByTestId('tool-shear').click();
-  await evaluateBulk(page, () => {
+  await page.evaluate(() => {
     const shapes = [];
     window.__shapes = shapes;
     window.anisoform.on('positions', ({ positions, live }) => {
