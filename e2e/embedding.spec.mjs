@@ -692,6 +692,60 @@ test('a solver pool hands a disposed modeller\'s idle worker to the next one, wh
   expect(pageErrors).toEqual([]);
 });
 
+
+test('a solver pool also hands on the 3D view: the next modeller draws on the same canvas and GL context, with nothing of the last one left in it', async ({ page }) => {
+  const pageErrors = await openExample(page);
+  for (const button of await page.getByRole('button', { name: 'Dispose' }).all()) await button.click();
+  expect(await census(page)).toMatchObject({ contexts: 0, glObjects: 0 });
+
+  const outcome = await page.evaluate(async () => {
+    const { createModeller, createSolverPool } = window.anisoformExample;
+    const gl = () => {
+      const { contexts, glObjects } = window.__census();
+      return { contexts, glObjects };
+    };
+    const open = async (options) => {
+      const host = Object.assign(document.createElement('div'), { style: 'height: 200px' });
+      document.body.append(host);
+      const modeller = createModeller(host, { ui: 'none', mesh: '../spool.off', ...options });
+      await modeller.api.ready;
+      await modeller.api.select({ all: true });
+      // Two frames: the selection drawn.
+      await new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)));
+      return { modeller, canvas: host.querySelector('canvas') };
+    };
+    const lost = (canvas) => canvas.getContext('webgl2').isContextLost();
+    const solvers = createSolverPool();
+
+    const first = await open({ solvers });
+    const drawing = gl();
+    first.modeller.dispose();
+    const kept = { ...gl(), inDocument: first.canvas.isConnected, lost: lost(first.canvas) };
+
+    const second = await open({ solvers });
+    const handedOn = { ...gl(), sameCanvas: second.canvas === first.canvas };
+    second.modeller.dispose();
+    solvers.dispose();
+    const ended = { ...gl(), lost: lost(first.canvas) };
+
+    // Without a pool, dispose gives the context back at once, as before.
+    const alone = await open({});
+    const aloneDrawing = { ...gl(), newCanvas: alone.canvas !== first.canvas };
+    alone.modeller.dispose();
+    return { drawing, kept, handedOn, ended, aloneDrawing, aloneEnded: { ...gl(), lost: lost(alone.canvas) } };
+  });
+  expect(outcome.drawing.contexts).toBe(1);
+  expect(outcome.drawing.glObjects).toBeGreaterThan(0);
+  // Kept out of the document with its context; what the modeller drew is freed.
+  expect(outcome.kept).toMatchObject({ contexts: 1, inDocument: false, lost: false });
+  expect(outcome.kept.glObjects).toBeLessThan(outcome.drawing.glObjects);
+  // The next modeller draws the same mesh on it: no second context, the same GL objects.
+  expect(outcome.handedOn).toEqual({ ...outcome.drawing, sameCanvas: true });
+  expect(outcome.ended).toEqual({ contexts: 0, glObjects: 0, lost: true });
+  expect(outcome.aloneDrawing).toEqual({ ...outcome.drawing, newCanvas: true });
+  expect(outcome.aloneEnded).toEqual({ contexts: 0, glObjects: 0, lost: true });
+  expect(pageErrors).toEqual([]);
+});
 test('<anisoform-modeller edits>: saved edits open with src, alone on the mesh loaded, or with a new src; bad ones are refused and the work kept', async ({ page }) => {
   const pageErrors = await openExample(page);
   // Two saved edits of the spool (one op, two ops), made by a modeller of the page, served as files.

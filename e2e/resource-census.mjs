@@ -1,6 +1,6 @@
 // An init script for pages that create and dispose modellers: it counts, from
 // outside the package, what a modeller could leave behind. window.__census()
-// returns {workers, workersCreated, observers, listeners, detachedListeners, frames}:
+// returns {workers, workersCreated, observers, listeners, detachedListeners, frames, contexts, glObjects}:
 //   workers    Workers created and not terminated
 //   workersCreated  Workers created so far (a worker handed from one
 //              modeller to the next is not created again)
@@ -11,6 +11,10 @@
 //              (they go with the element; reported, not a leak)
 //   frames     requestAnimationFrame calls so far (a view that keeps
 //              redrawing adds to it)
+//   contexts   WebGL contexts made and not lost (a kept view's among them:
+//              solver-pool.js)
+//   glObjects  GL buffers, textures, programs and vertex arrays made and not
+//              deleted, in those contexts
 export function installResourceCensus() {
   const workers = new Set();
   let workersCreated = 0;
@@ -80,7 +84,39 @@ export function installResourceCensus() {
     return nativeRequestAnimationFrame(callback);
   };
 
+  // GL objects per context: made minus deleted.
+  const contexts = new Map();
+  const made = new WeakSet();
+  const nativeGetContext = HTMLCanvasElement.prototype.getContext;
+  HTMLCanvasElement.prototype.getContext = function getContext(type, ...rest) {
+    const context = nativeGetContext.call(this, type, ...rest);
+    if (context && /^(webgl|webgl2|experimental-webgl)$/.test(type) && !contexts.has(context)) contexts.set(context, 0);
+    return context;
+  };
+  const KINDS = [['createBuffer', 'deleteBuffer'], ['createTexture', 'deleteTexture'], ['createProgram', 'deleteProgram'],
+    ['createVertexArray', 'deleteVertexArray']];
+  for (const prototype of [WebGLRenderingContext.prototype, WebGL2RenderingContext.prototype]) {
+    for (const [make, remove] of KINDS) {
+      const nativeMake = prototype[make];
+      const nativeDelete = prototype[remove];
+      if (!nativeMake) continue;
+      prototype[make] = function counted(...args) {
+        const object = nativeMake.apply(this, args);
+        if (object && contexts.has(this)) {
+          made.add(object);
+          contexts.set(this, contexts.get(this) + 1);
+        }
+        return object;
+      };
+      prototype[remove] = function counted(object) {
+        if (made.delete(object)) contexts.set(this, contexts.get(this) - 1);
+        return nativeDelete.call(this, object);
+      };
+    }
+  }
+
   window.__census = () => {
+    const live = [...contexts].filter(([context]) => !context.isContextLost());
     let attached = 0;
     let detached = 0;
     for (const [target, entries] of listeners) {
@@ -88,6 +124,9 @@ export function installResourceCensus() {
       if (reachable) attached += entries.length;
       else detached += entries.length;
     }
-    return { workers: workers.size, workersCreated, observers: observers.size, listeners: attached, detachedListeners: detached, frames };
+    return {
+      workers: workers.size, workersCreated, observers: observers.size, listeners: attached, detachedListeners: detached, frames,
+      contexts: live.length, glObjects: live.reduce((sum, [, count]) => sum + count, 0),
+    };
   };
 }

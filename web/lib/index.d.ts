@@ -36,7 +36,7 @@ export interface ModellerOptions {
   /**
    * A pool of warm solver workers (createSolverPool): the modeller takes an idle one (same
    * workerUrl and wasmUrl) instead of starting its own, and dispose() gives its worker back
-   * when no request is in flight.
+   * when no request is in flight; its 3D view's WebGL renderer (canvas and context) likewise.
    */
   solvers?: SolverPool;
   /**
@@ -47,9 +47,9 @@ export interface ModellerOptions {
 }
 
 export interface SolverPoolOptions {
-  /** How many idle workers to keep (default 1; 0 keeps none). */
+  /** How many idle workers (and as many views' WebGL contexts) to keep (default 1; 0 keeps none). */
   keep?: number;
-  /** How long an idle worker is kept before it is ended, in seconds (default 60). */
+  /** How long an idle worker or view is kept before it is ended, in seconds (default 60). */
   idleSeconds?: number;
 }
 
@@ -57,12 +57,13 @@ export interface SolverPoolOptions {
  * Solver workers kept between modellers. Starting a worker (its scripts, the WASM compiled, its
  * code not yet optimised) is most of a modeller's start; a page that disposes a modeller and
  * makes another can hand the worker on. A kept worker's WASM session is freed; its memory is kept
- * (WASM memory never shrinks) until it is taken, times out or the pool is disposed.
+ * (WASM memory never shrinks) until it is taken, times out or the pool is disposed. The 3D view's
+ * WebGL renderer is handed on the same way (its canvas and GL context; what it drew is freed).
  */
 export interface SolverPool {
   /** The number of idle workers kept. */
   readonly size: number;
-  /** Ends the idle workers; workers given back later are ended at once. */
+  /** Ends the idle workers and views' GL contexts; those given back later are ended at once. */
   dispose(): void;
 }
 

@@ -81,7 +81,7 @@ export function createModeller(container, options = {}) {
   const layoutNodes = new Set(layout.viewport.children);
   const settings = new Settings();
   settings.values.display.materials = materials;
-  const viewer = new Viewer(layout.viewport, lifetime);
+  const viewer = new Viewer(layout.viewport, lifetime, solvers);
   viewer.on('contextlost', () => editor.report(Object.assign(new Error('The 3D view lost its WebGL context: the '
     + 'browser keeps about 16 a page and took this one (or its GPU was reset). The view comes back when the browser '
     + 'gives it again; dispose() modellers that are not shown.'), { code: 'display' })));
@@ -96,6 +96,7 @@ export function createModeller(container, options = {}) {
   });
   lifetime.defer(() => meshView.proxy.dispose());
   const gltfDisplay = new GltfDisplay(viewer, meshView);
+  lifetime.defer(() => gltfDisplay.dispose());
   gltfDisplay.setWanted(materials);
   new AxisGizmo(viewer, lifetime);
   const picker = new Picker(viewer, meshView);

@@ -7,6 +7,7 @@
 // The editing surface lights itself (its shader); the file's materials need
 // lights: a sky/ground fill and a key light that turns with the camera.
 import { DirectionalLight, HemisphereLight } from 'three';
+import { freeGpuObjects } from './free-gpu-objects.js';
 
 export class GltfDisplay {
   /** @type {import('../io/gltf-source.js').GltfSource | null} */
@@ -30,12 +31,21 @@ export class GltfDisplay {
 
   /** The loaded mesh's glTF scene, or null (other formats). */
   setSource(source, positions, triangles) {
-    if (this.#source) this.viewer.scene.remove(this.#source.scene);
+    if (this.#source && this.#source !== source) {
+      this.viewer.scene.remove(this.#source.scene);
+      // Its GL objects, drawn or not, go with it (the context may outlive this modeller).
+      freeGpuObjects(this.#source.scene);
+    }
     this.#source = source ?? null;
     this.#triangles = triangles;
     this.#positions = positions;
     this.#written = null;
     this.#sync();
+  }
+
+  /** At the modeller's dispose: frees the shown glTF scene's GL objects, in the scene or not. */
+  dispose() {
+    if (this.#source) freeGpuObjects(this.#source.scene);
   }
 
   /** Whether the file's look is wanted (the display setting). */

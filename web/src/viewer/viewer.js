@@ -7,6 +7,7 @@
 import { Color, PerspectiveCamera, Scene, Vector3, WebGLRenderer } from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { EventEmitter } from '../shared/event-emitter.js';
+import { freeGpuObjects } from './free-gpu-objects.js';
 import { rendersInSoftware } from './software-rendering.js';
 
 // A three-quarter view from the front right, slightly above.
@@ -24,6 +25,8 @@ export class Viewer extends EventEmitter {
   /** Target and distance the last fit left, to tell whether the user zoomed or panned since. */
   #lastFit = null;
   #resizeObserver;
+  /** The drawing buffer's size as last set: 'width x height @ pixel ratio'. */
+  #bufferSize = '';
   /** The view's size in CSS pixels, as of the last resize (read without laying the page out). */
   width = 1;
   height = 1;
@@ -31,14 +34,17 @@ export class Viewer extends EventEmitter {
   /**
    * @param {HTMLElement} container  receives the canvas
    * @param {import('../embed/lifetime.js').Lifetime} lifetime  cancels the pending frame, ends the observer and the GL context
+   * @param {import('../worker/solver-pool.js').SolverPool | null} [pool]  takes a kept renderer (canvas and GL context) from it, and gives it back at dispose
    */
-  constructor(container, lifetime) {
+  constructor(container, lifetime, pool = null) {
     super();
     this.container = container;
     // A CPU rasteriser draws without multisampling (software-rendering.js).
     const antialias = !rendersInSoftware();
-    this.renderer = new WebGLRenderer({ antialias });
-    this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
+    // Kept renderers are told apart by the context attribute that differs.
+    const rendererKey = antialias ? 'antialias' : 'no-antialias';
+    // Its drawing buffer is sized by #resize, below.
+    this.renderer = pool?.takeRenderer(rendererKey) ?? new WebGLRenderer({ antialias });
     this.canvas = this.renderer.domElement;
     this.canvas.dataset.testid = 'viewport';
     this.canvas.dataset.antialias = String(antialias);
@@ -52,11 +58,11 @@ export class Viewer extends EventEmitter {
     // the clear colour (the view came back black).
     const clearColor = new Color(0x1d2127);
     this.renderer.setClearColor(clearColor);
-    this.canvas.addEventListener('webglcontextlost', (event) => {
+    lifetime.listen(this.canvas, 'webglcontextlost', (event) => {
       event.preventDefault(); // asks the browser to restore it when it can
       if (!this.#disposed) this.emit('contextlost'); // not the dispose's own forceContextLoss
     });
-    this.canvas.addEventListener('webglcontextrestored', () => {
+    lifetime.listen(this.canvas, 'webglcontextrestored', () => {
       this.renderer.setClearColor(clearColor);
       this.requestRender();
       this.emit('contextrestored');
@@ -75,10 +81,19 @@ export class Viewer extends EventEmitter {
       cancelAnimationFrame(this.#frameRequest);
       this.#resizeObserver.disconnect();
       this.controls.dispose();
-      this.renderer.dispose();
-      // Browsers keep only a few WebGL contexts per page: give this one back now.
-      this.renderer.forceContextLoss();
       this.canvas.remove();
+      if (pool) {
+        // The next modeller's view draws with it: what this one drew goes
+        // now, and so do the canvas's data attributes (this view's state:
+        // the surface, glyph counts... that the next one sets anew).
+        freeGpuObjects(this.scene);
+        for (const key of Object.keys(this.canvas.dataset)) delete this.canvas.dataset[key];
+        pool.giveRenderer(this.renderer, rendererKey);
+      } else {
+        this.renderer.dispose();
+        // Browsers keep only a few WebGL contexts per page: give this one back now.
+        this.renderer.forceContextLoss();
+      }
     });
   }
 
@@ -122,7 +137,19 @@ export class Viewer extends EventEmitter {
     const height = Math.max(1, this.container.clientHeight);
     this.width = width;
     this.height = height;
-    this.renderer.setSize(width, height, false);
+    // Setting a canvas's width or height clears and reallocates its drawing
+    // buffer, even to the size it has (and three.js sets both): a start set
+    // it six times (the pixel ratio, the first fit, the resize observer's
+    // first call at the same size), each a round trip to the GPU process.
+    // The pixel ratio is read again, as it changes with the browser's zoom.
+    // A view's first call always sets it: a renderer handed on by the pool
+    // starts with its buffer cleared, not showing the last modeller's frame.
+    const pixelRatio = Math.min(window.devicePixelRatio, 2);
+    const bufferSize = `${width}x${height}@${pixelRatio}`;
+    if (bufferSize !== this.#bufferSize) {
+      this.#bufferSize = bufferSize;
+      this.renderer.setDrawingBufferSize(width, height, pixelRatio);
+    }
     this.canvas.style.width = '100%';
     this.canvas.style.height = '100%';
     this.camera.aspect = width / height;
