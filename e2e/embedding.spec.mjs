@@ -697,8 +697,9 @@ test('a solver pool also hands on the 3D view: the next modeller draws on the sa
   const pageErrors = await openExample(page);
   for (const button of await page.getByRole('button', { name: 'Dispose' }).all()) await button.click();
   expect(await census(page)).toMatchObject({ contexts: 0, glObjects: 0 });
+  const glb = (await spotSceneGlb(meshPath('closed/spot_triangulated.obj'))).toString('base64');
 
-  const outcome = await page.evaluate(async () => {
+  const outcome = await page.evaluate(async (base64) => {
     const { createModeller, createSolverPool } = window.anisoformExample;
     const gl = () => {
       const { contexts, glObjects } = window.__census();
@@ -725,6 +726,20 @@ test('a solver pool also hands on the 3D view: the next modeller draws on the sa
     const second = await open({ solvers });
     const handedOn = { ...gl(), sameCanvas: second.canvas === first.canvas };
     second.modeller.dispose();
+
+    // A glTF drawn with its own materials and textures, then switched back to
+    // the editing surface (its scene out of the view's), goes too: twice, the
+    // context keeps the same (the renderer's own objects for materials it
+    // has drawn stay, and do not grow).
+    const gltfRound = async () => {
+      const bytes = Uint8Array.from(atob(base64), (c) => c.charCodeAt(0));
+      const { modeller, canvas } = await open({ solvers, mesh: bytes, meshName: 'spot-scene.glb', materials: true });
+      const drawn = gl().glObjects;
+      modeller.setMaterials(false);
+      modeller.dispose();
+      return { drawn, after: { ...gl(), sameCanvas: canvas === first.canvas } };
+    };
+    const gltfRounds = [await gltfRound(), await gltfRound()];
     solvers.dispose();
     const ended = { ...gl(), lost: lost(first.canvas) };
 
@@ -732,8 +747,8 @@ test('a solver pool also hands on the 3D view: the next modeller draws on the sa
     const alone = await open({});
     const aloneDrawing = { ...gl(), newCanvas: alone.canvas !== first.canvas };
     alone.modeller.dispose();
-    return { drawing, kept, handedOn, ended, aloneDrawing, aloneEnded: { ...gl(), lost: lost(alone.canvas) } };
-  });
+    return { drawing, kept, handedOn, gltfRounds, ended, aloneDrawing, aloneEnded: { ...gl(), lost: lost(alone.canvas) } };
+  }, glb);
   expect(outcome.drawing.contexts).toBe(1);
   expect(outcome.drawing.glObjects).toBeGreaterThan(0);
   // Kept out of the document with its context; what the modeller drew is freed.
@@ -741,6 +756,10 @@ test('a solver pool also hands on the 3D view: the next modeller draws on the sa
   expect(outcome.kept.glObjects).toBeLessThan(outcome.drawing.glObjects);
   // The next modeller draws the same mesh on it: no second context, the same GL objects.
   expect(outcome.handedOn).toEqual({ ...outcome.drawing, sameCanvas: true });
+  const [gltfFirst, gltfSecond] = outcome.gltfRounds;
+  expect(gltfFirst.drawn).toBeGreaterThan(gltfFirst.after.glObjects);
+  expect(gltfFirst.after).toMatchObject({ contexts: 1, sameCanvas: true });
+  expect(gltfSecond).toEqual(gltfFirst);
   expect(outcome.ended).toEqual({ contexts: 0, glObjects: 0, lost: true });
   expect(outcome.aloneDrawing).toEqual({ ...outcome.drawing, newCanvas: true });
   expect(outcome.aloneEnded).toEqual({ contexts: 0, glObjects: 0, lost: true });

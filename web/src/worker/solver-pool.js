@@ -15,8 +15,8 @@
 // The same modeller's view hands on its WebGL renderer (its canvas and GL
 // context, its scene's buffers and textures freed): a new context, its
 // drawing buffer and shaders cost the page and the GPU process about 0.1
-// core-s a start on a CPU rasteriser (20 in-place starts of the site: 8.5-10.5
-// -> 6.6-7.1 core-s), and a page that creates and ends contexts nears the
+// core-s a start on a CPU rasteriser (20 in-place starts of the site: 7.9-8.7
+// -> 5.9-6.4 core-s), and a page that creates and ends contexts nears the
 // browser's limit of about 16 live ones sooner.
 //
 // The pool keeps at most `keep` idle workers and as many renderers, each for
@@ -37,7 +37,7 @@ export class SolverPool {
   /**
    * @param {object} [options]
    *   keep: how many idle workers (and renderers) to keep (default 1; 0 keeps none)
-   *   idleSeconds: how long an idle worker is kept before it is ended (default 60)
+   *   idleSeconds: how long an idle worker (or renderer) is kept before it is ended (default 60)
    */
   constructor(options = {}) {
     if (options === null || typeof options !== 'object') throw badParameter('createSolverPool: options must be an object');
