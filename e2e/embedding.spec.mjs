@@ -692,7 +692,6 @@ test('a solver pool hands a disposed modeller\'s idle worker to the next one, wh
   expect(pageErrors).toEqual([]);
 });
 
-
 test('a solver pool also hands on the 3D view: the next modeller draws on the same canvas and GL context, with nothing of the last one left in it', async ({ page }) => {
   const pageErrors = await openExample(page);
   for (const button of await page.getByRole('button', { name: 'Dispose' }).all()) await button.click();
@@ -765,6 +764,7 @@ test('a solver pool also hands on the 3D view: the next modeller draws on the sa
   expect(outcome.aloneEnded).toEqual({ contexts: 0, glObjects: 0, lost: true });
   expect(pageErrors).toEqual([]);
 });
+
 test('<anisoform-modeller edits>: saved edits open with src, alone on the mesh loaded, or with a new src; bad ones are refused and the work kept', async ({ page }) => {
   const pageErrors = await openExample(page);
   // Two saved edits of the spool (one op, two ops), made by a modeller of the page, served as files.
