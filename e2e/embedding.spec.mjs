@@ -739,14 +739,23 @@ test('a solver pool also hands on the 3D view: the next modeller draws on the sa
       return { drawn, after: { ...gl(), sameCanvas: canvas === first.canvas } };
     };
     const gltfRounds = [await gltfRound(), await gltfRound()];
+
+    // A kept context the browser takes while it waits is not handed on.
+    const taken = first.canvas.getContext('webgl2');
+    const takenEvent = new Promise((resolve) => first.canvas.addEventListener('webglcontextlost', resolve, { once: true }));
+    taken.getExtension('WEBGL_lose_context').loseContext();
+    await takenEvent;
+    const afterTaken = await open({ solvers });
+    const notHandedOn = { ...gl(), newCanvas: afterTaken.canvas !== first.canvas };
+    afterTaken.modeller.dispose();
     solvers.dispose();
-    const ended = { ...gl(), lost: lost(first.canvas) };
+    const ended = { ...gl(), lost: lost(afterTaken.canvas) };
 
     // Without a pool, dispose gives the context back at once, as before.
     const alone = await open({});
     const aloneDrawing = { ...gl(), newCanvas: alone.canvas !== first.canvas };
     alone.modeller.dispose();
-    return { drawing, kept, handedOn, gltfRounds, ended, aloneDrawing, aloneEnded: { ...gl(), lost: lost(alone.canvas) } };
+    return { drawing, kept, handedOn, gltfRounds, notHandedOn, ended, aloneDrawing, aloneEnded: { ...gl(), lost: lost(alone.canvas) } };
   }, glb);
   expect(outcome.drawing.contexts).toBe(1);
   expect(outcome.drawing.glObjects).toBeGreaterThan(0);
@@ -759,6 +768,7 @@ test('a solver pool also hands on the 3D view: the next modeller draws on the sa
   expect(gltfFirst.drawn).toBeGreaterThan(gltfFirst.after.glObjects);
   expect(gltfFirst.after).toMatchObject({ contexts: 1, sameCanvas: true });
   expect(gltfSecond).toEqual(gltfFirst);
+  expect(outcome.notHandedOn).toEqual({ ...outcome.drawing, newCanvas: true });
   expect(outcome.ended).toEqual({ contexts: 0, glObjects: 0, lost: true });
   expect(outcome.aloneDrawing).toEqual({ ...outcome.drawing, newCanvas: true });
   expect(outcome.aloneEnded).toEqual({ contexts: 0, glObjects: 0, lost: true });

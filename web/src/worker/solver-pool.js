@@ -24,10 +24,10 @@
 import { badParameter } from '../shared/errors.js';
 import { IdleShelf } from '../shared/idle-shelf.js';
 
-/** Ends a kept renderer: its GL objects, then its context, given back to the browser now. */
+/** Ends a kept renderer: its GL objects, then its context, given back to the browser now (unless it took it already). */
 function endRenderer(renderer) {
   renderer.dispose();
-  renderer.forceContextLoss();
+  if (!renderer.getContext().isContextLost()) renderer.forceContextLoss();
 }
 
 export class SolverPool {
