@@ -3,6 +3,7 @@
 // Chromium: no browser is downloaded.
 // Run: npm run build --prefix web && npx --prefix web playwright test -c e2e/playwright.config.mjs
 import { defineConfig } from '../web/node_modules/@playwright/test/index.mjs';
+import { disableFeaturesArg } from './browser-features.mjs';
 import { rendererArgs } from './renderer.mjs';
 import { WORKER_SLOTS, origin, slotOrigins, slotPorts } from './server.mjs';
 
@@ -19,7 +20,8 @@ function launchOptions(extraArgs) {
     // Chromium composites in software and reads every WebGL frame back on
     // the page's main thread: 0.6–0.9 s per frame of the 400k-triangle
     // koala, which would measure the missing GPU, not the page.
-    args: [...rendererArgs, ...extraArgs],
+    // No omnibox popup beside the page (browser-features.mjs says why).
+    args: [...rendererArgs, disableFeaturesArg, ...extraArgs],
   };
 }
 
