@@ -12,7 +12,7 @@ APT_PACKAGES=(
   catch2 libcli11-dev nlohmann-json3-dev         # tests and the CLI
   libcgal-dev                                    # benchmark peer only (GPL, never linked into the library)
   emscripten                                     # the WASM build (3.1.6, prebuilt frozen cache)
-  chromium                                       # Playwright drives Debian's browser; no browser download
+  chromium-headless-shell                        # Playwright drives Debian's Chromium (headless shell); no browser download
   libegl1 libegl-mesa0 libgl1-mesa-dri          # Mesa's llvmpipe: the e2e browser's WebGL (e2e/renderer.mjs)
   python3 gzip
   ccache                                         # compiler cache for rebuilds and fresh clones (compiler-cache.sh)

@@ -62,7 +62,7 @@ npm run build:site --prefix web
 stage "type declarations (tsc: the package and the page API, built on the module's one contract)"
 npm run check:types --prefix web
 
-stage "end-to-end tests (Playwright, Debian chromium)"
+stage "end-to-end tests (Playwright, Debian's chromium-headless-shell)"
 CI=${CI:-} npx --prefix web playwright test -c e2e/playwright.config.mjs
 
 stage "fuzzing (libFuzzer, short run; long: bash scripts/fuzz.sh --seconds 3600)"

@@ -42,7 +42,7 @@ const mesh = (name) => {
 };
 
 const browser = await chromium.launch({
-  executablePath: process.env.ANISO_CHROMIUM ?? '/usr/bin/chromium',
+  executablePath: process.env.ANISO_CHROMIUM ?? '/usr/lib/chromium/chromium-headless-shell',
   args: ['--use-angle=swiftshader', '--ignore-gpu-blocklist'],
   headless: true,
 });
