@@ -407,18 +407,21 @@ export class Editor extends EventEmitter {
   // ---- history -------------------------------------------------------------
 
   undo() {
-    if (this.#client.disposed || this.gestureActive || this.#refusedWhileBusy('Undo')) return false;
+    if (this.#client.disposed || this.gestureActive || this.refusedWhileBusy('Undo')) return false;
     return this.history.undo();
   }
 
   redo() {
-    if (this.#client.disposed || this.gestureActive || this.#refusedWhileBusy('Redo')) return false;
+    if (this.#client.disposed || this.gestureActive || this.refusedWhileBusy('Redo')) return false;
     return this.history.redo();
   }
 
-  // Undo and redo wait for no solve: while one runs they say so (a notice)
-  // instead of doing nothing without a word.
-  #refusedWhileBusy(what) {
+  /**
+   * Whether a committed solve runs, saying so (a notice) for `what`: undo,
+   * redo and the Edits list's controls wait for no solve, and instead of
+   * doing nothing without a word (or acting only once it ends) they say why.
+   */
+  refusedWhileBusy(what) {
     if (!this.busy) return false;
     this.emit('notice', { message: `${what} waits until the solve has ended: press Esc to cancel it.`, source: 'busy' });
     return true;
