@@ -1,12 +1,13 @@
-// Flatten mode in an 800 × 600 window, where the 3D view and the pattern
-// pane share 520 px: the pattern header's controls stay inside the window
-// (Fit was pushed past its right edge), and a long warning over the 3D view
-// shows three lines and More instead of covering the view.
+// Windows just wide enough for the side panel beside the view:
+// - Flatten mode in an 800 × 600 window, where the 3D view and the pattern
+//   pane share 520 px: the pattern header's controls stay inside the window
+//   (Fit was pushed past its right edge), and a long warning over the 3D view
+//   shows three lines and More instead of covering the view;
+// - a solve's progress in a 900 px window: the status bar shows it whole.
 import { expect, meshPath, openApp, test, uploadFile } from './support.mjs';
 
-test.use({ viewport: { width: 800, height: 600 } });
-
 test('800 px, Flatten: the pattern header fits, a long warning over the narrow 3D view folds to three lines and More', async ({ page }) => {
+  await page.setViewportSize({ width: 800, height: 600 });
   const pageErrors = await openApp(page);
   // The hand is no developable patch: flattening it warns at length.
   expect((await uploadFile(page, meshPath('open/hand_lowres.obj'))).ok).toBe(true);
@@ -28,5 +29,31 @@ test('800 px, Flatten: the pattern header fits, a long warning over the narrow 3
   await more.click();
   await expect(more).toHaveText('Less');
   expect(await warning.evaluate((element) => element.getBoundingClientRect().height)).toBeGreaterThan(folded);
+  expect(pageErrors).toEqual([]);
+});
+
+test("900 px: a solve's progress, percentage and Cancel show whole in the status bar, and the mesh's counts too", async ({ page }) => {
+  await page.setViewportSize({ width: 900, height: 600 });
+  const pageErrors = await openApp(page);
+  expect((await uploadFile(page, meshPath('closed/armadillo.off'))).ok).toBe(true);
+  await page.evaluate(async () => {
+    const api = window.anisoform;
+    await api.select({ all: true });
+    await api.deform({ method: 'andefgrad', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.2, 1] } });
+    // A commit that would solve for many seconds, stopped below.
+    window.__long = api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.6, 1] },
+      maxIterations: 2000, tolerance: 1e-15, acceleration: 'none' }).catch((error) => error.code);
+  });
+  await expect(page.getByTestId('progress')).toContainText(/Solving \d+ %/, { timeout: 30_000 });
+  const cut = await page.evaluate(() => [...document.querySelectorAll('.status-bar .status-item, .status-bar .status-item *')]
+    .filter((element) => element.getClientRects().length > 0 && element.scrollWidth > element.clientWidth + 1)
+    .map((element) => `${element.dataset.testid ?? element.className}: "${element.textContent}" (${element.scrollWidth} > ${element.clientWidth} px)`));
+  expect(cut).toEqual([]);
+  await expect(page.getByTestId('status-mesh')).toHaveText(/^26,002 vertices · 52,000 triangles/);
+  await expect(page.getByTestId('cancel-solve')).toBeVisible();
+  await page.getByTestId('cancel-solve').click();
+  expect(await page.evaluate(() => window.__long)).toBe('cancelled');
+  // The last solve's figures are back once it has ended.
+  await expect(page.getByTestId('status-solve')).toBeVisible();
   expect(pageErrors).toEqual([]);
 });
