@@ -216,7 +216,7 @@ ReadReport load_into_session(Session& session, const std::string& path) {
   ReadResult read = read_input_mesh(path);
   const int read_vertices = read.mesh.num_vertices();
   try {
-    session.adopt_mesh(std::move(read.mesh), {}, std::move(read.attributes));
+    session.adopt_mesh(std::move(read.mesh), {}, std::move(read.attributes), element_numbering_note(format_from_path(path)));
   } catch (const Error& e) {
     throw Error(e.code(), path + ": " + e.what());
   }

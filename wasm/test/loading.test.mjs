@@ -87,7 +87,8 @@ test('info of an open mesh counts its boundary loops; closed meshes have none', 
 const REFUSED = {
   'bad_index_out_of_range.obj': ['bad-file', /face \d+ references vertex \d+.*\(line \d+\)/],
   'bad_index_out_of_range.off': ['bad-file', /face \d+ references vertex 829.*\(line \d+\)/],
-  'bad_nan_coordinate.obj': ['bad-mesh', /vertex 5 has a non-finite coordinate/],
+  // Counted from 0, and an OBJ's message says so: its 'f' lines count from 1.
+  'bad_nan_coordinate.obj': ['bad-mesh', /vertex 5 has a non-finite coordinate .*; vertices and faces are counted from 0 here: vertex 0 is the file's first 'v' line/],
   'boxNotManifold.glb': ['bad-parameter', /GLB/],
   'empty.obj': ['bad-file', /empty/],
   'empty.off': ['bad-file', /empty/],
@@ -105,13 +106,17 @@ const REFUSED = {
 const ACCEPTED = {
   'Spider_binary.stl': (info) => info.notes.some((n) => /welded/.test(n)),
   'bad_degenerate_faces.obj': (info) => info.problems.some((p) => p.kind === 'zero-area-triangle' && /face 800/.test(p.message)),
-  'bad_flipped_faces.obj': (info) => !info.consistentlyOriented && info.problems.some((p) => p.kind === 'inconsistent-orientation'),
+  'bad_flipped_faces.obj': (info) => !info.consistentlyOriented && info.problems.some((p) => p.kind === 'inconsistent-orientation')
+    && info.notes.includes("vertices and faces are counted from 0 here: vertex 0 is the file's first 'v' line, face 0 its first triangle"),
   'bad_nonmanifold_edge.obj': (info) => !info.edgeManifold && info.problems.some((p) => p.kind === 'non-manifold-edge' && /edge \(44, 66\)/.test(p.message)),
-  'bad_triangle_soup.obj': (info) => info.vertices === 829 && info.notes.some((n) => /triangle soup/.test(n)),
+  // Welded: its vertices are numbered anew, not as its 'v' lines.
+  'bad_triangle_soup.obj': (info) => info.vertices === 829 && info.notes.some((n) => /triangle soup/.test(n))
+    && !info.notes.some((n) => /counted from 0/.test(n)),
   'boxNotManifold.obj': (info) => info.vertices > 0,
   'box_UTF16BE.obj': (info) => info.notes.some((n) => /UTF-16/.test(n)),
   'box_without_lineending.obj': (info) => info.triangles === 12,
-  'degtri_sliding.off': (info) => info.degenerateTriangles > 0,
+  // OFF counts from 0 itself: nothing to say.
+  'degtri_sliding.off': (info) => info.degenerateTriangles > 0 && !info.notes.some((n) => /counted from 0/.test(n)),
   'multi_component.obj': (info) => info.components > 1,
   'openscad-nonmanifold-crash.obj': (info) => info.problems.length > 0,
   'testmixed.obj': (info) => info.notes.some((n) => /skipped/.test(n)),

@@ -23,6 +23,12 @@ enum class MeshFormat { Obj, Off, Ply, Stl };
 // Error(BadParameter) naming the extension when it is not one of ours.
 MeshFormat format_from_path(const std::string& path);
 const char* format_name(MeshFormat format);
+// How messages about a mesh read from `format` number its elements, for
+// formats whose own numbers differ: problems of the mesh count vertices and
+// faces from 0 (ROBUSTNESS.md), an OBJ's 'f' lines from 1. A clause to add
+// after such a message; empty for OFF and PLY (which count from 0 too) and
+// STL (no numbers of its own).
+std::string element_numbering_note(MeshFormat format);
 
 // What the reader did to turn the file into an indexed triangle mesh.
 struct ReadReport {

@@ -134,8 +134,11 @@ class Session {
   // `attributes`: what the file carries besides positions and triangles
   // (mesh_io.h: an OBJ's texture coordinates and materials, a PLY's vertex
   // properties), which an export in its format writes again; kept while the
-  // faces and vertices stay as read.
-  const SessionMeshInfo& adopt_mesh(Mesh mesh, std::vector<std::string> notes, SurfaceAttributes attributes = {});
+  // faces and vertices stay as read. `numbering_note`
+  // (element_numbering_note, mesh_io.h) follows a refusal that names
+  // vertices or faces, unless a weld numbered the vertices anew.
+  const SessionMeshInfo& adopt_mesh(Mesh mesh, std::vector<std::string> notes, SurfaceAttributes attributes = {},
+                                    const std::string& numbering_note = {});
   // Those of the mesh loaded (empty: none).
   const SurfaceAttributes& attributes() const { return attributes_; }
   // How a mesh file written from this session keeps them (PLY: binary or not).

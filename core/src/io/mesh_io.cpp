@@ -62,6 +62,11 @@ const char* format_name(MeshFormat format) {
   return "unknown";
 }
 
+std::string element_numbering_note(MeshFormat format) {
+  if (format != MeshFormat::Obj) return {};
+  return "vertices and faces are counted from 0 here: vertex 0 is the file's first 'v' line, face 0 its first triangle";
+}
+
 ReadResult read_mesh_from_memory(const char* data, std::size_t size, MeshFormat format) {
   if (size == 0) io::fail_file(std::string("file is empty (0 bytes): not ") +
                                mesh_format_article(format) + format_name(format) + " mesh");

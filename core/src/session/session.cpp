@@ -100,11 +100,20 @@ const SessionMeshInfo& Session::load_mesh(const std::uint8_t* data, std::size_t 
   // The shares of an 800k-vertex load: reading 5 %, checking 30 %, the rest
   // the Laplacian (adopt_mesh).
   report(ProgressStage::Load, 0.05);
+  const int read_vertices = read.mesh.num_vertices();
+  const std::string numbering = element_numbering_note(format);
   try {
-    return adopt_mesh(std::move(read.mesh), std::move(read.report.notes), std::move(read.attributes));
+    adopt_mesh(std::move(read.mesh), std::move(read.report.notes), std::move(read.attributes), numbering);
   } catch (const Error& error) {
     fail_with_name(error, name);
   }
+  // The load's notice names the faces and vertices of the problems it lists:
+  // it says how they are counted too (not after a weld, which numbered the
+  // vertices anew; the CLI's warnings name none).
+  if (!numbering.empty() && !info_.report.problems.empty() && info_.report.vertices == read_vertices) {
+    info_.notes.push_back(numbering);
+  }
+  return info_;
 }
 
 const SessionMeshInfo& Session::set_mesh(const std::vector<double>& positions,
@@ -160,11 +169,14 @@ void Session::set_vertex_limit(int max_vertices, std::string why) {
   vertex_limit_why_ = std::move(why);
 }
 
-const SessionMeshInfo& Session::adopt_mesh(Mesh mesh, std::vector<std::string> notes, SurfaceAttributes attributes) {
+const SessionMeshInfo& Session::adopt_mesh(Mesh mesh, std::vector<std::string> notes, SurfaceAttributes attributes,
+                                           const std::string& numbering_note) {
   // A soup has no shared vertices, so no edit could spread over it: weld it,
   // and say so (what `anisoform info` reports too).
   const int faces_before = mesh.num_triangles();
-  if (weld_if_triangle_soup(mesh, notes)) {
+  const bool welded = weld_if_triangle_soup(mesh, notes);
+  const std::string numbering = welded ? std::string() : numbering_note;
+  if (welded) {
     // Texture rows and material runs follow the faces: a face welding
     // collapsed shifts them. The vertices are others now.
     if (mesh.num_triangles() != faces_before) {
@@ -181,7 +193,8 @@ const SessionMeshInfo& Session::adopt_mesh(Mesh mesh, std::vector<std::string> n
   }
   SessionMeshInfo info{check_mesh(mesh), std::move(notes)};
   if (!info.report.solvable()) {
-    fail(ErrorCode::BadMesh, "cannot edit this mesh: " + info.report.blocking_summary());
+    fail(ErrorCode::BadMesh, "cannot edit this mesh: " + info.report.blocking_summary() +
+                                 (numbering.empty() ? "" : "; " + numbering));
   }
   report(ProgressStage::Load, 0.35);
   // The mesh is accepted: the old one's factorizations go now rather than at
