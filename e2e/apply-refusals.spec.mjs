@@ -157,7 +157,7 @@ test('Apply is off while its edit solves: clicks and Enter meanwhile stack no se
   expect(pageErrors).toEqual([]);
 });
 
-test("the Edits list's toggle, delete and move are off while a commit solves, and say why when tried; after a cancel they work", async ({ page }) => {
+test("the Edits list's toggle, delete and move, Export and Reset are off while a commit solves, and say why when tried; after a cancel they work", async ({ page }) => {
   const pageErrors = await openApp(page);
   expect((await uploadFile(page, meshPath('closed/armadillo.off'))).ok).toBe(true);
   await page.evaluate(async () => {
@@ -184,6 +184,14 @@ test("the Edits list's toggle, delete and move are off while a commit solves, an
   await page.getByTestId('op-select-op-1').click();
   await page.getByTestId('op-down-op-1').click({ force: true });
   await expect(notice).toContainText('Moving an edit waits until the solve has ended');
+  // Export and Reset likewise (Export waited silently and then saved the solve's result).
+  await expect(page.getByTestId('export')).toHaveAttribute('aria-disabled', 'true');
+  const downloads = [];
+  page.on('download', (download) => downloads.push(download.suggestedFilename()));
+  await page.getByTestId('export').click({ force: true });
+  await expect(notice).toContainText('Export waits until the solve has ended');
+  await page.getByTestId('reset').click({ force: true });
+  await expect(notice).toContainText('Reset waits until the solve has ended');
   const during = await page.evaluate(() => window.anisoform.document().ops.map((op) => [op.id, op.enabled]));
   expect(during).toEqual([['op-1', true], ['op-2', true]]);
   await page.keyboard.press('Escape');
@@ -194,6 +202,7 @@ test("the Edits list's toggle, delete and move are off while a commit solves, an
   await toggle.click();
   await expect.poll(() => page.evaluate(() => window.anisoform.document().ops[0].enabled), { timeout: 60_000 }).toBe(false);
   await expect(toggle).not.toBeChecked();
+  expect(downloads).toEqual([]);
   expect(pageErrors).toEqual([]);
 });
 
