@@ -157,52 +157,41 @@ test('Apply is off while its edit solves: clicks and Enter meanwhile stack no se
   expect(pageErrors).toEqual([]);
 });
 
-test("the Edits list's toggle, delete and move, Export and Reset are off while a commit solves, and say why when tried; after a cancel they work", async ({ page }) => {
+test('while a commit solves, a press on the mesh with the brush or a tool turns the view and says why it does not paint or edit', async ({ page }) => {
   const pageErrors = await openApp(page);
   expect((await uploadFile(page, meshPath('closed/armadillo.off'))).ok).toBe(true);
   await page.evaluate(async () => {
     const api = window.anisoform;
     await api.select({ all: true });
     await api.deform({ method: 'andefgrad', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.2, 1] } });
-    await api.deform({ method: 'andefgrad', direction: { type: 'global', vector: [1, 0, 0] }, transform: { scale: [1.1, 1] } });
-    // A commit that would solve for tens of seconds, left running.
+    // A commit that would solve for many seconds, stopped below.
     window.__long = api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.6, 1] },
       maxIterations: 2000, tolerance: 1e-15, acceleration: 'none' }).then(() => 'finished', (error) => error.code);
   });
   await expect(page.getByTestId('cancel-solve')).toBeVisible();
-  const toggle = page.getByTestId('op-toggle-op-1');
+  const before = await evaluateBulk(page, () => ({ selection: Array.from(window.anisoform.selection()), camera: JSON.stringify(window.anisoform.camera()) }));
   const notice = page.getByTestId('notice');
-  await expect(toggle).toHaveAttribute('aria-disabled', 'true');
-  await expect(page.getByTestId('op-delete-op-1')).toHaveAttribute('aria-disabled', 'true');
-  // A user's clicks (Playwright would wait for the controls to be on again).
-  await toggle.click({ force: true });
-  // Said at once, and the box shows the edit as it is: on (it flipped back only when the solve ended).
-  await expect(notice).toContainText('Turning an edit off waits until the solve has ended: press Esc to cancel it.');
-  await expect(toggle).toBeChecked();
-  await page.getByTestId('op-delete-op-1').click({ force: true });
-  await expect(notice).toContainText('Deleting an edit waits until the solve has ended');
-  await page.getByTestId('op-select-op-1').click();
-  await page.getByTestId('op-down-op-1').click({ force: true });
-  await expect(notice).toContainText('Moving an edit waits until the solve has ended');
-  // Export and Reset likewise (Export waited silently and then saved the solve's result).
-  await expect(page.getByTestId('export')).toHaveAttribute('aria-disabled', 'true');
-  const downloads = [];
-  page.on('download', (download) => downloads.push(download.suggestedFilename()));
-  await page.getByTestId('export').click({ force: true });
-  await expect(notice).toContainText('Export waits until the solve has ended');
-  await page.getByTestId('reset').click({ force: true });
-  await expect(notice).toContainText('Reset waits until the solve has ended');
-  const during = await page.evaluate(() => window.anisoform.document().ops.map((op) => [op.id, op.enabled]));
-  expect(during).toEqual([['op-1', true], ['op-2', true]]);
+  const view = await page.getByTestId('viewport').boundingBox();
+  const pressOnMesh = async () => {
+    await page.mouse.move(view.x + view.width / 2, view.y + view.height / 2);
+    await page.mouse.down();
+    await page.mouse.move(view.x + view.width / 2 + 40, view.y + view.height / 2, { steps: 4 });
+    await page.mouse.up();
+  };
+  await page.getByTestId('tool-select').click();
+  await pressOnMesh();
+  await expect(notice).toContainText('Painting the selection waits until the solve has ended: press Esc to cancel it.');
+  await page.getByTestId('tool-stretch').click();
+  await pressOnMesh();
+  await expect(notice).toContainText('Dragging an edit waits until the solve has ended');
+  const after = await evaluateBulk(page, () => ({ selection: Array.from(window.anisoform.selection()), camera: JSON.stringify(window.anisoform.camera()) }));
+  // Nothing painted; the view turned instead.
+  expect(after.selection).toEqual(before.selection);
+  expect(after.camera).not.toBe(before.camera);
   await page.keyboard.press('Escape');
   expect(await page.evaluate(() => window.__long)).toBe('cancelled');
-  // Nothing was queued behind the solve: after it, the list is as it was, and its controls act again.
-  await expect(toggle).toHaveAttribute('aria-disabled', 'false');
-  expect(await page.evaluate(() => window.anisoform.document().ops.map((op) => [op.id, op.enabled]))).toEqual(during);
-  await toggle.click();
-  await expect.poll(() => page.evaluate(() => window.anisoform.document().ops[0].enabled), { timeout: 60_000 }).toBe(false);
-  await expect(toggle).not.toBeChecked();
-  expect(downloads).toEqual([]);
+  // The cancel's notice replaces the wait's.
+  await expect(notice).toContainText('Cancelled: the solve was stopped');
   expect(pageErrors).toEqual([]);
 });
 

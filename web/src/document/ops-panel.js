@@ -10,7 +10,6 @@
 // selection again. Its soft border can be changed too.
 import { formatCount } from '../shared/number-format.js';
 import { h, section } from '../ui/dom.js';
-import { setOff } from '../ui/focusable-disabled.js';
 import { falloffField, opFields } from './op-fields.js';
 
 // The rows are drawn anew on every change: the control that had the focus
@@ -45,42 +44,34 @@ export function opsPanel({ api, editor }) {
   // The editor reports failures itself (the banner); a refused change only
   // needs the rows drawn again, so that the fields show the values kept.
   const redrawIfRefused = (promise) => promise.catch(() => render());
-  // While a committed solve runs, the changes that re-run edits are off, as
-  // Apply and Undo are, and say why when tried: they were queued behind the
-  // solve without a word, and a toggle's box flipped back when the solve's
-  // document came and only later to what was clicked. The rows are drawn
-  // again, so that they show the document as it is.
-  const OFF_WHILE_BUSY = 'data-off-while-busy';
-  const unlessBusy = (what, action) => (...args) => (editor.refusedWhileBusy(what) ? render() : action(...args));
-  const offWhileBusy = (attributes) => ({ ...attributes, [OFF_WHILE_BUSY]: '', 'aria-disabled': String(editor.busy) });
 
   // Up and down in the list (the order the ops run in).
   const orderControls = (entry, index, count) => h('div', { className: 'row op-order' },
     [['up', index - 1, 'Move up', 'Run this edit before the one above it'],
       ['down', index + 1, 'Move down', 'Run this edit after the one below it']].map(([way, to, text, title]) =>
-      h('button', offWhileBusy({
+      h('button', {
         type: 'button',
         className: 'button',
         disabled: to < 0 || to >= count,
         title,
         'data-testid': `op-${way}-${entry.id}`,
-        onclick: unlessBusy('Moving an edit', () => redrawIfRefused(api.moveOp(entry.id, to))),
-      }), text)));
+        onclick: () => redrawIfRefused(api.moveOp(entry.id, to)),
+      }, text)));
 
   const regionControls = (entry) => h('div', { className: 'op-region' },
     h('span', { 'data-testid': `op-region-${entry.id}` }, regionText(entry)),
     falloffField(entry, editor.ops.stepsOfRegion(entry.id), {
-      setRegion: unlessBusy("Changing an edit's region", (steps) => redrawIfRefused(api.setRegion(entry.id, steps))),
+      setRegion: (steps) => redrawIfRefused(api.setRegion(entry.id, steps)),
       redraw: render,
     }),
-    h('button', offWhileBusy({
+    h('button', {
       type: 'button',
       className: 'button',
       'data-testid': `op-use-selection-${entry.id}`,
       title: "The current selection replaces this edit's region; it and the later edits re-run",
-      onclick: unlessBusy("Changing an edit's region", () => editor.ops.useSelectionAsRegion(entry.id)
-        .catch((error) => editor.report(error, 'The region was not changed'))),
-    }), "Use current selection as this op's region"));
+      onclick: () => editor.ops.useSelectionAsRegion(entry.id)
+        .catch((error) => editor.report(error, 'The region was not changed')),
+    }, "Use current selection as this op's region"));
 
   // The op's name: Enter or leaving the field names it (a step of the
   // history), Esc puts the name back; an empty one is the old name again.
@@ -133,14 +124,13 @@ export function opsPanel({ api, editor }) {
     return h('li', { className: `op-row${isSelected ? ' selected' : ''}${entry.enabled ? '' : ' disabled'}`, 'data-op': entry.id },
       // The label is the touch target (44 px on phones), the box keeps its size.
       h('label', { className: 'op-toggle', title: entry.enabled ? 'Turn this edit off' : 'Turn this edit on' },
-        h('input', offWhileBusy({
+        h('input', {
           type: 'checkbox',
           checked: entry.enabled,
           'aria-label': `${entry.label || entry.id} on`,
           'data-testid': `op-toggle-${entry.id}`,
-          onchange: unlessBusy(`Turning an edit ${entry.enabled ? 'off' : 'on'}`,
-            (event) => redrawIfRefused(api.setOpEnabled(entry.id, event.target.checked))),
-        }))),
+          onchange: (event) => redrawIfRefused(api.setOpEnabled(entry.id, event.target.checked)),
+        })),
       h('button', {
         className: 'op-label',
         'data-testid': `op-select-${entry.id}`,
@@ -150,7 +140,7 @@ export function opsPanel({ api, editor }) {
         onkeydown: (event) => {
           if (event.key !== 'Delete' && event.key !== 'Backspace') return;
           event.preventDefault();
-          unlessBusy('Deleting an edit', () => redrawIfRefused(api.removeOp(entry.id)))();
+          redrawIfRefused(api.removeOp(entry.id));
         },
         onclick: () => {
           selected = isSelected ? null : entry.id;
@@ -159,18 +149,18 @@ export function opsPanel({ api, editor }) {
           if (!selected) showSelectionAgain();
         },
       }, entry.label || entry.id),
-      h('button', offWhileBusy({
+      h('button', {
         type: 'button',
         className: 'dismiss op-delete',
         title: 'Delete this edit: the later edits re-run (Undo puts it back)',
         'aria-label': `Delete ${entry.label || entry.id}`,
         'data-testid': `op-delete-${entry.id}`,
-        onclick: unlessBusy('Deleting an edit', () => redrawIfRefused(api.removeOp(entry.id))),
-      }), '×'),
+        onclick: () => redrawIfRefused(api.removeOp(entry.id)),
+      }, '×'),
       isSelected ? h('div', { className: 'op-amounts' },
         nameField(entry),
         opFields(entry, {
-          change: unlessBusy("Changing an edit's amounts", (patch) => redrawIfRefused(api.setParameter(entry.id, patch))),
+          change: (patch) => redrawIfRefused(api.setParameter(entry.id, patch)),
           // Typing previews the last edit (warm-started iterations, cheap);
           // an earlier one's preview replays every later edit, seconds a
           // keystroke on a big mesh, so it waits for the value's commit.
@@ -200,7 +190,6 @@ export function opsPanel({ api, editor }) {
   }
   editor.on('document', render);
   editor.on('mesh', render);
-  editor.on('busy', (busy) => list.querySelectorAll(`[${OFF_WHILE_BUSY}]`).forEach((element) => setOff(element, busy)));
 
   const panel = section('Edits', empty, list);
   const heading = panel.querySelector('h2');

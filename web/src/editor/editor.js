@@ -418,8 +418,8 @@ export class Editor extends EventEmitter {
 
   /**
    * Whether a committed solve runs, saying so (a notice) for `what`: undo,
-   * redo and the Edits list's controls wait for no solve, and instead of
-   * doing nothing without a word (or acting only once it ends) they say why.
+   * redo, the brush and the tools' drags wait for no solve, and instead of
+   * doing nothing without a word they say why.
    */
   refusedWhileBusy(what) {
     if (!this.busy) return false;

@@ -22,8 +22,11 @@ export class SelectTool {
     return (this.settings.values.brush.radiusPercent / 100) * diagonal;
   }
 
+  // While a committed solve runs, a press on the mesh turns the view (the
+  // brush is off, as Apply is) and says why it does not paint.
   wantsGesture(hit) {
-    return hit !== null && !this.editor.gestureActive && !this.editor.busy;
+    if (hit === null || this.editor.gestureActive) return false;
+    return !this.editor.refusedWhileBusy('Painting the selection');
   }
 
   start({ hit, event }) {

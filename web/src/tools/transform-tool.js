@@ -41,8 +41,10 @@ export class TransformTool {
     this.dragReadout = context.dragReadout;
   }
 
+  // As the brush (select-tool.js): while a committed solve runs, a press on
+  // the mesh turns the view and says why it does not edit.
   wantsGesture(hit) {
-    return hit !== null && !this.editor.busy;
+    return hit !== null && !this.editor.refusedWhileBusy('Dragging an edit');
   }
 
   start({ x, y, hit }) {

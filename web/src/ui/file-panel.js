@@ -5,7 +5,6 @@ import { downloadBytes } from '../io/download.js';
 import { EXPORT_FORMATS } from '../io/mesh-formats.js';
 import { OPEN_ACCEPT_ATTRIBUTE, openFiles, savedEditsName } from '../io/open-files.js';
 import { h, section } from './dom.js';
-import { setOff } from './focusable-disabled.js';
 
 /**
  * askToReplace(message) -> Promise<'save'|'open'|'cancel'> (replace-dialog.js)
@@ -48,14 +47,10 @@ export function filePanel({ api, editor, reportError, askToReplace }) {
     { id: 'export-format', 'aria-label': 'Export format' },
     EXPORT_FORMATS.map((name) => h('option', { value: name }, name.toUpperCase())),
   );
-  // Export and Reset are off while a committed solve runs, as Apply and Undo
-  // are, and say why when clicked: Export waited silently for the solve (14 s
-  // on a large mesh) and then saved its result, Reset was queued behind it.
   const exportButton = h('button', {
     className: 'button',
     'data-testid': 'export',
     onclick: async () => {
-      if (editor.refusedWhileBusy('Export')) return;
       const bytes = await api.export(format.value).catch((error) => {
         reportError(error);
         return null;
@@ -74,9 +69,8 @@ export function filePanel({ api, editor, reportError, askToReplace }) {
   const resetButton = h('button', {
     className: 'button',
     'data-testid': 'reset',
-    onclick: () => !editor.refusedWhileBusy('Reset') && api.reset(),
+    onclick: () => api.reset(),
   }, 'Reset');
-  editor.on('busy', (busy) => [exportButton, resetButton].forEach((button) => setOff(button, busy)));
   const fileName = h('p', { className: 'file-name' });
   editor.on('mesh', (document) => (fileName.textContent = document.name));
   // Nothing to save, and nothing to reset, until an edit is made.
