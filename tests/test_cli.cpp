@@ -109,7 +109,10 @@ std::vector<MalformedCase> malformed_cases() {
       // the file is named.
       {"bad_index_out_of_range.obj", 3, 3, "vertex 840", nullptr},
       {"bad_index_out_of_range.off", 3, 3, "829", nullptr},
-      {"bad_nan_coordinate.obj", 0, 3, "vertex 5",
+      // Counted from 0, and said so: an OBJ's own 'f' lines count from 1.
+      {"bad_nan_coordinate.obj", 0, 3,
+       "vertex 5 has a non-finite coordinate (nan, 0.343383, -0.678339); vertices and faces are counted from 0 here: "
+       "vertex 0 is the file's first 'v' line",
        [](const json& info) {
          CHECK(info["non_finite_vertices"] == 1);
          CHECK(info["solvable"] == false);
