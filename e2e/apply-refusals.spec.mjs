@@ -3,7 +3,7 @@
 // 'ARAP with handles', which has no amount), the error banner and the API's
 // 'error' event say why and what to do, and the mesh and history stay. An
 // edit no direction changes (a twist, a rotation about the normal) needs none.
-import { armChange, evaluateBulk, expect, meshPath, openApp, selectUpperHalf, test, uploadFile } from './support.mjs';
+import { armChange, evaluateBulk, expect, meshPath, openApp, selectUpperHalf, startLongCommit, test, uploadFile } from './support.mjs';
 
 async function recordErrors(page) {
   await page.evaluate(() => {
@@ -159,15 +159,7 @@ test('Apply is off while its edit solves: clicks and Enter meanwhile stack no se
 
 test('while a commit solves, a press on the mesh with the brush or a tool turns the view and says why it does not paint or edit', async ({ page }) => {
   const pageErrors = await openApp(page);
-  expect((await uploadFile(page, meshPath('closed/armadillo.off'))).ok).toBe(true);
-  await page.evaluate(async () => {
-    const api = window.anisoform;
-    await api.select({ all: true });
-    await api.deform({ method: 'andefgrad', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.2, 1] } });
-    // A commit that would solve for many seconds, stopped below.
-    window.__long = api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.6, 1] },
-      maxIterations: 2000, tolerance: 1e-15, acceleration: 'none' }).then(() => 'finished', (error) => error.code);
-  });
+  await startLongCommit(page);
   await expect(page.getByTestId('cancel-solve')).toBeVisible();
   const before = await evaluateBulk(page, () => ({ selection: Array.from(window.anisoform.selection()), camera: JSON.stringify(window.anisoform.camera()) }));
   const notice = page.getByTestId('notice');

@@ -4,7 +4,7 @@
 //   (Fit was pushed past its right edge), and a long warning over the 3D view
 //   shows three lines and More instead of covering the view;
 // - a solve's progress in a 900 px window: the status bar shows it whole.
-import { expect, meshPath, openApp, test, uploadFile } from './support.mjs';
+import { expect, meshPath, openApp, startLongCommit, test, uploadFile } from './support.mjs';
 
 test('800 px, Flatten: the pattern header fits, a long warning over the narrow 3D view folds to three lines and More', async ({ page }) => {
   await page.setViewportSize({ width: 800, height: 600 });
@@ -35,15 +35,7 @@ test('800 px, Flatten: the pattern header fits, a long warning over the narrow 3
 test("900 px: a solve's progress, percentage and Cancel show whole in the status bar, and the mesh's counts too", async ({ page }) => {
   await page.setViewportSize({ width: 900, height: 600 });
   const pageErrors = await openApp(page);
-  expect((await uploadFile(page, meshPath('closed/armadillo.off'))).ok).toBe(true);
-  await page.evaluate(async () => {
-    const api = window.anisoform;
-    await api.select({ all: true });
-    await api.deform({ method: 'andefgrad', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.2, 1] } });
-    // A commit that would solve for many seconds, stopped below.
-    window.__long = api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.6, 1] },
-      maxIterations: 2000, tolerance: 1e-15, acceleration: 'none' }).catch((error) => error.code);
-  });
+  await startLongCommit(page);
   await expect(page.getByTestId('progress')).toContainText(/Solving \d+ %/, { timeout: 30_000 });
   const cut = await page.evaluate(() => [...document.querySelectorAll('.status-bar .status-item, .status-bar .status-item *')]
     .filter((element) => element.getClientRects().length > 0 && element.scrollWidth > element.clientWidth + 1)

@@ -79,6 +79,22 @@ export async function replaceWorkIfAsked(page) {
   if (made > 0) await page.getByTestId('replace-open').click();
 }
 
+/**
+ * Loads the armadillo with one committed edit, then starts a commit that would
+ * solve for many seconds and leaves it running (the tests stop it):
+ * window.__long is its outcome, 'finished' or the rejection's code.
+ */
+export async function startLongCommit(page) {
+  expect((await uploadFile(page, meshPath('closed/armadillo.off'))).ok).toBe(true);
+  await page.evaluate(async () => {
+    const api = window.anisoform;
+    await api.select({ all: true });
+    await api.deform({ method: 'andefgrad', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.2, 1] } });
+    window.__long = api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.6, 1] },
+      maxIterations: 2000, tolerance: 1e-15, acceleration: 'none' }).then(() => 'finished', (error) => error.code);
+  });
+}
+
 /** Selects the vertices above the middle of the mesh's height (y), by the API's box region. */
 export async function selectUpperHalf(page) {
   return page.evaluate(() => {
