@@ -3,17 +3,7 @@
 // notice (not an error) says so, the mesh, the document and the history are
 // exactly as before, and the solver comes back with that state: the next
 // edit, undo and a replay of the document all work as if nothing happened.
-import { evaluateBulk, expect, meshPath, openApp, recordWorkerRequests, test, uploadFile, verticalRange } from './support.mjs';
-
-// A solve that would run for tens of seconds on the armadillo.
-const LONG_EDIT = {
-  method: 'anarap',
-  direction: { type: 'global', vector: [0, 1, 0] },
-  transform: { scale: [1.6, 1] },
-  maxIterations: 2000,
-  tolerance: 1e-15,
-  acceleration: 'none',
-};
+import { evaluateBulk, expect, LONG_EDIT, meshPath, openApp, recordWorkerRequests, test, uploadFile, verticalRange } from './support.mjs';
 
 async function setUp(page) {
   const pageErrors = await openApp(page);

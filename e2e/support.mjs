@@ -79,20 +79,29 @@ export async function replaceWorkIfAsked(page) {
   if (made > 0) await page.getByTestId('replace-open').click();
 }
 
+/** An edit that would solve for tens of seconds on the armadillo: the tests of what happens meanwhile stop it. */
+export const LONG_EDIT = {
+  method: 'anarap',
+  direction: { type: 'global', vector: [0, 1, 0] },
+  transform: { scale: [1.6, 1] },
+  maxIterations: 2000,
+  tolerance: 1e-15,
+  acceleration: 'none',
+};
+
 /**
- * Loads the armadillo with one committed edit, then starts a commit that would
- * solve for many seconds and leaves it running (the tests stop it):
- * window.__long is its outcome, 'finished' or the rejection's code.
+ * Loads the armadillo with one committed edit, then starts LONG_EDIT and
+ * leaves it running: window.__long is its outcome, 'finished' or the
+ * rejection's code.
  */
 export async function startLongCommit(page) {
   expect((await uploadFile(page, meshPath('closed/armadillo.off'))).ok).toBe(true);
-  await page.evaluate(async () => {
+  await page.evaluate(async (edit) => {
     const api = window.anisoform;
     await api.select({ all: true });
     await api.deform({ method: 'andefgrad', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.2, 1] } });
-    window.__long = api.deform({ method: 'anarap', direction: { type: 'global', vector: [0, 1, 0] }, transform: { scale: [1.6, 1] },
-      maxIterations: 2000, tolerance: 1e-15, acceleration: 'none' }).then(() => 'finished', (error) => error.code);
-  });
+    window.__long = api.deform(edit).then(() => 'finished', (error) => error.code);
+  }, LONG_EDIT);
 }
 
 /** Selects the vertices above the middle of the mesh's height (y), by the API's box region. */
